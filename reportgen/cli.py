@@ -1,0 +1,172 @@
+"""Command line: argument parsing and exit codes only.
+
+Exit status: 0 all scenes ok; 1 some scene failed or was flagged unstable;
+2 bad usage or invalid config (nothing run, nothing overwritten).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from . import __version__
+from .config import FORMATS, ConfigError
+
+EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
+
+
+def _formats(text: str) -> tuple[str, ...]:
+    items = tuple(f.strip().lower() for f in text.split(",") if f.strip())
+    bad = [f for f in items if f not in FORMATS]
+    if bad or not items:
+        raise argparse.ArgumentTypeError(
+            f"--format takes a comma-separated subset of {','.join(FORMATS)} (got {text!r})")
+    return items
+
+
+def _jobs(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"--jobs must be a whole number ≥ 1 (got {text!r})")
+    return value
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="reportgen",
+        description="Simulate classical-mechanics scenes from TOML configs and write HDF5 "
+                    "archives, figures and HTML/PDF reports.")
+    parser.add_argument("--version", action="version", version=f"reportgen {__version__}")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    run = sub.add_parser("run", help="run scenes (config files or folders) and write reports")
+    run.add_argument("paths", nargs="+", metavar="PATH")
+    run.add_argument("--out", default="output", metavar="DIR", help="output folder (default: output)")
+    run.add_argument("--jobs", type=_jobs, default=None, metavar="N",
+                     help="worker processes (default: CPU count)")
+    run.add_argument("--format", type=_formats, default=None, metavar="html,pdf",
+                     help="report formats (default: the config's [report] formats)")
+    run.add_argument("--force", action="store_true", help="re-run scenes whose archive is current")
+    run.add_argument("--scheduler", default=None, metavar="ADDR",
+                     help="Dask distributed scheduler address (needs the 'dask' extra)")
+
+    rep = sub.add_parser("report", help="rebuild reports from archives alone")
+    rep.add_argument("archives", nargs="+", metavar="ARCHIVE.h5")
+    rep.add_argument("--format", type=_formats, default=FORMATS, metavar="html,pdf")
+
+    ins = sub.add_parser("inspect", help="summary of an archive, checksums verified")
+    ins.add_argument("archive", metavar="ARCHIVE.h5")
+
+    sub.add_parser("kinds", help="scene kinds, their keys, presets and sections")
+
+    val = sub.add_parser("validate", help="check configs, run nothing")
+    val.add_argument("paths", nargs="+", metavar="PATH")
+
+    bench = sub.add_parser("bench", help="error against run time, against peer solvers")
+    bench.add_argument("paths", nargs="*", metavar="PATH")
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = build_parser().parse_args(argv)
+    try:
+        return COMMANDS[args.command](args)
+    except ConfigError as exc:
+        for line in exc.problems:
+            print(line, file=sys.stderr)
+        return EXIT_USAGE
+    except KeyboardInterrupt:
+        print("interrupted: finished scenes are kept; run again to resume", file=sys.stderr)
+        return 130
+
+
+def _usage(message: str) -> int:
+    print(f"reportgen: {message}", file=sys.stderr)
+    return EXIT_USAGE
+
+
+def cmd_run(args) -> int:
+    from .pipeline import UsageError, batch_status, run_batch
+
+    if args.scheduler:
+        return _usage("--scheduler: Dask batches are not available in this version yet")
+    try:
+        outcomes = run_batch(args.paths, out_root=args.out, jobs=args.jobs, formats=args.format,
+                             force=args.force)
+    except UsageError as exc:
+        return _usage(str(exc))
+    status = batch_status(outcomes)
+    bad = [o for o in outcomes if not o.ok]
+    print(f"{len(outcomes) - len(bad)} of {len(outcomes)} scenes ok; index: "
+          f"{Path(args.out) / 'index.html'}", file=sys.stderr)
+    return EXIT_OK if status == "ok" else EXIT_FAILED
+
+
+def cmd_report(args) -> int:
+    from .archive import ArchiveError
+    from .report import ReportError, build_report
+
+    code = EXIT_OK
+    for archive in args.archives:
+        try:
+            written = build_report(Path(archive), formats=args.format)
+        except (ArchiveError, ReportError) as exc:
+            print(str(exc), file=sys.stderr)
+            code = EXIT_USAGE
+            continue
+        print("wrote " + ", ".join(str(w) for w in written))
+    return code
+
+
+def cmd_inspect(args) -> int:
+    from .archive import ArchiveError, summarize, verify_checksums
+
+    try:
+        print(summarize(Path(args.archive)))
+    except ArchiveError as exc:
+        print(str(exc), file=sys.stderr)
+        return EXIT_USAGE
+    return EXIT_FAILED if verify_checksums(Path(args.archive)) else EXIT_OK
+
+
+def cmd_kinds(args) -> int:
+    from .scenes.catalogue import describe_kinds
+
+    print(describe_kinds())
+    return EXIT_OK
+
+
+def cmd_validate(args) -> int:
+    from .pipeline import UsageError, collect_configs, validate_all
+
+    try:
+        scenes = validate_all(collect_configs(args.paths))
+    except UsageError as exc:
+        return _usage(str(exc))
+    for scene in scenes:
+        print(f"{scene.source.path}: ok ({scene.kind}: {', '.join(scene.default_sections()) if not scene.config.report.sections else ', '.join(scene.config.report.sections)})")
+    return EXIT_OK
+
+
+def cmd_bench(args) -> int:
+    from .bench import run_bench
+    from .pipeline import UsageError
+
+    try:
+        return run_bench(args.paths)
+    except UsageError as exc:
+        return _usage(str(exc))
+
+
+COMMANDS = {
+    "run": cmd_run,
+    "report": cmd_report,
+    "inspect": cmd_inspect,
+    "kinds": cmd_kinds,
+    "validate": cmd_validate,
+    "bench": cmd_bench,
+}

@@ -1,0 +1,455 @@
+"""Compiled integrator drivers, written once for every model.
+
+This file is a *template*: it is never compiled as it stands.  The names ``RHS``,
+``JAC``, ``DRIFT`` and ``KICK`` are free; :mod:`.kernels` writes a small module per
+model that imports the model's compiled functions under those names and appends this
+source, so numba sees the model functions as *globals* (inlined, and cacheable on
+disk) rather than as arguments (a dispatcher argument is typed by object identity,
+so every fresh process misses the cache and recompiles -- measured, see kernels.py).
+
+Shared conventions
+------------------
+* ``t_eval`` (N,), ``Y`` (N, d) output; a driver fills ``Y[i0:i1]``.
+* ``y`` (d,) is the current state, updated in place, so consecutive calls over
+  consecutive index ranges ("chunks") continue one integration.
+* ``counters`` int64[3] = (nfev, accepted steps, rejected steps), accumulated.
+* The return value is a status code (``OK`` ...) ; the failure time is left in
+  ``state[0]`` (adaptive) or returned through ``tfail`` (fixed-step).
+"""
+
+import math
+
+import numba
+import numpy as np
+
+RHS = JAC = DRIFT = KICK = None  # bound per model by kernels.py
+
+OK = 0
+NONFINITE = 1
+UNDERFLOW = 2
+MAXSTEPS = 3
+NEWTON = 4
+
+EPS = 2.220446049250313e-16
+SAFETY = 0.9  # step-size controller constants as in scipy.integrate._ivp.rk
+MIN_FACTOR = 0.2
+MAX_FACTOR = 10.0
+
+
+@numba.njit(cache=True)
+def fd_jac(t, y, params, out):
+    """Forward-difference Jacobian, used when the model has no ``jac``."""
+    d = y.size
+    f0 = np.empty(d)
+    f1 = np.empty(d)
+    yp = y.copy()
+    RHS(t, y, params, f0)
+    for j in range(d):
+        dy = math.sqrt(EPS) * max(1.0, abs(y[j]))
+        yp[j] = y[j] + dy
+        RHS(t, yp, params, f1)
+        for i in range(d):
+            out[i, j] = (f1[i] - f0[i]) / dy
+        yp[j] = y[j]
+
+
+@numba.njit(cache=True)
+def all_finite(y):
+    for i in range(y.size):
+        if not math.isfinite(y[i]):
+            return False
+    return True
+
+
+@numba.njit(cache=True)
+def rms_scaled(x, scale):
+    acc = 0.0
+    for i in range(x.size):
+        v = x[i] / scale[i]
+        acc += v * v
+    return math.sqrt(acc / x.size)
+
+
+@numba.njit(cache=True)
+def initial_step(t0, y0, f0, params, order, rtol, atol, span):
+    """Starting step size, Hairer-Norsett-Wanner I, sec. II.4 (as scipy select_initial_step)."""
+    d = y0.size
+    scale = atol + np.abs(y0) * rtol
+    d0 = rms_scaled(y0, scale)
+    d1 = rms_scaled(f0, scale)
+    if d0 < 1e-5 or d1 < 1e-5:
+        h0 = 1e-6
+    else:
+        h0 = 0.01 * d0 / d1
+    h0 = min(h0, span)
+    y1 = y0 + h0 * f0
+    f1 = np.empty(d)
+    RHS(t0 + h0, y1, params, f1)
+    d2 = rms_scaled(f1 - f0, scale) / h0
+    if d1 <= 1e-15 and d2 <= 1e-15:
+        h1 = max(1e-6, h0 * 1e-3)
+    else:
+        h1 = (0.01 / max(d1, d2)) ** (1.0 / (order + 1))
+    return min(100.0 * h0, h1, span)
+
+
+@numba.njit(cache=True)
+def erk_stage(A, c, s, t, y, h, K, ytmp, params):
+    """Stage ``s``: K[s] = f(t + c_s h, y + h sum_j a_sj K[j])."""
+    d = y.size
+    for i in range(d):
+        acc = 0.0
+        for j in range(s):
+            acc += A[s, j] * K[j, i]
+        ytmp[i] = y[i] + h * acc
+    RHS(t + c[s] * h, ytmp, params, K[s])
+
+
+@numba.njit(cache=True)
+def dense_eval(kind, nst, P, t_old, h, y_old, K, F, tout, out):
+    """Continuous extension of the last accepted step at ``tout``.
+
+    kind 0: polynomial form y_old + h K^T P [x, x^2, ...] (scipy RkDenseOutput).
+    kind 1: DOP853 form, nested evaluation of the precomputed ``F`` (Hairer's contd8).
+    """
+    d = y_old.size
+    x = (tout - t_old) / h
+    if kind == 0:
+        npow = P.shape[1]
+        for i in range(d):
+            acc = 0.0
+            xp = 1.0
+            for k in range(npow):
+                xp *= x
+                q = 0.0
+                for j in range(nst + 1):
+                    q += K[j, i] * P[j, k]
+                acc += q * xp
+            out[i] = y_old[i] + h * acc
+    else:
+        nf = F.shape[0]
+        for i in range(d):
+            acc = 0.0
+            for r in range(nf):
+                acc += F[nf - 1 - r, i]
+                if r % 2 == 0:
+                    acc *= x
+                else:
+                    acc *= 1.0 - x
+            out[i] = acc + y_old[i]
+
+
+@numba.njit(cache=True)
+def dop853_dense_prepare(A, c, nst, P, t_old, h, y_old, y_new, K, F, ytmp, params):
+    """Three extra stages and the coefficients F of the 7th-order interpolant."""
+    d = y_old.size
+    for s in range(nst + 1, K.shape[0]):
+        erk_stage(A, c, s, t_old, y_old, h, K, ytmp, params)
+    for i in range(d):
+        dy = y_new[i] - y_old[i]
+        F[0, i] = dy
+        F[1, i] = h * K[0, i] - dy
+        F[2, i] = 2.0 * dy - h * (K[nst, i] + K[0, i])
+        for k in range(P.shape[0]):
+            acc = 0.0
+            for j in range(K.shape[0]):
+                acc += P[k, j] * K[j, i]
+            F[3 + k, i] = h * acc
+
+
+@numba.njit(cache=True)
+def erk_adaptive(A, b, c, E, E3, P, nst, kind, err_exp, order,
+                 t_eval, i0, i1, Y, y, y_old, K, F, state, counters,
+                 params, rtol, atol, max_steps):
+    """Embedded explicit Runge-Kutta with step-size control and dense output.
+
+    The step is never shortened to land on an output time: outputs inside an
+    accepted step come from its continuous extension, and the last step may end
+    past ``t_eval[i1-1]``; the next call first serves outputs from that step, so
+    chunked and unchunked runs are identical.
+
+    state : float64[5] = (t, h, t_old, step_rejected, dense_ready); h = 0 asks for
+        an initial step.  ``K[nst]`` holds f(t, y) between steps (FSAL).
+    """
+    d = y.size
+    t = state[0]
+    h = state[1]
+    t_old = state[2]
+    rejected = state[3] != 0.0
+    dense_ready = state[4] != 0.0
+    ytmp = np.empty(d)
+    y_new = np.empty(d)
+    f_new = np.empty(d)
+    scale = np.empty(d)
+    span = t_eval[t_eval.size - 1] - t_eval[0]
+    status = OK
+    if h == 0.0:
+        # fresh start: f(t0, y0) into K[nst]
+        RHS(t, y, params, K[nst])
+        counters[0] += 1
+        h = initial_step(t, y, K[nst], params, order, rtol, atol, span)
+        counters[0] += 1
+        t_old = t
+    j = i0
+    while j < i1:
+        # serve every output inside the last accepted step (t_old, t]
+        while j < i1 and t_eval[j] <= t:
+            if t_eval[j] == t:
+                Y[j, :] = y
+            else:
+                if kind == 1 and not dense_ready:
+                    dop853_dense_prepare(A, c, nst, P, t_old, t - t_old, y_old, y,
+                                         K, F, ytmp, params)
+                    counters[0] += K.shape[0] - nst - 1
+                    dense_ready = True
+                dense_eval(kind, nst, P, t_old, t - t_old, y_old, K, F, t_eval[j], Y[j])
+            j += 1
+        if j >= i1:
+            break
+        if counters[1] >= max_steps:
+            status = MAXSTEPS
+            break
+        min_step = 10.0 * EPS * max(abs(t), 1e-300)
+        if h < min_step:
+            status = UNDERFLOW
+            break
+        # one attempt t -> t + h;  K[0] = f(t, y) is K[nst] of the previous step
+        for i in range(d):
+            K[0, i] = K[nst, i]
+        for s in range(1, nst):
+            erk_stage(A, c, s, t, y, h, K, ytmp, params)
+        for i in range(d):
+            acc = 0.0
+            for s in range(nst):
+                acc += b[s] * K[s, i]
+            y_new[i] = y[i] + h * acc
+        t_new = t + h
+        RHS(t_new, y_new, params, f_new)
+        counters[0] += nst
+        # K[nst] must stay f(t, y) if the step is rejected, so the error uses f_new
+        for i in range(d):
+            scale[i] = atol + max(abs(y[i]), abs(y_new[i])) * rtol
+        if kind == 0:
+            acc2 = 0.0
+            for i in range(d):
+                e = E[nst] * f_new[i]
+                for s in range(nst):
+                    e += E[s] * K[s, i]
+                e = h * e / scale[i]
+                acc2 += e * e
+            err = math.sqrt(acc2 / d)
+        else:
+            # DOP853 combined 5th/3rd-order estimate (Hairer's dop853.f, scipy DOP853)
+            e5n = 0.0
+            e3n = 0.0
+            for i in range(d):
+                e5 = E[nst] * f_new[i]
+                e3 = E3[nst] * f_new[i]
+                for s in range(nst):
+                    e5 += E[s] * K[s, i]
+                    e3 += E3[s] * K[s, i]
+                e5 /= scale[i]
+                e3 /= scale[i]
+                e5n += e5 * e5
+                e3n += e3 * e3
+            if e5n == 0.0 and e3n == 0.0:
+                err = 0.0
+            else:
+                err = h * e5n / math.sqrt((e5n + 0.01 * e3n) * d)
+        if not (math.isfinite(err) and all_finite(f_new)):
+            err = math.inf
+        if err < 1.0:
+            if err == 0.0:
+                factor = MAX_FACTOR
+            else:
+                factor = min(MAX_FACTOR, SAFETY * err ** err_exp)
+            if rejected:
+                factor = min(1.0, factor)
+            rejected = False
+            counters[1] += 1
+            t_old = t
+            for i in range(d):
+                y_old[i] = y[i]
+                y[i] = y_new[i]
+                K[nst, i] = f_new[i]
+            t = t_new
+            h *= factor
+            dense_ready = False
+        else:
+            counters[2] += 1
+            if math.isfinite(err):
+                h *= max(MIN_FACTOR, SAFETY * err ** err_exp)
+            else:
+                h *= MIN_FACTOR
+            rejected = True
+    state[0] = t
+    state[1] = h
+    state[2] = t_old
+    state[3] = 1.0 if rejected else 0.0
+    state[4] = 1.0 if dense_ready else 0.0
+    return status
+
+
+@numba.njit(cache=True)
+def erk_fixed(A, b, c, nst, t_eval, i0, i1, Y, y, h_max, params, counters, tfail):
+    """Explicit RK with constant steps; each output interval is cut into equal steps <= h_max.
+
+    Fills Y[j] for j in [i0, i1), j >= 1; y enters at t_eval[i0 - 1].
+    """
+    d = y.size
+    K = np.empty((nst, d))
+    ytmp = np.empty(d)
+    for j in range(i0, i1):
+        t0 = t_eval[j - 1]
+        dt = t_eval[j] - t0
+        n = max(1, int(math.ceil(dt / h_max * (1.0 - 1e-12))))
+        h = dt / n
+        for k in range(n):
+            t = t0 + k * h
+            RHS(t, y, params, K[0])
+            for s in range(1, nst):
+                erk_stage(A, c, s, t, y, h, K, ytmp, params)
+            for i in range(d):
+                acc = 0.0
+                for s in range(nst):
+                    acc += b[s] * K[s, i]
+                y[i] += h * acc
+            counters[0] += nst
+            counters[1] += 1
+            if not all_finite(y):
+                tfail[0] = t + h
+                return NONFINITE
+        Y[j, :] = y
+    return OK
+
+
+@numba.njit(cache=True)
+def splitting_fixed(a, bk, n, t_eval, i0, i1, Y, y, h_max, params, counters, tfail):
+    """Symmetric composition of Stormer-Verlet (kick-drift-kick) for H = T(p) + V(q).
+
+    One step of size h: p += bk[0] h F(q); for i: q += a[i] h T'(p); p += bk[i+1] h F(q).
+    The force at the end of a step is the force at the start of the next, so a step
+    of an m-stage composition costs m kick evaluations.
+    """
+    q = y[:n].copy()
+    p = y[n:].copy()
+    force = np.empty(n)
+    vel = np.empty(n)
+    KICK(q, params, force)
+    counters[0] += 1
+    m = a.size
+    for j in range(i0, i1):
+        dt = t_eval[j] - t_eval[j - 1]
+        ns = max(1, int(math.ceil(dt / h_max * (1.0 - 1e-12))))
+        h = dt / ns
+        for k in range(ns):
+            for i in range(n):
+                p[i] += bk[0] * h * force[i]
+            for st in range(m):
+                DRIFT(p, params, vel)
+                for i in range(n):
+                    q[i] += a[st] * h * vel[i]
+                KICK(q, params, force)
+                for i in range(n):
+                    p[i] += bk[st + 1] * h * force[i]
+            counters[0] += m
+            counters[1] += 1
+            if not (all_finite(q) and all_finite(p)):
+                tfail[0] = t_eval[j - 1] + (k + 1) * h
+                return NONFINITE
+        Y[j, :n] = q
+        Y[j, n:] = p
+    y[:n] = q
+    y[n:] = p
+    return OK
+
+
+@numba.njit(cache=True)
+def collocation_fixed(A, c, dvec, t_eval, i0, i1, Y, y, h_max, params, counters, tfail,
+                      use_fd_jac, max_iter):
+    """Implicit Runge-Kutta (Gauss-Legendre collocation) with constant steps.
+
+    Stage increments Z_i = Y_i - y solve Z = h (A (x) I) F(y + Z) by simplified
+    Newton with the matrix I - h A (x) J(t, y) frozen over the step (Hairer-Wanner II,
+    sec. IV.8, eq. (8.9)); the new state is y + sum_i d_i Z_i with d = b^T A^{-1}
+    (eq. (8.2b)), which needs no extra evaluation of f.
+    """
+    d = y.size
+    s = c.size
+    sd = s * d
+    J = np.empty((d, d))
+    M = np.empty((sd, sd))
+    Z = np.zeros((s, d))
+    Fz = np.empty((s, d))
+    G = np.empty(sd)
+    ytmp = np.empty(d)
+    for j in range(i0, i1):
+        t0 = t_eval[j - 1]
+        dt = t_eval[j] - t0
+        ns = max(1, int(math.ceil(dt / h_max * (1.0 - 1e-12))))
+        h = dt / ns
+        for k in range(ns):
+            t = t0 + k * h
+            if use_fd_jac:
+                fd_jac(t, y, params, J)
+                counters[0] += d + 1
+            else:
+                JAC(t, y, params, J)
+            for p in range(s):
+                for q in range(s):
+                    for i in range(d):
+                        for l in range(d):
+                            v = -h * A[p, q] * J[i, l]
+                            if p == q and i == l:
+                                v += 1.0
+                            M[p * d + i, q * d + l] = v
+            Minv = np.linalg.inv(M)
+            Z[:, :] = 0.0
+            yscale = 0.0
+            for i in range(d):
+                yscale = max(yscale, abs(y[i]))
+            yscale = max(yscale, 1e-300)
+            prev = math.inf
+            converged = False
+            for it in range(max_iter):
+                for p in range(s):
+                    for i in range(d):
+                        ytmp[i] = y[i] + Z[p, i]
+                    RHS(t + c[p] * h, ytmp, params, Fz[p])
+                counters[0] += s
+                for p in range(s):
+                    for i in range(d):
+                        acc = 0.0
+                        for q in range(s):
+                            acc += A[p, q] * Fz[q, i]
+                        G[p * d + i] = Z[p, i] - h * acc
+                dZ = Minv @ G
+                nrm = 0.0
+                for p in range(s):
+                    for i in range(d):
+                        Z[p, i] -= dZ[p * d + i]
+                        nrm = max(nrm, abs(dZ[p * d + i]))
+                if not math.isfinite(nrm):
+                    break
+                if nrm <= 4.0 * EPS * yscale:
+                    converged = True
+                    break
+                # round-off floor: no more contraction and already tiny
+                if it > 0 and nrm >= 0.9 * prev and nrm <= 1e-10 * yscale:
+                    converged = True
+                    break
+                prev = nrm
+            if not converged:
+                tfail[0] = t
+                return NEWTON
+            for i in range(d):
+                acc = 0.0
+                for p in range(s):
+                    acc += dvec[p] * Z[p, i]
+                y[i] += acc
+            counters[1] += 1
+            if not all_finite(y):
+                tfail[0] = t + h
+                return NONFINITE
+        Y[j, :] = y
+    return OK

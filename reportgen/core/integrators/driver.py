@@ -1,0 +1,177 @@
+"""``integrate``: validation, compilation, chunking, progress, failures -> Solution."""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from . import _kernel_template as codes
+from .base import Method, MethodMismatch, Solution
+from .kernels import kernels_for
+
+_FAIL_REASON = {
+    codes.NONFINITE: "the state became non-finite (NaN or inf)",
+    codes.UNDERFLOW: "step size underflow (h < 10 eps |t|)",
+    codes.NEWTON: "the Newton iteration for the implicit stages did not converge "
+                  "(try a smaller h)",
+}
+_N_CHUNKS = 20
+_WARMED: set = set()
+
+
+def _validate(model, y0, t_eval):
+    y0 = np.ascontiguousarray(y0, dtype=np.float64)
+    t_eval = np.ascontiguousarray(t_eval, dtype=np.float64)
+    if y0.shape != (model.dim,):
+        raise ValueError(f"y0: expected shape ({model.dim},) for model '{model.name}', "
+                         f"got {y0.shape}")
+    if t_eval.ndim != 1 or t_eval.size < 1:
+        raise ValueError(f"t_eval: expected a 1-D array of output times, got shape "
+                         f"{t_eval.shape}")
+    if t_eval.size > 1 and not np.all(np.diff(t_eval) > 0):
+        raise ValueError("t_eval: expected strictly increasing times")
+    if not np.all(np.isfinite(y0)):
+        raise ValueError(f"y0: expected finite values, got {y0}")
+    return y0, t_eval
+
+
+def _compile(method: Method, kern, model, y0, t_eval) -> float:
+    """Compile (or load from the on-disk cache) the method's kernel on a tiny problem."""
+    key = (id(kern), type(method).__name__)
+    if key in _WARMED:
+        return 0.0
+    tiny = np.array([t_eval[0], t_eval[0] + 1e-9 * max(1.0, abs(t_eval[0]))])
+    Y = np.full((2, y0.size), np.nan)
+    t0 = time.perf_counter()
+    method.start(kern, model, y0, tiny, Y, 1e-3, 1e-6, tiny[1] - tiny[0], 100).advance(0, 2)
+    _WARMED.add(key)
+    return time.perf_counter() - t0
+
+
+def default_step(method: Method, kern, model, y0, t_eval, rtol) -> float:
+    """Fixed step for ``h=None``: Richardson probe over the first tenth of the span.
+
+    Runs the method with h1 = Tp/64 and h1/2 over Tp = span/10, estimates the error
+    of the h1 run as |y_h1 - y_h1/2| / (1 - 2^-p), and scales h1 so that the error
+    over the whole span (assumed to grow linearly, i.e. 10x the probe's) is about
+    ``rtol * max(1, |y0|)``.  A heuristic: pass ``h`` for anything that matters.
+    """
+    span = t_eval[-1] - t_eval[0]
+    tp = span / 10.0
+    h1 = tp / 64.0
+    probe = np.array([t_eval[0], t_eval[0] + tp])
+    ends = []
+    for h in (h1, h1 / 2):
+        Y = np.full((2, y0.size), np.nan)
+        method.start(kern, model, y0, probe, Y, rtol, rtol, h).advance(0, 2)
+        ends.append(Y[1])
+    err = float(np.max(np.abs(ends[0] - ends[1]))) / (1.0 - 2.0 ** -method.order)
+    target = rtol * max(1.0, float(np.max(np.abs(y0)))) / 10.0
+    if not np.isfinite(err):
+        return h1 / 64.0
+    if err == 0.0:
+        return h1
+    h = h1 * (target / err) ** (1.0 / method.order)
+    return float(min(max(h, span * 1e-9), tp / 4.0))
+
+
+def run_compiled(method: Method, model, y0, t_eval, rtol, atol, h, progress, max_steps):
+    kern = kernels_for(model)
+    compile_s = _compile(method, kern, model, y0, t_eval)
+    N, d = t_eval.size, y0.size
+    if not method.adaptive and h is None and N > 1:
+        h = default_step(method, kern, model, y0, t_eval, rtol)
+    Y = np.full((N, d), np.nan)
+    t0 = time.perf_counter()
+    run = method.start(kern, model, y0, t_eval, Y, rtol, atol,
+                       None if method.adaptive else float(h if h is not None else 1.0),
+                       max_steps)
+    # fixed-step: stop at the output interval where the step budget runs out
+    i_end = N
+    if not method.adaptive:
+        over = np.nonzero(run.steps_before > max_steps)[0]
+        if over.size:
+            i_end = int(over[0])
+    n_chunks = _N_CHUNKS if (progress is not None and i_end > _N_CHUNKS) else 1
+    bounds = np.linspace(0, i_end, n_chunks + 1).round().astype(int)
+    status = codes.OK
+    for k in range(n_chunks):
+        status = run.advance(int(bounds[k]), int(bounds[k + 1]))
+        if progress is not None:
+            progress(float(bounds[k + 1]) / N)
+        if status != codes.OK:
+            break
+    wall = time.perf_counter() - t0
+    if status == codes.OK and i_end < N:
+        status = codes.MAXSTEPS
+        run.t_fail = float(t_eval[i_end - 1])
+    counters = run.counters
+    message = "ok"
+    if status != codes.OK:
+        reason = _FAIL_REASON.get(status, f"max_steps = {max_steps} exceeded")
+        good = ~np.all(np.isfinite(Y), axis=1)
+        last = int(np.argmax(good)) - 1 if good.any() else N - 1
+        message = (f"{method.name} failed at t = {run.t_fail:.6g}: {reason}; "
+                   f"outputs valid up to t = {t_eval[max(last, 0)]:.6g}")
+        if status == codes.UNDERFLOW and run.__dict__.get("y") is not None:
+            message += f" (|y| = {np.max(np.abs(run.y)):.3g}; the solution may blow up)"
+    return Solution(
+        t=t_eval.copy(), y=Y, method=method.name, rtol=float(rtol), atol=float(atol),
+        h=None if method.adaptive else run.h_used, nfev=int(counters[0]),
+        nsteps=int(counters[1]), nreject=int(counters[2]),
+        status="ok" if status == codes.OK else "failed", message=message,
+        wall_time_s=wall, compile_time_s=compile_s)
+
+
+def integrate(model, y0, t_eval, method: str = "dop853", rtol: float = 1e-10,
+              atol: float = 1e-12, h: float | None = None, progress=None,
+              max_steps: int = 10_000_000) -> Solution:
+    """Integrate ``model`` from ``y0`` at ``t_eval[0]``, returning the state at ``t_eval``.
+
+    Parameters
+    ----------
+    model : OdeModel
+    y0 : ndarray, shape (d,)
+    t_eval : ndarray, shape (N,)
+        Strictly increasing output times; ``t_eval[0]`` is the start time.
+    method : str
+        A key of ``METHODS``.
+    rtol, atol : float
+        Tolerances of the adaptive methods (and the target of the default ``h``).
+    h : float or None
+        Step of fixed-step methods: each output interval is cut into equal steps
+        <= h.  None: see :func:`default_step`.  Ignored by adaptive methods.
+    progress : callable(fraction) or None
+        Called between ~20 chunks of the output grid; chunking leaves the result
+        unchanged (adaptive runs carry their step across chunks).
+    max_steps : int
+        Budget of accepted steps.
+
+    Raises
+    ------
+    MethodMismatch
+        Before any work, if the method needs structure the model lacks.
+    ValueError
+        Malformed ``y0`` / ``t_eval`` / unknown method.  Numerical failures never
+        raise: they give ``status="failed"`` and a message.
+    """
+    from . import METHODS
+
+    if method not in METHODS:
+        raise ValueError(f"method: expected one of {sorted(METHODS)}, got {method!r}")
+    m = METHODS[method]
+    m.check(model)
+    y0, t_eval = _validate(model, y0, t_eval)
+    if h is not None and not (h > 0 and np.isfinite(h)):
+        raise ValueError(f"h: expected a positive step, got {h}")
+    if m.peer or hasattr(m, "solve"):
+        return m.solve(model, y0, t_eval, rtol, atol, progress)
+    if t_eval.size == 1:
+        return Solution(t=t_eval.copy(), y=y0[None, :].copy(), method=method, rtol=rtol,
+                        atol=atol, h=h, nfev=0, nsteps=0, nreject=0, status="ok",
+                        message="ok", wall_time_s=0.0, compile_time_s=0.0)
+    return run_compiled(m, model, y0, t_eval, rtol, atol, h, progress, max_steps)
+
+
+__all__ = ["integrate", "MethodMismatch", "Solution"]

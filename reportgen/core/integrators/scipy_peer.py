@@ -1,0 +1,81 @@
+"""scipy.integrate.solve_ivp as peers (for the study) and as the stiff fallback.
+
+These call the model's Python ``f`` / ``jacobian`` wrappers, so each right-hand-side
+call pays Python overhead (~µs); output comes from scipy's dense output via ``t_eval``.
+"""
+
+from __future__ import annotations
+
+import time
+import warnings
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from .base import Method, Solution
+
+EPS = np.finfo(float).eps
+SCIPY_MIN_RTOL = 100 * EPS  # solve_ivp clamps rtol below this (with a warning)
+
+
+class ScipyMethod(Method):
+    adaptive = True
+    peer = True
+    scipy_name: str
+
+    def solve(self, model, y0, t_eval, rtol, atol, progress=None) -> Solution:
+        rtol_eff = max(float(rtol), SCIPY_MIN_RTOL)
+        kwargs = {}
+        if self.implicit or self.scipy_name == "LSODA":
+            jac = model.jacobian if model.jac is not None else None
+            if jac is not None:
+                kwargs["jac"] = jac
+        N, d = t_eval.size, y0.size
+        Y = np.full((N, d), np.nan)
+        t0 = time.perf_counter()
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            res = solve_ivp(model.f, (t_eval[0], t_eval[-1]), y0, method=self.scipy_name,
+                            t_eval=t_eval, rtol=rtol_eff, atol=atol, **kwargs)
+        wall = time.perf_counter() - t0
+        n_ok = res.t.size
+        if n_ok:
+            Y[:n_ok] = res.y.T
+        finite = np.all(np.isfinite(Y[:n_ok]), axis=1)
+        status, message = "ok", "ok"
+        if not res.success or n_ok < N or not finite.all():
+            bad = int(np.argmin(finite)) if not finite.all() else n_ok
+            Y[bad:] = np.nan
+            t_last = t_eval[bad - 1] if bad > 0 else t_eval[0]
+            status = "failed"
+            message = (f"{self.label} failed after t = {t_last:.6g}: "
+                       f"{res.message if not res.success else 'non-finite state'}")
+        if progress is not None:
+            progress(1.0)
+        return Solution(t=t_eval.copy(), y=Y, method=self.name, rtol=rtol_eff, atol=float(atol),
+                        h=None, nfev=int(res.nfev), nsteps=-1, nreject=-1, status=status,
+                        message=message, wall_time_s=wall, compile_time_s=0.0)
+
+
+class ScipyRK45(ScipyMethod):
+    name, label, order, scipy_name = "scipy_rk45", "scipy RK45", 5, "RK45"
+
+
+class ScipyDOP853(ScipyMethod):
+    name, label, order, scipy_name = "scipy_dop853", "scipy DOP853", 8, "DOP853"
+
+
+class ScipyLSODA(ScipyMethod):
+    name, label, order, scipy_name = "scipy_lsoda", "scipy LSODA", 12, "LSODA"
+
+
+class ScipyRadau(ScipyMethod):
+    name, label, order, scipy_name = "scipy_radau", "scipy Radau", 5, "Radau"
+    implicit = True
+
+
+class RadauFallback(ScipyRadau):
+    """The stiff path of the pipeline (same solver as the ``scipy_radau`` peer)."""
+
+    name, label = "radau", "scipy Radau (stiff fallback)"
+    peer = False

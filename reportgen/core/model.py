@@ -1,0 +1,88 @@
+"""The system, not the solver: what a model of motion exposes to the integrators.
+
+A model is a first-order system ``y' = f(t, y; p)`` whose right-hand side is a
+numba-compiled function, plus optional structure that some integrators need:
+
+* ``separable`` -- for a separable Hamiltonian ``H = T(p) + V(q)`` with
+  ``y = (q, p)``: the *drift* ``dq/dt = dT/dp`` (depends on p only) and the
+  *kick* ``dp/dt = -dV/dq`` (depends on q only).  Symplectic splitting methods
+  require it; a method that needs it fails early on a model that lacks it.
+* ``jac`` -- the Jacobian ``df/dy``; implicit methods use it for Newton
+  iterations (otherwise they fall back to finite differences).
+
+Compiled function signatures (all float64, all write into ``out``)::
+
+    rhs(t, y, params, out)        y: (d,)          out: (d,)
+    jac(t, y, params, out)        y: (d,)          out: (d, d)
+    drift(p, params, out)         p: (n,)          out: (n,)   dq/dt
+    kick(q, params, out)          q: (n,)          out: (n,)   dp/dt
+
+``params`` is a 1-D float64 array packed by the scene; the compiled functions
+unpack it by position.  Model functions are defined at module level with
+``numba.njit(cache=True)`` so that their compiled code is cached on disk.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Separable:
+    """Split of a separable Hamiltonian system y = (q, p), each of length ``n``."""
+
+    n: int
+    drift: Callable  # dq/dt = dT/dp(p)
+    kick: Callable  # dp/dt = -dV/dq(q)
+
+
+@dataclass(frozen=True)
+class OdeModel:
+    """A compiled first-order system and what it offers to integrators.
+
+    Attributes
+    ----------
+    name : str
+        Short name used in messages ("pendulum").
+    columns : tuple of str
+        Names of the state components, length d.
+    rhs : numba dispatcher
+        ``rhs(t, y, params, out)``.
+    params : ndarray, shape (k,)
+        Packed parameters passed to every compiled function.
+    separable : Separable or None
+        Present when H = T(p) + V(q) and y = (q, p).
+    jac : numba dispatcher or None
+        ``jac(t, y, params, out)`` with ``out`` of shape (d, d).
+    stiff_hint : bool
+        The scene knows the problem is stiff (widely separated time scales).
+    """
+
+    name: str
+    columns: tuple[str, ...]
+    rhs: Callable
+    params: np.ndarray
+    separable: Separable | None = None
+    jac: Callable | None = None
+    stiff_hint: bool = False
+    extra: dict = field(default_factory=dict)
+
+    @property
+    def dim(self) -> int:
+        return len(self.columns)
+
+    def f(self, t: float, y: np.ndarray) -> np.ndarray:
+        """Right-hand side as a plain Python callable (for scipy and tests)."""
+        out = np.empty(self.dim)
+        self.rhs(float(t), np.asarray(y, dtype=np.float64), self.params, out)
+        return out
+
+    def jacobian(self, t: float, y: np.ndarray) -> np.ndarray | None:
+        if self.jac is None:
+            return None
+        out = np.empty((self.dim, self.dim))
+        self.jac(float(t), np.asarray(y, dtype=np.float64), self.params, out)
+        return out

@@ -1,0 +1,1 @@
+"""Compiled models of motion: right-hand sides, invariants and exact references."""

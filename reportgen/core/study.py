@@ -1,0 +1,203 @@
+"""Work-precision study: error against wall time for every method that fits a model.
+
+Conventions (DiffEqDevTools): one warm-up run, then the minimum wall time of
+``repeats`` runs; compilation is reported separately and never mixed into wall time.
+Errors are absolute max-norms of ``y - y_ref``: ``error_max`` over all output times
+and components, ``error_final`` over the components at the last output time.
+
+Reference
+---------
+``reference=None`` uses two independent reference runs, each checked against the
+other (their max difference is ``reference_agreement``):
+
+* ``dop853`` (ours) at rtol = 1e-14, atol = 1e-16 -- for every row except ours
+  dop853's own;
+* ``gauss6`` with a step halved until two successive runs agree to 1e-13 (max 5
+  halvings) -- for the ``dop853`` rows, so no method is measured against itself.
+
+Both are >= 100x tighter than the default tightest tolerance 1e-12.  scipy's
+solvers are not used as references because they clamp rtol >= 100 eps.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .integrators import METHODS, integrate
+from .integrators.driver import default_step  # noqa: F401  (documented alternative)
+
+DEFAULT_TOLERANCES = tuple(10.0 ** -k for k in range(4, 13))
+ATOL_OVER_RTOL = 1e-2
+TIME_CAP_S = 2.0
+MIN_RTOL = {"scipy_radau": 1e-10, "scipy_lsoda": 1e-12}
+SCIPY_FLOOR = 100 * np.finfo(float).eps
+
+_RECORD_DTYPE = np.dtype([
+    ("method", "S24"), ("label", "S48"), ("kind", "S8"), ("tolerance", "f8"), ("h", "f8"),
+    ("error_final", "f8"), ("error_max", "f8"), ("wall_time_s", "f8"), ("nfev", "i8"),
+    ("compile_time_s", "f8"), ("status", "S8"), ("repeats", "i4"),
+])
+
+
+@dataclass
+class StudyResult:
+    """Rows of the study (one dict per run) and how the reference was made."""
+
+    rows: list[dict]
+    reference_kind: str
+    reference_agreement: float = math.nan
+    skipped: list[str] = field(default_factory=list)
+
+    def to_records(self) -> np.ndarray:
+        """Structured array (byte strings, fixed width) ready for an HDF5 table."""
+        rec = np.zeros(len(self.rows), dtype=_RECORD_DTYPE)
+        for i, row in enumerate(self.rows):
+            for name in _RECORD_DTYPE.names:
+                value = row[name]
+                rec[name][i] = value.encode("utf-8") if isinstance(value, str) else value
+        return rec
+
+
+def _reference_runs(model, y0, t_eval):
+    ref_dop = integrate(model, y0, t_eval, method="dop853", rtol=1e-14, atol=1e-16)
+    span = t_eval[-1] - t_eval[0]
+    h = 2.0 * span / max(ref_dop.nsteps, 1)
+    prev = integrate(model, y0, t_eval, method="gauss6", h=h)
+    for _ in range(5):
+        h /= 2.0
+        cur = integrate(model, y0, t_eval, method="gauss6", h=h)
+        scale = max(1.0, float(np.nanmax(np.abs(cur.y))))
+        diff = float(np.nanmax(np.abs(cur.y - prev.y)))
+        prev = cur
+        if diff <= 1e-13 * scale:
+            break
+    return ref_dop, prev
+
+
+def _timed(run, repeats: int):
+    """Warm-up (also compiles), then the min wall time of ``repeats`` runs."""
+    first = run()
+    best = first
+    n = repeats if first.wall_time_s < TIME_CAP_S / 4 else 1
+    for _ in range(n):
+        sol = run()
+        if sol.wall_time_s < best.wall_time_s or best is first:
+            best = sol
+    return best, first.compile_time_s, n
+
+
+def default_steps(model, y0, t_eval) -> np.ndarray:
+    """Fixed steps: h0 = the mean step of dop853 at rtol 1e-6, then h0 / 2^k, k = 0..7."""
+    probe = integrate(model, y0, t_eval, method="dop853", rtol=1e-6, atol=1e-8)
+    h0 = (t_eval[-1] - t_eval[0]) / max(probe.nsteps, 1)
+    return h0 * 2.0 ** -np.arange(8)
+
+
+def work_precision(model, y0, t_eval, reference=None, methods=None, tolerances=None,
+                   steps=None, repeats=3, progress=None) -> StudyResult:
+    """Run the work-precision sweep.
+
+    Parameters
+    ----------
+    model : OdeModel
+    y0 : ndarray, shape (d,)
+    t_eval : ndarray, shape (N,)
+    reference : callable ``t_eval -> ndarray (N, d)`` or None
+        Exact solution; None makes reference runs (see module docstring).
+    methods : list of str or None
+        Default: every method in ``METHODS`` that fits the model (``radau`` is the
+        same solver as the ``scipy_radau`` peer and is left out).
+    tolerances : sequence of float
+        rtol values for adaptive methods (atol = 1e-2 rtol), loosest first.
+    steps : sequence of float
+        Steps of fixed-step methods, largest first; default :func:`default_steps`.
+    repeats : int
+        Timed runs after the warm-up (1 when the warm-up took > 0.5 s).
+
+    A method's sweep stops at the first run slower than ``TIME_CAP_S`` or failing.
+    """
+    y0 = np.asarray(y0, dtype=np.float64)
+    t_eval = np.asarray(t_eval, dtype=np.float64)
+    tolerances = sorted(DEFAULT_TOLERANCES if tolerances is None else tolerances, reverse=True)
+    if methods is None:
+        methods = [n for n, m in METHODS.items()
+                   if n != "radau" and not (m.needs_separable and model.separable is None)]
+    skipped = [n for n in methods if METHODS[n].needs_separable and model.separable is None]
+    methods = [n for n in methods if n not in skipped]
+    if steps is None and any(not METHODS[n].adaptive for n in methods):
+        steps = default_steps(model, y0, t_eval)
+    steps = sorted(steps if steps is not None else [], reverse=True)
+
+    if reference is not None:
+        y_ref = np.asarray(reference(t_eval), dtype=np.float64)
+        refs = {"default": y_ref, "dop853": y_ref}
+        reference_kind, agreement = "exact", math.nan
+    else:
+        ref_dop, ref_gauss = _reference_runs(model, y0, t_eval)
+        refs = {"default": ref_dop.y, "dop853": ref_gauss.y}
+        agreement = float(np.max(np.abs(ref_dop.y - ref_gauss.y)))
+        reference_kind = (f"reference run: dop853 rtol=1e-14 atol=1e-16 "
+                          f"(gauss6 h={ref_gauss.h:.3g} for dop853 rows)")
+
+    rows: list[dict] = []
+    for k, name in enumerate(methods):
+        m = METHODS[name]
+        y_ref = refs.get(name, refs["default"])
+        if m.adaptive:
+            grid = [("rtol", r) for r in tolerances
+                    if r >= MIN_RTOL.get(name, 0.0) and (not m.peer or r >= SCIPY_FLOOR)]
+        else:
+            grid = [("h", h) for h in steps]
+        for what, value in grid:
+            kw = dict(rtol=value, atol=value * ATOL_OVER_RTOL) if what == "rtol" else dict(h=value)
+            sol, compile_s, n = _timed(lambda: integrate(model, y0, t_eval, method=name, **kw),
+                                       repeats)
+            err = np.abs(sol.y - y_ref)
+            rows.append(dict(
+                method=name, label=m.label, kind="adaptive" if m.adaptive else "fixed",
+                tolerance=value if what == "rtol" else math.nan,
+                h=sol.h if sol.h is not None else math.nan,
+                error_final=float(np.max(err[-1])), error_max=float(np.max(err)),
+                wall_time_s=sol.wall_time_s, nfev=sol.nfev, compile_time_s=compile_s,
+                status=sol.status, repeats=n))
+            if sol.status != "ok" or sol.wall_time_s > TIME_CAP_S:
+                break
+        if progress is not None:
+            progress((k + 1) / len(methods))
+    return StudyResult(rows=rows, reference_kind=reference_kind,
+                       reference_agreement=agreement, skipped=skipped)
+
+
+def matched_error_speedup(rows, baseline="scipy_dop853", baseline_rtol=1e-10):
+    """For each of our methods, the fastest run at least as accurate as the baseline.
+
+    The baseline is the ``baseline`` run at ``baseline_rtol``; accuracy is ``error_max``.
+
+    Returns
+    -------
+    dict with ``baseline`` (its row) and ``matches``: one dict per method that reached
+    the baseline's error -- method, label, tolerance, h, error_max, wall_time_s and
+    ``speedup`` = baseline wall time / this wall time.
+    """
+    rows = rows.rows if isinstance(rows, StudyResult) else rows
+    base = [r for r in rows if r["method"] == baseline and r["status"] == "ok"
+            and math.isclose(r["tolerance"], baseline_rtol, rel_tol=1e-9)]
+    if not base:
+        raise ValueError(f"baseline: no ok run of {baseline!r} at rtol={baseline_rtol:g}")
+    b = base[0]
+    matches = []
+    for name in dict.fromkeys(r["method"] for r in rows):
+        if METHODS[name].peer:
+            continue
+        good = [r for r in rows if r["method"] == name and r["status"] == "ok"
+                and r["error_max"] <= b["error_max"]]
+        if good:
+            best = min(good, key=lambda r: r["wall_time_s"])
+            matches.append({key: best[key] for key in
+                            ("method", "label", "tolerance", "h", "error_max", "wall_time_s")}
+                           | {"speedup": b["wall_time_s"] / best["wall_time_s"]})
+    matches.sort(key=lambda r: -r["speedup"])
+    return {"baseline": b, "matches": matches}

@@ -1,0 +1,87 @@
+"""Figures every integrating scene can use: invariants, errors, work-precision."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .style import CONTEXT, HIGHLIGHT, REFERENCE, new_figure, new_figure_grid
+
+
+def invariant_drift(t, invariants: dict[str, np.ndarray], *, scales=None, time_unit="s",
+                    labels=None, ax=None):
+    """Relative drift (I(t) - I(0)) / scale of each conserved quantity against time."""
+    fig, ax = new_figure(ax)
+    scales = scales or {}
+    labels = labels or {}
+    for name, values in invariants.items():
+        values = np.asarray(values)
+        scale = scales.get(name) or max(abs(values[0]), np.max(np.abs(values)), 1e-300)
+        ax.plot(t, (values - values[0]) / scale, label=labels.get(name, name))
+    ax.set_xlabel(f"time t [{time_unit}]")
+    ax.set_ylabel("relative drift  (I(t) − I(0)) / |I|")
+    ax.ticklabel_format(axis="y", style="sci", scilimits=(-2, 2))
+    ax.legend(loc="best")
+    return fig
+
+
+def error_against_time(t, errors: dict[str, np.ndarray], *, time_unit="s", ylabel="|error|",
+                       ax=None):
+    """Absolute error of one or more quantities against time, log scale."""
+    fig, ax = new_figure(ax)
+    for name, err in errors.items():
+        err = np.abs(np.asarray(err))
+        ax.semilogy(t, np.maximum(err, 1e-18), label=name)
+    ax.set_xlabel(f"time t [{time_unit}]")
+    ax.set_ylabel(ylabel)
+    ax.legend(loc="best")
+    return fig
+
+
+def work_precision(study: np.ndarray, *, error_field="error_max", ax=None):
+    """Log-log work-precision diagram: error against wall time, one line per method.
+
+    Our methods are solid lines with filled markers; scipy peers dashed, hollow.
+    """
+    fig, ax = new_figure(ax, figsize=(6.8, 4.6))
+    methods = list(dict.fromkeys(study["method"]))
+    markers = "osD^v<>phX*"
+    for i, method in enumerate(methods):
+        rows = study[(study["method"] == method) & (study["status"] == "ok")]
+        err = np.asarray(rows[error_field], dtype=float)
+        time = np.asarray(rows["wall_time_s"], dtype=float)
+        keep = np.isfinite(err) & np.isfinite(time) & (time > 0)
+        if not keep.any():
+            continue
+        order = np.argsort(time[keep])
+        peer = str(method).startswith("scipy")
+        ax.loglog(
+            time[keep][order], np.maximum(err[keep][order], 1e-17),
+            linestyle="--" if peer else "-",
+            marker=markers[i % len(markers)],
+            markerfacecolor="none" if peer else None,
+            label=str(rows["label"][0]),
+        )
+    ax.set_xlabel("wall time per run [s]  (min of repeats, compile time excluded)")
+    ax.set_ylabel("max error over the run")
+    ax.legend(loc="best", fontsize=8, ncol=2)
+    return fig
+
+
+def timeseries_against_reference(t, numeric: dict[str, np.ndarray],
+                                 reference: dict[str, np.ndarray], *, ylabels,
+                                 time_unit="s", reference_label="exact",
+                                 extra: dict[str, np.ndarray] | None = None):
+    """One panel per quantity: the integration (solid) over the reference (dashed)."""
+    names = list(numeric)
+    fig, axes = new_figure_grid(len(names), 1, figsize=(6.8, 2.2 * len(names) + 0.8), sharex=True)
+    for ax, name in zip(axes[:, 0], names, strict=True):
+        ax.plot(t, numeric[name], color=HIGHLIGHT, label="integrated")
+        if name in reference:
+            ax.plot(t, reference[name], color=REFERENCE, linestyle=(0, (4, 3)),
+                    label=reference_label)
+        if extra and name in extra:
+            ax.plot(t, extra[name], color=CONTEXT, linestyle=":", label="small-angle (1.19)")
+        ax.set_ylabel(ylabels[name])
+    axes[0, 0].legend(loc="upper right")
+    axes[-1, 0].set_xlabel(f"time t [{time_unit}]")
+    return fig

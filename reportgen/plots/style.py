@@ -1,0 +1,53 @@
+"""One figure style for every report: readable at slide size, labelled axes with units."""
+
+from __future__ import annotations
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.figure import Figure  # noqa: E402
+
+RC = {
+    "figure.figsize": (6.4, 4.0),
+    "figure.dpi": 100,
+    "savefig.dpi": 150,
+    "font.size": 11,
+    "axes.titlesize": 12,
+    "axes.labelsize": 11,
+    "legend.fontsize": 9,
+    "legend.framealpha": 0.85,
+    "axes.grid": True,
+    "grid.alpha": 0.3,
+    "lines.linewidth": 1.5,
+    "axes.spines.top": False,
+    "axes.spines.right": False,
+    "svg.fonttype": "none",
+    "pdf.fonttype": 42,
+    "axes.prop_cycle": matplotlib.cycler(
+        color=["#1f4e79", "#c0504d", "#4f8a3c", "#8064a2", "#e69138", "#3a9ca6", "#7f7f7f"]
+    ),
+}
+plt.rcParams.update(RC)
+
+#: colours with a meaning, used the same way in every figure
+HIGHLIGHT = "#c0504d"  # the scene's own orbit / numerical result
+REFERENCE = "#1f4e79"  # exact or reference solution
+CONTEXT = "#9a9a9a"  # families of curves for context
+SEPARATRIX = "#e69138"
+
+
+def new_figure(ax=None, *, figsize=None, projection=None):
+    """(fig, ax): the given axes and its figure, or a new Figure (not registered with pyplot)."""
+    if ax is not None:
+        return ax.figure, ax
+    fig = Figure(figsize=figsize or RC["figure.figsize"], layout="constrained")
+    ax = fig.add_subplot(projection=projection)
+    return fig, ax
+
+
+def new_figure_grid(nrows, ncols, *, figsize=None, sharex=False):
+    fig = Figure(figsize=figsize or RC["figure.figsize"], layout="constrained")
+    axes = fig.subplots(nrows, ncols, sharex=sharex, squeeze=False)
+    return fig, axes

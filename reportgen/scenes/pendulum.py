@@ -1,0 +1,314 @@
+r"""``pendulum``: the nonlinear plane pendulum and its small-angle limit (lecture notes §1–2).
+
+m l^2 θ'' + m g l sin θ = 0.  Exact solution in Jacobi elliptic functions, exact
+period 4 K(k) sqrt(l/g) with k = sin(θ0/2), the phase portrait with its
+separatrix, and the boundary-value problem θ(0) = θ0, θ(T) = θ1 of the
+linearised equation (1.21) with its action (2.4).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from pydantic import Field, model_validator
+from scipy import integrate as sp_integrate
+
+from ..config import NonNegative, Positive, Real, RunConfig, Strict
+from ..core.crossings import mean_period, upward_crossings
+from ..core.models import pendulum as core
+from ..plots import common as common_plots
+from ..plots import pendulum as plots
+from ..results import Check, Results
+from .base import Scene, SceneConfig, Section, SectionContent, Table, fmt, fmt_err
+from .shared import error_vs_runtime_section, invariants_section
+
+
+class Params(Strict):
+    g: Positive = Field(description="gravitational acceleration [m/s^2]")
+    l: Positive = Field(description="length of the pendulum [m]")
+    m: Positive = Field(1.0, description="bob mass [kg]")
+
+
+class Initial(Strict):
+    theta: Real = Field(description="initial angle from the downward vertical [rad]")
+    theta_dot: Real = Field(0.0, description="initial angular velocity [rad/s]")
+
+
+class Boundary(Strict):
+    """``[boundary]``: the linearised boundary-value problem (1.21)."""
+
+    theta0: Real = Field(description="θ(0) [rad]")
+    theta1: Real = Field(description="θ(T) [rad]")
+    T: Positive = Field(description="end time of the boundary-value problem [s]")
+
+
+class PendulumConfig(SceneConfig):
+    params: Params
+    initial: Initial
+    run: RunConfig
+    boundary: Boundary | None = None
+
+    @model_validator(mode="after")
+    def _physics(self):
+        omega0 = math.sqrt(self.params.g / self.params.l)
+        m = core.modulus_squared(self.initial.theta, self.initial.theta_dot, omega0)
+        if abs(m - 1.0) < 1e-15:
+            raise ValueError(
+                "initial.theta / initial.theta_dot: the state lies on the separatrix (k = 1, "
+                "infinite period); move it off by at least 1e-15 in k^2"
+            )
+        if self.boundary is not None:
+            s = math.sin(omega0 * self.boundary.T)
+            if abs(s) < 1e-8:
+                raise ValueError(
+                    f"boundary.T: T = {self.boundary.T} is a multiple of π/ω0 = "
+                    f"{math.pi / omega0:.6g} s (a conjugate point: the linear boundary-value "
+                    "problem has no unique solution)"
+                )
+        return self
+
+
+class PendulumScene(Scene):
+    kind = "pendulum"
+    summary = "nonlinear plane pendulum m l² θ'' + m g l sin θ = 0 and its small-angle limit"
+    Config = PendulumConfig
+    presets = {
+        "small_angle": {"params": {"g": 9.81, "l": 1.0}, "initial": {"theta": 0.1},
+                        "run": {"t_end": 20.0}},
+        "large_amplitude": {"params": {"g": 9.81, "l": 1.0}, "initial": {"theta": 2.5},
+                            "run": {"t_end": 30.0}},
+        "near_separatrix": {"params": {"g": 9.81, "l": 1.0},
+                            "initial": {"theta": math.pi - 1e-3}, "run": {"t_end": 40.0}},
+        "rotation": {"params": {"g": 9.81, "l": 1.0},
+                     "initial": {"theta": 0.0, "theta_dot": 7.0}, "run": {"t_end": 10.0}},
+    }
+    sections = (
+        Section("time_series", "Angle against time", integrates=True),
+        Section("phase_portrait", "Phase portrait", integrates=True),
+        Section("period", "Period against amplitude"),
+        Section("boundary_value", "Boundary-value problem and its action"),
+        Section("energy", "Energy conservation", integrates=True),
+        Section("error_vs_runtime", "Error against run time", integrates=True),
+    )
+
+    def default_sections(self):
+        names = [s.name for s in self.sections]
+        if self.config.boundary is None:
+            names.remove("boundary_value")
+        return names
+
+    # ----------------------------------------------------------------- helpers
+    @property
+    def omega0(self) -> float:
+        return math.sqrt(self.config.params.g / self.config.params.l)
+
+    @property
+    def k2(self) -> float:
+        ini = self.config.initial
+        return core.modulus_squared(ini.theta, ini.theta_dot, self.omega0)
+
+    @property
+    def motion(self) -> str:
+        return "libration" if self.k2 < 1.0 else "rotation"
+
+    def exact(self, t):
+        p, ini = self.config.params, self.config.initial
+        return core.exact_solution(t, ini.theta, ini.theta_dot, p.g, p.l)
+
+    def energy(self, theta, theta_dot):
+        p = self.config.params
+        return core.energy(theta, theta_dot, p.g, p.l, p.m)
+
+    @property
+    def energy_scale(self) -> float:
+        p = self.config.params
+        return p.m * p.g * p.l
+
+    # -------------------------------------------------------------- simulation
+    def simulate(self, progress=None) -> Results:
+        p, ini, run = self.config.params, self.config.initial, self.config.run
+        model = core.model(p.g, p.l)
+        y0 = np.array([ini.theta, ini.theta_dot])
+        t = np.linspace(0.0, run.t_end, run.samples)
+        period = core.exact_period(ini.theta, ini.theta_dot, p.g, p.l)
+        results = Results()
+        main = self.integrate(
+            model, y0, t,
+            invariants=lambda t, y: {"energy": self.energy(y[:, 0], y[:, 1])},
+            invariant_scales={"energy": self.energy_scale},
+            progress=progress, n_periods=run.t_end / period,
+        )
+        results.runs["main"] = main
+        theta, theta_dot = main.y[:, 0], main.y[:, 1]
+        exact_theta, exact_theta_dot = self.exact(t)
+        err = np.abs(theta - exact_theta)
+
+        measured = self._measured_period(t, theta, theta_dot)
+        results.analysis.update({
+            "period": period,
+            "period_measured": measured,
+            "period_small_angle": 2 * math.pi / self.omega0,
+            "omega0": self.omega0,
+            "k": math.sqrt(self.k2),
+            "motion": self.motion,
+            "theta_max_error": float(np.max(err)),
+            "theta_dot_max_error": float(np.max(np.abs(theta_dot - exact_theta_dot))),
+        })
+        results.checks.append(Check("period (measured from θ(t))", measured, period, "s",
+                                    "4K(k)·√(l/g), DLMF 22.19.4" if self.k2 < 1
+                                    else "2K(1/k²)/(k ω0), DLMF 22.19.7"))
+        results.checks.append(Check("θ(t_end)", float(theta[-1]), float(exact_theta[-1]), "rad",
+                                    "Jacobi sn solution, DLMF 22.19.2"))
+        e = main.invariants["energy"]
+        results.checks.append(Check("energy E(t_end)", float(e[-1]), float(e[0]), "J",
+                                    "E(0), conserved"))
+        if self.config.boundary is not None:
+            bvp = self._boundary_value()
+            results.analysis["boundary_value"] = bvp
+            results.checks.append(Check("action S of the linear BVP (numerical quadrature)",
+                                        bvp["action_numeric"], bvp["action_exact"], "J·s",
+                                        "closed form (2.4) on solution (1.21)"))
+        self.study(results, model, y0, np.linspace(0.0, run.t_end, 201),
+                   reference=lambda ts: np.column_stack(self.exact(ts)))
+        return results
+
+    def _measured_period(self, t, theta, theta_dot) -> float:
+        """Mean period from upward crossings of θ through its centre (or of 2π steps)."""
+        accel = -self.omega0**2 * np.sin(theta)
+        if self.k2 < 1.0:
+            centre = 2 * math.pi * round(self.config.initial.theta / (2 * math.pi))
+            return mean_period(upward_crossings(t, theta, theta_dot, accel, level=centre))
+        sign = 1.0 if self.config.initial.theta_dot >= 0 else -1.0
+        x = sign * (theta - theta[0])  # increases monotonically while rotating
+        turns = int(np.floor(x[-1] / (2 * math.pi)))
+        times = [0.0] + [upward_crossings(t, x, sign * theta_dot, sign * accel,
+                                          level=2 * math.pi * n)[0]
+                         for n in range(1, turns + 1)]
+        return mean_period(np.array(times))
+
+    def _boundary_value(self) -> dict:
+        """Linear BVP (1.21) in closed form and numerically, with its action (2.4) both ways."""
+        b, p = self.config.boundary, self.config.params
+        w, M = self.omega0, p.m * p.l**2
+        t = np.linspace(0.0, b.T, 401)
+        exact = (b.theta0 * np.sin(w * (b.T - t)) + b.theta1 * np.sin(w * t)) / math.sin(w * b.T)
+        action_exact = M * w / (2 * math.sin(w * b.T)) * (
+            (b.theta0**2 + b.theta1**2) * math.cos(w * b.T) - 2 * b.theta0 * b.theta1)
+
+        def linear(_t, y):
+            return np.vstack([y[1], -w**2 * y[0]])
+
+        def nonlinear(_t, y):
+            return np.vstack([y[1], -w**2 * np.sin(y[0])])
+
+        def bc(ya, yb):
+            return np.array([ya[0] - b.theta0, yb[0] - b.theta1])
+
+        guess = np.vstack([exact, np.gradient(exact, t)])
+        lin = sp_integrate.solve_bvp(linear, bc, t, guess, tol=1e-10, max_nodes=100000)
+        non = sp_integrate.solve_bvp(nonlinear, bc, t, guess, tol=1e-10, max_nodes=100000)
+        fine = np.linspace(0.0, b.T, 20001)
+
+        def action(sol, potential):
+            th, thd = sol.sol(fine)
+            lagrangian = 0.5 * M * thd**2 - potential(th)
+            return float(sp_integrate.simpson(lagrangian, x=fine))
+
+        action_numeric = action(lin, lambda th: 0.5 * M * w**2 * th**2)
+        action_nonlinear = action(non, lambda th: M * w**2 * (1 - np.cos(th)))
+        return {
+            "t": t,
+            "theta_exact": exact,
+            "theta_numeric": lin.sol(t)[0],
+            "theta_nonlinear": non.sol(t)[0] if non.success else np.full_like(t, np.nan),
+            "action_exact": float(action_exact),
+            "action_numeric": action_numeric,
+            "action_nonlinear": action_nonlinear if non.success else float("nan"),
+            "nonlinear_converged": bool(non.success),
+        }
+
+    # ----------------------------------------------------------------- report
+    def headline(self, data):
+        p, ini = self.config.params, self.config.initial
+        a = data.analysis
+        return [
+            ("parameters", f"g = {fmt(p.g)} m/s², l = {fmt(p.l)} m, m = {fmt(p.m)} kg"),
+            ("initial state", f"θ0 = {fmt(ini.theta)} rad, θ̇0 = {fmt(ini.theta_dot)} rad/s"),
+            ("motion", f"{a['motion']}, k = {fmt(a['k'])}"),
+            ("period", f"{fmt(a['period'], 14)} s exact; small-angle 2π/ω0 = "
+                       f"{fmt(a['period_small_angle'])} s"),
+            ("max |θ − θ_exact|", f"{fmt_err(a['theta_max_error'])} rad over the run"),
+        ]
+
+    def section_time_series(self, data):
+        run = data.runs["main"]
+        p, ini = self.config.params, self.config.initial
+        th_ex, thd_ex = self.exact(run.t)
+        th_lin, thd_lin = core.small_angle_solution(run.t, ini.theta, ini.theta_dot, p.g, p.l)
+        fig = common_plots.timeseries_against_reference(
+            run.t, {"theta": run["theta"], "theta_dot": run["theta_dot"]},
+            {"theta": th_ex, "theta_dot": thd_ex},
+            ylabels={"theta": "θ [rad]", "theta_dot": "θ̇ [rad/s]"},
+            reference_label="exact (Jacobi sn)",
+            extra={"theta": th_lin, "theta_dot": thd_lin} if self.k2 < 1 else None,
+        )
+        err = common_plots.error_against_time(
+            run.t, {"|θ − θ_exact| [rad]": run["theta"] - th_ex,
+                    "|θ̇ − θ̇_exact| [rad/s]": run["theta_dot"] - thd_ex},
+            ylabel="absolute error")
+        return SectionContent(figures=[
+            self.figure("timeseries", fig, "θ(t) and θ̇(t) integrated, against the exact "
+                        "elliptic-function solution and the small-angle solution (1.19)."),
+            self.figure("error", err, "Error of the integration against the exact solution."),
+        ])
+
+    def section_phase_portrait(self, data):
+        run = data.runs["main"]
+        fig = plots.phase_portrait(run["theta"], run["theta_dot"], omega0=self.omega0)
+        return SectionContent(figures=[self.figure(
+            "phase", fig, "Phase portrait: librations (closed curves), the separatrix "
+            "E = m g l through (±π, 0), and rotations; this scene's orbit highlighted.")])
+
+    def section_period(self, data):
+        a = data.analysis
+        amp = 2 * math.asin(min(1.0, math.sqrt(self.k2))) if self.k2 < 1 else None
+        fig = plots.period_against_amplitude(
+            omega0=self.omega0, amplitude=amp, period=a["period"],
+            period_measured=a["period_measured"] if self.k2 < 1 else None)
+        facts = [("exact period", f"{fmt(a['period'], 14)} s"),
+                 ("measured from θ(t)", f"{fmt(a['period_measured'], 14)} s"),
+                 ("relative difference", fmt_err(abs(a['period_measured'] / a['period'] - 1)))]
+        notes = [] if self.k2 < 1 else [
+            "This scene rotates; its period is the time of one full turn, 2K(1/k²)/(k ω0)."]
+        return SectionContent(figures=[self.figure(
+            "period", fig, "Period against amplitude: exact 4K(k)√(l/g), k = sin(θ0/2), "
+            "against the small-angle period 2π√(l/g).")], facts=facts, notes=notes)
+
+    def section_boundary_value(self, data):
+        bvp = data.analysis["boundary_value"]
+        fig = plots.boundary_value(bvp["t"], bvp["theta_exact"], bvp["theta_numeric"],
+                                   bvp["theta_nonlinear"])
+        b = self.config.boundary
+        table = Table(
+            caption="Action S = ∫ L dt (2.4) along the boundary-value solution",
+            header=["solution", "action [J·s]", "rel. error vs closed form"],
+            rows=[["linear, closed form (2.4)", fmt(bvp["action_exact"], 14), "—"],
+                  ["linear, solve_bvp + Simpson quadrature", fmt(bvp["action_numeric"], 14),
+                   fmt_err(abs(bvp["action_numeric"] / bvp["action_exact"] - 1))],
+                  ["nonlinear pendulum, solve_bvp", fmt(bvp["action_nonlinear"], 14),
+                   "(different problem)"]])
+        return SectionContent(
+            figures=[self.figure("bvp", fig, f"θ(0) = {fmt(b.theta0)} rad, θ(T) = "
+                                 f"{fmt(b.theta1)} rad, T = {fmt(b.T)} s: the linearised "
+                                 "solution (1.21) in closed form and numerically, and the "
+                                 "nonlinear pendulum's solution with the same ends.")],
+            tables=[table])
+
+    def section_energy(self, data):
+        return invariants_section(self, data, scales={"energy": self.energy_scale},
+                                  labels={"energy": "energy E"},
+                                  caption="Energy drift relative to m g l.")
+
+    def section_error_vs_runtime(self, data):
+        return error_vs_runtime_section(self, data)

@@ -1,0 +1,60 @@
+"""Shared fixtures: write configs into a temp folder and run the CLI in-process."""
+
+from __future__ import annotations
+
+import textwrap
+from pathlib import Path
+
+import pytest
+
+from reportgen.cli import main
+
+REPO = Path(__file__).resolve().parent.parent
+
+
+@pytest.fixture
+def write_config(tmp_path):
+    """write_config(name, text) -> Path of tmp_path/name.toml with dedented text."""
+
+    def write(name: str, text: str) -> Path:
+        path = tmp_path / f"{name}.toml"
+        path.write_text(textwrap.dedent(text).lstrip())
+        return path
+
+    return write
+
+
+@pytest.fixture
+def cli(capsys):
+    """cli(*args) -> (exit status, stdout, stderr) of `reportgen args` run in-process."""
+
+    def run(*args):
+        code = main([str(a) for a in args])
+        out, err = capsys.readouterr()
+        return code, out, err
+
+    return run
+
+
+PENDULUM = """
+kind = "pendulum"
+title = "{title}"
+
+[params]
+g = 9.81
+l = 1.0
+
+[initial]
+theta = {theta}
+
+[run]
+t_end = {t_end}
+samples = {samples}
+study = {study}
+"""
+
+
+def pendulum_text(theta=1.0, t_end=10.0, samples=1001, study="false", title="test pendulum",
+                  extra=""):
+    return PENDULUM.format(theta=theta, t_end=t_end, samples=samples, study=study,
+                           title=title) + textwrap.dedent(extra)

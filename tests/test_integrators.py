@@ -1,0 +1,251 @@
+"""Integrators against closed forms, structure checks and failure paths.
+
+Closed forms used:
+* Pendulum: sin(theta/2) = k sn(K(m) - omega0 t | m), k = sin(theta0/2)
+  (DLMF 22.19.2; Lawden, Elliptic Functions and Applications, sec. 5.2),
+  implemented by ``reportgen.core.models.pendulum.exact_solution``.
+* Harmonic oscillator q = q0 cos(wt) + p0/w sin(wt) (Landau & Lifshitz, Mechanics, sec. 21).
+* y' = y^2, y(0) = 1: y = 1 / (1 - t), blows up at t = 1.
+"""
+
+import math
+import subprocess
+import sys
+
+import numba
+import numpy as np
+import pytest
+
+from reportgen.core.integrators import METHODS, MethodMismatch, Solution, choose_auto, integrate
+from reportgen.core.model import OdeModel, Separable
+from reportgen.core.models import pendulum
+
+G, L, THETA0 = 9.81, 1.0, 1.0
+T_PEND = pendulum.exact_period(THETA0, 0.0, G, L)
+COMPILED = [n for n, m in METHODS.items() if not m.peer and n != "radau"]
+SYMMETRIC = [n for n, m in METHODS.items() if m.symmetric]
+
+
+@numba.njit(cache=True)
+def osc_rhs(t, y, params, out):
+    out[0] = y[1]
+    out[1] = -params[0] * y[0]
+
+
+@numba.njit(cache=True)
+def osc_jac(t, y, params, out):
+    out[0, 0] = 0.0
+    out[0, 1] = 1.0
+    out[1, 0] = -params[0]
+    out[1, 1] = 0.0
+
+
+@numba.njit(cache=True)
+def osc_drift(p, params, out):
+    out[0] = p[0]
+
+
+@numba.njit(cache=True)
+def osc_kick(q, params, out):
+    out[0] = -params[0] * q[0]
+
+
+@numba.njit(cache=True)
+def damped_rhs(t, y, params, out):
+    out[0] = y[1]
+    out[1] = -y[0] - params[0] * y[1]
+
+
+@numba.njit(cache=True)
+def blowup_rhs(t, y, params, out):
+    out[0] = y[0] * y[0]
+
+
+def oscillator(omega, with_jac=True):
+    return OdeModel(name="oscillator", columns=("q", "p"), rhs=osc_rhs,
+                    params=np.array([omega**2]), separable=Separable(1, osc_drift, osc_kick),
+                    jac=osc_jac if with_jac else None)
+
+
+DAMPED = OdeModel(name="damped_oscillator", columns=("x", "v"), rhs=damped_rhs,
+                  params=np.array([0.1]))
+BLOWUP = OdeModel(name="blowup", columns=("y",), rhs=blowup_rhs, params=np.zeros(0))
+
+
+def pendulum_run(method, n_periods=10, n_out=1001, **kw):
+    t = np.linspace(0.0, n_periods * T_PEND, n_out)
+    sol = integrate(pendulum.model(G, L), np.array([THETA0, 0.0]), t, method=method, **kw)
+    exact = np.column_stack(pendulum.exact_solution(t, THETA0, 0.0, G, L))
+    return sol, float(np.max(np.abs(sol.y - exact)))
+
+
+def test_dop853_reaches_1e9_on_pendulum():
+    sol, err = pendulum_run("dop853", rtol=1e-10, atol=1e-12)
+    assert sol.status == "ok" and isinstance(sol, Solution)
+    assert err <= 1e-9
+    assert sol.nfev > 0 and sol.nsteps > 0 and sol.compile_time_s >= 0
+
+
+@pytest.mark.parametrize("method", ["dop853", "rk45"])
+def test_adaptive_error_decreases_with_rtol(method):
+    errs = [pendulum_run(method, rtol=r, atol=r * 1e-2)[1] for r in (1e-4, 1e-6, 1e-8)]
+    assert errs[0] > errs[1] > errs[2], errs
+
+
+def test_dop853_matches_scipy_dop853():
+    # same tableau, controller and dense output as scipy; round-off in the step-size
+    # sequence differs, so agreement is to the tolerance, and the work is the same
+    ours, err_ours = pendulum_run("dop853", rtol=1e-8, atol=1e-10)
+    peer, err_peer = pendulum_run("scipy_dop853", rtol=1e-8, atol=1e-10)
+    assert np.max(np.abs(ours.y - peer.y)) < 1e-8
+    assert abs(ours.nfev - peer.nfev) <= 0.02 * peer.nfev
+    assert 0.5 < err_ours / err_peer < 2.0
+
+
+@pytest.mark.parametrize("method", COMPILED)
+def test_output_exactly_at_t_eval(method):
+    t = np.sort(np.random.default_rng(1).uniform(0.0, 3.0, 37))
+    t[0] = 0.0
+    sol = integrate(pendulum.model(G, L), np.array([THETA0, 0.0]), t, method=method,
+                    rtol=1e-8, atol=1e-10, h=0.01)
+    assert sol.status == "ok", sol.message
+    assert np.array_equal(sol.t, t) and sol.y.shape == (37, 2)
+    exact = np.column_stack(pendulum.exact_solution(t, THETA0, 0.0, G, L))
+    assert np.max(np.abs(sol.y - exact)) < 1e-3
+    if not METHODS[method].adaptive:
+        assert sol.h <= 0.01
+
+
+@pytest.mark.parametrize("method", ["dop853", "rk45", "yoshida4"])
+def test_chunked_progress_gives_the_same_result(method):
+    calls = []
+    plain, _ = pendulum_run(method, rtol=1e-9, atol=1e-11, h=0.01)
+    chunked, _ = pendulum_run(method, rtol=1e-9, atol=1e-11, h=0.01, progress=calls.append)
+    assert np.array_equal(plain.y, chunked.y)
+    assert len(calls) == 20 and calls[-1] == 1.0 and calls == sorted(calls)
+
+
+@pytest.mark.parametrize("method", ["verlet", "yoshida4"])
+def test_symplectic_energy_error_bounded_rk4_drifts(method):
+    # 1e4 pendulum periods, 40 steps per period (yoshida4), 200 (verlet)
+    n_per = 10_000
+    spp = 200 if method == "verlet" else 40
+    # sample spacing 5.0615 periods: successive samples see every phase of the
+    # (bounded, oscillating) energy error, already within the first decile
+    t = np.linspace(0.0, 1.0123 * n_per * T_PEND, 2001)
+    y0 = np.array([THETA0, 0.0])
+    model = pendulum.model(G, L)
+    e0 = pendulum.energy(THETA0, 0.0, G, L)
+
+    def energy_error(m):
+        sol = integrate(model, y0, t, method=m, h=T_PEND / spp)
+        assert sol.status == "ok", sol.message
+        return np.abs(pendulum.energy(sol.y[:, 0], sol.y[:, 1], G, L) / e0 - 1.0)
+
+    de = energy_error(method)
+    first = de[: de.size // 10].max()
+    assert de.max() < 2.0 * first, (first, de.max())
+    de_rk4 = energy_error("rk4")
+    # rk4 with the same step: error grows roughly linearly in time
+    assert de_rk4[-200:].max() > 5.0 * de_rk4[:200].max()
+
+
+@pytest.mark.parametrize("method", SYMMETRIC)
+def test_time_reversibility(method):
+    model = pendulum.model(G, L)
+    y0 = np.array([THETA0, 0.3])
+    t = np.linspace(0.0, 5.0, 11)
+    fwd = integrate(model, y0, t, method=method, h=0.01)
+    back = integrate(model, fwd.y[-1] * np.array([1.0, -1.0]), t, method=method, h=0.01)
+    assert np.max(np.abs(back.y[-1] * np.array([1.0, -1.0]) - y0)) < 1e-12
+
+
+@pytest.mark.parametrize("method", ["gauss4", "gauss6"])
+@pytest.mark.parametrize("with_jac", [True, False])
+def test_gauss_is_A_stable_on_stiff_oscillator(method, with_jac):
+    omega = 1e3
+    model = oscillator(omega, with_jac)
+    y0 = np.array([1.0, 0.0])
+    t = np.linspace(0.0, 10.0, 101)  # h omega = 100
+    sol = integrate(model, y0, t, method=method, h=0.1)
+    assert sol.status == "ok", sol.message
+    # the quadratic invariant omega^2 q^2 + p^2 is conserved by Gauss methods
+    inv = omega**2 * sol.y[:, 0] ** 2 + sol.y[:, 1] ** 2
+    assert np.max(np.abs(inv / inv[0] - 1.0)) < 1e-8
+    # explicit rk4 at the same step blows up (|R(100 i)| >> 1)
+    assert integrate(model, y0, t, method="rk4", h=0.1).status == "failed"
+
+
+@pytest.mark.parametrize("method", [n for n, m in METHODS.items() if m.needs_separable])
+def test_splitting_on_non_separable_model_is_a_mismatch(method):
+    with pytest.raises(MethodMismatch, match="separable Hamiltonian.*damped_oscillator"):
+        integrate(DAMPED, np.array([1.0, 0.0]), np.linspace(0, 1, 3), method=method)
+
+
+@pytest.mark.parametrize("method", ["dop853", "rk45", "rk4", "gauss4", "scipy_dop853"])
+def test_blowup_fails_cleanly(method):
+    t = np.linspace(0.0, 2.0, 21)  # exact y = 1/(1-t) blows up at t = 1
+    sol = integrate(BLOWUP, np.array([1.0]), t, method=method, rtol=1e-8, atol=1e-10,
+                    h=1e-3, max_steps=100_000)
+    assert sol.status == "failed"
+    assert "t =" in sol.message or "t=" in sol.message
+    good = t < 0.99
+    assert np.allclose(sol.y[good, 0], 1.0 / (1.0 - t[good]), rtol=1e-4)
+    assert np.all(np.isnan(sol.y[t > 1.0]))
+
+
+def test_max_steps_fails_cleanly():
+    sol, _ = pendulum_run("dop853", rtol=1e-10, max_steps=50)
+    assert sol.status == "failed" and "max_steps" in sol.message
+    assert np.isnan(sol.y[-1]).all() and np.isfinite(sol.y[0]).all()
+
+
+def test_non_separable_runs_on_general_methods():
+    t = np.linspace(0.0, 5.0, 51)
+    # underdamped x'' + c x' + x = 0: x = e^{-ct/2} cos(wd t) + ..., wd = sqrt(1 - c^2/4)
+    c = 0.1
+    wd = math.sqrt(1 - c**2 / 4)
+    x = np.exp(-c * t / 2) * (np.cos(wd * t) + c / (2 * wd) * np.sin(wd * t))
+    for method in ("dop853", "gauss6", "radau"):
+        sol = integrate(DAMPED, np.array([1.0, 0.0]), t, method=method, rtol=1e-10,
+                        atol=1e-12, h=0.01)
+        assert np.max(np.abs(sol.y[:, 0] - x)) < 1e-6, method
+
+
+def test_method_flags():
+    for name, m in METHODS.items():
+        assert m.name == name and m.label and m.order > 0
+        if m.needs_separable:
+            assert m.symplectic and not m.adaptive
+        if m.peer:
+            assert m.label.startswith("scipy")
+    assert METHODS["radau"].label == "scipy Radau (stiff fallback)"
+
+
+def test_choose_auto():
+    model = pendulum.model(G, L)
+    assert choose_auto(model, 1e-10)[0] == "dop853"
+    assert METHODS[choose_auto(model, 1e-10, n_periods=1e6)[0]].symplectic
+    assert choose_auto(DAMPED, 1e-8)[0] == "dop853"
+    stiff = OdeModel(name="s", columns=("x", "v"), rhs=damped_rhs, params=np.array([1.0]),
+                     stiff_hint=True)
+    name, reason = choose_auto(stiff, 1e-6)
+    assert METHODS[name].implicit and reason.endswith(".")
+
+
+def test_default_step_meets_rtol_roughly():
+    sol, err = pendulum_run("yoshida6", rtol=1e-8)
+    assert sol.status == "ok" and sol.h is not None
+    assert err < 1e-6
+
+
+def test_kernels_load_from_disk_cache_in_a_fresh_process():
+    # The second fresh process must load, not compile (see kernels.py for why we generate).
+    code = ("import numpy as np; from reportgen.core.integrators import integrate;"
+            "from reportgen.core.models import pendulum;"
+            "s = integrate(pendulum.model(9.81, 1.0), np.array([1.0, 0.0]),"
+            " np.linspace(0, 1, 3), method='dop853'); print(s.compile_time_s)")
+    for _ in range(2):
+        out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                             check=True)
+    assert float(out.stdout) < 1.0
