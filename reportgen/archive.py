@@ -25,7 +25,6 @@ from __future__ import annotations
 import os
 import platform
 import sys
-import uuid
 from dataclasses import dataclass, field
 from datetime import UTC, datetime
 from pathlib import Path
@@ -35,6 +34,7 @@ import h5py
 import numpy as np
 
 from . import __version__
+from .fsutil import fsync_path, temp_name
 from .results import Check, Results, RunRecord
 
 FORMAT = "reportgen"
@@ -158,14 +158,13 @@ def write_archive(path: Path, *, kind: str, title: str, scene: str, config_text:
     """Write ``results`` atomically to ``path`` (see the module docstring)."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp")
+    tmp = temp_name(path)
     try:
         with h5py.File(tmp, "w") as f:
             _write_contents(f, kind=kind, title=title, scene=scene, config_text=config_text,
                             config_sha256=config_sha256, results=results)
             f.flush()
-        _fsync(tmp)
-        _replace_keeping_previous(tmp, path)
+        install(tmp, path)
     finally:
         if tmp.exists():
             tmp.unlink()
@@ -208,23 +207,17 @@ def _write_contents(f: h5py.File, *, kind, title, scene, config_text, config_sha
             table.attrs[key] = _attr_value(value)
 
 
-def _fsync(path: Path) -> None:
-    fd = os.open(path, os.O_RDONLY)
-    try:
-        os.fsync(fd)
-    finally:
-        os.close(fd)
+def install(tmp: Path, path: Path) -> None:
+    """fsync the finished archive ``tmp`` and rename it over ``path``.
 
-
-def _replace_keeping_previous(tmp: Path, path: Path) -> None:
-    """Rename ``tmp`` over ``path``; an existing ``path`` is kept as ``<stem>.prev.h5``.
-
-    The previous archive is hard-linked to its backup name first, so at every
-    instant ``path`` names a complete archive (old or new).
+    An existing ``path`` is kept as ``<stem>.prev.h5``: it is hard-linked to its
+    backup name first, so at every instant ``path`` names a complete archive
+    (old or new).
     """
+    fsync_path(tmp)
     if path.exists():
         backup = path.with_name(path.stem + ".prev" + path.suffix)
-        staged = backup.with_name(f".{backup.name}.{uuid.uuid4().hex[:8]}.tmp")
+        staged = temp_name(backup)
         try:
             os.link(path, staged)
             os.replace(staged, backup)

@@ -45,7 +45,8 @@ def build_parser() -> argparse.ArgumentParser:
 
     run = sub.add_parser("run", help="run scenes (config files or folders) and write reports")
     run.add_argument("paths", nargs="+", metavar="PATH")
-    run.add_argument("--out", default="output", metavar="DIR", help="output folder (default: output)")
+    run.add_argument("--out", default="output", metavar="DIR",
+                     help="output folder (default: output)")
     run.add_argument("--jobs", type=_jobs, default=None, metavar="N",
                      help="worker processes (default: CPU count)")
     run.add_argument("--format", type=_formats, default=None, metavar="html,pdf",
@@ -92,11 +93,9 @@ def _usage(message: str) -> int:
 def cmd_run(args) -> int:
     from .pipeline import UsageError, batch_status, run_batch
 
-    if args.scheduler:
-        return _usage("--scheduler: Dask batches are not available in this version yet")
     try:
         outcomes = run_batch(args.paths, out_root=args.out, jobs=args.jobs, formats=args.format,
-                             force=args.force)
+                             force=args.force, scheduler=args.scheduler)
     except UsageError as exc:
         return _usage(str(exc))
     status = batch_status(outcomes)
@@ -148,7 +147,8 @@ def cmd_validate(args) -> int:
     except UsageError as exc:
         return _usage(str(exc))
     for scene in scenes:
-        print(f"{scene.source.path}: ok ({scene.kind}: {', '.join(scene.default_sections()) if not scene.config.report.sections else ', '.join(scene.config.report.sections)})")
+        sections = ", ".join(s.name for s in scene.chosen_sections())
+        print(f"{scene.source.path}: ok ({scene.kind}: {sections})")
     return EXIT_OK
 
 

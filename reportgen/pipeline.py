@@ -20,6 +20,7 @@ from pathlib import Path
 from . import __version__
 from .archive import read_archive, stored_identity, write_archive
 from .config import ConfigError, read_config
+from .fsutil import remove_stale_temps
 from .results import worst_status
 from .scenes import load_scene
 from .scenes.base import Scene
@@ -101,6 +102,7 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
     try:
         scene = load_scene(read_config(path))
         outcome.kind, outcome.title = scene.kind, scene.title
+        remove_stale_temps(folder)
         archive = folder / "run.h5"
         stored = stored_identity(archive) if archive.exists() else None
         fresh = stored is not None and stored[:2] == (scene.source.sha256, __version__)
@@ -187,32 +189,138 @@ class Progress:
 
 def run_batch(paths: list[str], out_root: str = "output", jobs: int | None = None,
               formats: tuple[str, ...] | None = None, force: bool = False,
-              stream=None) -> list[Outcome]:
-    """Validate all, run all (pool of ``jobs`` processes), write ``index.html``."""
+              scheduler: str | None = None, stream=None) -> list[Outcome]:
+    """Validate all, run all, write ``index.html``.
+
+    Scenes run in-process (``jobs == 1``), in a local pool of ``jobs`` processes,
+    or on the Dask distributed scheduler at ``scheduler``.
+    """
     configs = collect_configs(paths)
     scenes = validate_all(configs)
-    jobs = max(1, min(jobs or os.cpu_count() or 1, len(scenes)))
     progress = Progress(len(scenes), stream)
-    outcomes: list[Outcome] = []
     Path(out_root).mkdir(parents=True, exist_ok=True)
-    if jobs == 1:
-        for scene in scenes:
-            name = scene.source.name
-            outcome = run_scene(str(scene.source.path), out_root, force, formats,
-                                progress=progress.within(name))
-            progress.scene_done(outcome)
-            outcomes.append(outcome)
+    if scheduler:
+        outcomes = _run_on_dask(scenes, out_root, force, formats, scheduler, progress)
     else:
-        with ProcessPoolExecutor(max_workers=jobs, mp_context=get_context("fork")) as pool:
-            futures = {pool.submit(run_scene, str(s.source.path), out_root, force, formats): s
-                       for s in scenes}
-            for future in as_completed(futures):
-                outcome = future.result()
-                progress.scene_done(outcome)
-                outcomes.append(outcome)
+        outcomes = _run_locally(scenes, out_root, force, formats, jobs, progress)
     order = {s.source.name: i for i, s in enumerate(scenes)}
     outcomes.sort(key=lambda o: order[o.name])
     write_index(out_root, outcomes)
+    return outcomes
+
+
+def _run_locally(scenes, out_root, force, formats, jobs, progress) -> list[Outcome]:
+    jobs = max(1, min(jobs or os.cpu_count() or 1, len(scenes)))
+    outcomes = []
+    if jobs == 1:
+        for scene in scenes:
+            outcome = run_scene(str(scene.source.path), out_root, force, formats,
+                                progress=progress.within(scene.source.name))
+            progress.scene_done(outcome)
+            outcomes.append(outcome)
+        return outcomes
+    with ProcessPoolExecutor(max_workers=jobs, mp_context=get_context("fork")) as pool:
+        futures = [pool.submit(run_scene, str(s.source.path), out_root, force, formats)
+                   for s in scenes]
+        for future in as_completed(futures):
+            outcome = future.result()
+            progress.scene_done(outcome)
+            outcomes.append(outcome)
+    return outcomes
+
+
+def run_scene_portable(config_text: str, name: str, formats: tuple[str, ...] | None,
+                       label: str) -> tuple[Outcome, dict[str, bytes]]:
+    """Run one scene in a private temporary folder; return its outcome and every file it wrote.
+
+    This is the task a Dask worker runs: it needs no filesystem shared with the
+    submitting process, which installs the returned files itself.
+    """
+    import tempfile
+
+    with tempfile.TemporaryDirectory(prefix="reportgen-") as tmp:
+        cfg = Path(tmp) / f"{name}.toml"
+        cfg.write_text(config_text, encoding="utf-8")
+        outcome = run_scene(str(cfg), str(Path(tmp) / "out"), True, formats)
+        outcome.message = outcome.message.replace(str(cfg), label)
+        folder = Path(tmp) / "out" / name
+        files = {str(p.relative_to(folder)): p.read_bytes()
+                 for p in sorted(folder.rglob("*")) if p.is_file()}
+    return outcome, files
+
+
+def _install_files(out_root: str, outcome: Outcome, files: dict[str, bytes]) -> Outcome:
+    """Write a worker's files into ``out_root/<name>/`` atomically, archive first."""
+    from .archive import install
+    from .fsutil import atomic_write, temp_name
+
+    folder = Path(out_root) / outcome.name
+    folder.mkdir(parents=True, exist_ok=True)
+    if "run.h5" in files:
+        tmp = temp_name(folder / "run.h5")
+        tmp.write_bytes(files["run.h5"])
+        install(tmp, folder / "run.h5")
+    for rel, data in files.items():
+        if rel != "run.h5":
+            (folder / rel).parent.mkdir(parents=True, exist_ok=True)
+            atomic_write(folder / rel, data)
+    outcome.folder = str(folder)
+    outcome.reports = [str(folder / Path(r).name) for r in outcome.reports]
+    return outcome
+
+
+def _up_to_date(scene: Scene, out_root: str, formats) -> Outcome | None:
+    """The outcome of a scene whose archive and reports are current, else None."""
+    folder = Path(out_root) / scene.source.name
+    stored = stored_identity(folder / "run.h5") if (folder / "run.h5").exists() else None
+    wanted = _formats(scene, formats)
+    reports = [folder / f"report.{f}" for f in wanted]
+    if stored is None or stored[:2] != (scene.source.sha256, __version__) or not all(
+            r.exists() for r in reports):
+        return None
+    data = read_archive(folder / "run.h5")
+    return Outcome(name=scene.source.name, kind=scene.kind, title=scene.title, status=stored[2],
+                   message=data.message, skipped=True, folder=str(folder),
+                   wall_time_s=float(data.attrs.get("wall_time_s", 0.0)),
+                   reports=[str(r) for r in reports])
+
+
+def _run_on_dask(scenes, out_root, force, formats, scheduler, progress) -> list[Outcome]:
+    try:
+        from distributed import Client
+        from distributed import as_completed as dask_completed
+    except ImportError:
+        raise UsageError("--scheduler needs Dask distributed: pip install 'reportgen[dask]'") \
+            from None
+    outcomes, todo = [], []
+    for scene in scenes:
+        current = None if force else _up_to_date(scene, out_root, formats)
+        if current is not None:
+            progress.scene_done(current)
+            outcomes.append(current)
+        else:
+            todo.append(scene)
+    if not todo:
+        return outcomes
+    try:
+        client = Client(scheduler, timeout="10s")
+    except OSError as exc:
+        raise UsageError(f"--scheduler {scheduler}: cannot connect ({exc})") from None
+    with client:
+        futures = [client.submit(run_scene_portable, s.source.text, s.source.name, formats,
+                                 str(s.source.path), pure=False, key=f"reportgen-{s.source.name}-"
+                                 f"{s.source.sha256[:12]}-{os.getpid()}")
+                   for s in todo]
+        for future in dask_completed(futures):
+            try:
+                outcome, files = future.result()
+                outcome = _install_files(out_root, outcome, files)
+            except Exception as exc:  # noqa: BLE001 - a lost worker fails one scene only
+                name = todo[futures.index(future)].source.name
+                outcome = Outcome(name=name, status="failed",
+                                  message=f"Dask task failed: {type(exc).__name__}: {exc}")
+            progress.scene_done(outcome)
+            outcomes.append(outcome)
     return outcomes
 
 

@@ -9,9 +9,7 @@ is WeasyPrint's rendering of the same HTML.
 from __future__ import annotations
 
 import io
-import os
 import re
-import uuid
 from dataclasses import dataclass
 from datetime import UTC, datetime
 from pathlib import Path
@@ -24,6 +22,7 @@ from markupsafe import Markup
 from . import __version__
 from .archive import ArchiveData, read_archive
 from .config import ConfigError, parse_config_text
+from .fsutil import atomic_write
 from .scenes import get_kind
 from .scenes.base import FigureSpec, SectionContent, fmt, fmt_err
 
@@ -94,19 +93,6 @@ def save_figure(spec: FigureSpec, fig_id: str, folder: Path, png: bool = False) 
             if fmt_name == "svg":
                 svg_text = _SVG_HEAD.sub("", data.decode("utf-8"), count=1)
     return SavedFigure(id=fig_id, caption=spec.caption, svg=Markup(svg_text), files=files)
-
-
-def atomic_write(path: Path, data: bytes) -> None:
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp")
-    try:
-        with open(tmp, "wb") as fh:
-            fh.write(data)
-            fh.flush()
-            os.fsync(fh.fileno())
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
 
 
 # ------------------------------------------------------------------- context

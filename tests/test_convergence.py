@@ -7,7 +7,6 @@ Hairer-Norsett-Wanner I (RK4 II.1, DOP853 II.10, RK45 II.5), Yoshida (1990) and
 Hairer-Lubich-Wanner, Geometric Numerical Integration II.1 (Gauss, order 2s).
 """
 
-import math
 
 import numba
 import numpy as np

@@ -21,17 +21,18 @@ solvers are not used as references because they clamp rtol >= 100 eps.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from .integrators import METHODS, integrate
-from .integrators.driver import default_step  # noqa: F401  (documented alternative)
 
 DEFAULT_TOLERANCES = tuple(10.0 ** -k for k in range(4, 13))
 ATOL_OVER_RTOL = 1e-2
-TIME_CAP_S = 2.0
+TIME_CAP_S = 1.0  # a run slower than this ends the method's sweep (next one ~2x slower)
+REPEAT_BELOW_S = 0.1  # slower runs are timed once (noise is small relative to their time)
 MIN_RTOL = {"scipy_radau": 1e-10, "scipy_lsoda": 1e-12}
 SCIPY_FLOOR = 100 * np.finfo(float).eps
 
@@ -64,11 +65,10 @@ class StudyResult:
 def _reference_runs(model, y0, t_eval):
     ref_dop = integrate(model, y0, t_eval, method="dop853", rtol=1e-14, atol=1e-16)
     span = t_eval[-1] - t_eval[0]
-    h = 2.0 * span / max(ref_dop.nsteps, 1)
-    prev = integrate(model, y0, t_eval, method="gauss6", h=h)
+    prev = integrate(model, y0, t_eval, method="gauss6", h=2.0 * span / max(ref_dop.nsteps, 1))
     for _ in range(5):
-        h /= 2.0
-        cur = integrate(model, y0, t_eval, method="gauss6", h=h)
+        # halve the step actually used (a step longer than the output spacing is cut to it)
+        cur = integrate(model, y0, t_eval, method="gauss6", h=prev.h / 2.0)
         scale = max(1.0, float(np.nanmax(np.abs(cur.y))))
         diff = float(np.nanmax(np.abs(cur.y - prev.y)))
         prev = cur
@@ -78,22 +78,39 @@ def _reference_runs(model, y0, t_eval):
 
 
 def _timed(run, repeats: int):
-    """Warm-up (also compiles), then the min wall time of ``repeats`` runs."""
+    """Warm-up (also compiles), then the min wall time of ``repeats`` runs.
+
+    A warm-up slower than ``REPEAT_BELOW_S`` is itself the single timed run
+    (compile time is excluded from ``wall_time_s`` in any case).
+    """
     first = run()
-    best = first
-    n = repeats if first.wall_time_s < TIME_CAP_S / 4 else 1
-    for _ in range(n):
+    if first.wall_time_s >= REPEAT_BELOW_S or repeats < 1:
+        return first, first.compile_time_s, 1
+    best = None
+    for _ in range(repeats):
         sol = run()
-        if sol.wall_time_s < best.wall_time_s or best is first:
+        if best is None or sol.wall_time_s < best.wall_time_s:
             best = sol
-    return best, first.compile_time_s, n
+    return best, first.compile_time_s, repeats
+
+
+def _at_round_off_floor(rows, name) -> bool:
+    """Two last runs of ``name`` below 1e-11 and not 2x apart: smaller steps only cost time."""
+    errs = [r["error_max"] for r in rows if r["method"] == name]
+    return len(errs) >= 2 and errs[-1] < 1e-11 and errs[-1] > 0.5 * errs[-2]
 
 
 def default_steps(model, y0, t_eval) -> np.ndarray:
-    """Fixed steps: h0 = the mean step of dop853 at rtol 1e-6, then h0 / 2^k, k = 0..7."""
+    """Fixed steps h0 / 2^(k/2), k = 0..11.
+
+    h0 = the mean step of dop853 at rtol 1e-6 (a long step for a low-order method),
+    but no longer than the output spacing (longer steps would be cut to it anyway).
+    """
     probe = integrate(model, y0, t_eval, method="dop853", rtol=1e-6, atol=1e-8)
     h0 = (t_eval[-1] - t_eval[0]) / max(probe.nsteps, 1)
-    return h0 * 2.0 ** -np.arange(8)
+    if t_eval.size > 1:
+        h0 = min(h0, float(np.min(np.diff(t_eval))))
+    return h0 * 2.0 ** (-0.5 * np.arange(12))
 
 
 def work_precision(model, y0, t_eval, reference=None, methods=None, tolerances=None,
@@ -115,9 +132,10 @@ def work_precision(model, y0, t_eval, reference=None, methods=None, tolerances=N
     steps : sequence of float
         Steps of fixed-step methods, largest first; default :func:`default_steps`.
     repeats : int
-        Timed runs after the warm-up (1 when the warm-up took > 0.5 s).
+        Timed runs after the warm-up (a warm-up slower than 0.1 s is the only run).
 
-    A method's sweep stops at the first run slower than ``TIME_CAP_S`` or failing.
+    A method's sweep stops at the first run slower than ``TIME_CAP_S`` or failing, and
+    a fixed-step sweep once its error stalls at the round-off floor.
     """
     y0 = np.asarray(y0, dtype=np.float64)
     t_eval = np.asarray(t_eval, dtype=np.float64)
@@ -151,10 +169,15 @@ def work_precision(model, y0, t_eval, reference=None, methods=None, tolerances=N
                     if r >= MIN_RTOL.get(name, 0.0) and (not m.peer or r >= SCIPY_FLOOR)]
         else:
             grid = [("h", h) for h in steps]
+        seen_h = set()
         for what, value in grid:
             kw = dict(rtol=value, atol=value * ATOL_OVER_RTOL) if what == "rtol" else dict(h=value)
-            sol, compile_s, n = _timed(lambda: integrate(model, y0, t_eval, method=name, **kw),
-                                       repeats)
+            sol, compile_s, n = _timed(
+                functools.partial(integrate, model, y0, t_eval, method=name, **kw), repeats)
+            if sol.h is not None:
+                if sol.h in seen_h:  # several requested steps cut to the same one
+                    continue
+                seen_h.add(sol.h)
             err = np.abs(sol.y - y_ref)
             rows.append(dict(
                 method=name, label=m.label, kind="adaptive" if m.adaptive else "fixed",
@@ -164,6 +187,8 @@ def work_precision(model, y0, t_eval, reference=None, methods=None, tolerances=N
                 wall_time_s=sol.wall_time_s, nfev=sol.nfev, compile_time_s=compile_s,
                 status=sol.status, repeats=n))
             if sol.status != "ok" or sol.wall_time_s > TIME_CAP_S:
+                break
+            if _at_round_off_floor(rows, name):
                 break
         if progress is not None:
             progress((k + 1) / len(methods))

@@ -14,7 +14,7 @@ import numpy as np
 from pydantic import Field, model_validator
 from scipy import integrate as sp_integrate
 
-from ..config import NonNegative, Positive, Real, RunConfig, Strict
+from ..config import Positive, Real, RunConfig, Strict
 from ..core.crossings import mean_period, upward_crossings
 from ..core.models import pendulum as core
 from ..plots import common as common_plots

@@ -73,7 +73,7 @@ def _generated_text(refs: dict, template: str) -> str:
             lines.append(f"# {role}: {ref[0]}.{ref[1]} source sha1 {_source_hash(func)}")
     lines.append(template)
     lines.append("# ---- model bindings ----")
-    for role, (func, ref) in refs.items():
+    for role, (_func, ref) in refs.items():
         if ref is not None:
             lines.append(f"from {ref[0]} import {ref[1]} as {role}  # noqa: E402")
     if "JAC" not in refs:
@@ -107,9 +107,13 @@ def kernels_for(model) -> ModuleType | SimpleNamespace:
             return _MODULES[key]
         template = _TEMPLATE_PATH.read_text()
         refs = {role: (f, _import_ref(f)) for role, f in funcs.items() if f is not None}
+        module = None
         if all(ref is not None for _f, ref in refs.values()):
-            module = _load_generated(refs, template)
-        else:
+            try:
+                module = _load_generated(refs, template)
+            except OSError:  # cache folder not writable: compile without the disk cache
+                module = None
+        if module is None:
             module = _compile_in_memory(funcs, template)
         _MODULES[key] = module
         return module

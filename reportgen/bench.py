@@ -1,0 +1,157 @@
+"""``reportgen bench``: error against run time for each scene, against peer solvers.
+
+For every integrating scene the work-precision study is run (ours and scipy's
+solve_ivp methods on the same problem, same error measure) and the speed ratio
+at matched error is printed: the fastest of our runs whose max error is ≤ what
+scipy DOP853 reaches at rtol = 1e-10, against that DOP853 run.  Compile time is
+reported beside it, never mixed in.  Then a long run: the pendulum over 10⁶
+periods with a symplectic method, whose energy error must stay bounded.
+
+This is a benchmark, not a test: the numbers depend on the machine.
+"""
+
+from __future__ import annotations
+
+import builtins
+import math
+import time
+from pathlib import Path
+
+import numpy as np
+
+from .config import ConfigError
+
+BASELINE, BASELINE_RTOL = "scipy_dop853", 1e-10
+
+
+def _decode(v):
+    return v.decode("utf-8") if isinstance(v, bytes) else v
+
+
+def study_rows(records: np.ndarray) -> list[dict]:
+    """Structured study records as a list of plain dicts (str fields decoded)."""
+    return [{name: _decode(r[name].item() if hasattr(r[name], "item") else r[name])
+             for name in records.dtype.names} for r in records]
+
+
+def scene_bench(scene, print=builtins.print) -> dict | None:
+    """Run one scene with its study on and print the matched-error speed ratio."""
+    from .core.study import matched_error_speedup
+
+    if scene.config.run is None:
+        print(f"{scene.source.name}: integrates nothing; skipped")
+        return None
+    config = scene.config.model_copy(update={"run": scene.config.run.model_copy(
+        update={"study": True}), "report": scene.config.report.model_copy(
+        update={"sections": None})})
+    scene = type(scene)(config, scene.source)
+    start = time.perf_counter()
+    results = scene.simulate()
+    elapsed = time.perf_counter() - start
+    if results.study is None:
+        print(f"{scene.source.name}: this scene has no error-against-run-time study")
+        return None
+    rows = study_rows(results.study)
+    compile_s = sum(r["compile_time_s"] for r in rows if not math.isnan(r["compile_time_s"]))
+    try:
+        matched = matched_error_speedup(rows, baseline=BASELINE, baseline_rtol=BASELINE_RTOL)
+    except ValueError as exc:
+        print(f"{scene.source.name}: no matched-error comparison ({exc})")
+        return {"scene": scene.source.name, "rows": rows}
+    base = matched["baseline"]
+    line = (f"{scene.source.name:<30} scipy DOP853 rtol 1e-10: error {base['error_max']:.1e} "
+            f"in {base['wall_time_s'] * 1e3:8.2f} ms")
+    if matched["matches"]:
+        best = matched["matches"][0]
+        knob = (f"rtol {best['tolerance']:.0e}" if math.isfinite(best["tolerance"])
+                else f"h {best['h']:.3g}")
+        line += (f" | ours: {best['method']} {knob}: {best['error_max']:.1e} in "
+                 f"{best['wall_time_s'] * 1e3:7.3f} ms → {best['speedup']:6.0f}×")
+    else:
+        line += " | none of our runs reached that error"
+    print(line + f" | compile {compile_s:.2f} s | study {elapsed:.1f} s "
+                 f"({results.study_attrs.get('reference_kind', '')})")
+    return {"scene": scene.source.name, "baseline": base, "matches": matched["matches"],
+            "compile_time_s": compile_s}
+
+
+def long_time_energy(n_periods=1_000_000, steps_per_period=100, n_out=2000, method="yoshida4",
+                     out_dir: Path | None = None, print=builtins.print) -> dict:
+    """Pendulum θ0 = 1 rad over ``n_periods`` with a symplectic method: bounded energy error.
+
+    Output points are spaced a non-integer number of periods apart so they see
+    every phase of the bounded energy oscillation.
+    """
+    from .core.integrators import integrate
+    from .core.models import pendulum
+
+    g, l, theta0 = 9.81, 1.0, 1.0
+    model = pendulum.model(g, l)
+    period = pendulum.exact_period(theta0, 0.0, g, l)
+    spacing = (n_periods / n_out + 0.123) * period
+    t_eval = spacing * np.arange(n_out + 1)
+    start = time.perf_counter()
+    sol = integrate(model, np.array([theta0, 0.0]), t_eval, method=method,
+                    h=period / steps_per_period, max_steps=10**10)
+    wall = time.perf_counter() - start
+    e0 = pendulum.energy(theta0, 0.0, g, l)
+    de = np.abs(pendulum.energy(sol.y[:, 0], sol.y[:, 1], g, l) / e0 - 1.0)
+    decile = max(1, de.size // 10)
+    first, last = float(de[1:decile].max()), float(de[-decile:].max())
+    print(f"long run: pendulum θ0 = 1 rad, {t_eval[-1] / period:.3g} periods, {method}, "
+          f"h = T/{steps_per_period}: {sol.nsteps} steps in {wall:.2f} s ({sol.status})")
+    print(f"  max |ΔE/E| first decile {first:.2e}, last decile {last:.2e} "
+          f"(ratio {last / first:.2f}: {'bounded' if last < 2 * first else 'DRIFTING'})")
+    result = {"method": method, "n_periods": float(t_eval[-1] / period), "wall_time_s": wall,
+              "first_decile": first, "last_decile": last, "status": sol.status}
+    if out_dir is not None:
+        result["figure"] = str(_plot_long_run(t_eval[1:] / period, de[1:], method, out_dir))
+        print(f"  figure: {result['figure']}")
+    return result
+
+
+def _plot_long_run(periods, rel_error, method, out_dir: Path) -> Path:
+    from .fsutil import atomic_write
+    from .plots.style import new_figure
+
+    fig, ax = new_figure(figsize=(7.0, 3.6))
+    ax.semilogy(periods, np.maximum(rel_error, 1e-18), ".", markersize=2, rasterized=True)
+    ax.set_xlabel("time [periods]")
+    ax.set_ylabel("|ΔE / E0|")
+    ax.set_title(f"Pendulum energy error with {method}: bounded, no drift")
+    out_dir.mkdir(parents=True, exist_ok=True)
+    import io
+
+    for fmt_name in ("svg", "png"):
+        buf = io.BytesIO()
+        fig.savefig(buf, format=fmt_name,
+                    metadata={"svg": {"Date": None}, "png": {"Software": None}}[fmt_name])
+        atomic_write(out_dir / f"longtime_energy.{fmt_name}", buf.getvalue())
+    return out_dir / "longtime_energy.svg"
+
+
+def default_paths() -> list[str]:
+    for candidate in (Path.cwd() / "configs", Path(__file__).resolve().parent.parent / "configs"):
+        if candidate.is_dir():
+            return [str(candidate)]
+    return []
+
+
+def run_bench(paths: list[str], out_dir: str = "output/bench", long_run: bool = True,
+              print=builtins.print) -> int:
+    from .pipeline import UsageError, collect_configs, validate_all
+
+    paths = paths or default_paths()
+    if not paths:
+        raise UsageError("no PATH given and no configs/ folder found")
+    try:
+        scenes = validate_all(collect_configs(paths))
+    except ConfigError:
+        raise
+    print(f"Speed at matched error against {BASELINE} (rtol {BASELINE_RTOL:g}); "
+          "wall time = min of repeats after a warm-up, compile excluded")
+    for scene in scenes:
+        scene_bench(scene, print=print)
+    if long_run:
+        long_time_energy(out_dir=Path(out_dir), print=print)
+    return 0

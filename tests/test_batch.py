@@ -1,0 +1,63 @@
+"""Batches: local process pool and a real Dask LocalCluster give the same archives."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from conftest import pendulum_text
+from reportgen.archive import read_archive
+from reportgen.pipeline import run_batch
+
+distributed = pytest.importorskip("distributed")
+
+
+@pytest.fixture
+def three_configs(tmp_path):
+    cfg = tmp_path / "configs"
+    cfg.mkdir()
+    for name, theta in (("a", 0.3), ("b", 1.5), ("c", 2.8)):
+        (cfg / f"{name}.toml").write_text(pendulum_text(theta=theta, t_end=8.0, samples=401))
+    return cfg
+
+
+def _arrays(out, name):
+    data = read_archive(out / name / "run.h5")
+    return data.runs["main"].t, data.runs["main"].y, data.analysis["period_measured"]
+
+
+def test_dask_local_cluster_matches_local_run(three_configs, tmp_path):
+    local = run_batch([str(three_configs)], out_root=str(tmp_path / "local"), jobs=1,
+                      formats=("html",))
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None, host="127.0.0.1") as cluster:
+        remote = run_batch([str(three_configs)], out_root=str(tmp_path / "dask"),
+                           formats=("html",), scheduler=cluster.scheduler_address)
+        assert [o.status for o in remote] == ["ok", "ok", "ok"]
+        for name in ("a", "b", "c"):
+            t1, y1, p1 = _arrays(tmp_path / "local", name)
+            t2, y2, p2 = _arrays(tmp_path / "dask", name)
+            assert np.array_equal(t1, t2) and np.array_equal(y1, y2) and p1 == p2
+            assert (tmp_path / "dask" / name / "report.html").exists()
+            assert (tmp_path / "dask" / name / "figures").is_dir()
+        assert (tmp_path / "dask" / "index.html").exists()
+        # resume: a second submission finds every archive current and runs nothing
+        again = run_batch([str(three_configs)], out_root=str(tmp_path / "dask"),
+                          formats=("html",), scheduler=cluster.scheduler_address)
+        assert all(o.skipped for o in again)
+    assert [o.status for o in local] == ["ok", "ok", "ok"]
+
+
+def test_unreachable_scheduler_is_usage_error(three_configs, tmp_path, cli):
+    code, _, err = cli("run", three_configs, "--out", tmp_path / "o",
+                       "--scheduler", "tcp://127.0.0.1:9")
+    assert code == 2 and "cannot connect" in err
+
+
+def test_local_pool_of_two(three_configs, tmp_path):
+    outcomes = run_batch([str(three_configs)], out_root=str(tmp_path / "pool"), jobs=2,
+                         formats=("html",))
+    assert [o.name for o in outcomes] == ["a", "b", "c"]
+    assert all(o.ok for o in outcomes)
+    t, y, _ = _arrays(tmp_path / "pool", "b")
+    assert y.shape == (401, 2)
