@@ -22,6 +22,7 @@ archive being replaced is first kept as ``<name>.prev.h5``.
 
 from __future__ import annotations
 
+import math
 import os
 import platform
 import sys
@@ -40,6 +41,10 @@ from .results import Check, Results, RunRecord
 FORMAT = "reportgen"
 FORMAT_VERSION = 1
 _STR = h5py.string_dtype("utf-8")
+
+
+#: audit drift series are stored at most this long (decimated evenly)
+AUDIT_SERIES_POINTS = 2000
 
 
 class ArchiveError(Exception):
@@ -144,11 +149,11 @@ def _table(group: h5py.Group, name: str, records: np.ndarray) -> h5py.Dataset:
 
 
 def _checks_records(checks: list[Check]) -> np.ndarray:
-    dtype = [("quantity", object), ("value", "f8"), ("reference", "f8"),
+    dtype = [("quantity", object), ("value", "f8"), ("reference", "f8"), ("scale", "f8"),
              ("abs_error", "f8"), ("rel_error", "f8"), ("unit", object), ("source", object)]
     return np.array(
-        [(c.quantity, c.value, c.reference, c.abs_error, c.rel_error, c.unit, c.source)
-         for c in checks],
+        [(c.quantity, c.value, c.reference, math.nan if c.scale is None else c.scale,
+          c.abs_error, c.rel_error, c.unit, c.source) for c in checks],
         dtype=dtype,
     )
 
@@ -300,9 +305,11 @@ def read_archive(path: Path) -> ArchiveData:
             data.analysis = _read_mapping(f["analysis"]) if "analysis" in f else {}
             if "checks" in f:
                 for row in _read_table(f["checks"]):
+                    scale = float(row["scale"]) if "scale" in row.dtype.names else math.nan
                     data.checks.append(Check(quantity=row["quantity"], value=float(row["value"]),
                                              reference=float(row["reference"]),
-                                             unit=row["unit"], source=row["source"]))
+                                             unit=row["unit"], source=row["source"],
+                                             scale=None if math.isnan(scale) else scale))
             if "study/error_vs_runtime" in f:
                 ds = f["study/error_vs_runtime"]
                 data.study = _read_table(ds)
@@ -384,3 +391,89 @@ def summarize(path: Path) -> str:
     problems = verify_checksums(path)
     lines.append("  checksums ok" if not problems else "  CHECKSUM PROBLEMS: " + "; ".join(problems))
     return "\n".join(lines)
+
+
+# --------------------------------------------------------------------- audit
+AUDIT_FIELDS = ("case", "kind", "what", "method", "used", "status", "verdict", "reason",
+                "message", "drift", "error", "nsteps", "nreject", "nfev", "wall_time_s")
+
+
+def write_audit(path: Path, results) -> None:
+    """``audit.h5``: one table row per (case, method) and the drift series of each run.
+
+    Layout::
+
+        /                  attrs: format="reportgen-audit", format_version, created, versions
+        /table             one row per case x method (AUDIT_FIELDS)
+        /cases/<i>         attrs name, kind, what, verdict, reason; dataset config (TOML)
+        /cases/<i>/<j>/t, /cases/<i>/<j>/drift/<q>   relative drift of run j
+    """
+    from .config import to_toml
+
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    rows = []
+    for r in results:
+        for run in r.runs:
+            rows.append((r.case.name, r.kind, r.case.what, run.method, run.used, run.status,
+                         r.verdict, r.reason, run.message, run.drift, run.error, run.nsteps,
+                         run.nreject, run.nfev, run.wall_time_s))
+    dtype = [(n, object) for n in AUDIT_FIELDS[:9]] + [
+        ("drift", "f8"), ("error", "f8"), ("nsteps", "i8"), ("nreject", "i8"), ("nfev", "i8"),
+        ("wall_time_s", "f8")]
+    table = np.array(rows, dtype=dtype)
+    tmp = temp_name(path)
+    try:
+        with h5py.File(tmp, "w") as f:
+            f.attrs.update({"format": "reportgen-audit", "format_version": FORMAT_VERSION,
+                            "created": datetime.now(UTC).strftime("%Y-%m-%dT%H:%M:%SZ"),
+                            "reportgen_version": __version__})
+            f.create_group("provenance").attrs.update(provenance())
+            _table(f, "table", table)
+            cases = f.create_group("cases")
+            for i, r in enumerate(results):
+                g = cases.create_group(str(i))
+                g.attrs.update({"name": r.case.name, "kind": r.kind, "what": r.case.what,
+                                "verdict": r.verdict, "reason": r.reason})
+                g.create_dataset("config", data=to_toml(r.case.config), dtype=_STR)
+                for j, run in enumerate(r.runs):
+                    if run.t is None:
+                        continue
+                    rg = g.create_group(str(j))
+                    rg.attrs.update({"method": run.method, "used": run.used})
+                    step = max(1, len(run.t) // AUDIT_SERIES_POINTS)
+                    _array(rg, "t", run.t[::step])
+                    _write_mapping(rg.create_group("drift"),
+                                   {q: v[::step] for q, v in run.drift_series.items()})
+            f.flush()
+        install(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+
+
+def read_audit(path: Path) -> dict[str, Any]:
+    """The audit archive as {'table': records, 'cases': [dict], 'attrs', 'provenance'}."""
+    path = Path(path)
+    try:
+        with h5py.File(path, "r") as f:
+            if f.attrs.get("format") != "reportgen-audit":
+                raise ArchiveError(f"{path}: not a reportgen audit archive")
+            out = {"attrs": {k: _decode(v) for k, v in f.attrs.items()},
+                   "provenance": {k: _decode(v) for k, v in f["provenance"].attrs.items()},
+                   "table": _read_table(f["table"]), "cases": []}
+            for i in sorted(f["cases"], key=int):
+                g = f["cases"][i]
+                case = {k: _decode(v) for k, v in g.attrs.items()}
+                case["config"] = _decode(g["config"][()])
+                case["runs"] = []
+                for j in sorted((k for k in g if k != "config"), key=int):
+                    rg = g[j]
+                    case["runs"].append({"method": _decode(rg.attrs["method"]),
+                                         "used": _decode(rg.attrs["used"]),
+                                         "t": rg["t"][()],
+                                         "drift": _read_mapping(rg["drift"])})
+                out["cases"].append(case)
+    except OSError as exc:
+        raise ArchiveError(f"{path}: unreadable audit archive ({exc})") from None
+    return out

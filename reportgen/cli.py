@@ -67,6 +67,11 @@ def build_parser() -> argparse.ArgumentParser:
     val = sub.add_parser("validate", help="check configs, run nothing")
     val.add_argument("paths", nargs="+", metavar="PATH")
 
+    audit = sub.add_parser("audit", help="stability audit on stiff and extreme cases")
+    audit.add_argument("paths", nargs="*", metavar="PATH")
+    audit.add_argument("--out", default="output/audit", metavar="DIR")
+    audit.add_argument("--format", type=_formats, default=FORMATS, metavar="html,pdf")
+
     bench = sub.add_parser("bench", help="error against run time, against peer solvers")
     bench.add_argument("paths", nargs="*", metavar="PATH")
     return parser
@@ -162,7 +167,18 @@ def cmd_bench(args) -> int:
         return _usage(str(exc))
 
 
+def cmd_audit(args) -> int:
+    from .audit import run_audit
+    from .pipeline import UsageError
+
+    try:
+        return run_audit(args.paths, out_dir=args.out, formats=args.format)
+    except UsageError as exc:
+        return _usage(str(exc))
+
+
 COMMANDS = {
+    "audit": cmd_audit,
     "run": cmd_run,
     "report": cmd_report,
     "inspect": cmd_inspect,

@@ -145,3 +145,38 @@ def format_validation_error(label: str, exc: ValidationError) -> list[str]:
         got = "" if err["type"] == "missing" else f" (got {_short(err.get('input'))})"
         lines.append(f"{label}: {where}: {msg}{got}")
     return lines
+
+
+def to_toml(data: dict[str, Any]) -> str:
+    """A config dict as TOML text (tables last), for configs made in code (presets, audit cases)."""
+
+    def value(v) -> str:
+        if isinstance(v, bool):
+            return "true" if v else "false"
+        if isinstance(v, (int, float)):
+            return repr(v) if not (isinstance(v, float) and not math.isfinite(v)) else (
+                "nan" if math.isnan(v) else ("inf" if v > 0 else "-inf"))
+        if isinstance(v, str):
+            import json
+
+            return json.dumps(v, ensure_ascii=False)
+        if isinstance(v, (list, tuple)):
+            return "[" + ", ".join(value(x) for x in v) + "]"
+        raise TypeError(f"cannot write {type(v).__name__} as TOML")
+
+    def table(prefix: str, mapping: dict) -> list[str]:
+        lines = [f"{k} = {value(v)}" for k, v in mapping.items()
+                 if not isinstance(v, dict) and not _is_table_array(v)]
+        for k, v in mapping.items():
+            if isinstance(v, dict):
+                lines += ["", f"[{prefix}{k}]"] + table(f"{prefix}{k}.", v)
+            elif _is_table_array(v):
+                for item in v:
+                    lines += ["", f"[[{prefix}{k}]]"] + table(f"{prefix}{k}.", item)
+        return lines
+
+    return "\n".join(table("", data)).strip() + "\n"
+
+
+def _is_table_array(v) -> bool:
+    return isinstance(v, list) and bool(v) and all(isinstance(x, dict) for x in v)

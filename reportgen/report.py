@@ -199,3 +199,38 @@ def build_index(out_dir: Path, entries: list[dict[str, Any]]) -> Path:
     path = Path(out_dir) / "index.html"
     atomic_write(path, text.encode("utf-8"))
     return path
+
+
+def build_audit_report(audit_path: Path, formats=("html", "pdf")) -> list[Path]:
+    """Render the audit table and the figures of every case that is not ok."""
+    from .archive import read_audit
+    from .plots import audit as audit_plots
+    from .scenes.base import FigureSpec
+
+    audit_path = Path(audit_path)
+    data = read_audit(audit_path)
+    out_dir = audit_path.parent
+    figures = [save_figure(FigureSpec("overview", audit_plots.overview(data["table"]),
+                                      "Every run of every case: invariant drift against "
+                                      "disagreement with the reference."),
+                           "audit-overview", out_dir / "figures")]
+    flagged = []
+    for i, case in enumerate(data["cases"]):
+        if case["verdict"] == "ok" or not case["runs"]:
+            continue
+        fig = audit_plots.case_drift(case["runs"])
+        saved = save_figure(FigureSpec(f"case{i}", fig, f"{case['name']}: {case['reason']}"),
+                            f"audit-case{i}", out_dir / "figures")
+        flagged.append({"case": case, "figure": saved})
+    rows = [{name: row[name] for name in data["table"].dtype.names} for row in data["table"]]
+    html_text = environment().get_template("audit.html.j2").render(
+        rows=rows, cases=data["cases"], overview=figures[0], flagged=flagged,
+        attrs=data["attrs"], provenance=data["provenance"], version=__version__)
+    written = []
+    if "html" in formats:
+        atomic_write(out_dir / "report.html", html_text.encode("utf-8"))
+        written.append(out_dir / "report.html")
+    if "pdf" in formats:
+        write_pdf(html_text, out_dir / "report.pdf", out_dir)
+        written.append(out_dir / "report.pdf")
+    return written

@@ -65,6 +65,9 @@ class Check:
     reference: float
     unit: str = ""
     source: str = ""
+    #: what the error is relative to; default |reference|.  Give the natural size of
+    #: the quantity (an amplitude, m g l) when the reference itself can be near zero.
+    scale: float | None = None
 
     @property
     def abs_error(self) -> float:
@@ -72,9 +75,10 @@ class Check:
 
     @property
     def rel_error(self) -> float:
-        if self.reference == 0 or not math.isfinite(self.reference):
+        scale = abs(self.reference) if self.scale is None else abs(self.scale)
+        if scale == 0 or not math.isfinite(scale):
             return self.abs_error
-        return self.abs_error / abs(self.reference)
+        return self.abs_error / scale
 
 
 @dataclass

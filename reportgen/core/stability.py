@@ -4,7 +4,9 @@ Checks applied to every integrated run:
 
 * the integrator's own status (non-finite state, step-size collapse, step limit);
 * non-finite values anywhere in the stored state;
-* drift of every conserved quantity beyond a bound tied to the tolerance asked for.
+* drift of every conserved quantity beyond a bound tied to the tolerance asked for;
+* signs of stiffness in an explicit adaptive run: many rejected steps, or a step
+  budget used up (the step size collapsed to what stability, not accuracy, allows).
 
 A flagged run keeps its data but gets ``status = "unstable"`` (or ``"failed"``)
 and a message; the report shows it at the top and the exit status becomes 1.
@@ -21,6 +23,70 @@ DRIFT_PER_RTOL = 1e4
 DRIFT_FLOOR = 1e-6
 #: fixed-step methods have no tolerance; their energy error is judged against this
 DRIFT_FIXED_STEP = 1e-3
+
+
+#: h * max(-Re λ(J)) above which an explicit method's step is limited by stability
+#: rather than accuracy (DOP853's stability region reaches about -6 on the real axis)
+STIFF_H_RHO = 2.0
+STIFF_REJECT_SHARE = 0.2
+STIFF_MIN_STEPS = 1000
+
+
+def stiffness_ratio(model, t: np.ndarray, y: np.ndarray, nsteps: int, samples: int = 5) -> float:
+    """Mean accepted step times the largest decay rate max(-Re λ) of the Jacobian.
+
+    The Jacobian is the model's own, or a forward-difference one, at ``samples``
+    stored states.  Values well below 1 mean the step was set by accuracy; near the
+    method's stability bound (~2-6 for explicit Runge-Kutta) it was set by stability:
+    the problem is stiff for that method.  (Hairer & Wanner, *Solving ODEs II*, §IV.2.)
+    """
+    if nsteps <= 0 or len(t) < 2:
+        return 0.0
+    h_mean = (t[-1] - t[0]) / nsteps
+    rho = 0.0
+    for i in np.linspace(0, len(t) - 1, samples).astype(int):
+        if not np.all(np.isfinite(y[i])):
+            continue
+        jac = model.jacobian(t[i], y[i])
+        if jac is None:
+            jac = _fd_jacobian(model, t[i], y[i])
+        eig = np.linalg.eigvals(jac)
+        rho = max(rho, float(np.max(-eig.real, initial=0.0)))
+    return h_mean * rho
+
+
+def _fd_jacobian(model, t, y):
+    f0 = model.f(t, y)
+    jac = np.empty((y.size, y.size))
+    for j in range(y.size):
+        dy = np.zeros_like(y)
+        dy[j] = 1e-7 * max(1.0, abs(y[j]))
+        jac[:, j] = (model.f(t, y + dy) - f0) / dy[j]
+    return jac
+
+
+def stiffness_signs(attrs: dict, explicit_adaptive: bool, model=None, t=None, y=None) -> str | None:
+    """Why an explicit adaptive run looks stiff, or None.
+
+    Signs: the step budget ran out; the mean step sits at the stability bound
+    (:func:`stiffness_ratio` > ``STIFF_H_RHO``); or the controller keeps proposing
+    steps that get rejected.
+    """
+    if not explicit_adaptive:
+        return None
+    steps, rejected = int(attrs.get("nsteps", 0)), int(attrs.get("nreject", 0))
+    message = str(attrs.get("message", ""))
+    if attrs.get("status") == "failed" and ("max_steps" in message or "step size" in message):
+        return f"explicit method gave up ({message})"
+    if model is not None and steps >= STIFF_MIN_STEPS:
+        ratio = stiffness_ratio(model, t, y, steps)
+        if ratio > STIFF_H_RHO:
+            return (f"mean step × largest decay rate of the Jacobian = {ratio:.1f}: the step "
+                    f"is limited by stability, not accuracy")
+    if steps >= STIFF_MIN_STEPS and rejected > STIFF_REJECT_SHARE * (steps + rejected):
+        return (f"{rejected} of {steps + rejected} attempted steps rejected "
+                f"({100 * rejected / (steps + rejected):.0f} %)")
+    return None
 
 
 def relative_drift(values: np.ndarray, scale: float | None = None) -> float:

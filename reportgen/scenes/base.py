@@ -114,6 +114,23 @@ def fmt_err(x: float) -> str:
     return f"{x:.1e}" if math.isfinite(x) else str(x)
 
 
+def _solution_attrs(sol) -> dict[str, Any]:
+    """The archived attributes of an integrator Solution."""
+    return {
+        "method": sol.method,
+        "rtol": sol.rtol,
+        "atol": sol.atol,
+        "h": float("nan") if sol.h is None else float(sol.h),
+        "nfev": int(sol.nfev),
+        "nsteps": int(sol.nsteps),
+        "nreject": int(sol.nreject),
+        "wall_time_s": float(sol.wall_time_s),
+        "compile_time_s": float(sol.compile_time_s),
+        "status": sol.status,
+        "message": "" if sol.status == "ok" else sol.message,
+    }
+
+
 class Scene:
     """Base class of every scene kind (see the module docstring for the contract)."""
 
@@ -192,6 +209,11 @@ class Scene:
     def headline(self, data: ArchiveData) -> list[tuple[str, str]]:
         return []
 
+    @classmethod
+    def audit_cases(cls) -> list:
+        """Stiff and extreme cases of this kind for ``reportgen audit`` (AuditCase list)."""
+        return []
+
     @staticmethod
     def figure(name: str, figure: Figure, caption: str) -> FigureSpec:
         return FigureSpec(name=name, figure=figure, caption=caption)
@@ -216,32 +238,36 @@ class Scene:
         their drift (relative to ``invariant_scales[name]``, default the
         invariant's own size) is part of the run's stability verdict.
         """
-        from ..core.integrators import choose_auto, integrate
-        from ..core.stability import assess_run
+        from ..core.integrators import METHODS, MethodMismatch, choose_auto, integrate
+        from ..core.stability import assess_run, stiffness_signs
 
         run = self.config.run
         method, reason = run.method, "named in the config"
-        if method == "auto":
+        auto = method == "auto"
+        if auto:
             method, reason = choose_auto(model, run.rtol, n_periods=n_periods)
-        sol = integrate(
-            model, y0, t_eval, method=method, rtol=run.rtol, atol=run.atol, h=run.h,
-            progress=progress,
-        )
+        try:
+            sol = integrate(model, y0, t_eval, method=method, rtol=run.rtol, atol=run.atol,
+                            h=run.h, progress=progress)
+        except MethodMismatch as exc:
+            raise ConfigError([f"{self.source.label}: key 'run.method': {exc}"]) from None
+        m = METHODS[method]
+        stiff = stiffness_signs(_solution_attrs(sol), m.adaptive and not m.implicit and not m.peer,
+                                model, sol.t, sol.y)
+        if stiff and auto:
+            # promise 2: an automatic choice that turns out stiff switches, and says so
+            switched = "radau"
+            reason = f"{reason} Stiffness detected with {method}: {stiff}; switched to Radau."
+            method, sol = switched, integrate(model, y0, t_eval, method=switched, rtol=run.rtol,
+                                              atol=run.atol, progress=progress)
         inv = invariants(sol.t, sol.y) if invariants is not None else {}
-        attrs = {
-            "method": sol.method,
-            "method_reason": reason,
-            "rtol": run.rtol,
-            "atol": run.atol,
-            "h": float("nan") if sol.h is None else float(sol.h),
-            "nfev": int(sol.nfev),
-            "nsteps": int(sol.nsteps),
-            "nreject": int(sol.nreject),
-            "wall_time_s": float(sol.wall_time_s),
-            "compile_time_s": float(sol.compile_time_s),
-            "status": sol.status,
-            "message": sol.message,
-        }
+        attrs = _solution_attrs(sol) | {"method_reason": reason}
+        if stiff and not auto:
+            attrs["status"] = "unstable" if sol.status == "ok" else sol.status
+            attrs["message"] = "; ".join(x for x in (
+                sol.message if sol.status != "ok" else "",
+                f"looks stiff for {method}: {stiff}; use method = \"radau\" or \"gauss6\"")
+                if x)
         record = RunRecord(t=sol.t, y=sol.y, columns=list(model.columns), invariants=inv,
                            attrs=attrs)
         assess_run(record, rtol=run.rtol, scales=invariant_scales)

@@ -73,18 +73,35 @@ def modulus_squared(theta0, theta_dot0, omega0):
     return math.sin(0.5 * theta0) ** 2 + (theta_dot0 / (2.0 * omega0)) ** 2
 
 
+def complementary_parameter(theta0, theta_dot0, omega0):
+    """1 - k^2 = cos^2(theta0/2) - (theta_dot0 / 2 omega0)^2, computed without cancellation.
+
+    Near the separatrix k^2 rounds to 1 long before 1 - k^2 loses its digits
+    (theta0 = pi - 1e-8 gives 1 - k^2 = 2.5e-17).
+    """
+    return math.cos(0.5 * theta0) ** 2 - (theta_dot0 / (2.0 * omega0)) ** 2
+
+
+#: below this |1 - k^2| scipy's double-precision ellipj no longer resolves the motion
+#: (measured against 40-digit mpmath: 4e-9 error at 1 - k^2 = 2.5e-7 over 12 periods)
+EXACT_SOLUTION_MIN_M1 = 1e-8
+
+
 def exact_period(theta0, theta_dot0, g, l):
     """Exact period [s]: 4 K(k^2) sqrt(l/g) for libration, 2 K(1/k^2) / (k omega0) per revolution.
 
-    Infinite on the separatrix.  (DLMF 22.19.4 and 22.19.7.)
+    Uses K(1 - m1) with the complementary parameter m1 = 1 - k^2 (scipy ``ellipkm1``),
+    accurate arbitrarily close to the separatrix; infinite on it.
+    (DLMF 22.19.4 and 22.19.7.)
     """
     omega0 = math.sqrt(g / l)
-    m = modulus_squared(theta0, theta_dot0, omega0)
-    if m < 1.0:
-        return 4.0 * special.ellipk(m) / omega0
-    if m > 1.0:
-        k = math.sqrt(m)
-        return 2.0 * special.ellipk(1.0 / m) / (k * omega0)
+    m1 = complementary_parameter(theta0, theta_dot0, omega0)
+    if m1 > 0.0:
+        return 4.0 * special.ellipkm1(m1) / omega0
+    if m1 < 0.0:
+        m = 1.0 - m1
+        # K(1/m) = K(1 - p) with p = 1 - 1/m = -m1/m
+        return 2.0 * special.ellipkm1(-m1 / m) / (math.sqrt(m) * omega0)
     return math.inf
 
 
