@@ -72,8 +72,15 @@ def test_broken_toml_is_one_line(write_config):
 
 
 def test_separatrix_state_rejected(write_config):
-    text = pendulum_text(theta=3.141592653589793)
+    # g = 4, l = 1: ω0 = 2, and θ̇0 = 2 ω0 from the bottom is exactly the separatrix (k = 1)
+    text = pendulum_text(theta=0.0).replace("g = 9.81", "g = 4.0").replace(
+        "theta = 0.0", "theta = 0.0\ntheta_dot = 4.0")
     assert any("separatrix" in p for p in problems(write_config("sep", text)))
+
+
+def test_state_just_off_the_separatrix_is_accepted(write_config):
+    # θ0 = π − 1e-8: k² rounds to 1 but 1 − k² = 2.5e-17 is still resolved
+    load_scene(read_config(write_config("near", pendulum_text(theta=3.1415926435897931))))
 
 
 def test_preset_is_overridden_by_explicit_keys(write_config):
