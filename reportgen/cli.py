@@ -35,6 +35,17 @@ def _jobs(text: str) -> int:
     return value
 
 
+def _seconds(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = -1.0
+    if not value > 0 or value == float("inf"):
+        raise argparse.ArgumentTypeError(f"--time-limit must be a positive number of seconds "
+                                         f"(got {text!r})")
+    return value
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="reportgen",
@@ -54,6 +65,8 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--force", action="store_true", help="re-run scenes whose archive is current")
     run.add_argument("--scheduler", default=None, metavar="ADDR",
                      help="Dask distributed scheduler address (needs the 'dask' extra)")
+    run.add_argument("--time-limit", type=_seconds, default=None, metavar="SECONDS",
+                     help="stop a scene that runs longer than this (default: no limit)")
 
     rep = sub.add_parser("report", help="rebuild reports from archives alone")
     rep.add_argument("archives", nargs="+", metavar="ARCHIVE.h5")
@@ -100,7 +113,8 @@ def cmd_run(args) -> int:
 
     try:
         outcomes = run_batch(args.paths, out_root=args.out, jobs=args.jobs, formats=args.format,
-                             force=args.force, scheduler=args.scheduler)
+                             force=args.force, scheduler=args.scheduler,
+                             time_limit=args.time_limit)
     except UsageError as exc:
         return _usage(str(exc))
     status = batch_status(outcomes)

@@ -12,7 +12,6 @@ import sys
 import time
 import traceback
 from collections.abc import Callable, Iterable
-from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, field
 from multiprocessing import get_context
 from pathlib import Path
@@ -189,7 +188,8 @@ class Progress:
 
 def run_batch(paths: list[str], out_root: str = "output", jobs: int | None = None,
               formats: tuple[str, ...] | None = None, force: bool = False,
-              scheduler: str | None = None, stream=None) -> list[Outcome]:
+              scheduler: str | None = None, time_limit: float | None = None,
+              stream=None) -> list[Outcome]:
     """Validate all, run all, write ``index.html``.
 
     Scenes run in-process (``jobs == 1``), in a local pool of ``jobs`` processes,
@@ -200,32 +200,83 @@ def run_batch(paths: list[str], out_root: str = "output", jobs: int | None = Non
     progress = Progress(len(scenes), stream)
     Path(out_root).mkdir(parents=True, exist_ok=True)
     if scheduler:
-        outcomes = _run_on_dask(scenes, out_root, force, formats, scheduler, progress)
+        outcomes = _run_on_dask(scenes, out_root, force, formats, scheduler, progress, time_limit)
     else:
-        outcomes = _run_locally(scenes, out_root, force, formats, jobs, progress)
+        outcomes = _run_locally(scenes, out_root, force, formats, jobs, progress, time_limit)
     order = {s.source.name: i for i, s in enumerate(scenes)}
     outcomes.sort(key=lambda o: order[o.name])
     write_index(out_root, outcomes)
     return outcomes
 
 
-def _run_locally(scenes, out_root, force, formats, jobs, progress) -> list[Outcome]:
+def _run_locally(scenes, out_root, force, formats, jobs, progress,
+                 time_limit: float | None = None) -> list[Outcome]:
+    """In-process for one job without a time limit; else one forked process per scene."""
     jobs = max(1, min(jobs or os.cpu_count() or 1, len(scenes)))
-    outcomes = []
-    if jobs == 1:
+    if jobs == 1 and time_limit is None:
+        outcomes = []
         for scene in scenes:
             outcome = run_scene(str(scene.source.path), out_root, force, formats,
                                 progress=progress.within(scene.source.name))
             progress.scene_done(outcome)
             outcomes.append(outcome)
         return outcomes
-    with ProcessPoolExecutor(max_workers=jobs, mp_context=get_context("fork")) as pool:
-        futures = [pool.submit(run_scene, str(s.source.path), out_root, force, formats)
-                   for s in scenes]
-        for future in as_completed(futures):
-            outcome = future.result()
+    return _run_in_processes(scenes, out_root, force, formats, jobs, progress, time_limit)
+
+
+def _scene_process(conn, config_path, out_root, force, formats) -> None:
+    conn.send(run_scene(config_path, out_root, force, formats))
+    conn.close()
+
+
+def _run_in_processes(scenes, out_root, force, formats, jobs, progress, time_limit):
+    """At most ``jobs`` scene processes at once; one over ``time_limit`` seconds is killed.
+
+    Killing is safe: archives and reports are renamed into place only when complete.
+    """
+    ctx = get_context("fork")
+    pending = list(scenes)
+    running: dict = {}  # process -> (scene, connection, start time)
+    outcomes = []
+    while pending or running:
+        while pending and len(running) < jobs:
+            scene = pending.pop(0)
+            receive, send = ctx.Pipe(duplex=False)
+            proc = ctx.Process(target=_scene_process, args=(
+                send, str(scene.source.path), out_root, force, formats), daemon=True)
+            proc.start()
+            send.close()
+            running[proc] = (scene, receive, time.monotonic())
+        for proc, (scene, receive, started) in list(running.items()):
+            outcome = None
+            if receive.poll():
+                try:
+                    outcome = receive.recv()
+                except EOFError:
+                    outcome = None
+                proc.join()
+            elif not proc.is_alive():
+                proc.join()
+                outcome = Outcome(name=scene.source.name, kind=scene.kind, title=scene.title,
+                                  status="failed",
+                                  message=f"worker process died (exit code {proc.exitcode})")
+            elif time_limit is not None and time.monotonic() - started > time_limit:
+                proc.kill()
+                proc.join()
+                outcome = Outcome(name=scene.source.name, kind=scene.kind, title=scene.title,
+                                  status="failed",
+                                  message=f"time limit of {time_limit:g} s exceeded; the scene was "
+                                          "stopped and any earlier archive kept")
+            else:
+                continue
+            if outcome is None:
+                outcome = Outcome(name=scene.source.name, status="failed",
+                                  message="worker process ended without a result")
+            del running[proc]
             progress.scene_done(outcome)
             outcomes.append(outcome)
+        if running:
+            time.sleep(0.05)
     return outcomes
 
 
@@ -285,7 +336,8 @@ def _up_to_date(scene: Scene, out_root: str, formats) -> Outcome | None:
                    reports=[str(r) for r in reports])
 
 
-def _run_on_dask(scenes, out_root, force, formats, scheduler, progress) -> list[Outcome]:
+def _run_on_dask(scenes, out_root, force, formats, scheduler, progress,
+                 time_limit: float | None = None) -> list[Outcome]:
     try:
         from distributed import Client
         from distributed import as_completed as dask_completed
@@ -311,16 +363,28 @@ def _run_on_dask(scenes, out_root, force, formats, scheduler, progress) -> list[
                                  str(s.source.path), pure=False, key=f"reportgen-{s.source.name}-"
                                  f"{s.source.sha256[:12]}-{os.getpid()}")
                    for s in todo]
-        for future in dask_completed(futures):
-            try:
-                outcome, files = future.result()
-                outcome = _install_files(out_root, outcome, files)
-            except Exception as exc:  # noqa: BLE001 - a lost worker fails one scene only
-                name = todo[futures.index(future)].source.name
-                outcome = Outcome(name=name, status="failed",
-                                  message=f"Dask task failed: {type(exc).__name__}: {exc}")
-            progress.scene_done(outcome)
-            outcomes.append(outcome)
+        deadline = None if time_limit is None else time.monotonic() + time_limit * len(todo)
+        try:
+            for future in dask_completed(futures, timeout=None if deadline is None
+                                         else max(1.0, deadline - time.monotonic())):
+                try:
+                    outcome, files = future.result()
+                    outcome = _install_files(out_root, outcome, files)
+                except Exception as exc:  # noqa: BLE001 - a lost worker fails one scene only
+                    name = todo[futures.index(future)].source.name
+                    outcome = Outcome(name=name, status="failed",
+                                      message=f"Dask task failed: {type(exc).__name__}: {exc}")
+                progress.scene_done(outcome)
+                outcomes.append(outcome)
+        except TimeoutError:
+            done = {o.name for o in outcomes}
+            for scene, future in zip(todo, futures, strict=True):
+                if scene.source.name not in done:
+                    future.cancel()
+                    outcome = Outcome(name=scene.source.name, status="failed",
+                                      message="time limit exceeded on the Dask cluster")
+                    progress.scene_done(outcome)
+                    outcomes.append(outcome)
     return outcomes
 
 
