@@ -5,9 +5,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
+
 import stiff_model
 from conftest import pendulum_text
-
 from reportgen.archive import read_audit
 from reportgen.audit import MethodRun, builtin_cases, run_audit, verdict
 from reportgen.config import parse_config_text

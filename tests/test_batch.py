@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from conftest import pendulum_text
 
+from conftest import pendulum_text
 from reportgen.archive import read_archive
 from reportgen.pipeline import run_batch
 

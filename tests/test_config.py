@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 import pytest
-from conftest import pendulum_text
 
+from conftest import pendulum_text
 from reportgen.config import ConfigError, read_config
 from reportgen.scenes import load_scene
 

@@ -11,8 +11,8 @@ import time
 from pathlib import Path
 
 import pytest
-from conftest import pendulum_text
 
+from conftest import pendulum_text
 from reportgen.archive import read_archive, verify_checksums
 
 KILLS = int(os.environ.get("REPORTGEN_KILLS", "20"))

@@ -11,9 +11,9 @@ import math
 
 import numpy as np
 import pytest
-from conftest import pendulum_text
 from scipy import special
 
+from conftest import pendulum_text
 from reportgen.config import parse_config_text
 from reportgen.core.models import pendulum as core
 from reportgen.scenes import load_scene

@@ -9,9 +9,9 @@ import shutil
 import h5py
 import numpy as np
 import pytest
-from conftest import pendulum_text
 from pypdf import PdfReader
 
+from conftest import pendulum_text
 from reportgen import archive as archive_mod
 from reportgen.archive import read_archive
 from reportgen.pipeline import run_batch
