@@ -173,7 +173,11 @@ def build_report(archive_path: Path, formats=("html", "pdf"), out_dir: Path | No
     if png is None:
         png = _config_wants_png(data)
     context = build_context(data, out_dir, png=png)
-    html_text = render_html(context)
+    return write_formats(render_html(context), out_dir, formats)
+
+
+def write_formats(html_text: str, out_dir: Path, formats) -> list[Path]:
+    """``report.html`` and/or ``report.pdf`` (WeasyPrint's rendering of the same HTML)."""
     written = []
     if "html" in formats:
         atomic_write(out_dir / "report.html", html_text.encode("utf-8"))
@@ -226,11 +230,4 @@ def build_audit_report(audit_path: Path, formats=("html", "pdf")) -> list[Path]:
     html_text = environment().get_template("audit.html.j2").render(
         rows=rows, cases=data["cases"], overview=figures[0], flagged=flagged,
         attrs=data["attrs"], provenance=data["provenance"], version=__version__)
-    written = []
-    if "html" in formats:
-        atomic_write(out_dir / "report.html", html_text.encode("utf-8"))
-        written.append(out_dir / "report.html")
-    if "pdf" in formats:
-        write_pdf(html_text, out_dir / "report.pdf", out_dir)
-        written.append(out_dir / "report.pdf")
-    return written
+    return write_formats(html_text, out_dir, formats)

@@ -66,3 +66,15 @@ def test_random_kills_lose_nothing(tmp_path):
     assert _start(cfg, out).wait(timeout=600) == 0
     assert not list(folder.rglob(".*.tmp"))
     _check_folder(folder)
+
+
+def test_two_runs_into_one_folder_do_not_corrupt_each_other(tmp_path):
+    cfg = tmp_path / "shared.toml"
+    cfg.write_text(pendulum_text(theta=1.0, t_end=20.0, samples=2001))
+    out = tmp_path / "out"
+    procs = [_start(cfg, out) for _ in range(2)]
+    assert [p.wait(timeout=600) for p in procs] == [0, 0]
+    folder = out / "shared"
+    _check_folder(folder)
+    assert read_archive(folder / "run.h5").runs["main"].y.shape == (2001, 2)
+    assert not list(folder.rglob(".*.tmp"))
