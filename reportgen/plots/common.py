@@ -42,7 +42,7 @@ def work_precision(study: np.ndarray, *, error_field="error_max", ax=None):
 
     Our methods are solid lines with filled markers; scipy peers dashed, hollow.
     """
-    fig, ax = new_figure(ax, figsize=(6.8, 4.6))
+    fig, ax = new_figure(ax, figsize=(6.8, 5.6))
     methods = list(dict.fromkeys(study["method"]))
     markers = "osD^v<>phX*"
     for i, method in enumerate(methods):
@@ -63,7 +63,7 @@ def work_precision(study: np.ndarray, *, error_field="error_max", ax=None):
         )
     ax.set_xlabel("wall time per run [s]  (min of repeats, compile time excluded)")
     ax.set_ylabel("max error over the run")
-    ax.legend(loc="best", fontsize=8, ncol=2)
+    fig.legend(loc="outside lower center", fontsize=8, ncol=3, frameon=False)
     return fig
 
 
