@@ -69,6 +69,9 @@ def test_time_limit_stops_a_scene_and_keeps_the_others(tmp_path, cli):
     (cfg / "quick.toml").write_text(pendulum_text(t_end=2.0, samples=101))
     # 2e5 periods stored at 1e6 samples with the study on: minutes, far beyond the limit
     (cfg / "slow.toml").write_text(pendulum_text(t_end=4e5, samples=1000001, study="true"))
+    # compile (or load) the quick scene's kernels first: a cold compile alone can take ~10 s
+    assert cli("run", cfg / "quick.toml", "--out", tmp_path / "warm", "--jobs", 1,
+               "--format", "html")[0] == 0
     code, _, err = cli("run", cfg, "--out", tmp_path / "o", "--jobs", 2, "--format", "html",
                        "--time-limit", 10)
     assert code == 1
