@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from ..config import ConfigError, SourceConfig
 from .base import Scene
+from .normal_modes import NormalModesScene
 from .oscillator import OscillatorScene
 from .pendulum import PendulumScene
 
@@ -16,6 +17,7 @@ KINDS: dict[str, type[Scene]] = {
     for cls in (
         PendulumScene,
         OscillatorScene,
+        NormalModesScene,
     )
 }
 

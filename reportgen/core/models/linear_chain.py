@@ -1,0 +1,93 @@
+r"""Linear small oscillations L = ½ q̇ᵀ M q̇ − ½ qᵀ A q as a compiled Hamiltonian system.
+
+H = ½ pᵀ M⁻¹ p + ½ qᵀ A q with y = (q, p): q̇ = M⁻¹ p (drift), ṗ = −A q (kick).
+Separable, so symplectic splitting methods apply; the Jacobian is constant.
+
+params = (n, M⁻¹ row-major (n²), A row-major (n²)).
+
+References
+----------
+.. [1] Lecture notes ch. 5, §5.1 (equations of motion M q̈ + A q = 0).
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+
+from ..model import OdeModel, Separable
+
+
+@numba.njit(cache=True)
+def _unpack(params):
+    n = int(params[0])
+    minv = params[1:1 + n * n].reshape((n, n))
+    a = params[1 + n * n:1 + 2 * n * n].reshape((n, n))
+    return n, minv, a
+
+
+@numba.njit(cache=True)
+def drift(p, params, out):
+    n, minv, _ = _unpack(params)
+    for i in range(n):
+        s = 0.0
+        for j in range(n):
+            s += minv[i, j] * p[j]
+        out[i] = s
+
+
+@numba.njit(cache=True)
+def kick(q, params, out):
+    n, _, a = _unpack(params)
+    for i in range(n):
+        s = 0.0
+        for j in range(n):
+            s -= a[i, j] * q[j]
+        out[i] = s
+
+
+@numba.njit(cache=True)
+def rhs(t, y, params, out):
+    n, minv, a = _unpack(params)
+    for i in range(n):
+        sq = 0.0
+        sp = 0.0
+        for j in range(n):
+            sq += minv[i, j] * y[n + j]
+            sp -= a[i, j] * y[j]
+        out[i] = sq
+        out[n + i] = sp
+
+
+@numba.njit(cache=True)
+def jac(t, y, params, out):
+    n, minv, a = _unpack(params)
+    for i in range(2 * n):
+        for j in range(2 * n):
+            out[i, j] = 0.0
+    for i in range(n):
+        for j in range(n):
+            out[i, n + j] = minv[i, j]
+            out[n + i, j] = -a[i, j]
+
+
+def model(M: np.ndarray, A: np.ndarray, names: list[str], stiff_hint: bool = False) -> OdeModel:
+    """The OdeModel of M q̈ + A q = 0; ``names`` are the n coordinate names (columns q…, p_q…)."""
+    M = np.asarray(M, dtype=np.float64)
+    A = np.asarray(A, dtype=np.float64)
+    n = M.shape[0]
+    minv = np.linalg.inv(M)
+    minv = 0.5 * (minv + minv.T)
+    params = np.concatenate([[float(n)], minv.ravel(), A.ravel()])
+    columns = tuple(names) + tuple(f"p_{c}" for c in names)
+    return OdeModel(name="small oscillations", columns=columns, rhs=rhs, params=params,
+                    separable=Separable(n=n, drift=drift, kick=kick), jac=jac,
+                    stiff_hint=stiff_hint)
+
+
+def energy(y: np.ndarray, M: np.ndarray, A: np.ndarray) -> np.ndarray:
+    """H = ½ pᵀ M⁻¹ p + ½ qᵀ A q for every row of y, shape (N, 2n) -> (N,)."""
+    n = M.shape[0]
+    q, p = y[:, :n], y[:, n:]
+    v = np.linalg.solve(M, p.T).T
+    return 0.5 * np.einsum("ij,ij->i", p, v) + 0.5 * np.einsum("ij,jk,ik->i", q, A, q)
