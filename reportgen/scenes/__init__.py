@@ -8,15 +8,21 @@ from __future__ import annotations
 
 from ..config import ConfigError, SourceConfig
 from .base import Scene
+from .central_force import CentralForceScene
 from .normal_modes import NormalModesScene
 from .oscillator import OscillatorScene
 from .pendulum import PendulumScene
+from .three_body import ThreeBodyScene
+from .two_center import TwoCenterScene
 
 KINDS: dict[str, type[Scene]] = {
     cls.kind: cls
     for cls in (
         PendulumScene,
         OscillatorScene,
+        CentralForceScene,
+        ThreeBodyScene,
+        TwoCenterScene,
         NormalModesScene,
     )
 }

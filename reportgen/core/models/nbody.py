@@ -1,0 +1,146 @@
+r"""Three gravitating point masses in space, and their Jacobi coordinates (lecture notes §3).
+
+State y = (q, v): q = (x1, y1, z1, x2, y2, z2, x3, y3, z3), v the velocities in the
+same order.  H = Σ m_i v_i²/2 − Σ_{i<j} G m_i m_j / r_ij is separable: the drift
+q̇ = v depends on v only, the kick v̇_i = −Σ_j G m_j (q_i − q_j)/r_ij³ on q only, so
+splitting methods apply (velocities stand in for the momenta p_i = m_i v_i; the
+splitting is the same).
+
+Jacobi coordinates (3.32–3.34): ρ1 = r2 − r1, ρ2 = r3 − (m1 r1 + m2 r2)/(m1 + m2),
+R the centre of mass; then T = ½ M Ṙ² + ½ μ1 ρ̇1² + ½ μ2 ρ̇2² with
+μ1 = m1 m2/(m1 + m2), μ2 = m3 (m1 + m2)/M.
+
+References
+----------
+.. [1] Lecture notes §3, eqs. (3.32)–(3.35).
+.. [2] Chenciner, A. & Montgomery, R., "A remarkable periodic solution of the three-body
+       problem in the case of equal masses", Ann. Math. 152, 881–901 (2000).
+.. [3] Szebehely, V. & Peters, C. F., "Complete solution of a general problem of three
+       bodies", Astron. J. 72, 876 (1967) (the Pythagorean problem).
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+
+from ..model import OdeModel, Separable
+
+COLUMNS = tuple(f"{c}{b}" for b in (1, 2, 3) for c in "xyz") + tuple(
+    f"v{c}{b}" for b in (1, 2, 3) for c in "xyz")
+
+# params = (G, m1, m2, m3)
+
+
+@numba.njit(cache=True)
+def _accelerations(q, params, out):
+    for i in range(9):
+        out[i] = 0.0
+    G = params[0]
+    for i in range(3):
+        for j in range(i + 1, 3):
+            dx = q[3 * j] - q[3 * i]
+            dy = q[3 * j + 1] - q[3 * i + 1]
+            dz = q[3 * j + 2] - q[3 * i + 2]
+            r2 = dx * dx + dy * dy + dz * dz
+            inv3 = G / (r2 * np.sqrt(r2))
+            fi = params[1 + j] * inv3
+            fj = params[1 + i] * inv3
+            out[3 * i] += fi * dx
+            out[3 * i + 1] += fi * dy
+            out[3 * i + 2] += fi * dz
+            out[3 * j] -= fj * dx
+            out[3 * j + 1] -= fj * dy
+            out[3 * j + 2] -= fj * dz
+
+
+@numba.njit(cache=True)
+def rhs(t, y, params, out):
+    for i in range(9):
+        out[i] = y[9 + i]
+    _accelerations(y[:9], params, out[9:])
+
+
+@numba.njit(cache=True)
+def drift(p, params, out):
+    for i in range(9):
+        out[i] = p[i]
+
+
+@numba.njit(cache=True)
+def kick(q, params, out):
+    _accelerations(q, params, out)
+
+
+def model(G: float, masses) -> OdeModel:
+    m = np.asarray(masses, dtype=np.float64)
+    return OdeModel(name="three-body", columns=COLUMNS, rhs=rhs,
+                    params=np.array([G, m[0], m[1], m[2]]),
+                    separable=Separable(n=9, drift=drift, kick=kick))
+
+
+def split(y):
+    """(positions, velocities), each shape (N, 3, 3): time, body, xyz."""
+    y = np.atleast_2d(y)
+    return y[:, :9].reshape(-1, 3, 3), y[:, 9:].reshape(-1, 3, 3)
+
+
+def pair_distances(pos):
+    """r12, r13, r23, each shape (N,)."""
+    return (np.linalg.norm(pos[:, 1] - pos[:, 0], axis=1),
+            np.linalg.norm(pos[:, 2] - pos[:, 0], axis=1),
+            np.linalg.norm(pos[:, 2] - pos[:, 1], axis=1))
+
+
+def energy(y, G, masses):
+    pos, vel = split(y)
+    m = np.asarray(masses, dtype=np.float64)
+    kin = 0.5 * np.einsum("b,nbk,nbk->n", m, vel, vel)
+    r12, r13, r23 = pair_distances(pos)
+    return kin - G * (m[0] * m[1] / r12 + m[0] * m[2] / r13 + m[1] * m[2] / r23)
+
+
+def momentum(y, masses):
+    """Total momentum P = Σ m_i v_i, shape (N, 3)."""
+    _, vel = split(y)
+    return np.einsum("b,nbk->nk", np.asarray(masses, dtype=np.float64), vel)
+
+
+def angular_momentum(y, masses):
+    """Total angular momentum L = Σ m_i r_i × v_i about the origin, shape (N, 3)."""
+    pos, vel = split(y)
+    return np.einsum("b,nbk->nk", np.asarray(masses, dtype=np.float64), np.cross(pos, vel))
+
+
+def jacobi(y, masses):
+    """Jacobi coordinates and velocities (3.32): R, ρ1, ρ2 and their rates, each (N, 3)."""
+    pos, vel = split(y)
+    m1, m2, m3 = (float(v) for v in masses)
+    M, m12 = m1 + m2 + m3, m1 + m2
+
+    def transform(r):
+        R = (m1 * r[:, 0] + m2 * r[:, 1] + m3 * r[:, 2]) / M
+        rho1 = r[:, 1] - r[:, 0]
+        rho2 = r[:, 2] - (m1 * r[:, 0] + m2 * r[:, 1]) / m12
+        return R, rho1, rho2
+
+    return transform(pos), transform(vel)
+
+
+def jacobi_masses(masses):
+    """(M, μ1, μ2) of the Jacobi kinetic energy (3.33)."""
+    m1, m2, m3 = (float(v) for v in masses)
+    M = m1 + m2 + m3
+    return M, m1 * m2 / (m1 + m2), m3 * (m1 + m2) / M
+
+
+def jacobi_kinetic_energy(y, masses):
+    """T = ½ M Ṙ² + ½ μ1 ρ̇1² + ½ μ2 ρ̇2² (3.33), shape (N,)."""
+    _, (Rd, r1d, r2d) = jacobi(y, masses)
+    M, mu1, mu2 = jacobi_masses(masses)
+    return 0.5 * (M * np.sum(Rd**2, 1) + mu1 * np.sum(r1d**2, 1) + mu2 * np.sum(r2d**2, 1))
+
+
+def cartesian_kinetic_energy(y, masses):
+    _, vel = split(y)
+    return 0.5 * np.einsum("b,nbk,nbk->n", np.asarray(masses, dtype=np.float64), vel, vel)

@@ -1,0 +1,142 @@
+r"""Euler's problem of two fixed centres in the plane (lecture notes §7, eqs. 7.46–7.61).
+
+A test particle moves in V = −μ/r1 − μ/r2 (per unit mass) of two equal masses fixed
+at C1 = (−a, 0) and C2 = (+a, 0); r1, r2 are the distances to them.  In elliptic
+coordinates ξ = (r1 + r2)/2a ≥ 1, η = (r1 − r2)/2a ∈ [−1, 1] (x = a ξ η,
+y = ±a √((ξ² − 1)(1 − η²))) the Hamilton–Jacobi equation separates:
+
+    (ξ² − 1) p_ξ² − 4 a μ ξ − 2 a² E ξ² = β = −(1 − η²) p_η² − 2 a² E η²      (7.59)
+
+In Cartesian form the second constant is (checked numerically in the tests)
+
+    C = L1 L2 + 2 a μ (cos θ1 − cos θ2),   cos θ1 = (x + a)/r1,  cos θ2 = (x − a)/r2,
+
+with L_i = (r − C_i) × v the angular momenta about each centre; β = −C − 2 a² E.
+
+References
+----------
+.. [1] Lecture notes §7, eqs. (7.46)–(7.61).
+.. [2] Whittaker, E. T., *A Treatise on the Analytical Dynamics of Particles and Rigid
+       Bodies*, 4th ed. (1937), §50 (Euler's problem of two centres).
+.. [3] Pars, L. A., *A Treatise on Analytical Dynamics* (1965), §14.7.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from ..model import OdeModel, Separable
+
+# params = (mu, a)
+
+
+@numba.njit(cache=True)
+def _accel(x, y, params, out):
+    mu, a = params[0], params[1]
+    d1x, d2x = x + a, x - a
+    r1s = d1x * d1x + y * y
+    r2s = d2x * d2x + y * y
+    c1 = mu / (r1s * math.sqrt(r1s))
+    c2 = mu / (r2s * math.sqrt(r2s))
+    out[0] = -c1 * d1x - c2 * d2x
+    out[1] = -(c1 + c2) * y
+
+
+@numba.njit(cache=True)
+def rhs(t, y, params, out):
+    out[0] = y[2]
+    out[1] = y[3]
+    _accel(y[0], y[1], params, out[2:])
+
+
+@numba.njit(cache=True)
+def drift(p, params, out):
+    out[0] = p[0]
+    out[1] = p[1]
+
+
+@numba.njit(cache=True)
+def kick(q, params, out):
+    _accel(q[0], q[1], params, out)
+
+
+def model(mu: float, a: float) -> OdeModel:
+    return OdeModel(name="two fixed centres", columns=("x", "y", "vx", "vy"), rhs=rhs,
+                    params=np.array([mu, a]), separable=Separable(n=2, drift=drift, kick=kick))
+
+
+def distances(x, y, a):
+    """(r1, r2): distances to C1 = (−a, 0) and C2 = (+a, 0)."""
+    return np.hypot(np.asarray(x) + a, y), np.hypot(np.asarray(x) - a, y)
+
+
+def energy(x, y, vx, vy, mu, a):
+    """E = v²/2 − μ/r1 − μ/r2 per unit mass."""
+    r1, r2 = distances(x, y, a)
+    return 0.5 * (np.asarray(vx) ** 2 + np.asarray(vy) ** 2) - mu / r1 - mu / r2
+
+
+def separation_constant(x, y, vx, vy, mu, a):
+    """C = L1 L2 + 2 a μ ((x + a)/r1 − (x − a)/r2), conserved (7.59 in Cartesian form)."""
+    x, y, vx, vy = (np.asarray(v, dtype=np.float64) for v in (x, y, vx, vy))
+    r1, r2 = distances(x, y, a)
+    L1 = (x + a) * vy - y * vx
+    L2 = (x - a) * vy - y * vx
+    return L1 * L2 + 2.0 * a * mu * ((x + a) / r1 - (x - a) / r2)
+
+
+def elliptic_coordinates(x, y, a):
+    """(ξ, η) = ((r1 + r2)/2a, (r1 − r2)/2a)."""
+    r1, r2 = distances(x, y, a)
+    return (r1 + r2) / (2 * a), (r1 - r2) / (2 * a)
+
+
+def beta(E, C, a):
+    """The separation constant β of (7.59) from E and C: β = −C − 2 a² E."""
+    return -C - 2.0 * a * a * E
+
+
+def coordinate_bounds(E, C, mu, a):
+    """Region of the motion from the separated equations (7.59).
+
+    η: (1 − η²) p_η² = −β − 2a²E η² ≥ 0;  ξ: (ξ² − 1) p_ξ² = 2a²E ξ² + 4aμ ξ + β ≥ 0.
+
+    Returns
+    -------
+    dict with ``xi_min``, ``xi_max`` (inf if unbounded) and ``eta_abs_min``,
+    ``eta_abs_max`` (|η| range), and ``family``: "satellite" (around both centres,
+    η unrestricted), "planetary" (about one centre, |η| ≥ η*), or "unbound".
+    """
+    b = beta(E, C, a)
+    out = {"beta": b}
+    # η range
+    if E < 0:
+        eta_star2 = b / (2 * a * a * -E)
+        if b > 0:
+            out.update(eta_abs_min=math.sqrt(min(eta_star2, 1.0)), eta_abs_max=1.0)
+        else:
+            out.update(eta_abs_min=0.0, eta_abs_max=1.0)
+    elif E > 0:
+        lim2 = -b / (2 * a * a * E)
+        out.update(eta_abs_min=0.0, eta_abs_max=math.sqrt(min(max(lim2, 0.0), 1.0)))
+    else:
+        out.update(eta_abs_min=0.0, eta_abs_max=1.0)
+    # ξ range: roots of 2a²E ξ² + 4aμ ξ + β
+    A, B = 2 * a * a * E, 4 * a * mu
+    if E < 0:
+        disc = B * B - 4 * A * b
+        sq = math.sqrt(max(disc, 0.0))
+        roots = sorted(((-B + sq) / (2 * A), (-B - sq) / (2 * A)))
+        out.update(xi_min=max(1.0, roots[0]), xi_max=roots[1])
+    else:
+        out.update(xi_min=1.0, xi_max=math.inf)
+    if E >= 0:
+        out["family"] = "unbound"
+    elif b > 0:
+        out["family"] = "planetary"
+    else:
+        out["family"] = "satellite"
+    return out

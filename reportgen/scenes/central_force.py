@@ -1,0 +1,477 @@
+r"""``central_force``: two bodies in a central potential and the Kepler problem (notes §3).
+
+The relative coordinate r = r1 − r2 moves like one body of reduced mass
+μ = m1 m2/(m1 + m2) in V(r) (3.18–3.22); the angular momentum L = μ r × ṙ is the
+Noether charge of rotations (3.23–3.27); the radial motion sees the effective
+potential V + L²/(2μr²) (3.28–3.31).  For V = −k/r the integration is checked
+against Kepler's equation at every stored time, the third law and the
+Laplace–Runge–Lenz vector; for other potentials the apsidal angle against the
+exact quadrature and its near-circular limit π/√(2 − n).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Literal
+
+import numpy as np
+from pydantic import Field, model_validator
+
+from ..config import Positive, Real, RunConfig, Strict
+from ..core.models import kepler as core
+from ..plots import common as common_plots
+from ..plots import gravitation as plots
+from ..results import Check, Results
+from .base import Scene, SceneConfig, Section, SectionContent, Table, fmt, fmt_err
+from .shared import error_vs_runtime_section, invariants_section
+
+
+class Params(Strict):
+    m1: Positive = Field(description="mass of body 1 [kg]")
+    m2: Positive = Field(description="mass of body 2 [kg]")
+    k: Positive = Field(description="strength of the attraction, V = −k/r (or −k/rⁿ) [J·mⁿ]")
+    potential: Literal["kepler", "power", "kepler_inverse_cube"] = Field(
+        "kepler", description='"kepler" V = −k/r; "power" V = −k/rⁿ; '
+                              '"kepler_inverse_cube" V = −k/r − ε/r²')
+    n: Real | None = Field(None, description="exponent of the power law V = −k/rⁿ, 0 < n < 2")
+    epsilon: Real | None = Field(None, description="strength ε of the −ε/r² term (a 1/r³ force)"
+                                                   " [J·m²]")
+
+
+class Initial(Strict):
+    x: Real = Field(description="relative position r = r1 − r2, x [m]")
+    y: Real = Field(description="relative position, y [m]")
+    vx: Real = Field(description="relative velocity, x [m/s]")
+    vy: Real = Field(description="relative velocity, y [m/s]")
+
+
+class CentralForceConfig(SceneConfig):
+    params: Params
+    initial: Initial
+    run: RunConfig
+
+    @model_validator(mode="after")
+    def _physics(self):
+        p, ini = self.params, self.initial
+        if p.potential == "power":
+            if p.n is None:
+                raise ValueError("params.n: required when params.potential = \"power\"")
+            if not 0.0 < p.n < 2.0:
+                raise ValueError(f"params.n: must satisfy 0 < n < 2 for V = −k/rⁿ (bound "
+                                 f"orbits need an attraction weaker than 1/r³; got {p.n})")
+        elif p.n is not None:
+            raise ValueError(f"params.n: only used with params.potential = \"power\" "
+                             f"(potential is {p.potential!r})")
+        if p.potential == "kepler_inverse_cube":
+            if p.epsilon is None:
+                raise ValueError("params.epsilon: required when params.potential = "
+                                 "\"kepler_inverse_cube\"")
+        elif p.epsilon is not None:
+            raise ValueError(f"params.epsilon: only used with params.potential = "
+                             f"\"kepler_inverse_cube\" (potential is {p.potential!r})")
+        if ini.x == 0.0 and ini.y == 0.0:
+            raise ValueError("initial.x / initial.y: the bodies start at the same point "
+                             "(r = 0, a collision)")
+        mu = core.reduced_mass(p.m1, p.m2)
+        L = mu * (ini.x * ini.vy - ini.y * ini.vx)
+        if L == 0.0:
+            raise ValueError("initial.x, initial.y, initial.vx, initial.vy: zero angular "
+                             "momentum (r ∥ v): a radial orbit that ends in a collision")
+        if p.potential == "kepler_inverse_cube" and L**2 <= 2.0 * mu * p.epsilon:
+            raise ValueError(f"params.epsilon: L² ≤ 2 μ ε (L² = {L**2:.6g}, 2με = "
+                             f"{2 * mu * p.epsilon:.6g}): the orbit spirals into the centre")
+        return self
+
+
+class CentralForceScene(Scene):
+    kind = "central_force"
+    summary = "two bodies in a central potential: reduced mass, Noether charge, Kepler checks"
+    Config = CentralForceConfig
+    presets = {
+        "kepler_e07": {"params": {"m1": 1.0, "m2": 1.0, "k": 0.5},
+                       "initial": {"x": 0.3, "y": 0.0, "vx": 0.0,
+                                   "vy": math.sqrt(1.7 / 0.3)},
+                       "run": {"t_end": 10 * 2 * math.pi, "samples": 4001}},
+    }
+    sections = (
+        Section("orbit", "The relative orbit", integrates=True),
+        Section("two_body", "Reduced mass and the centre of mass", integrates=True),
+        Section("effective_potential", "Effective potential and turning points"),
+        Section("kepler", "Kepler's equation, third law and the Laplace–Runge–Lenz vector",
+                integrates=True),
+        Section("apsides", "Apsidal angle", integrates=True),
+        Section("invariants", "Conserved quantities", integrates=True),
+        Section("error_vs_runtime", "Error against run time", integrates=True),
+    )
+
+    # ------------------------------------------------------------------ helpers
+    @property
+    def mu(self) -> float:
+        return core.reduced_mass(self.config.params.m1, self.config.params.m2)
+
+    @property
+    def n(self) -> float:
+        return self.config.params.n if self.config.params.potential == "power" else 1.0
+
+    @property
+    def epsilon(self) -> float:
+        return self.config.params.epsilon or 0.0
+
+    @property
+    def is_kepler(self) -> bool:
+        return self.config.params.potential == "kepler"
+
+    @property
+    def pot(self) -> tuple[float, float, float]:
+        """(k, n, ε) of V = −k/rⁿ − ε/r²."""
+        return self.config.params.k, self.n, self.epsilon
+
+    def _state0(self):
+        i = self.config.initial
+        return np.array([i.x, i.y, i.vx, i.vy])
+
+    @property
+    def energy0(self) -> float:
+        return float(core.energy(*self._state0(), self.mu, *self.pot))
+
+    @property
+    def L0(self) -> float:
+        return float(core.angular_momentum(*self._state0(), self.mu))
+
+    @property
+    def bound(self) -> bool:
+        return self.energy0 < 0.0
+
+    @property
+    def elements(self) -> dict:
+        return core.orbital_elements(*self._state0(), self.config.params.k / self.mu)
+
+    def default_sections(self):
+        names = [s.name for s in self.sections]
+        if not (self.is_kepler and self.bound):
+            names.remove("kepler")
+        if self.is_kepler or not self.bound:
+            names.remove("apsides")
+        return names
+
+    # --------------------------------------------------------------- simulation
+    def _invariants(self, t, y):
+        x, yy, vx, vy = y.T
+        inv = {"energy": core.energy(x, yy, vx, vy, self.mu, *self.pot),
+               "angular_momentum": core.angular_momentum(x, yy, vx, vy, self.mu)}
+        if self.is_kepler:
+            inv["lrl_x"], inv["lrl_y"] = core.lrl_vector(x, yy, vx, vy, self.mu,
+                                                         self.config.params.k)
+        return inv
+
+    def _invariant_scales(self):
+        k, mu = self.config.params.k, self.mu
+        r0 = math.hypot(self.config.initial.x, self.config.initial.y)
+        e_scale = max(abs(self.energy0), abs(float(core.potential(r0, *self.pot))))
+        return {"energy": e_scale, "angular_momentum": abs(self.L0),
+                "lrl_x": mu * k, "lrl_y": mu * k}
+
+    def radial_scales(self) -> dict:
+        """Eccentricity, semi-major axis, period: Kepler elements, or from the turning points."""
+        if self.is_kepler:
+            el = self.elements
+            out = {"eccentricity": el["eccentricity"], "semi_major_axis": el["semi_major_axis"],
+                   "pericentre": el["pericentre"]}
+            if el["bound"]:
+                out.update(period=el["period"], apocentre=el["apocentre"])
+            return out
+        r_min, r_max = core.turning_points(self.energy0, self.L0, self.mu, *self.pot)
+        out = {"pericentre": r_min}
+        if math.isfinite(r_max):
+            out.update(apocentre=r_max, eccentricity=(r_max - r_min) / (r_max + r_min),
+                       semi_major_axis=0.5 * (r_max + r_min),
+                       period=core.radial_period(self.energy0, self.L0, self.mu, *self.pot))
+        return out
+
+    def simulate(self, progress=None) -> Results:
+        run, p = self.config.run, self.config.params
+        model = core.model(p.k, self.mu, self.n, self.epsilon)
+        y0 = self._state0()
+        t = np.linspace(0.0, run.t_end, run.samples)
+        scales = self.radial_scales()
+        period = scales.get("period")
+        results = Results()
+        main = self.integrate(model, y0, t, invariants=self._invariants,
+                              invariant_scales=self._invariant_scales(), progress=progress,
+                              n_periods=run.t_end / period if period else None)
+        results.runs["main"] = main
+        a = results.analysis
+        a.update(scales)
+        a.update({"reduced_mass": self.mu, "total_mass": p.m1 + p.m2, "energy": self.energy0,
+                  "angular_momentum": self.L0, "potential": p.potential,
+                  "bound": "yes" if self.bound else "no"})
+        if not self.bound:
+            a["period_note"] = ("unbound orbit (E ≥ 0): no period; the apocentre is at "
+                                "infinity")
+        r_min, r_max = core.turning_points(self.energy0, self.L0, self.mu, *self.pot)
+        a["turning_points"] = np.array([r_min, r_max])
+        if self.is_kepler and self.bound:
+            self._kepler_checks(results, main)
+        elif self.bound:
+            self._apsides(results, main)
+        e_inv = main.invariants["energy"]
+        results.checks.append(Check("energy E(t_end)", float(e_inv[-1]), float(e_inv[0]), "J",
+                                    "E(0), conserved", scale=self._invariant_scales()["energy"]))
+        L_inv = main.invariants["angular_momentum"]
+        results.checks.append(Check("angular momentum L(t_end)", float(L_inv[-1]),
+                                    float(L_inv[0]), "kg·m²/s", "L(0), Noether charge (3.27)"))
+        ref = None
+        if self.is_kepler and self.bound:
+            el = self.elements
+
+            def ref(ts):
+                return np.column_stack(core.kepler_state(ts, el))
+        self.study(results, model, y0, np.linspace(0.0, run.t_end, 201), reference=ref)
+        return results
+
+    #: a pericentre passage must span this many stored samples to be located reliably
+    MIN_SAMPLES_PER_PASSAGE = 4
+
+    def _passages_resolved(self, e: float, period: float) -> bool:
+        run = self.config.run
+        per_period = (run.samples - 1) * period / run.t_end
+        # the pericentre passage lasts ~ (1 − e)^{3/2} T (time spent within ~2 r_min)
+        return per_period * (1.0 - e) ** 1.5 >= self.MIN_SAMPLES_PER_PASSAGE * 2 * math.pi \
+            and run.t_end >= 2.2 * period
+
+    def _kepler_checks(self, results: Results, main) -> None:
+        el, a = self.elements, results.analysis
+        x, y, vx, vy = core.kepler_state(main.t, el)
+        err = np.hypot(main["x"] - x, main["y"] - y)
+        scale = el["semi_major_axis"]
+        a["kepler_position_error"] = err
+        a["kepler_position_error_max"] = float(np.max(err))
+        a["kepler_velocity_error_max"] = float(np.max(np.hypot(main["vx"] - vx,
+                                                               main["vy"] - vy)))
+        results.checks.append(Check("max |r − r_Kepler| over the run", float(np.max(err)), 0.0,
+                                    "m", "Kepler's equation E − e sin E = M (Danby §6.6)",
+                                    scale=scale))
+        mu, k = self.mu, self.config.params.k
+        ax, ay = main.invariants["lrl_x"], main.invariants["lrl_y"]
+        e_lrl = np.hypot(ax, ay) / (mu * k)
+        a["lrl_eccentricity_drift"] = float(np.max(np.abs(e_lrl - el["eccentricity"])))
+        results.checks.append(Check("|A|/(μk) at t_end (LRL vector)", float(e_lrl[-1]),
+                                    el["eccentricity"], "", "e of the initial state, |A| = μke "
+                                    "(Goldstein eq. 3.83)", scale=1.0))
+        period = el["period"]
+        if self._passages_resolved(el["eccentricity"], period):
+            tp, rp, _ = core.apsides_from_samples(main.t, main["x"], main["y"], main["vx"],
+                                                  main["vy"], mu, k)
+            _, ra, _ = core.apsides_from_samples(main.t, main["x"], main["y"], main["vx"],
+                                                 main["vy"], mu, k, which="apocentre")
+            if tp.size >= 2 and ra.size >= 1:
+                t_meas = (tp[-1] - tp[0]) / (tp.size - 1)
+                a["period_measured"] = t_meas
+                results.checks.append(Check("period from pericentre passages", t_meas, period,
+                                            "s", "third law T = 2π√(a³/(k/μ)) (3.31)"))
+                a_meas = 0.5 * (float(np.mean(rp)) + float(np.mean(ra)))
+                a["semi_major_axis_measured"] = a_meas
+                results.checks.append(Check("semi-major axis (r_min + r_max)/2 measured", a_meas,
+                                            el["semi_major_axis"], "m",
+                                            "a = −k/(2E) (Goldstein eq. 3.61)"))
+        else:
+            a["period_measured_note"] = (
+                "period not measured from the samples: a pericentre passage spans fewer than "
+                f"{self.MIN_SAMPLES_PER_PASSAGE} samples or the run is shorter than two orbits; "
+                "the orbit is checked against Kepler's equation at every sample instead")
+
+    def _apsides(self, results: Results, main) -> None:
+        a, mu = results.analysis, self.mu
+        k, n, eps = self.pot
+        exact = core.apsidal_angle(self.energy0, self.L0, mu, k, n, eps)
+        a["apsidal_angle_exact"] = exact
+        if self.config.params.potential == "power":
+            a["apsidal_angle_near_circular"] = core.apsidal_angle_near_circular(n)
+        else:
+            closed = core.apsidal_angle_inverse_cube(self.L0, mu, eps)
+            a["apsidal_angle_closed_form"] = closed
+            results.checks.append(Check("apsidal angle by quadrature", exact, closed, "rad",
+                                        "π/√(1 − 2με/L²) (Landau & Lifshitz §15 problem 3)"))
+        period = a["period"]
+        if not self._passages_resolved(a["eccentricity"], period):
+            a["apsidal_angle_note"] = ("fewer than two resolved pericentre passages: "
+                                       "the apsidal angle was not measured from the run")
+            return
+        tp, _rp, phi = core.apsides_from_samples(main.t, main["x"], main["y"], main["vx"],
+                                                 main["vy"], mu, k, n, eps)
+        if tp.size < 2:
+            return
+        sweep = abs(phi[-1] - phi[0]) / (tp.size - 1)  # angle between pericentres = 2 × apsidal
+        a["apsidal_angle_measured"] = 0.5 * sweep
+        a["pericentre_times"] = tp
+        results.checks.append(Check("apsidal angle measured (pericentre to pericentre / 2)",
+                                    0.5 * sweep, exact, "rad",
+                                    "∫ (L/μr²) dr/ṙ from r_min to r_max (Goldstein eq. 3.37)"))
+        t_meas = (tp[-1] - tp[0]) / (tp.size - 1)
+        a["period_measured"] = t_meas
+        results.checks.append(Check("radial period from pericentre passages", t_meas, period,
+                                    "s", "2 ∫ dr/ṙ from r_min to r_max (Goldstein eq. 3.17)"))
+
+    # ------------------------------------------------------------------ report
+    def headline(self, data):
+        p, a = self.config.params, data.analysis
+        pot = {"kepler": "V = −k/r", "power": f"V = −k/r^{fmt(self.n)}",
+               "kepler_inverse_cube": f"V = −k/r − ε/r², ε = {fmt(self.epsilon)}"}[p.potential]
+        out = [("bodies", f"m1 = {fmt(p.m1)} kg, m2 = {fmt(p.m2)} kg, μ = {fmt(self.mu)} kg"),
+               ("potential", f"{pot}, k = {fmt(p.k)}"),
+               ("energy, angular momentum", f"E = {fmt(a['energy'])} J, "
+                                            f"L = {fmt(a['angular_momentum'])} kg·m²/s")]
+        if "eccentricity" in a:
+            out.append(("orbit", f"e = {fmt(a['eccentricity'])}, a = "
+                                 f"{fmt(a['semi_major_axis'])} m"
+                        + (f", period {fmt(a['period'], 12)} s" if "period" in a else "")))
+        if "period_note" in a:
+            out.append(("period", a["period_note"]))
+        if "kepler_position_error_max" in a:
+            out.append(("max |r − r_Kepler|", f"{fmt_err(a['kepler_position_error_max'])} m"))
+        return out
+
+    def section_orbit(self, data):
+        run = data.runs["main"]
+        ref = lrl = peri = None
+        if self.is_kepler and self.bound:
+            el = self.elements
+            ts = np.linspace(0.0, el["period"], 721)
+            ref = core.kepler_state(ts, el)[:2]
+            lrl = (el["eccentricity"] * el["semi_major_axis"] * math.cos(el["omega"]),
+                   el["eccentricity"] * el["semi_major_axis"] * math.sin(el["omega"]))
+        elif "pericentre_times" in data.analysis:
+            tp = np.asarray(data.analysis["pericentre_times"])
+            xs = np.interp(tp, run.t, run["x"])
+            ys = np.interp(tp, run.t, run["y"])
+            peri = (xs, ys)
+        fig = plots.relative_orbit(run["x"], run["y"], reference=ref, pericentres=peri,
+                                   lrl=None if lrl is None else lrl)
+        caption = "The relative orbit r(t) = r1 − r2 (3.21)."
+        if lrl is not None:
+            caption += (" Dashed: the exact ellipse from Kepler's equation; arrow: the "
+                        "Laplace–Runge–Lenz vector scaled to a e (from the focus towards the "
+                        "pericentre, length = centre-to-focus distance).")
+        elif peri is not None:
+            caption += " Triangles: pericentre passages, advancing by twice the apsidal angle."
+        return SectionContent(figures=[self.figure("orbit", fig, caption)])
+
+    def section_two_body(self, data):
+        run, p = data.runs["main"], self.config.params
+        r1, r2 = core.body_positions(run["x"], run["y"], p.m1, p.m2)
+        fig = plots.two_body_tracks(r1, r2, m1=p.m1, m2=p.m2)
+        facts = [("reduced mass μ = m1 m2/(m1 + m2) (3.20)", f"{fmt(self.mu)} kg"),
+                 ("r1 = (m2/M) r, r2 = −(m1/M) r (3.19)",
+                  f"m2/M = {fmt(p.m2 / (p.m1 + p.m2))}, m1/M = {fmt(p.m1 / (p.m1 + p.m2))}")]
+        return SectionContent(figures=[self.figure(
+            "two_body", fig, "Both bodies' tracks in the centre-of-mass frame (R = 0): "
+            "similar conics scaled by m2/M and m1/M about the common focus, on opposite sides.")],
+            facts=facts)
+
+    def section_effective_potential(self, data):
+        a, mu = data.analysis, self.mu
+        r_min, r_max = (float(v) for v in np.asarray(a["turning_points"]))
+        top = 2.2 * r_max if math.isfinite(r_max) else 6.0 * r_min
+        r = np.linspace(0.15 * r_min, top, 800)
+        L, E = a["angular_momentum"], a["energy"]
+        v = core.potential(r, *self.pot)
+        v_eff = core.effective_potential(r, L, mu, *self.pot)
+        rc = core.circular_radius(L, mu, *self.pot)
+        fig = plots.effective_potential(r, v, v_eff, energy=E, turning=(r_min, r_max),
+                                        circular=(rc, float(core.effective_potential(
+                                            rc, L, mu, *self.pot))))
+        facts = [("turning points r_min, r_max", f"{fmt(r_min, 12)} m, {fmt(r_max, 12)} m"),
+                 ("circular orbit at this L", f"r_c = {fmt(rc, 12)} m")]
+        return SectionContent(figures=[self.figure(
+            "effective_potential", fig, "The radial motion in V_eff(r) = V(r) + L²/(2μr²) "
+            "(3.28–3.30): the orbit stays where E ≥ V_eff, between the turning points.")],
+            facts=facts)
+
+    def section_kepler(self, data):
+        run, a = data.runs["main"], data.analysis
+        err = np.asarray(a["kepler_position_error"])
+        A = np.hypot(run.invariants["lrl_x"], run.invariants["lrl_y"])
+        fig = common_plots.error_against_time(
+            run.t, {"|r − r_Kepler| [m]": err,
+                    "| |A|/(μk) − e |": A / (self.mu * self.config.params.k)
+                    - a["eccentricity"]}, ylabel="absolute error")
+        rows = [["eccentricity e", fmt(a["eccentricity"], 14), "|A|/(μk) of the initial state"],
+                ["semi-major axis a [m]", fmt(a["semi_major_axis"], 14), "−k/(2E)"],
+                ["period T [s]", fmt(a["period"], 14), "2π√(a³ μ/k) (third law)"]]
+        if "period_measured" in a:
+            rows.append(["period measured [s]", fmt(a["period_measured"], 14),
+                         f"rel. diff {fmt_err(abs(a['period_measured'] / a['period'] - 1))}"])
+        if "semi_major_axis_measured" in a:
+            rows.append(["(r_min + r_max)/2 measured [m]", fmt(a["semi_major_axis_measured"], 14),
+                         "rel. diff " + fmt_err(abs(a["semi_major_axis_measured"]
+                                                    / a["semi_major_axis"] - 1))])
+        notes = [a["period_measured_note"]] if "period_measured_note" in a else []
+        return SectionContent(
+            figures=[self.figure("kepler_error", fig, "Distance between the stored positions and "
+                                 "the solution of Kepler's equation at the same times, and the "
+                                 "change of the LRL vector's length.")],
+            tables=[Table(caption="Orbit elements from the initial state and as measured",
+                          header=["quantity", "value", "source"], rows=rows)],
+            facts=[("max |r − r_Kepler|", f"{fmt_err(a['kepler_position_error_max'])} m"),
+                   ("max |v − v_Kepler|", f"{fmt_err(a['kepler_velocity_error_max'])} m/s")],
+            notes=notes)
+
+    def section_apsides(self, data):
+        a, mu = data.analysis, self.mu
+        k, n, eps = self.pot
+        L = a["angular_momentum"]
+        rc = core.circular_radius(L, mu, k, n, eps)
+        e_circ = float(core.effective_potential(rc, L, mu, k, n, eps))
+        e_max = a["energy"] + 0.3 * (a["energy"] - e_circ) if a["energy"] < 0 else a["energy"]
+        energies = e_circ + (min(e_max, 0.0) - e_circ) * np.linspace(0.02, 0.97, 40) ** 2
+        energies = np.unique(np.append(energies[energies < 0], a["energy"]))
+        ecc, ang = [], []
+        for E in energies:
+            r1, r2 = core.turning_points(E, L, mu, k, n, eps)
+            ecc.append((r2 - r1) / (r2 + r1))
+            ang.append(core.apsidal_angle(E, L, mu, k, n, eps))
+        if self.config.params.potential == "power":
+            near, label = a["apsidal_angle_near_circular"], "exact quadrature at this L"
+        else:
+            near = a["apsidal_angle_closed_form"]
+            label = "exact quadrature (= π/√(1 − 2με/L²) at every e)"
+        measured = ((a["eccentricity"], a["apsidal_angle_measured"])
+                    if "apsidal_angle_measured" in a else None)
+        fig = plots.apsidal_angle_family(np.array(ecc), np.array(ang), near_circular=near,
+                                         measured=measured, exact_label=label)
+        if self.config.params.potential != "power":
+            fig.axes[0].get_lines()[1].set_label("closed form π/√(1 − 2με/L²)")
+            fig.axes[0].legend(loc="best")
+        rows = [["exact, quadrature (Goldstein eq. 3.37)", fmt(a["apsidal_angle_exact"], 13),
+                 "—"]]
+        if "apsidal_angle_measured" in a:
+            rows.append(["measured from the run", fmt(a["apsidal_angle_measured"], 13),
+                         fmt_err(abs(a["apsidal_angle_measured"] / a["apsidal_angle_exact"]
+                                     - 1))])
+        if "apsidal_angle_near_circular" in a:
+            rows.append(["near-circular limit π/√(2 − n) (L&L §14)",
+                         fmt(a["apsidal_angle_near_circular"], 13),
+                         fmt_err(abs(a["apsidal_angle_near_circular"]
+                                     / a["apsidal_angle_exact"] - 1))])
+        if "apsidal_angle_closed_form" in a:
+            rows.append(["closed form π/√(1 − 2με/L²) (L&L §15)",
+                         fmt(a["apsidal_angle_closed_form"], 13),
+                         fmt_err(abs(a["apsidal_angle_closed_form"]
+                                     / a["apsidal_angle_exact"] - 1))])
+        notes = [a["apsidal_angle_note"]] if "apsidal_angle_note" in a else []
+        return SectionContent(
+            figures=[self.figure("apsidal_angle", fig, "Apsidal angle (pericentre to apocentre) "
+                                 "against eccentricity at this angular momentum.")],
+            tables=[Table(caption="Apsidal angle [rad]", header=["source", "value",
+                                                                  "rel. diff to exact"],
+                          rows=rows)], notes=notes)
+
+    def section_invariants(self, data):
+        labels = {"energy": "energy E", "angular_momentum": "angular momentum L",
+                  "lrl_x": "LRL A_x", "lrl_y": "LRL A_y"}
+        return invariants_section(self, data, scales=self._invariant_scales(), labels=labels,
+                                  caption="Drift of the conserved quantities: E and L relative "
+                                          "to their size, the LRL components relative to μk.")
+
+    def section_error_vs_runtime(self, data):
+        return error_vs_runtime_section(self, data)

@@ -1,0 +1,178 @@
+r"""``two_center``: Euler's problem of two fixed centres in the plane (notes §7, 7.46–7.61).
+
+A test particle attracted by two equal masses fixed at (±a, 0).  The motion
+separates in elliptic coordinates ξ = (r1 + r2)/2a, η = (r1 − r2)/2a; besides the
+energy E there is a second constant, the separation constant (7.59).  The report
+draws the orbit over the elliptic-coordinate grid with the coordinate lines that
+bound the motion, and checks both constants along the run.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from pydantic import Field, model_validator
+
+from ..config import Positive, Real, RunConfig, Strict
+from ..core.models import two_center as core
+from ..plots import gravitation as plots
+from ..results import Check, Results
+from .base import Scene, SceneConfig, Section, SectionContent, fmt, fmt_err
+from .shared import error_vs_runtime_section, invariants_section
+
+
+class Params(Strict):
+    mu: Positive = Field(description="G·M of each fixed centre [m³/s²]")
+    a: Positive = Field(description="half the distance between the centres, at (±a, 0) [m]")
+
+
+class Initial(Strict):
+    x: Real = Field(description="initial position x [m]")
+    y: Real = Field(description="initial position y [m]")
+    vx: Real = Field(description="initial velocity x [m/s]")
+    vy: Real = Field(description="initial velocity y [m/s]")
+
+
+class TwoCenterConfig(SceneConfig):
+    params: Params
+    initial: Initial
+    run: RunConfig
+
+    @model_validator(mode="after")
+    def _not_at_a_centre(self):
+        ini, a = self.initial, self.params.a
+        for sign in (-1, 1):
+            if ini.y == 0.0 and ini.x == sign * a:
+                raise ValueError(f"initial.x / initial.y: the particle starts at the centre "
+                                 f"({sign * a:g}, 0) = (±params.a, 0) (a collision)")
+        return self
+
+
+FAMILY_TEXT = {
+    "satellite": "satellite orbit: encircles both centres (β ≤ 0, η free in [−1, 1], "
+                 "ξ between two ellipses)",
+    "planetary": "planetary orbit: stays on one side, about one centre (β > 0, |η| ≥ η*)",
+    "unbound": "unbound (E ≥ 0)",
+}
+
+
+class TwoCenterScene(Scene):
+    kind = "two_center"
+    summary = "Euler's problem of two fixed centres: elliptic coordinates, separation constant"
+    Config = TwoCenterConfig
+    sections = (
+        Section("orbit", "Orbit over the elliptic-coordinate grid", integrates=True),
+        Section("invariants", "Energy and the separation constant", integrates=True),
+        Section("error_vs_runtime", "Error against run time", integrates=True),
+    )
+
+    def _y0(self):
+        i = self.config.initial
+        return np.array([i.x, i.y, i.vx, i.vy])
+
+    def _constants(self):
+        p = self.config.params
+        y0 = self._y0()
+        return (float(core.energy(*y0, p.mu, p.a)),
+                float(core.separation_constant(*y0, p.mu, p.a)))
+
+    def _scales(self):
+        """Energy: |V| at the start; C: its two terms' size, L1 L2 and 2aμ."""
+        p = self.config.params
+        x, y, vx, vy = self._y0()
+        r1, r2 = core.distances(x, y, p.a)
+        L1, L2 = (x + p.a) * vy - y * vx, (x - p.a) * vy - y * vx
+        return {"energy": float(p.mu / r1 + p.mu / r2),
+                "separation_constant": float(max(abs(L1 * L2), 2 * p.a * p.mu))}
+
+    def _invariants(self, t, y):
+        p = self.config.params
+        return {"energy": core.energy(*y.T, p.mu, p.a),
+                "separation_constant": core.separation_constant(*y.T, p.mu, p.a)}
+
+    def simulate(self, progress=None) -> Results:
+        run, p = self.config.run, self.config.params
+        model = core.model(p.mu, p.a)
+        y0 = self._y0()
+        t = np.linspace(0.0, run.t_end, run.samples)
+        results = Results()
+        main = self.integrate(model, y0, t, invariants=self._invariants,
+                              invariant_scales=self._scales(), progress=progress)
+        results.runs["main"] = main
+        E, C = self._constants()
+        bounds = core.coordinate_bounds(E, C, p.mu, p.a)
+        a = results.analysis
+        a.update({"energy": E, "separation_constant": C, "beta": bounds["beta"],
+                  "family": bounds["family"],
+                  "xi_bounds": np.array([bounds["xi_min"], bounds["xi_max"]]),
+                  "eta_abs_bounds": np.array([bounds["eta_abs_min"], bounds["eta_abs_max"]])})
+        xi, eta = core.elliptic_coordinates(main["x"], main["y"], p.a)
+        a["xi_range_run"] = np.array([float(np.min(xi)), float(np.max(xi))])
+        a["eta_abs_range_run"] = np.array([float(np.min(np.abs(eta))),
+                                           float(np.max(np.abs(eta)))])
+        scales = self._scales()
+        for name, label in (("energy", "energy E(t_end)"),
+                            ("separation_constant", "separation constant C(t_end)")):
+            v = main.invariants[name]
+            results.checks.append(Check(label, float(v[-1]), float(v[0]), "",
+                                        "value at t = 0, conserved (7.59)"
+                                        if name != "energy" else "E(0), conserved",
+                                        scale=scales[name]))
+        if bounds["family"] != "unbound":
+            results.checks.append(Check("ξ_max reached by the run (sampled)",
+                                        float(np.max(xi)), bounds["xi_max"], "",
+                                        "largest root of 2a²Eξ² + 4aμξ + β (7.59)"))
+        self.study(results, model, y0, np.linspace(0.0, run.t_end, 201))
+        return results
+
+    def headline(self, data):
+        p, a = self.config.params, data.analysis
+        run = data.runs["main"]
+        return [("centres", f"μ = {fmt(p.mu)} each at (±{fmt(p.a)}, 0)"),
+                ("constants", f"E = {fmt(a['energy'], 12)}, C = "
+                              f"{fmt(a['separation_constant'], 12)}, β = {fmt(a['beta'], 10)}"),
+                ("orbit family", FAMILY_TEXT[a["family"]]),
+                ("max relative drift", f"E {fmt_err(run.attrs.get('drift_energy', math.nan))}, "
+                 f"C {fmt_err(run.attrs.get('drift_separation_constant', math.nan))}")]
+
+    def section_orbit(self, data):
+        run, a, p = data.runs["main"], data.analysis, self.config.params
+        xi_b = [float(v) for v in np.asarray(a["xi_bounds"])]
+        eta_b = [float(v) for v in np.asarray(a["eta_abs_bounds"])]
+        x, y = run["x"], run["y"]
+        xi_top = max(float(np.max(core.elliptic_coordinates(x, y, p.a)[0])), 1.5) * 1.05
+        xi_levels = list(np.linspace(1.0, xi_top, 8)[1:])
+        eta_levels = list(np.linspace(-0.9, 0.9, 7))
+        eta_draw = []
+        if eta_b[0] > 0:
+            side = float(np.sign(np.mean(core.elliptic_coordinates(x, y, p.a)[1])))
+            eta_draw.append(side * eta_b[0])
+        if eta_b[1] < 1:
+            eta_draw += [-eta_b[1], eta_b[1]]
+        fig = plots.elliptic_grid_orbit(
+            x, y, a=p.a, xi_levels=xi_levels, eta_levels=eta_levels,
+            xi_bounds=[xi_b[0] if xi_b[0] > 1 else None,
+                       xi_b[1] if math.isfinite(xi_b[1]) else None],
+            eta_bounds=eta_draw or None)
+        xr, er = np.asarray(a["xi_range_run"]), np.asarray(a["eta_abs_range_run"])
+        facts = [("family", FAMILY_TEXT[a["family"]]),
+                 ("ξ bounds from (7.59)", f"[{fmt(xi_b[0], 10)}, {fmt(xi_b[1], 10)}]; "
+                                          f"sampled run: [{fmt(xr[0], 10)}, {fmt(xr[1], 10)}]"),
+                 ("|η| bounds from (7.59)", f"[{fmt(eta_b[0], 10)}, {fmt(eta_b[1], 10)}]; "
+                                            f"sampled run: [{fmt(er[0], 10)}, {fmt(er[1], 10)}]")]
+        return SectionContent(figures=[self.figure(
+            "orbit", fig, "The orbit over the elliptic-coordinate grid: confocal ellipses "
+            "ξ = (r1 + r2)/2a = const and hyperbolas η = (r1 − r2)/2a = const with foci at the "
+            "two centres. Bold: the coordinate lines where p_ξ = 0 or p_η = 0, which bound the "
+            "motion.")], facts=facts)
+
+    def section_invariants(self, data):
+        return invariants_section(self, data, scales=self._scales(),
+                                  labels={"energy": "energy E",
+                                          "separation_constant": "separation constant C"},
+                                  caption="Drift of E (relative to |V(0)|) and of the separation "
+                                          "constant C (relative to max(|L1 L2|, 2aμ) at t = 0).")
+
+    def section_error_vs_runtime(self, data):
+        return error_vs_runtime_section(self, data)

@@ -1,0 +1,76 @@
+"""two_center: energy and the separation constant (notes 7.59; Whittaker §50) conserved,
+and the orbit confined to the region the separated equations allow."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from reportgen.config import ConfigError, parse_config_text
+from reportgen.core.integrators import integrate
+from reportgen.core.models import two_center as core
+from reportgen.scenes import load_scene
+
+TEXT = """
+kind = "two_center"
+[params]
+mu = 1.0
+a = 1.0
+[initial]
+x = {x}
+y = {y}
+vx = {vx}
+vy = {vy}
+[run]
+t_end = 60.0
+samples = 3001
+study = false
+"""
+
+
+@pytest.mark.parametrize("state, family", [((0.0, 1.6, 1.05, 0.0), "satellite"),
+                                           ((1.6, 0.0, 0.0, 1.2), "planetary")])
+def test_constants_conserved_and_region(state, family):
+    x, y, vx, vy = state
+    r = load_scene(parse_config_text(TEXT.format(x=x, y=y, vx=vx, vy=vy))).simulate()
+    run = r.runs["main"]
+    E, C = run.invariants["energy"], run.invariants["separation_constant"]
+    assert np.max(np.abs(E - E[0])) / abs(E[0]) <= 1e-9
+    assert np.max(np.abs(C - C[0])) / abs(C[0]) <= 1e-9
+    a = r.analysis
+    assert a["family"] == family
+    xi, eta = core.elliptic_coordinates(run["x"], run["y"], 1.0)
+    lo, hi = np.asarray(a["xi_bounds"])
+    assert np.all(xi <= hi + 1e-9) and np.all(xi >= lo - 1e-9)
+    eta_lo = np.asarray(a["eta_abs_bounds"])[0]
+    assert np.all(np.abs(eta) >= eta_lo - 1e-9)
+    if family == "planetary":
+        assert eta_lo > 0 and np.all(np.sign(eta) == np.sign(eta[0]))  # one side only
+    assert r.status == "ok"
+
+
+def test_separation_constant_is_not_trivially_conserved():
+    # a wrong sign in C is not conserved (guards the formula itself, cf. 7.59)
+    y0 = np.array([0.3, 1.2, 0.5, 0.1])
+    sol = integrate(core.model(1.0, 1.0), y0, np.linspace(0, 20, 401), rtol=1e-12, atol=1e-14)
+    x, y, vx, vy = sol.y.T
+    C = core.separation_constant(x, y, vx, vy, 1.0, 1.0)
+    assert np.ptp(C) < 1e-9
+    r1, r2 = core.distances(x, y, 1.0)
+    wrong = ((x + 1) * vy - y * vx) * ((x - 1) * vy - y * vx) + 2 * ((x + 1) / r1 + (x - 1) / r2)
+    assert np.ptp(wrong) > 1e-2
+
+
+@pytest.mark.parametrize("change, key", [("mu = 1.0", "params.mu"), ("a = 1.0", "params.a")])
+def test_non_positive_parameters_rejected(change, key):
+    text = TEXT.format(x=0.0, y=1.6, vx=1.05, vy=0.0).replace(change, change.split("=")[0]
+                                                                + "= -1.0")
+    with pytest.raises(ConfigError) as exc:
+        load_scene(parse_config_text(text))
+    assert key in str(exc.value)
+
+
+def test_start_at_a_centre_rejected():
+    with pytest.raises(ConfigError) as exc:
+        load_scene(parse_config_text(TEXT.format(x=1.0, y=0.0, vx=0.0, vy=1.0)))
+    assert "initial.x" in str(exc.value)
