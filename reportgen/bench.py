@@ -110,6 +110,69 @@ def long_time_energy(n_periods=1_000_000, steps_per_period=100, n_out=2000, meth
     return result
 
 
+def kepler_against_rebound(e=0.9, orbits=1000, outputs=1001, target=1e-13,
+                           print=builtins.print) -> dict:
+    """Kepler orbit of eccentricity ``e`` over ``orbits`` periods: energy error and wall time
+    of our integrators against REBOUND's IAS15 and WHFast (when installed), same run.
+
+    GM = 1, a = 1, started at pericentre; the energy is checked at ``outputs`` times.
+    """
+    from .core.integrators import integrate
+    from .core.models import kepler
+
+    period = 2 * math.pi
+    y0 = np.array([1 - e, 0.0, 0.0, math.sqrt((1 + e) / (1 - e))])
+    t = np.linspace(0.0, orbits * period, outputs)
+    model = kepler.model(1.0, 1.0)
+    e0 = kepler.energy(*y0, 1.0, 1.0)
+    integrate(model, y0, t[:3], method="dop853")  # compile / load outside the timing
+    print(f"Kepler e = {e}, {orbits} orbits, max |ΔE/E| over {outputs} outputs "
+          f"(target ≤ {target:.0e}); wall time = min of 3")
+    rows = []
+    for method, rtol in (("dop853", 1e-13), ("dop853", 1e-14)):
+        best, sol = math.inf, None
+        for _ in range(3):
+            start = time.perf_counter()
+            sol = integrate(model, y0, t, method=method, rtol=rtol, atol=rtol * 1e-3)
+            best = min(best, time.perf_counter() - start)
+        energy = kepler.energy(sol.y[:, 0], sol.y[:, 1], sol.y[:, 2], sol.y[:, 3], 1.0, 1.0)
+        rows.append({"method": f"{method} rtol {rtol:.0e}", "error": float(
+            np.max(np.abs(energy / e0 - 1))), "wall_time_s": best})
+    try:
+        import rebound
+    except ImportError:
+        rebound = None
+        print("  REBOUND not installed (pip install 'reportgen[rebound]'): no peer baseline")
+    if rebound is not None:
+        for integrator in ("ias15", "whfast"):
+            best, error = math.inf, math.nan
+            for _ in range(3):
+                sim = rebound.Simulation()
+                sim.add(m=1.0)
+                sim.add(m=1e-12, a=1.0, e=e)  # a test particle; nonzero so sim.energy() ≠ 0
+                sim.integrator = integrator
+                if integrator == "whfast":
+                    sim.dt = period / 1000
+                sim.move_to_com()
+                start_energy = sim.energy()
+                worst = 0.0
+                start = time.perf_counter()
+                for tt in t[1:]:
+                    sim.integrate(tt, exact_finish_time=integrator == "ias15")
+                    worst = max(worst, abs(sim.energy() / start_energy - 1))
+                best, error = min(best, time.perf_counter() - start), worst
+            rows.append({"method": f"REBOUND {integrator.upper()}", "error": error,
+                         "wall_time_s": best})
+    ias = next((r for r in rows if r["method"] == "REBOUND IAS15"), None)
+    for r in rows:
+        ratio = (f"  {ias['wall_time_s'] / r['wall_time_s']:5.2f}× IAS15's speed"
+                 if ias is not None else "")
+        met = "meets" if r["error"] <= target else "misses"
+        print(f"  {r['method']:<22} |ΔE/E| {r['error']:.1e} ({met} target) in "
+              f"{r['wall_time_s']:.3f} s{ratio}")
+    return {"rows": rows}
+
+
 def _plot_long_run(periods, rel_error, method, out_dir: Path) -> Path:
     from .fsutil import atomic_write
     from .plots.style import new_figure
@@ -154,4 +217,5 @@ def run_bench(paths: list[str], out_dir: str = "output/bench", long_run: bool = 
         scene_bench(scene, print=print)
     if long_run:
         long_time_energy(out_dir=Path(out_dir), print=print)
+        kepler_against_rebound(print=print)
     return 0
