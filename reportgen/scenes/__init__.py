@@ -9,9 +9,11 @@ from __future__ import annotations
 from ..config import ConfigError, SourceConfig
 from .base import Scene
 from .central_force import CentralForceScene
+from .inertia import InertiaScene
 from .normal_modes import NormalModesScene
 from .oscillator import OscillatorScene
 from .pendulum import PendulumScene
+from .rigid_body import RigidBodyScene
 from .three_body import ThreeBodyScene
 from .two_center import TwoCenterScene
 
@@ -20,6 +22,8 @@ KINDS: dict[str, type[Scene]] = {
     for cls in (
         PendulumScene,
         OscillatorScene,
+        RigidBodyScene,
+        InertiaScene,
         CentralForceScene,
         ThreeBodyScene,
         TwoCenterScene,
