@@ -9,6 +9,7 @@ from __future__ import annotations
 from ..config import ConfigError, SourceConfig
 from .base import Scene
 from .central_force import CentralForceScene
+from .heavy_top import HeavyTopScene
 from .inertia import InertiaScene
 from .normal_modes import NormalModesScene
 from .oscillator import OscillatorScene
@@ -22,6 +23,7 @@ KINDS: dict[str, type[Scene]] = {
     for cls in (
         PendulumScene,
         OscillatorScene,
+        HeavyTopScene,
         RigidBodyScene,
         InertiaScene,
         CentralForceScene,

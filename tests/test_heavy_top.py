@@ -1,0 +1,302 @@
+"""Heavy symmetric top against its closed form (lecture notes §10.1, eqs. 10.21-10.50;
+Goldstein 3rd ed. §5.7, eqs. 5.62-5.73; FIELD-NOTES "Heavy top").
+
+References checked here:
+- f(u) = (1 − u²)(α − βu) − (b − au)² = β(u − u1)(u2 − u)(u3 − u)   (10.31; Goldstein 5.71)
+- T = 4K(k²)/√(β(u3 − u1)), k² = (u2 − u1)/(u3 − u1)                (FIELD-NOTES; Goldstein 5.72)
+- Δφ per period = ∮ (b − au)/(1 − u²) dt                               (10.26)
+- u(t) = u1 + (u2 − u1) sn²(½√(β(u3 − u1)) t + τ0 | k²)               (Goldstein ex. 4.10)
+- steady precession I1 cos θ φ̇² − I3ω3 φ̇ + Mgl = 0 and (10.46)        (10.45-10.46)
+- sleeping top stable iff I3²ω3² > 4 I1 Mgl                            (10.49-10.50)
+"""
+
+from __future__ import annotations
+
+import math
+import textwrap
+
+import numpy as np
+import pytest
+from scipy import integrate as sp_integrate
+from scipy import special
+
+from reportgen.archive import read_archive
+from reportgen.config import ConfigError, parse_config_text
+from reportgen.core.integrators import integrate
+from reportgen.core.models import heavy_top as core
+from reportgen.scenes import load_scene
+
+I1, I3, MGL = 1.0, 0.5, 1.0  # the SPEC example top; sleeping threshold ω3 = 4 rad/s
+
+
+def top_text(theta=1.0, theta_dot=0.0, phi_dot=1.5, omega3=6.0, t_end=30.0, samples=3000,
+             study="false", extra=""):
+    phi = "" if phi_dot is None else f"phi_dot = {phi_dot!r}"
+    return textwrap.dedent(f"""
+        kind = "heavy_top"
+        title = "test top"
+
+        [params]
+        I1 = {I1}
+        I3 = {I3}
+        Mgl = {MGL}
+
+        [initial]
+        theta = {theta!r}
+        theta_dot = {theta_dot!r}
+        {phi}
+        omega3 = {omega3!r}
+
+        [run]
+        t_end = {t_end}
+        samples = {samples}
+        study = {study}
+        """) + textwrap.dedent(extra)
+
+
+def scene(text):
+    return load_scene(parse_config_text(text))
+
+
+# states: (θ0, θ̇0, φ̇0, ω3) covering loops, waves, cusps, a moving start, a top passing close
+# to the vertical, nearly sleeping tops on both sides of the threshold, and a steady top
+STATES = {
+    "loops (SPEC example)": (1.0, 0.0, 1.5, 6.0),
+    "waves": (1.0, 0.0, 0.2, 6.0),
+    "cusps": (1.0, 0.0, 0.0, 6.0),
+    "moving start": (0.7, -0.9, 0.4, 5.0),
+    "near the vertical": (0.3, 0.5, 3.0, 12.0),
+    "sleeping, stable, tilt 1e-6": (1e-6, 0.0, 0.0, 6.0),
+    "sleeping, unstable, tilt 1e-6": (1e-6, 0.0, 0.0, 2.8),
+}
+
+
+def closed(state):
+    c = core.constants(I1, I3, MGL, *state)
+    return c, core.roots(c)
+
+
+@pytest.mark.parametrize("name", STATES)
+def test_cubic_factorizes_with_ordered_roots(name):
+    # (10.31): f(u) = β(u − u1)(u2 − u)(u3 − u) with u1 ≤ cos θ0 ≤ u2 ≤ 1 < u3
+    c, r = closed(STATES[name])
+    assert r.u1 <= math.cos(STATES[name][0]) * (1 + 1e-15) + 1e-15
+    assert math.cos(STATES[name][0]) <= r.u2 + 1e-15 and r.u2 <= 1.0 < r.u3
+    u = np.linspace(-1.0, 1.0, 41)
+    scale = c.beta * (1 + abs(r.u3)) * 4 + (abs(c.b) + abs(c.a)) ** 2
+    assert np.max(np.abs(core.f_u(u, c) - c.beta * (u - r.u1) * (r.u2 - u) * (r.u3 - u))) \
+        <= 1e-13 * scale
+    # in w = 1 − u the small roots keep their relative accuracy: g(w_i) ≈ 0 to rounding
+    for w in (r.w1, r.w2):
+        h = max(w, 1e-300) * 1e-9
+        assert abs(core.g_w(w, c)) <= abs(core.g_w(w + h, c) - core.g_w(w - h, c)) + 1e-300
+
+
+@pytest.mark.parametrize("name", STATES)
+def test_period_and_precession_closed_form_vs_quadrature(name):
+    c, r = closed(STATES[name])
+    T, dphi = core.nutation_period(r, c), core.precession_per_period(r, c)
+    # closed form (Carlson R_F, R_J) vs adaptive quadrature of ∮du/√f and ∮φ̇ du/√f (10.26)
+    assert abs(T / core.nutation_period_quadrature(r, c) - 1) <= 1e-9
+    assert abs(dphi / core.precession_quadrature(r, c) - 1) <= 1e-9
+    if r.mc > 1e-6:  # scipy's ellipk, a third, independent K: T = 4K(k²)/√(β(u3 − u1))
+        assert abs(T / (4 * special.ellipk(r.m) / math.sqrt(c.beta * (r.u3 - r.u1))) - 1) <= 1e-12
+
+
+def test_precession_quadrature_in_time_by_direct_integration_of_phi_dot():
+    # Δφ as ∫ φ̇ dt of the ODE u̇ = ±√f, φ̇ = (b − au)/(1 − u²) (10.26), by solve_ivp over
+    # one period of the sn² solution: independent of both the Π form and the χ substitution
+    c, r = closed(STATES["loops (SPEC example)"])
+    T = core.nutation_period(r, c)
+    t = np.linspace(0.0, T, 20001)
+    _w, u = core.u_closed_form(t, r, c)
+    phi_dot = (c.b - c.a * u) / (1 - u**2)
+    dphi = sp_integrate.simpson(phi_dot, x=t)
+    assert abs(dphi / core.precession_per_period(r, c) - 1) <= 1e-9
+
+
+@pytest.mark.parametrize("preset,case", [("fig4.3a", "loops"), ("fig4.3b", "waves"),
+                                         ("fig4.3c", "cusps")])
+def test_fig43_presets_measured_against_closed_form(preset, case):
+    s = scene(f'kind = "heavy_top"\npreset = "{preset}"\n[run]\nt_end = 30.0\nstudy = false\n')
+    results = s.simulate()
+    a, run = results.analysis, results.runs["main"]
+    assert a["case"] == case
+    for col in ("theta", "phi", "psi", "axis_x", "axis_y", "axis_z"):  # SPEC archive columns
+        assert col in run.columns
+    for key in ("u1", "u2", "nutation_period", "precession_per_period", "case",
+                "sleeping_threshold_omega3"):
+        assert key in a
+    # period and precession measured from θ(t), φ(t) of the quaternion integration
+    assert abs(a["nutation_period_measured"] / a["nutation_period"] - 1) <= 1e-6
+    assert abs(a["precession_measured"] / a["precession_per_period"] - 1) <= 1e-6
+    # closed-form u(t) in Jacobi sn² against the integrated axis
+    assert a["u_max_error"] <= 1e-9
+    # the axis stays between the turning circles θ1 = arccos u2, θ2 = arccos u1
+    assert np.all(run["theta"] >= a["theta1"] - 1e-9) and np.all(run["theta"] <= a["theta2"] + 1e-9)
+    # the derived axis is (sin θ sin φ, −sin θ cos φ, cos θ) (Goldstein eq. 4.46, z-x-z)
+    th, ph = run["theta"], run["phi"]
+    assert np.max(np.abs(run["axis_x"] - np.sin(th) * np.sin(ph))) <= 1e-12
+    assert np.max(np.abs(run["axis_y"] + np.sin(th) * np.cos(ph))) <= 1e-12
+    assert results.status == "ok" and run.status == "ok"
+    # loops: φ̇ changes sign; waves: never; cusps: touches zero on the upper circle
+    phid = run["phi_dot"]
+    if case == "loops":
+        assert phid.min() < -0.1 and phid.max() > 0.1
+    elif case == "waves":
+        assert phid.min() > 0.0
+    else:
+        assert phid.min() >= -1e-6 and phid.min() <= 1e-3
+
+
+def test_classification_near_each_boundary():
+    # released with θ̇0 = 0 at θ0: φ̇0 = 0 is the top turning point with b/a = u2 (cusps);
+    # φ̇0 = β/a makes the *upper* circle have φ̇ = 0 for a start on the lower one:
+    # α = βc and b = ac with c = b/a give a φ̇0² sin² = β φ̇0 sin² (from (10.25), (10.30))
+    a = I3 * 6.0 / I1
+    beta = 2 * MGL / I1
+    for phi_dot, expected in [(0.0, "cusps"), (1e-6, "waves"), (-1e-6, "loops"),
+                              (1e-8, "waves"), (-1e-8, "loops"),
+                              (beta / a, "cusps"), (beta / a * (1 + 1e-6), "loops"),
+                              (beta / a * (1 - 1e-6), "waves")]:
+        c, r = closed((1.0, 0.0, phi_dot, 6.0))
+        assert core.classify(r, c) == expected, (phi_dot, expected)
+    # the steady rates (10.45) give no nutation
+    slow, fast = core.steady_precession_rates(I1, I3, MGL, 1.0, 6.0)
+    for rate in (slow, fast):
+        assert core.classify(*reversed(closed((1.0, 0.0, rate, 6.0)))) == "steady"
+        # ... and a start 1e-6 off the steady rate nutates (slightly), with a period close
+        # to the small-oscillation limit 2π/√(β(u3 − u1)) of the steady top
+        c, r = closed((1.0, 0.0, rate * (1 + 1e-6), 6.0))
+        assert core.classify(r, c) in ("loops", "waves")
+        c0, r0 = closed((1.0, 0.0, rate, 6.0))
+        assert core.nutation_period(r, c) == pytest.approx(
+            2 * math.pi / math.sqrt(c0.beta * (r0.u3 - r0.u1)), rel=1e-5)
+
+
+def test_sleeping_top_exactly_vertical_runs_without_nan():
+    for omega3, stable in ((6.0, True), (2.8, False)):
+        s = scene(top_text(theta=0.0, phi_dot=0.0, omega3=omega3, t_end=20.0, samples=401))
+        results = s.simulate()
+        run, a = results.runs["main"], results.analysis
+        assert np.all(np.isfinite(run.y))
+        assert np.max(run["theta"]) == 0.0 and np.all(run["axis_z"] == 1.0)
+        assert a["case"] == "sleeping" and a["sleeping_stable"] is stable
+        if stable:  # small-oscillation limit 2π/√(a² − 2β) of the linearised (10.47-10.48)
+            aa, beta = I3 * omega3 / I1, 2 * MGL / I1
+            assert a["nutation_period"] == pytest.approx(2 * math.pi / math.sqrt(aa**2 - 2 * beta),
+                                                         rel=1e-13)
+        else:
+            assert math.isnan(a["nutation_period"])
+        # on the vertical the rotation is all spin: φ stays 0, ψ advances at ω3
+        assert np.all(run["phi"] == 0.0)
+        assert abs((run["phi"][-1] + run["psi"][-1]) - omega3 * 20.0) <= 1e-9 * omega3 * 20
+
+
+def test_sleeping_sweep_small_tilt_stays_small_above_threshold_grows_below():
+    text = top_text(theta=1e-6, phi_dot=0.0, omega3=6.0, t_end=5.0, samples=201, extra="""
+        [sleeping]
+        tilt = 1e-6
+        omega3_over_threshold = [0.5, 0.9, 1.1, 2.0]
+        t_end = 60.0
+        """)
+    results = scene(text).simulate()
+    a = results.analysis
+    # (10.50): ω3² = 4 I1 Mgl / I3²
+    assert a["sleeping_threshold_omega3"] == pytest.approx(math.sqrt(4 * I1 * MGL / I3**2),
+                                                           rel=1e-15)
+    sw = a["sleeping_sweep"]
+    for ratio, tmax in zip(sw["omega3_over_threshold"], sw["theta_max"], strict=True):
+        if ratio > 1:
+            assert tmax < 1e-5, (ratio, tmax)
+        else:
+            assert tmax > 0.5, (ratio, tmax)
+    # the early exponential growth matches the linear rate ½√(2β − a²) (10.48)
+    t, th = sw["t"], sw["theta"][0]
+    first_rise = np.arange(t.size) < np.argmax(th > 1e-2)
+    window = first_rise & (th > 1e-4)
+    slope = np.polyfit(t[window], np.log(th[window]), 1)[0]
+    assert slope == pytest.approx(sw["growth_rate"][0], rel=0.02)
+
+
+def test_steady_precession_keeps_theta_and_rate():
+    for which in ("slow", "fast"):
+        text = top_text(phi_dot=None, t_end=10.0, samples=1001).replace(
+            "omega3 = 6.0", f'omega3 = 6.0\nsteady = "{which}"')
+        results = scene(text).simulate()
+        run, a = results.runs["main"], results.analysis
+        rate = a[f"steady_rate_{which}"]
+        # (10.45): I1 cos θ φ̇² − I3 ω3 φ̇ + Mgl = 0
+        assert abs(I1 * math.cos(1.0) * rate**2 - I3 * 6.0 * rate + MGL) <= 1e-13 * (I3 * 6 * rate)
+        assert a["case"] == "steady"
+        assert np.max(np.abs(run["theta"] - 1.0)) <= 1e-9
+        assert abs(a["mean_phi_dot"] / rate - 1) <= 1e-9
+
+
+@pytest.mark.parametrize("change,keys", [
+    ({"I3 = 0.5": "I3 = 2.5"}, "params.I3"),
+    ({"theta = 1.0": "theta = 3.5"}, "initial.theta"),
+    ({"omega3 = 6.0": "omega3 = 0.0", "phi_dot = 1.5": "phi_dot = 0.0"}, "initial.omega3"),
+    ({"phi_dot = 1.5": 'phi_dot = 1.5\nsteady = "slow"'}, "initial.phi_dot / initial.steady"),
+    ({"phi_dot = 1.5": 'steady = "slow"', "omega3 = 6.0": "omega3 = 1.0"},
+     "initial.omega3 / initial.steady"),  # (10.46) fails
+    ({"theta = 1.0": "theta = 0.0"}, "initial.phi_dot"),
+    ({"study = false": 'study = false\n[report]\nsections = ["polhode"]'}, "report.sections"),
+])
+def test_bad_input_is_an_error_naming_the_keys(change, keys):
+    text = top_text()
+    for old, new in change.items():
+        text = text.replace(old, new)
+    with pytest.raises(ConfigError) as exc:
+        scene(text)
+    assert keys in str(exc.value)
+
+
+def test_expect_case_must_match_the_parameters():
+    text = 'kind = "heavy_top"\npreset = "fig4.3a"\n[initial]\nphi_dot = 0.2\n'
+    with pytest.raises(ConfigError) as exc:
+        scene(text)
+    assert "expect_case" in str(exc.value) and "waves" in str(exc.value)
+
+
+def test_quaternion_euler_angles_round_trip():
+    rng = np.random.default_rng(3)
+    for _ in range(20):
+        phi, theta, psi = rng.uniform(-3, 3), rng.uniform(0.01, 3.1), rng.uniform(-3, 3)
+        q = core.euler_to_quaternion(phi, theta, psi)[None, :]
+        th, ph, ps = core.euler_angles(q)
+        assert th[0] == pytest.approx(theta, abs=1e-13)
+        # φ, ψ modulo 2π
+        assert math.remainder(ph[0] - phi, 2 * math.pi) == pytest.approx(0.0, abs=1e-12)
+        assert math.remainder(ps[0] - psi, 2 * math.pi) == pytest.approx(0.0, abs=1e-12)
+        e3 = core.symmetry_axis(q)[0]
+        assert np.allclose(e3, [math.sin(theta) * math.sin(phi), -math.sin(theta) * math.cos(phi),
+                                math.cos(theta)], atol=1e-14)
+
+
+def test_integration_conserves_energy_and_momenta():
+    y0 = core.initial_state(0.7, -0.9, 0.4, 5.0)
+    t = np.linspace(0.0, 20.0, 401)
+    sol = integrate(core.model(I1, I3, MGL), y0, t, method="dop853", rtol=1e-12, atol=1e-14)
+    inv = core.invariants(sol.y, I1, I3, MGL)
+    c = core.constants(I1, I3, MGL, 0.7, -0.9, 0.4, 5.0)
+    # E' = I1 α/2 and p_φ = I1 b (10.25, 10.30) from the Euler-angle initial state
+    assert inv["energy"][0] == pytest.approx(0.5 * I1 * c.alpha + 0.5 * I3 * 25.0, rel=1e-14)
+    assert inv["p_phi"][0] == pytest.approx(I1 * c.b, rel=1e-14)
+    for values in inv.values():
+        assert np.max(np.abs(values - values[0])) <= 1e-10 * max(1.0, abs(values[0]))
+
+
+def test_cli_run_writes_archive_per_spec_with_study(write_config, cli, tmp_path):
+    cfg = write_config("top", 'kind = "heavy_top"\npreset = "fig4.3c"\n'
+                              '[run]\nt_end = 6.0\nsamples = 600\n')
+    code, _out, err = cli("run", cfg, "--out", tmp_path / "o", "--jobs", 1, "--format", "html")
+    assert code == 0, err
+    data = read_archive(tmp_path / "o" / "top" / "run.h5")
+    a = data.analysis
+    assert a["case"] == "cusps"
+    assert set(data.runs["main"].invariants) == {"energy", "p_phi", "p_psi"}
+    assert data.study is not None and len(data.study) > 0
+    assert abs(a["nutation_period_measured"] / a["nutation_period"] - 1) <= 1e-6
+    html = (tmp_path / "o" / "top" / "report.html").read_text()
+    assert "Nutation locus" in html and "Steady precession" not in html
