@@ -23,13 +23,13 @@ KINDS: dict[str, type[Scene]] = {
     for cls in (
         PendulumScene,
         OscillatorScene,
-        HeavyTopScene,
-        RigidBodyScene,
-        InertiaScene,
         CentralForceScene,
         ThreeBodyScene,
         TwoCenterScene,
+        RigidBodyScene,
+        HeavyTopScene,
         NormalModesScene,
+        InertiaScene,
     )
 }
 
