@@ -104,6 +104,24 @@ class CentralForceScene(Scene):
         Section("error_vs_runtime", "Error against run time", integrates=True),
     )
 
+    @classmethod
+    def audit_cases(cls):
+        from ..audit import AuditCase
+
+        def kepler(e, orbits):
+            # μ = 1, k = 1: GM = 1, a = 1, period 2π; start at pericentre a(1 − e)
+            return AuditCase(
+                name=f"Kepler orbit, e = {e}", methods=("dop853", "yoshida8", "gauss6"),
+                what=f"pericentre speed √((1 + e)/(1 − e)) = {math.sqrt((1 + e) / (1 - e)):.3g}: "
+                     f"time scales {(1 - e) ** 1.5:.1e} of the period at pericentre",
+                config={"kind": "central_force", "title": f"Kepler e = {e}",
+                        "params": {"m1": 2.0, "m2": 2.0, "k": 1.0},
+                        "initial": {"x": 1.0 - e, "y": 0.0, "vx": 0.0,
+                                    "vy": math.sqrt((1 + e) / (1 - e))},
+                        "run": {"t_end": orbits * 2 * math.pi, "samples": 20001}})
+
+        return [kepler(0.99, 3), kepler(0.999, 2)]
+
     # ------------------------------------------------------------------ helpers
     @property
     def mu(self) -> float:

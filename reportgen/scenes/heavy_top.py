@@ -198,6 +198,15 @@ class HeavyTopScene(Scene):
                  {"theta": 1.0, "theta_dot": 0.0, "phi_dot": 0.0, "omega3": 200.0}, 20.0,
                  40001, "nutation 60 ms and 1e-4 rad against a precession of ~60 s: two "
                         "widely separated time scales over ~300 nutation periods"),
+            case("top just above its sleeping threshold, tilted 1e-6",
+                 {"theta": 1e-6, "theta_dot": 0.0, "phi_dot": 0.0,
+                  "omega3": 1.02 * 2.0 * math.sqrt(_TOP["I1"] * _TOP["Mgl"]) / _TOP["I3"]},
+                 100.0, 5001, "2 % above I3²ω3² = 4 I1 Mgl: the tilt must stay small, but the "
+                 "nutation is slow and nearly degenerate"),
+            case("top just below its sleeping threshold, tilted 1e-6",
+                 {"theta": 1e-6, "theta_dot": 0.0, "phi_dot": 0.0,
+                  "omega3": 0.98 * 2.0 * math.sqrt(_TOP["I1"] * _TOP["Mgl"]) / _TOP["I3"]},
+                 100.0, 5001, "2 % below the threshold: a 1e-6 tilt grows to order one"),
         ]
 
     def default_sections(self):

@@ -289,9 +289,10 @@ class NormalModesScene(Scene):
         from ..audit import AuditCase
 
         return [AuditCase(
-            name="normal modes: frequency ratio 10³",
-            what="heavy mass on a soft spring, light mass on a stiff one (ω ≈ 1 and 1000): "
-                 "explicit steps are bounded by the fast mode over many slow periods",
+            name="normal modes: stiffness ratio 10⁴ (frequency ratio 10³)",
+            what="heavy mass on a soft spring (k = 1), light mass on a stiff one (k = 10⁴; "
+                 "ω ≈ 1 and 1000): explicit steps are bounded by the fast mode over many slow "
+                 "periods",
             methods=("dop853", "rk4"),
             config={"kind": "normal_modes", "title": "normal modes: frequency ratio 10³",
                     "M": [[1.0, 0.0], [0.0, 0.01]],

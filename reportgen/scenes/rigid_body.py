@@ -167,6 +167,21 @@ class RigidBodyScene(Scene):
         Section("error_vs_runtime", "Error against run time", integrates=True),
     )
 
+    @classmethod
+    def audit_cases(cls):
+        from ..audit import AuditCase
+
+        # I = (1, 2, 3): L² = 2E·I2 when I1ω1²(I1 − I2) + I3ω3²(I3 − I2) = 0, i.e. ω1 = √3 ω3
+        return [AuditCase(
+            name="rigid body on the intermediate-axis separatrix",
+            what="L² = 2E·I2 (to rounding): the elliptic parameter is 1, the motion creeps "
+                 "towards the unstable intermediate axis and the exact solution degenerates",
+            methods=("dop853", "gauss6"),
+            config={"kind": "rigid_body", "title": "separatrix",
+                    "params": {"I1": 1.0, "I2": 2.0, "I3": 3.0},
+                    "initial": {"omega": [math.sqrt(3.0), 0.0, 1.0]},
+                    "run": {"t_end": 30.0, "samples": 3001}})]
+
     def default_sections(self):
         names = [s.name for s in self.sections]
         if self.symmetric is None:

@@ -136,6 +136,17 @@ class ThreeBodyScene(Scene):
         Section("error_vs_runtime", "Error against run time", integrates=True),
     )
 
+    @classmethod
+    def audit_cases(cls):
+        from ..audit import AuditCase
+
+        return [AuditCase(
+            name="Pythagorean three-body problem to t = 70",
+            what="masses 3, 4, 5 from rest: close encounters down to ~1e-4 before a binary "
+                 "forms and the lightest body escapes (Szebehely & Peters 1967)",
+            methods=("dop853", "gauss6"),
+            config={"kind": "three_body", "title": "Pythagorean", "preset": "pythagorean"})]
+
     @property
     def masses(self) -> np.ndarray:
         return np.asarray(self.config.params.masses, dtype=np.float64)
