@@ -28,10 +28,16 @@ def relative_orbit(x, y, *, reference=None, pericentres=None, lrl=None, length_u
     if pericentres is not None and len(pericentres[0]):
         ax.plot(pericentres[0], pericentres[1], marker="v", color=SEPARATRIX, ms=6, ls="none",
                 label="pericentre passages")
-    if lrl is not None:
-        ax.annotate("", xy=lrl, xytext=(0.0, 0.0),
-                    arrowprops={"arrowstyle": "-|>", "color": REFERENCE, "lw": 1.5})
-        ax.plot([], [], color=REFERENCE, lw=1.5, label="LRL vector A/(μk) = e")
+    if lrl is not None and np.hypot(*lrl) > 0:
+        # A points from the focus to the pericentre; its length e is a number, not a
+        # distance, so the arrow is drawn to the pericentre and the length is in the label
+        e = float(np.hypot(*lrl))
+        r_min = float(np.min(np.hypot(x, y)))
+        tip = np.asarray(lrl, dtype=float) / e * r_min
+        ax.annotate("", xy=tip, xytext=(0.0, 0.0), annotation_clip=False,
+                    arrowprops={"arrowstyle": "-|>", "color": SEPARATRIX, "lw": 2.0})
+        ax.plot([], [], color=SEPARATRIX, lw=2.0,
+                label=f"LRL direction (|A|/μk = e = {e:.4g})")
     _equal_box(ax, length_unit)
     ax.legend(loc="best")
     return fig

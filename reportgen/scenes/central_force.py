@@ -368,8 +368,8 @@ class CentralForceScene(Scene):
         caption = "The relative orbit r(t) = r1 − r2 (3.21)."
         if lrl is not None:
             caption += (" Dashed: the exact ellipse from Kepler's equation; arrow: the "
-                        "Laplace–Runge–Lenz vector scaled to a e (from the focus towards the "
-                        "pericentre, length = centre-to-focus distance).")
+                        "direction of the Laplace–Runge–Lenz vector, from the focus to the "
+                        "pericentre (its length |A|/μk = e is given in the legend).")
         elif peri is not None:
             caption += " Triangles: pericentre passages, advancing by twice the apsidal angle."
         return SectionContent(figures=[self.figure("orbit", fig, caption)])
