@@ -14,7 +14,7 @@ def _circle_on_sphere(theta, n=361):
     return np.sin(theta) * np.cos(phi), np.sin(theta) * np.sin(phi), np.full(n, np.cos(theta))
 
 
-def nutation_locus(axis, theta, *, theta1, theta2, figsize=(12.0, 5.0)):
+def nutation_locus(axis, theta, *, theta1, theta2, figsize=(8.6, 5.0)):
     """The path of the symmetry axis on the unit sphere: 3-D view and flat projection.
 
     Parameters
@@ -27,6 +27,7 @@ def nutation_locus(axis, theta, *, theta1, theta2, figsize=(12.0, 5.0)):
         Turning circles θ1 = arccos u2 ≤ θ2 = arccos u1 [rad] (NaN: not drawn).
     """
     fig = Figure(figsize=figsize, layout="constrained")
+    fig.get_layout_engine().set(w_pad=0.15, wspace=0.12)  # room for the 3-D z label
     ax3 = fig.add_subplot(1, 2, 1, projection="3d")
     ax2 = fig.add_subplot(1, 2, 2)
     # 3-D: light sphere, turning circles, the locus
@@ -62,7 +63,8 @@ def nutation_locus(axis, theta, *, theta1, theta2, figsize=(12.0, 5.0)):
     ax2.set_xlabel("θ sin φ [rad]")
     ax2.set_ylabel("−θ cos φ [rad]")
     ax2.set_title("projection (radius = θ)")
-    ax2.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8)
+    fig.legend(*ax2.get_legend_handles_labels(), loc="outside lower center", ncol=2, fontsize=9,
+               frameon=False)
     return fig
 
 
@@ -181,7 +183,8 @@ def sleeping_sweep(t, theta, ratios, *, theta_max, figsize=(11.0, 4.6)):
     ax2.set_xlabel("ω3 / ω3,threshold")
     ax2.set_ylabel("largest tilt θmax [rad]")
     ax2.set_title("unstable (red) below, stable (blue) above")
-    ax2.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8)
+    fig.legend(*ax2.get_legend_handles_labels(), loc="outside lower center", ncol=2, fontsize=9,
+               frameon=False)
     return fig
 
 
