@@ -9,6 +9,7 @@ from __future__ import annotations
 from ..config import ConfigError, SourceConfig
 from .base import Scene
 from .central_force import CentralForceScene
+from .fput import FputScene
 from .heavy_top import HeavyTopScene
 from .inertia import InertiaScene
 from .normal_modes import NormalModesScene
@@ -29,6 +30,7 @@ KINDS: dict[str, type[Scene]] = {
         RigidBodyScene,
         HeavyTopScene,
         NormalModesScene,
+        FputScene,
         InertiaScene,
     )
 }
