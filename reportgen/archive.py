@@ -1,15 +1,20 @@
 """The HDF5 archive: the only module that touches h5py.
 
-Layout (``format_version`` 1, see SPEC.md "Archive")::
+Layout (``format_version`` 2, see SPEC.md "Archive")::
 
     /                         attrs: format, format_version, kind, title, config_sha256,
-                                     created, reportgen_version, scene, status, message,
-                                     wall_time_s
+                                     physics_key, created, reportgen_version, scene,
+                                     status, message, wall_time_s
     /config                   scalar string: the TOML text exactly as given
+    /config_resolved          scalar string: the validated config, presets and defaults
+                              filled in, as JSON (what the report step reads)
     /provenance               attrs: python, numpy, scipy, h5py, matplotlib, numba, platform
-    /runs/<name>/t            (N,) float64
-    /runs/<name>/y            (N, d) float64, attr columns
-    /runs/<name>/invariants/<q>  (N,) float64
+    /runs/<name>/t            (N,) float64, dimension scale ``t``
+    /runs/<name>/component    (d,) strings, dimension scale: the state components' names
+    /runs/<name>/y            (N, d) float64, dims (t, component), attr columns
+    /runs/<name>/invariants/<q>  (N,) float64, also linked as /runs/<name>/<q> (dim t)
+    /runs/<name>/reference/<c>   (N,) float64: exact or reference solution of column c,
+                              also linked as /runs/<name>/reference_<c>
     /analysis                 attrs (scalars, strings) and datasets (arrays); sub-dicts are groups
     /checks                   table: quantity, value, reference, abs_error, rel_error, unit, source
     /study/error_vs_runtime   table (one row per method x tolerance), attrs reference_kind
@@ -22,10 +27,9 @@ archive being replaced is first kept as ``<name>.prev.h5``.
 
 from __future__ import annotations
 
+import json
 import math
-import os
-import platform
-import sys
+import shutil
 from dataclasses import dataclass, field
 from datetime import UTC, datetime
 from pathlib import Path
@@ -35,20 +39,44 @@ import h5py
 import numpy as np
 
 from . import __version__
-from .fsutil import fsync_path, temp_name
+from .fsutil import install, temp_name
+from .h5io import (
+    STR,
+    ArchiveError,
+    attr_value,
+    dataset,
+    decode,
+    provenance,
+    read_mapping,
+    read_table,
+    table,
+    write_mapping,
+)
 from .results import Check, Results, RunRecord
 
 FORMAT = "reportgen"
-FORMAT_VERSION = 1
-_STR = h5py.string_dtype("utf-8")
+FORMAT_VERSION = 2
+#: oldest format this reader opens (1: no dimension scales, no resolved config)
+OLDEST_READABLE = 1
 
 
-#: audit drift series are stored at most this long (decimated evenly)
-AUDIT_SERIES_POINTS = 2000
+class ConfigView(dict):
+    """The resolved config as nested dicts that also read as attributes:
+    ``data.config.params.g`` or ``data.config["params"]["g"]``."""
 
+    def __getattr__(self, key: str):
+        try:
+            return self[key]
+        except KeyError:
+            raise AttributeError(key) from None
 
-class ArchiveError(Exception):
-    """An archive that cannot be read: names the file and what is wrong."""
+    @classmethod
+    def of(cls, value):
+        if isinstance(value, dict):
+            return cls({k: cls.of(v) for k, v in value.items()})
+        if isinstance(value, list):
+            return [cls.of(v) for v in value]
+        return value
 
 
 @dataclass
@@ -59,6 +87,8 @@ class ArchiveData:
     attrs: dict[str, Any]
     config_text: str
     provenance: dict[str, str]
+    #: the validated config with presets and defaults (format 2; {} for format 1)
+    config: ConfigView = field(default_factory=ConfigView)
     runs: dict[str, RunRecord] = field(default_factory=dict)
     analysis: dict[str, Any] = field(default_factory=dict)
     checks: list[Check] = field(default_factory=list)
@@ -77,77 +107,16 @@ class ArchiveData:
     def message(self) -> str:
         return str(self.attrs.get("message", ""))
 
+    @property
+    def title(self) -> str:
+        return str(self.attrs.get("title", ""))
+
+    @property
+    def format_version(self) -> int:
+        return int(self.attrs.get("format_version", 1))
+
 
 # ------------------------------------------------------------------- writing
-def provenance() -> dict[str, str]:
-    import matplotlib
-    import numba
-    import scipy
-
-    return {
-        "python": sys.version.split()[0],
-        "numpy": np.__version__,
-        "scipy": scipy.__version__,
-        "h5py": h5py.__version__,
-        "hdf5": h5py.version.hdf5_version,
-        "matplotlib": matplotlib.__version__,
-        "numba": numba.__version__,
-        "platform": platform.platform(),
-    }
-
-
-def _array(group: h5py.Group, name: str, data) -> h5py.Dataset:
-    data = np.asarray(data)
-    if data.dtype.kind in "US":
-        data = data.astype(object)
-    if data.dtype == object:
-        return group.create_dataset(name, data=data, dtype=_STR)
-    if data.ndim == 0 or data.size == 0:
-        return group.create_dataset(name, data=data)
-    return group.create_dataset(
-        name, data=data, chunks=True, fletcher32=True, shuffle=True, compression="gzip",
-        compression_opts=4,
-    )
-
-
-def _attr_value(value):
-    if isinstance(value, str):
-        return value
-    if isinstance(value, (bool, np.bool_)):
-        return np.bool_(value)
-    if isinstance(value, (list, tuple)) and value and all(isinstance(v, str) for v in value):
-        return np.array(value, dtype=_STR)
-    return value
-
-
-def _write_mapping(group: h5py.Group, mapping: dict[str, Any]) -> None:
-    """Scalars and strings become attrs, arrays datasets, dicts subgroups."""
-    for key, value in mapping.items():
-        if isinstance(value, dict):
-            _write_mapping(group.create_group(key), value)
-        elif isinstance(value, np.ndarray) or (
-            isinstance(value, (list, tuple)) and not all(isinstance(v, str) for v in value)
-        ):
-            _array(group, key, value)
-        else:
-            group.attrs[key] = _attr_value(value)
-
-
-def _table(group: h5py.Group, name: str, records: np.ndarray) -> h5py.Dataset:
-    """A structured array as a compound dataset; string fields become UTF-8 strings."""
-    fields = []
-    for fname in records.dtype.names:
-        kind = records.dtype[fname].kind
-        fields.append((fname, _STR if kind in "OUS" else records.dtype[fname]))
-    dtype = np.dtype(fields)
-    table = np.empty(records.shape, dtype=dtype)
-    for fname in records.dtype.names:
-        col = records[fname]
-        table[fname] = col.astype(str).astype(object) if col.dtype.kind in "OUS" else col
-    return group.create_dataset(name, data=table, chunks=True if table.size else None,
-                                fletcher32=bool(table.size))
-
-
 def _checks_records(checks: list[Check]) -> np.ndarray:
     dtype = [("quantity", object), ("value", "f8"), ("reference", "f8"), ("scale", "f8"),
              ("abs_error", "f8"), ("rel_error", "f8"), ("unit", object), ("source", object)]
@@ -159,7 +128,8 @@ def _checks_records(checks: list[Check]) -> np.ndarray:
 
 
 def write_archive(path: Path, *, kind: str, title: str, scene: str, config_text: str,
-                  config_sha256: str, results: Results) -> None:
+                  config_sha256: str, results: Results, resolved_config: dict | None = None,
+                  physics_key: str = "") -> None:
     """Write ``results`` atomically to ``path`` (see the module docstring)."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -167,7 +137,8 @@ def write_archive(path: Path, *, kind: str, title: str, scene: str, config_text:
     try:
         with h5py.File(tmp, "w") as f:
             _write_contents(f, kind=kind, title=title, scene=scene, config_text=config_text,
-                            config_sha256=config_sha256, results=results)
+                            config_sha256=config_sha256, results=results,
+                            resolved_config=resolved_config or {}, physics_key=physics_key)
             f.flush()
         install(tmp, path)
     finally:
@@ -175,8 +146,12 @@ def write_archive(path: Path, *, kind: str, title: str, scene: str, config_text:
             tmp.unlink()
 
 
+def _config_json(resolved_config: dict) -> str:
+    return json.dumps(resolved_config, sort_keys=True, ensure_ascii=False)
+
+
 def _write_contents(f: h5py.File, *, kind, title, scene, config_text, config_sha256,
-                    results: Results) -> None:
+                    results: Results, resolved_config: dict, physics_key: str) -> None:
     f.attrs.update({
         "format": FORMAT,
         "format_version": FORMAT_VERSION,
@@ -184,97 +159,94 @@ def _write_contents(f: h5py.File, *, kind, title, scene, config_text, config_sha
         "title": title,
         "scene": scene,
         "config_sha256": config_sha256,
+        "physics_key": physics_key,
         "created": datetime.now(UTC).strftime("%Y-%m-%dT%H:%M:%SZ"),
         "reportgen_version": __version__,
         "status": results.status,
         "message": results.message,
         "wall_time_s": float(results.wall_time_s),
     })
-    f.create_dataset("config", data=config_text, dtype=_STR)
+    f.create_dataset("config", data=config_text, dtype=STR)
+    f.create_dataset("config_resolved", data=_config_json(resolved_config), dtype=STR)
     f.create_group("provenance").attrs.update(provenance())
     runs = f.create_group("runs")
     for name, run in results.runs.items():
-        g = runs.create_group(name)
-        _array(g, "t", np.asarray(run.t, dtype=np.float64))
-        y = _array(g, "y", np.asarray(run.y, dtype=np.float64))
-        y.attrs["columns"] = np.array(run.columns, dtype=_STR)
-        inv = g.create_group("invariants")
-        for q, values in run.invariants.items():
-            _array(inv, q, np.asarray(values, dtype=np.float64))
-        for key, value in run.attrs.items():
-            g.attrs[key] = _attr_value(value)
-    _write_mapping(f.create_group("analysis"), results.analysis)
-    _table(f, "checks", _checks_records(results.checks))
+        _write_run(runs.create_group(name), run)
+    write_mapping(f.create_group("analysis"), results.analysis)
+    table(f, "checks", _checks_records(results.checks))
     if results.study is not None:
         study = f.create_group("study")
-        table = _table(study, "error_vs_runtime", results.study)
+        study_table = table(study, "error_vs_runtime", results.study)
         for key, value in results.study_attrs.items():
-            table.attrs[key] = _attr_value(value)
+            study_table.attrs[key] = attr_value(value)
 
 
-def install(tmp: Path, path: Path) -> None:
-    """fsync the finished archive ``tmp`` and rename it over ``path``.
+def _write_run(g: h5py.Group, run: RunRecord) -> None:
+    """One trajectory with netCDF-style dimension scales, so that
+    ``xarray.open_dataset(path, group="runs/<name>", engine="h5netcdf")`` shows the
+    dimensions ``t`` and ``component`` (with the column names) and every invariant and
+    reference as a variable on ``t``."""
+    t = dataset(g, "t", np.asarray(run.t, dtype=np.float64))
+    t.make_scale("t")
+    component = g.create_dataset("component", data=np.array(run.columns, dtype=object),
+                                 dtype=STR)
+    component.make_scale("component")
+    y = dataset(g, "y", np.asarray(run.y, dtype=np.float64).reshape(len(run.t), -1))
+    y.attrs["columns"] = np.array(run.columns, dtype=STR)
+    y.dims[0].attach_scale(t)
+    y.dims[1].attach_scale(component)
+    inv = g.create_group("invariants")
+    taken = {"t", "y", "component", "invariants", "reference"}
+    for q, values in run.invariants.items():
+        ds = dataset(inv, q, np.asarray(values, dtype=np.float64))
+        if ds.ndim == 1 and len(ds) == len(run.t):
+            ds.dims[0].attach_scale(t)
+            g[q if q not in taken else f"invariant_{q}"] = ds  # hard link: a variable on t
+    if run.reference:
+        ref = g.create_group("reference")
+        for c, values in run.reference.items():
+            ds = dataset(ref, c, np.asarray(values, dtype=np.float64))
+            if ds.ndim == 1 and len(ds) == len(run.t):
+                ds.dims[0].attach_scale(t)
+                if f"reference_{c}" not in g:
+                    g[f"reference_{c}"] = ds  # hard link: a variable on t
+    for key, value in run.attrs.items():
+        g.attrs[key] = attr_value(value)
 
-    An existing ``path`` is kept as ``<stem>.prev.h5``: it is hard-linked to its
-    backup name first, so at every instant ``path`` names a complete archive
-    (old or new).
-    """
-    fsync_path(tmp)
-    if path.exists():
-        backup = path.with_name(path.stem + ".prev" + path.suffix)
-        staged = temp_name(backup)
-        try:
-            os.link(path, staged)
-            os.replace(staged, backup)
-        except OSError:
-            if staged.exists():
-                staged.unlink()
-    os.replace(tmp, path)
-    dir_fd = os.open(path.parent, os.O_RDONLY)
+
+def restamp(path: Path, *, title: str, config_text: str, config_sha256: str,
+            resolved_config: dict) -> None:
+    """Give an archive a new config whose physics is unchanged (a title or ``[report]``
+    edit): the attrs and config datasets are rewritten in a copy that replaces the
+    archive atomically; every array keeps its bytes."""
+    path = Path(path)
+    tmp = temp_name(path)
     try:
-        os.fsync(dir_fd)
+        shutil.copyfile(path, tmp)
+        with h5py.File(tmp, "r+") as f:
+            f.attrs["title"] = title
+            f.attrs["config_sha256"] = config_sha256
+            for name, text in (("config", config_text),
+                               ("config_resolved", _config_json(resolved_config))):
+                if name in f:
+                    del f[name]
+                f.create_dataset(name, data=text, dtype=STR)
+            f.flush()
+        install(tmp, path)
     finally:
-        os.close(dir_fd)
+        if tmp.exists():
+            tmp.unlink()
 
 
 # ------------------------------------------------------------------- reading
-def _decode(value):
-    if isinstance(value, bytes):
-        return value.decode("utf-8")
-    if isinstance(value, np.ndarray) and value.dtype == object:
-        return [_decode(v) for v in value.tolist()]
-    if isinstance(value, np.generic):
-        return value.item()
-    return value
-
-
-def _read_mapping(group: h5py.Group) -> dict[str, Any]:
-    out: dict[str, Any] = {k: _decode(v) for k, v in group.attrs.items()}
-    for key, item in group.items():
-        if isinstance(item, h5py.Group):
-            out[key] = _read_mapping(item)
-        elif item.dtype.kind == "O":
-            out[key] = _decode(item[()])
-        else:
-            out[key] = item[()]
-    return out
-
-
-def _read_table(ds: h5py.Dataset) -> np.ndarray:
-    raw = ds[()]
-    fields = [(n, object if raw.dtype[n].kind in "OS" else raw.dtype[n]) for n in raw.dtype.names]
-    out = np.empty(raw.shape, dtype=fields)
-    for n in raw.dtype.names:
-        col = raw[n]
-        out[n] = [_decode(v) for v in col] if raw.dtype[n].kind in "OS" else col
-    return out
-
 
 #: what makes an archive unreadable: (check, fatal?, message)
 _LOAD_PROBLEMS = (
     (lambda f: f.attrs.get("format") == FORMAT, True, "not a reportgen archive (no format attr)"),
     (lambda f: int(f.attrs.get("format_version", -1)) <= FORMAT_VERSION, True,
      f"written by a newer reportgen (format_version > {FORMAT_VERSION})"),
+    (lambda f: int(f.attrs.get("format_version", -1)) >= OLDEST_READABLE, True,
+     f"format_version older than {OLDEST_READABLE}: not readable by this reportgen"),
     (lambda f: "config" in f, True, "has no /config"),
     (lambda f: "kind" in f.attrs, True, "has no kind attribute"),
 )
@@ -290,21 +262,25 @@ def read_archive(path: Path) -> ArchiveData:
                     raise ArchiveError(f"{path}: {message}")
             data = ArchiveData(
                 path=path,
-                attrs={k: _decode(v) for k, v in f.attrs.items()},
-                config_text=_decode(f["config"][()]),
-                provenance={k: _decode(v) for k, v in f["provenance"].attrs.items()},
+                attrs={k: decode(v) for k, v in f.attrs.items()},
+                config_text=decode(f["config"][()]),
+                provenance={k: decode(v) for k, v in f["provenance"].attrs.items()},
             )
+            if "config_resolved" in f:
+                data.config = ConfigView.of(json.loads(decode(f["config_resolved"][()])))
             for name, g in f.get("runs", {}).items():
                 data.runs[name] = RunRecord(
                     t=g["t"][()],
                     y=g["y"][()],
-                    columns=_decode(g["y"].attrs["columns"]),
+                    columns=decode(g["y"].attrs["columns"]),
                     invariants={q: ds[()] for q, ds in g["invariants"].items()},
-                    attrs={k: _decode(v) for k, v in g.attrs.items()},
+                    attrs={k: decode(v) for k, v in g.attrs.items()},
+                    reference={c: ds[()] for c, ds in g["reference"].items()}
+                    if "reference" in g else {},
                 )
-            data.analysis = _read_mapping(f["analysis"]) if "analysis" in f else {}
+            data.analysis = read_mapping(f["analysis"]) if "analysis" in f else {}
             if "checks" in f:
-                for row in _read_table(f["checks"]):
+                for row in read_table(f["checks"]):
                     scale = float(row["scale"]) if "scale" in row.dtype.names else math.nan
                     data.checks.append(Check(quantity=row["quantity"], value=float(row["value"]),
                                              reference=float(row["reference"]),
@@ -312,8 +288,8 @@ def read_archive(path: Path) -> ArchiveData:
                                              scale=None if math.isnan(scale) else scale))
             if "study/error_vs_runtime" in f:
                 ds = f["study/error_vs_runtime"]
-                data.study = _read_table(ds)
-                data.study_attrs = {k: _decode(v) for k, v in ds.attrs.items()}
+                data.study = read_table(ds)
+                data.study_attrs = {k: decode(v) for k, v in ds.attrs.items()}
     except ArchiveError:
         raise
     except FileNotFoundError:
@@ -325,15 +301,52 @@ def read_archive(path: Path) -> ArchiveData:
     return data
 
 
-def stored_identity(path: Path) -> tuple[str, str, str] | None:
-    """(config_sha256, reportgen_version, status) of an existing archive, or None if unreadable."""
+@dataclass(frozen=True)
+class Identity:
+    """What the pipeline compares to decide which stages must run."""
+
+    config_sha256: str
+    physics_key: str
+    reportgen_version: str
+    status: str
+    format_version: int
+
+
+def stored_identity(path: Path) -> Identity | None:
+    """The identity of an existing archive, or None if it is missing or unreadable."""
     try:
         with h5py.File(path, "r") as f:
             a = f.attrs
-            return (_decode(a["config_sha256"]), _decode(a["reportgen_version"]),
-                    _decode(a.get("status", "ok")))
+            return Identity(config_sha256=decode(a["config_sha256"]),
+                            physics_key=decode(a.get("physics_key", "")),
+                            reportgen_version=decode(a["reportgen_version"]),
+                            status=decode(a.get("status", "ok")),
+                            format_version=int(a.get("format_version", 1)))
     except (OSError, KeyError):
         return None
+
+
+def gallery_entry(path: Path) -> dict[str, Any] | None:
+    """What the output folder's gallery shows of one archive: kind, title, status,
+    message, wall time and the error headline (the check with the largest relative
+    error).  Reads attrs and the checks table only; None if unreadable."""
+    try:
+        with h5py.File(path, "r") as f:
+            if f.attrs.get("format") != FORMAT:
+                return None
+            a = {k: decode(v) for k, v in f.attrs.items()}
+            checks = read_table(f["checks"]) if "checks" in f else None
+    except (OSError, KeyError):
+        return None
+    headline = ""
+    if checks is not None and len(checks):
+        worst = checks[int(np.nanargmax(checks["rel_error"]))] if np.any(
+            np.isfinite(checks["rel_error"])) else checks[0]
+        headline = f"{worst['quantity']}: rel. error {float(worst['rel_error']):.1e}"
+    return {"kind": a.get("kind", ""), "title": a.get("title", ""),
+            "status": a.get("status", "ok"), "message": a.get("message", ""),
+            "wall_time_s": float(a.get("wall_time_s", math.nan)), "headline": headline,
+            "created": a.get("created", "")}
 
 
 def verify_checksums(path: Path) -> list[str]:
@@ -365,6 +378,8 @@ def summarize(path: Path) -> str:
         f"  status    {a.get('status', 'ok')}" + (f"  ({a['message']})" if a.get("message") else ""),
         f"  created   {a.get('created')}   reportgen {a.get('reportgen_version')}",
         f"  config    sha256 {str(a.get('config_sha256'))[:16]}…  ({len(data.config_text)} chars)",
+        f"  physics   key {str(a.get('physics_key', ''))[:16] or '(none: format 1)'}…  "
+        f"format_version {data.format_version}",
         f"  wall time {float(a.get('wall_time_s', 0.0)):.3f} s",
     ]
     for name, run in data.runs.items():
@@ -392,88 +407,3 @@ def summarize(path: Path) -> str:
     lines.append("  checksums ok" if not problems else "  CHECKSUM PROBLEMS: " + "; ".join(problems))
     return "\n".join(lines)
 
-
-# --------------------------------------------------------------------- audit
-AUDIT_FIELDS = ("case", "kind", "what", "method", "used", "status", "verdict", "reason",
-                "message", "drift", "error", "nsteps", "nreject", "nfev", "wall_time_s")
-
-
-def write_audit(path: Path, results) -> None:
-    """``audit.h5``: one table row per (case, method) and the drift series of each run.
-
-    Layout::
-
-        /                  attrs: format="reportgen-audit", format_version, created, versions
-        /table             one row per case x method (AUDIT_FIELDS)
-        /cases/<i>         attrs name, kind, what, verdict, reason; dataset config (TOML)
-        /cases/<i>/<j>/t, /cases/<i>/<j>/drift/<q>   relative drift of run j
-    """
-    from .config import to_toml
-
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    rows = []
-    for r in results:
-        for run in r.runs:
-            rows.append((r.case.name, r.kind, r.case.what, run.method, run.used, run.status,
-                         r.verdict, r.reason, run.message, run.drift, run.error, run.nsteps,
-                         run.nreject, run.nfev, run.wall_time_s))
-    dtype = [(n, object) for n in AUDIT_FIELDS[:9]] + [
-        ("drift", "f8"), ("error", "f8"), ("nsteps", "i8"), ("nreject", "i8"), ("nfev", "i8"),
-        ("wall_time_s", "f8")]
-    table = np.array(rows, dtype=dtype)
-    tmp = temp_name(path)
-    try:
-        with h5py.File(tmp, "w") as f:
-            f.attrs.update({"format": "reportgen-audit", "format_version": FORMAT_VERSION,
-                            "created": datetime.now(UTC).strftime("%Y-%m-%dT%H:%M:%SZ"),
-                            "reportgen_version": __version__})
-            f.create_group("provenance").attrs.update(provenance())
-            _table(f, "table", table)
-            cases = f.create_group("cases")
-            for i, r in enumerate(results):
-                g = cases.create_group(str(i))
-                g.attrs.update({"name": r.case.name, "kind": r.kind, "what": r.case.what,
-                                "verdict": r.verdict, "reason": r.reason})
-                g.create_dataset("config", data=to_toml(r.case.config), dtype=_STR)
-                for j, run in enumerate(r.runs):
-                    if run.t is None:
-                        continue
-                    rg = g.create_group(str(j))
-                    rg.attrs.update({"method": run.method, "used": run.used})
-                    step = max(1, len(run.t) // AUDIT_SERIES_POINTS)
-                    _array(rg, "t", run.t[::step])
-                    _write_mapping(rg.create_group("drift"),
-                                   {q: v[::step] for q, v in run.drift_series.items()})
-            f.flush()
-        install(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
-
-
-def read_audit(path: Path) -> dict[str, Any]:
-    """The audit archive as {'table': records, 'cases': [dict], 'attrs', 'provenance'}."""
-    path = Path(path)
-    try:
-        with h5py.File(path, "r") as f:
-            if f.attrs.get("format") != "reportgen-audit":
-                raise ArchiveError(f"{path}: not a reportgen audit archive")
-            out = {"attrs": {k: _decode(v) for k, v in f.attrs.items()},
-                   "provenance": {k: _decode(v) for k, v in f["provenance"].attrs.items()},
-                   "table": _read_table(f["table"]), "cases": []}
-            for i in sorted(f["cases"], key=int):
-                g = f["cases"][i]
-                case = {k: _decode(v) for k, v in g.attrs.items()}
-                case["config"] = _decode(g["config"][()])
-                case["runs"] = []
-                for j in sorted((k for k in g if k != "config"), key=int):
-                    rg = g[j]
-                    case["runs"].append({"method": _decode(rg.attrs["method"]),
-                                         "used": _decode(rg.attrs["used"]),
-                                         "t": rg["t"][()],
-                                         "drift": _read_mapping(rg["drift"])})
-                out["cases"].append(case)
-    except OSError as exc:
-        raise ArchiveError(f"{path}: unreadable audit archive ({exc})") from None
-    return out

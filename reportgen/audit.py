@@ -20,25 +20,22 @@ import math
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 
+from .audit_archive import write_audit
 from .config import ConfigError, SourceConfig, parse_config_text, to_toml
+from .lazy import lazy_module
+from .pipeline import collect_configs, validate_all
+from .report import build_audit_report
+from .results import AuditCase
+from .scenes import KINDS, load_scene
+
+_policy = lazy_module("reportgen.core.integrators.policy")
 
 #: relative disagreement with the reference above which a stable run is "inaccurate"
 ACCURACY = 1e-6
 VERDICTS = ("ok", "inaccurate", "stiff", "unstable")
-
-
-@dataclass(frozen=True)
-class AuditCase:
-    """One extreme case: a config (as a dict) and what makes it hard."""
-
-    name: str
-    config: dict[str, Any]
-    what: str
-    methods: tuple[str, ...] = ()  # alternatives tried besides "auto"
 
 
 @dataclass
@@ -54,6 +51,8 @@ class MethodRun:
     nfev: int
     wall_time_s: float
     reason: str = ""
+    #: the solver policy's RunStatus value (run attr ``solver_status``; "" if nothing ran)
+    solver_status: str = ""
     t: np.ndarray | None = None
     drift_series: dict[str, np.ndarray] = field(default_factory=dict)
 
@@ -68,8 +67,6 @@ class CaseResult:
 
 
 def builtin_cases() -> list[AuditCase]:
-    from .scenes import KINDS
-
     cases = []
     for cls in KINDS.values():
         cases.extend(cls.audit_cases())
@@ -77,8 +74,6 @@ def builtin_cases() -> list[AuditCase]:
 
 
 def _scene_for(config: dict, label: str):
-    from .scenes import load_scene
-
     text = to_toml(config)
     source = parse_config_text(text)
     return load_scene(SourceConfig(path=Path(f"{label}.toml"), text=text, data=source.data))
@@ -117,7 +112,7 @@ def run_method(case: AuditCase, method: str) -> MethodRun:
         drift=drift, error=_error(results), nsteps=int(a.get("nsteps", 0)),
         nreject=int(a.get("nreject", 0)), nfev=int(a.get("nfev", 0)),
         wall_time_s=float(a.get("wall_time_s", math.nan)), reason=str(a.get("method_reason", "")),
-        t=main.t, drift_series=series)
+        solver_status=str(a.get("solver_status", "")), t=main.t, drift_series=series)
 
 
 def _error(results) -> float:
@@ -132,7 +127,7 @@ def verdict(runs: list[MethodRun]) -> tuple[str, str]:
     others = ", ".join(f"{r.used}: {r.status}" for r in runs[1:]) or "none"
     if auto.status != "ok":
         return "unstable", f"{auto.used}: {auto.message or auto.status} (alternatives: {others})"
-    if "switched" in auto.reason:
+    if auto.solver_status == _policy.RunStatus.SWITCHED:
         return "stiff", auto.reason
     if math.isfinite(auto.error) and auto.error > ACCURACY:
         return "inaccurate", (f"{auto.used} is stable (drift {auto.drift:.1e}) but disagrees "
@@ -151,8 +146,6 @@ def audit_case(case: AuditCase) -> CaseResult:
 
 
 def cases_from_paths(paths: list[str]) -> list[AuditCase]:
-    from .pipeline import collect_configs, validate_all
-
     cases = []
     for scene in validate_all(collect_configs(paths)):
         if scene.config.run is None:
@@ -165,9 +158,6 @@ def cases_from_paths(paths: list[str]) -> list[AuditCase]:
 def run_audit(paths: list[str], out_dir: str = "output/audit", formats=("html", "pdf"),
               print=builtins.print) -> int:
     """Audit the built-in cases (no PATH) or the given configs; write audit.h5 and reports."""
-    from .archive import write_audit
-    from .report import build_audit_report
-
     cases = cases_from_paths(paths) if paths else builtin_cases()
     results = []
     for i, case in enumerate(cases, 1):

@@ -166,7 +166,8 @@ def cmd_validate(args) -> int:
     except UsageError as exc:
         return _usage(str(exc))
     for scene in scenes:
-        sections = ", ".join(s.name for s in scene.chosen_sections())
+        asked = scene.config.report.sections
+        sections = ", ".join(asked) if asked else "the kind's default sections"
         print(f"{scene.source.path}: ok ({scene.kind}: {sections})")
     return EXIT_OK
 

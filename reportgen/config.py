@@ -10,8 +10,12 @@ from __future__ import annotations
 
 import copy
 import hashlib
+import json
 import math
+import re
 import tomllib
+import types
+import typing
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Any, Literal
@@ -128,22 +132,149 @@ def _short(value: Any, limit: int = 60) -> str:
     return text if len(text) <= limit else text[: limit - 3] + "..."
 
 
-def format_validation_error(label: str, exc: ValidationError) -> list[str]:
-    """One line per problem: ``file: key 'a.b': rule (got value)``."""
-    lines = []
-    for err in exc.errors(include_url=False):
-        loc = ".".join(str(p) for p in err["loc"] if not str(p).startswith("function-"))
-        msg = err["msg"]
-        if msg.startswith("Value error, "):
-            msg = msg[len("Value error, ") :]
-        if err["type"] == "extra_forbidden":
-            msg = "unknown key"
-        elif err["type"] == "missing":
-            lines.append(f"{label}: key '{loc}': required key is missing")
+def _unwrap(annotation: Any) -> Any:
+    while typing.get_origin(annotation) is Annotated:
+        annotation = typing.get_args(annotation)[0]
+    return annotation
+
+
+def _alternatives(annotation: Any) -> list:
+    """The members of a union other than None (``[]`` if not a union)."""
+    if typing.get_origin(annotation) in (typing.Union, types.UnionType):
+        return [_unwrap(a) for a in typing.get_args(annotation) if a is not type(None)]
+    return []
+
+
+def _is_model(annotation: Any) -> bool:
+    return isinstance(annotation, type) and issubclass(annotation, BaseModel)
+
+
+def _member_for_tag(members: list, tag: Any) -> Any:
+    """The union member a pydantic error location names by ``tag``: a discriminator value
+    (``"cone"``), a model name, or a schema label (``"list[...]"``, ``"literal['apex']"``)."""
+    for member in members:
+        if _is_model(member) and (tag == member.__name__ or any(
+                typing.get_origin(_unwrap(f.annotation)) is Literal
+                and tag in typing.get_args(_unwrap(f.annotation))
+                for f in member.model_fields.values())):
+            return member
+    if isinstance(tag, str):
+        for member in members:
+            origin = typing.get_origin(member)
+            name = "literal" if origin is Literal else getattr(origin or member, "__name__", "")
+            if name and (tag == name or tag.startswith(name.lower() + "[")):
+                return member
+    return None
+
+
+def _schema_label(item: Any) -> bool:
+    """Whether a location item is pydantic's name for a schema, not a config key."""
+    return isinstance(item, str) and ("[" in item or item.startswith("function-"))
+
+
+_BARE_KEY = re.compile(r"[A-Za-z0-9_-]+")
+
+
+def config_key(loc: tuple, model: type[BaseModel] | None = None) -> str:
+    """A pydantic error location as the dotted config key it points to: ``shape.radius``,
+    ``atoms.1.position`` (array items by zero-based index), ``impulse.at.2``; a key that
+    is not a bare TOML key is quoted as in TOML (``"é"``, ``""``).
+
+    With ``model`` (the validated model) the location is followed through the model's
+    fields, so the tags pydantic adds for the member of a union that failed (``cone``,
+    ``list[function-after[...]]``) are dropped; without it only schema labels are dropped.
+    """
+    parts, annotation = [], model
+    for item in loc:
+        annotation = _unwrap(annotation)
+        members = _alternatives(annotation)
+        while len(members) == 1:  # X | None: pydantic adds no tag
+            annotation = members[0]
+            members = _alternatives(annotation)
+        if members:  # a union: ``item`` names the member that failed
+            annotation = _member_for_tag(members, item)
             continue
-        where = f"key '{loc}'" if loc else "config"
+        if annotation is None and _schema_label(item):
+            continue
+        origin = typing.get_origin(annotation)
+        text = str(item)
+        parts.append(text if _BARE_KEY.fullmatch(text) else json.dumps(text, ensure_ascii=False))
+        if isinstance(item, int):
+            args = typing.get_args(annotation)
+            annotation = args[0] if origin in (list, tuple, set, frozenset) and args else None
+        elif _is_model(annotation):
+            field = annotation.model_fields.get(str(item))
+            annotation = field.annotation if field is not None else None
+        elif origin is dict:
+            annotation = typing.get_args(annotation)[1]
+        else:
+            annotation = None
+    return ".".join(parts)
+
+
+#: "initial.theta / initial.theta_dot: ..." — a scene's cross-key rule naming its own keys
+_NAMED_KEYS = re.compile(r"[A-Za-z_][\w.\[\]]*((?: / |, )[A-Za-z_][\w.\[\]]*)*: ")
+
+
+def _rule(err: dict) -> str:
+    """pydantic's message for one error as a rule (``must be greater than 0``)."""
+    kind = err["type"]
+    if kind == "extra_forbidden":
+        return "unknown key"
+    if kind == "missing":
+        return "required key is missing"
+    if kind in ("model_type", "dict_type", "model_attributes_type"):
+        return "must be a table"
+    if kind in ("list_type", "tuple_type"):
+        return "must be an array"
+    msg = err["msg"]
+    for prefix in ("Value error, ", "Assertion failed, "):
+        if msg.startswith(prefix):
+            msg = msg[len(prefix):]
+    if msg.startswith("Input should be "):
+        msg = "must be " + msg[len("Input should be "):]
+    return msg
+
+
+def format_validation_error(label: str, exc: ValidationError,
+                            model: type[BaseModel] | None = None) -> list[str]:
+    """One line per problem: ``file: key 'a.b': rule (got value)``.
+
+    ``model`` is the model that was validated (default: the one :class:`Strict` records on
+    the error); it lets locations inside unions name the config key.  A value that no
+    member of a union accepts is one problem: its rules are joined with "or".
+    """
+    problems: dict[str, tuple[str, list[str], str]] = {}  # by key: (where, rules, got)
+    for err in exc.errors(include_url=False):
+        key = config_key(tuple(err["loc"]), model)
+        rule = _rule(err)
         got = "" if err["type"] == "missing" else f" (got {_short(err.get('input'))})"
-        lines.append(f"{label}: {where}: {msg}{got}")
+        ctx = err.get("ctx") or {}
+        if err["type"] == "union_tag_invalid":
+            tag_key = str(ctx.get("discriminator", "type")).strip("'\"")
+            key = f"{key}.{tag_key}" if key else tag_key
+            rule = f"must be one of {ctx.get('expected_tags', '')}"
+            got = f" (got {_short(ctx.get('tag'))})"
+        elif err["type"] == "union_tag_not_found":
+            tag_key = str(ctx.get("discriminator", "type")).strip("'\"")
+            key = f"{key}.{tag_key}" if key else tag_key
+            rule, got = "required key is missing", ""
+        elif err["type"] in ("value_error", "assertion_error"):
+            if isinstance(err.get("input"), dict):  # the whole table: the rule says what
+                got = ""
+            if _NAMED_KEYS.match(rule):  # a rule across keys: the scene's message names them
+                key = ""
+        where = f"key '{key}'" if key else ""
+        _, rules, _ = problems.setdefault(where or rule, (where, [], got))
+        if rule not in rules:
+            rules.append(rule)
+    lines = []
+    for where, rules, got in problems.values():
+        if len(rules) > 1 and all(r.startswith("must be ") for r in rules):
+            rule = "must be " + " or ".join(r[len("must be "):] for r in rules)
+        else:
+            rule = "; or ".join(rules)
+        lines.append(f"{label}: {where + ': ' if where else ''}{rule}{got}")
     return lines
 
 
@@ -157,8 +288,6 @@ def to_toml(data: dict[str, Any]) -> str:
             return repr(v) if not (isinstance(v, float) and not math.isfinite(v)) else (
                 "nan" if math.isnan(v) else ("inf" if v > 0 else "-inf"))
         if isinstance(v, str):
-            import json
-
             return json.dumps(v, ensure_ascii=False)
         if isinstance(v, (list, tuple)):
             return "[" + ", ".join(value(x) for x in v) + "]"

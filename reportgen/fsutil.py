@@ -69,3 +69,28 @@ def _alive(pid: int) -> bool:
     except PermissionError:
         return True
     return True
+
+
+def install(tmp: Path, path: Path) -> None:
+    """fsync the finished archive ``tmp`` and rename it over ``path``.
+
+    An existing ``path`` is kept as ``<stem>.prev.h5``: it is hard-linked to its
+    backup name first, so at every instant ``path`` names a complete archive
+    (old or new).
+    """
+    fsync_path(tmp)
+    if path.exists():
+        backup = path.with_name(path.stem + ".prev" + path.suffix)
+        staged = temp_name(backup)
+        try:
+            os.link(path, staged)
+            os.replace(staged, backup)
+        except OSError:
+            if staged.exists():
+                staged.unlink()
+    os.replace(tmp, path)
+    dir_fd = os.open(path.parent, os.O_RDONLY)
+    try:
+        os.fsync(dir_fd)
+    finally:
+        os.close(dir_fd)

@@ -7,6 +7,7 @@ process pool (``--jobs``); a scene that fails does not stop the others.
 
 from __future__ import annotations
 
+import json
 import os
 import sys
 import time
@@ -16,10 +17,17 @@ from dataclasses import dataclass, field
 from multiprocessing import get_context
 from pathlib import Path
 
-from . import __version__
-from .archive import read_archive, stored_identity, write_archive
+from .archive import (
+    FORMAT_VERSION,
+    Identity,
+    gallery_entry,
+    read_archive,
+    restamp,
+    stored_identity,
+    write_archive,
+)
 from .config import ConfigError, read_config
-from .fsutil import remove_stale_temps
+from .fsutil import atomic_write, install, remove_stale_temps, temp_name
 from .results import worst_status
 from .scenes import load_scene
 from .scenes.base import Scene
@@ -42,6 +50,8 @@ class Outcome:
     skipped: bool = False
     folder: str = ""
     reports: list[str] = field(default_factory=list)
+    #: the stages that ran: simulate, restamp, report (none: everything was current)
+    stages: list[str] = field(default_factory=list)
 
     @property
     def ok(self) -> bool:
@@ -66,11 +76,15 @@ def collect_configs(paths: Iterable[str | Path]) -> list[Path]:
 
 
 def validate_all(paths: list[Path]) -> list[Scene]:
-    """Validate every config; one ConfigError listing every problem of every file."""
+    """Validate every config and build its models (so a method that cannot integrate the
+    system is caught before anything runs); one ConfigError listing every problem of
+    every file."""
     scenes, problems = [], []
     for path in paths:
         try:
-            scenes.append(load_scene(read_config(path)))
+            scene = load_scene(read_config(path))
+            scene.build_models()
+            scenes.append(scene)
         except ConfigError as exc:
             problems.extend(exc.problems)
     names: dict[str, Path] = {}
@@ -89,10 +103,37 @@ def _formats(scene: Scene, override: tuple[str, ...] | None) -> tuple[str, ...]:
     return tuple(override) if override else tuple(scene.config.report.formats)
 
 
+def _report_stamp(folder: Path) -> Path:
+    return folder / ".report-stamp.json"
+
+
+def _report_current(folder: Path, identity: Identity, formats) -> bool:
+    """Whether every wanted report was rendered from this very archive content."""
+    try:
+        stamp = json.loads(_report_stamp(folder).read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return False
+    return (stamp.get("archive") == _archive_stamp(identity)
+            and all((folder / f"report.{f}").exists() and f in stamp.get("formats", ())
+                    for f in formats))
+
+
+def _archive_stamp(identity: Identity) -> str:
+    return f"{identity.physics_key}:{identity.config_sha256}:{identity.reportgen_version}"
+
+
 def run_scene(config_path: str, out_root: str, force: bool = False,
               formats: tuple[str, ...] | None = None,
               progress: Callable[[float], None] | None = None) -> Outcome:
-    """Run one scene end to end.  Never raises: failures come back in the Outcome."""
+    """Run one scene's stages, each only if its inputs changed.  Never raises: failures
+    come back in the Outcome.
+
+    simulate  keyed by the physics key (validated, preset-resolved physics + version);
+              a config edit that leaves it unchanged (title, [report]) only re-stamps the
+              archive with the new config text, every array keeping its bytes
+    figures   keyed by the physics key, the chosen sections and the version
+    report    HTML/PDF from the archive and the figures, when either changed
+    """
     path = Path(config_path)
     outcome = Outcome(name=path.stem)
     folder = Path(out_root) / path.stem
@@ -104,11 +145,9 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
         remove_stale_temps(folder)
         archive = folder / "run.h5"
         stored = stored_identity(archive) if archive.exists() else None
-        fresh = stored is not None and stored[:2] == (scene.source.sha256, __version__)
-        if fresh and not force:
-            outcome.skipped = True
-            outcome.status = stored[2]
-        else:
+        key = scene.physics_key()
+        if (force or stored is None or stored.physics_key != key
+                or stored.format_version < FORMAT_VERSION):
             results = scene.simulate(progress=progress)
             for name, run in results.runs.items():
                 if run.status != "ok":
@@ -116,22 +155,31 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
             results.wall_time_s = time.perf_counter() - start
             write_archive(archive, kind=scene.kind, title=scene.title, scene=scene.source.name,
                           config_text=scene.source.text, config_sha256=scene.source.sha256,
-                          results=results)
-            outcome.status = results.status
-            outcome.message = results.message
+                          results=results, resolved_config=scene.resolved_config(),
+                          physics_key=key)
+            outcome.stages.append("simulate")
+        elif stored.config_sha256 != scene.source.sha256:
+            restamp(archive, title=scene.title, config_text=scene.source.text,
+                    config_sha256=scene.source.sha256, resolved_config=scene.resolved_config())
+            outcome.stages.append("restamp")
+        identity = stored_identity(archive)
         wanted = _formats(scene, formats)
-        report_files = {"html": folder / "report.html", "pdf": folder / "report.pdf"}
-        missing = [f for f in wanted if not report_files[f].exists()]
-        if not outcome.skipped or missing:
-            from .report import build_report
+        if force or not _report_current(folder, identity, wanted):
+            from .report import build_report  # matplotlib and jinja2 only when drawing
 
-            build_report(archive, formats=wanted if not outcome.skipped else missing)
-        outcome.reports = [str(report_files[f]) for f in wanted]
+            build_report(archive, formats=wanted, force_figures=force)
+            atomic_write(_report_stamp(folder), json.dumps(
+                {"archive": _archive_stamp(identity), "formats": list(wanted)}).encode("utf-8"))
+            outcome.stages.append("report")
+        outcome.reports = [str(folder / f"report.{f}") for f in wanted]
+        outcome.skipped = "simulate" not in outcome.stages
+        outcome.status = identity.status
         if outcome.skipped:
             data = read_archive(archive)
             outcome.message = data.message
             outcome.wall_time_s = float(data.attrs.get("wall_time_s", 0.0))
         else:
+            outcome.message = read_archive(archive).message
             outcome.wall_time_s = time.perf_counter() - start
     except ConfigError as exc:
         outcome.status, outcome.message = "failed", str(exc)
@@ -160,8 +208,12 @@ class Progress:
 
     def scene_done(self, outcome: Outcome) -> None:
         self.done += 1
-        note = "up to date" if outcome.skipped else (
-            f"{outcome.wall_time_s:.1f} s" if outcome.wall_time_s is not None else "")
+        if not outcome.skipped:
+            note = f"{outcome.wall_time_s:.1f} s" if outcome.wall_time_s is not None else ""
+        elif "report" in outcome.stages:
+            note = "physics unchanged: report re-rendered from the archive"
+        else:
+            note = "up to date"
         line = f"[{self.done}/{self.total}] {outcome.name:<28} {outcome.status:<8} {note}"
         if outcome.message and not outcome.ok:
             line += f"\n      {outcome.message}"
@@ -302,9 +354,6 @@ def run_scene_portable(config_text: str, name: str, formats: tuple[str, ...] | N
 
 def _install_files(out_root: str, outcome: Outcome, files: dict[str, bytes]) -> Outcome:
     """Write a worker's files into ``out_root/<name>/`` atomically, archive first."""
-    from .archive import install
-    from .fsutil import atomic_write, temp_name
-
     folder = Path(out_root) / outcome.name
     folder.mkdir(parents=True, exist_ok=True)
     if "run.h5" in files:
@@ -325,15 +374,15 @@ def _up_to_date(scene: Scene, out_root: str, formats) -> Outcome | None:
     folder = Path(out_root) / scene.source.name
     stored = stored_identity(folder / "run.h5") if (folder / "run.h5").exists() else None
     wanted = _formats(scene, formats)
-    reports = [folder / f"report.{f}" for f in wanted]
-    if stored is None or stored[:2] != (scene.source.sha256, __version__) or not all(
-            r.exists() for r in reports):
+    if (stored is None or stored.physics_key != scene.physics_key()
+            or stored.config_sha256 != scene.source.sha256
+            or not _report_current(folder, stored, wanted)):
         return None
     data = read_archive(folder / "run.h5")
-    return Outcome(name=scene.source.name, kind=scene.kind, title=scene.title, status=stored[2],
-                   message=data.message, skipped=True, folder=str(folder),
-                   wall_time_s=float(data.attrs.get("wall_time_s", 0.0)),
-                   reports=[str(r) for r in reports])
+    return Outcome(name=scene.source.name, kind=scene.kind, title=scene.title,
+                   status=stored.status, message=data.message, skipped=True,
+                   folder=str(folder), wall_time_s=float(data.attrs.get("wall_time_s", 0.0)),
+                   reports=[str(folder / f"report.{f}") for f in wanted])
 
 
 def _run_on_dask(scenes, out_root, force, formats, scheduler, progress,
@@ -388,18 +437,44 @@ def _run_on_dask(scenes, out_root, force, formats, scheduler, progress,
     return outcomes
 
 
-def write_index(out_root: str, outcomes: list[Outcome]) -> Path:
-    from .report import build_index
+def write_index(out_root: str, outcomes: list[Outcome] = ()) -> Path:
+    """``index.html``: a gallery of every scene archive in ``out_root`` (not only this
+    batch's), plus the scenes of this batch that failed before writing one."""
+    from .report import build_index  # matplotlib and jinja2 only when drawing
 
+    root = Path(out_root)
     entries = []
+    for archive in sorted(root.glob("*/run.h5")):
+        entry = gallery_entry(archive)
+        if entry is None:
+            continue
+        folder = archive.parent
+        name = folder.name
+        links = [(fmt.upper(), f"{name}/report.{fmt}") for fmt in ("html", "pdf")
+                 if (folder / f"report.{fmt}").exists()]
+        links.append(("HDF5", f"{name}/run.h5"))
+        entries.append({**entry, "name": name, "links": links,
+                        "thumbnail": _first_figure(folder)})
+    seen = {e["name"] for e in entries}
     for o in outcomes:
-        links = [(Path(r).suffix[1:].upper(), f"{o.name}/{Path(r).name}") for r in o.reports
-                 if Path(r).exists()]
-        if (Path(out_root) / o.name / "run.h5").exists():
-            links.append(("HDF5", f"{o.name}/run.h5"))
-        entries.append({"name": o.name, "kind": o.kind, "title": o.title, "status": o.status,
-                        "message": o.message, "wall_time_s": o.wall_time_s, "links": links})
-    return build_index(Path(out_root), entries)
+        if o.name not in seen and not o.ok:
+            entries.append({"name": o.name, "kind": o.kind, "title": o.title,
+                            "status": o.status, "message": o.message, "wall_time_s": None,
+                            "headline": "", "links": [], "thumbnail": None})
+    return build_index(root, entries)
+
+
+def _first_figure(folder: Path) -> str | None:
+    """The first figure of a scene's report (relative to the output folder), if drawn."""
+    try:
+        stored = json.loads((folder / "figures" / "sections.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    for section in stored.get("sections", []):
+        for fig in section.get("figures", []):
+            if "svg" in fig.get("files", {}):
+                return f"{folder.name}/{fig['files']['svg']}"
+    return None
 
 
 def batch_status(outcomes: list[Outcome]) -> str:

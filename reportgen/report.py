@@ -8,7 +8,9 @@ is WeasyPrint's rendering of the same HTML.
 
 from __future__ import annotations
 
+import hashlib
 import io
+import json
 import re
 from dataclasses import dataclass
 from datetime import UTC, datetime
@@ -21,8 +23,9 @@ from markupsafe import Markup
 
 from . import __version__
 from .archive import ArchiveData, read_archive
-from .config import ConfigError, parse_config_text
+from .audit_archive import read_audit
 from .fsutil import atomic_write
+from .plots import audit as audit_plots
 from .scenes import get_kind
 from .scenes.base import FigureSpec, SectionContent, fmt, fmt_err
 
@@ -96,31 +99,113 @@ def save_figure(spec: FigureSpec, fig_id: str, folder: Path, png: bool = False) 
 
 
 # ------------------------------------------------------------------- context
-def scene_from_archive(data: ArchiveData):
-    """Rebuild the scene object from the config text stored in the archive."""
-    source = parse_config_text(data.config_text, path=None)
-    source = type(source)(path=data.path, text=source.text, data=source.data)
+def kind_of_archive(data: ArchiveData):
+    """The scene kind that draws this archive (its report-side classmethods)."""
+    if data.format_version < 2:
+        raise ReportError(f"{data.path}: written by format_version {data.format_version}, which "
+                          "does not hold the curves and references a report draws; run its "
+                          "config again (reportgen run) to rebuild it")
     try:
-        return get_kind(data.kind).from_source(source)
-    except ConfigError as exc:
-        raise ReportError(f"{data.path}: stored config no longer validates: {exc}") from None
+        return get_kind(data.kind)
+    except KeyError:
+        raise ReportError(f"{data.path}: kind {data.kind!r} is unknown to this reportgen") \
+            from None
 
 
-def build_context(data: ArchiveData, out_dir: Path, png: bool = False) -> dict[str, Any]:
-    """The one plain dict the scene template renders."""
-    scene = scene_from_archive(data)
+#: bump when the figure drawing changes in a way a cached figure set must not survive
+FIGURES_FORMAT = 1
+
+
+def figures_key(data: ArchiveData, png: bool) -> str:
+    """Content key of the figures stage: what the archive's numbers are, which sections
+    are drawn, and the reportgen version.  A title edit leaves it unchanged."""
+    scene = kind_of_archive(data)
+    blob = json.dumps({"physics": data.attrs.get("physics_key", ""),
+                       "sections": [s.name for s in scene.chosen_sections(data)],
+                       "png": png, "reportgen": __version__, "format": FIGURES_FORMAT},
+                      sort_keys=True)
+    return hashlib.sha256(blob.encode("utf-8")).hexdigest()
+
+
+def draw_sections(data: ArchiveData, out_dir: Path, png: bool = False) -> list[dict[str, Any]]:
+    """The figures stage: draw every chosen section of the archive into ``out_dir/figures``.
+
+    Returns the sections as plain dicts (title, facts, tables, notes, figure files); they
+    are kept in ``figures/sections.json`` with the stage's key, so a later report whose
+    archive numbers and section list are unchanged reuses them without drawing.
+    """
+    scene = kind_of_archive(data)
     sections = []
-    for section in scene.chosen_sections():
-        if section.integrates and "main" not in data.runs:
-            continue
+    for section in scene.chosen_sections(data):
         content: SectionContent = getattr(scene, f"section_{section.name}")(data)
         figures = []
         for spec in content.figures:
-            figures.append(save_figure(spec, f"{section.name}-{spec.name}", out_dir / "figures",
-                                       png=png))
+            saved = save_figure(spec, f"{section.name}-{spec.name}", out_dir / "figures", png=png)
+            figures.append({"id": saved.id, "caption": saved.caption, "files": saved.files})
             spec.figure.clear()
-        sections.append({"name": section.name, "title": section.title, "content": content,
-                         "figures": figures, "description": section.description})
+        sections.append({
+            "name": section.name, "title": section.title, "description": section.description,
+            "figures": figures,
+            "content": {"facts": [list(f) for f in content.facts],
+                        "tables": [{"caption": t.caption, "header": list(t.header),
+                                    "rows": [list(r) for r in t.rows]} for t in content.tables],
+                        "notes": list(content.notes)},
+        })
+    return sections
+
+
+def cached_sections(data: ArchiveData, out_dir: Path, png: bool) -> list[dict[str, Any]] | None:
+    """The figures stage's stored result if its key matches and every file is there."""
+    index = out_dir / "figures" / SECTIONS_FILE
+    try:
+        stored = json.loads(index.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    if stored.get("key") != figures_key(data, png):
+        return None
+    for section in stored["sections"]:
+        for fig in section["figures"]:
+            if not all((out_dir / f).exists() for f in fig["files"].values()):
+                return None
+    return stored["sections"]
+
+
+SECTIONS_FILE = "sections.json"
+
+
+def figures_stage(data: ArchiveData, out_dir: Path, png: bool = False,
+                  force: bool = False) -> tuple[list[dict[str, Any]], bool]:
+    """(sections, drawn?): reuse the stored figures when current, else draw them."""
+    if not force:
+        cached = cached_sections(data, out_dir, png)
+        if cached is not None:
+            return cached, False
+    sections = draw_sections(data, out_dir, png)
+    (out_dir / "figures").mkdir(parents=True, exist_ok=True)
+    atomic_write(out_dir / "figures" / SECTIONS_FILE, json.dumps(
+        {"key": figures_key(data, png), "sections": sections}, ensure_ascii=False,
+        indent=1).encode("utf-8"))
+    return sections, True
+
+
+def _with_inline_svg(sections: list[dict[str, Any]], out_dir: Path) -> list[dict[str, Any]]:
+    out = []
+    for section in sections:
+        figures = []
+        for fig in section["figures"]:
+            text = (out_dir / fig["files"]["svg"]).read_text(encoding="utf-8")
+            figures.append({**fig, "svg": Markup(_SVG_HEAD.sub("", text, count=1))})
+        out.append({**section, "figures": figures})
+    return out
+
+
+def build_context(data: ArchiveData, out_dir: Path, png: bool = False,
+                  sections: list[dict[str, Any]] | None = None) -> dict[str, Any]:
+    """The one plain dict the scene template renders."""
+    scene = kind_of_archive(data)
+    if sections is None:
+        sections, _ = figures_stage(data, out_dir, png)
+    sections = _with_inline_svg(sections, out_dir)
     runs = []
     for name, run in data.runs.items():
         a = run.attrs
@@ -130,7 +215,7 @@ def build_context(data: ArchiveData, out_dir: Path, png: bool = False) -> dict[s
                      "compile_time_s": a.get("compile_time_s"), "status": a.get("status"),
                      "message": a.get("message", ""), "samples": len(run.t)})
     return {
-        "title": scene.title,
+        "title": data.title,
         "kind": scene.kind,
         "kind_summary": scene.summary,
         "scene_name": data.attrs.get("scene", ""),
@@ -164,15 +249,18 @@ def write_pdf(html_text: str, target: Path, base_url: Path) -> None:
 
 
 def build_report(archive_path: Path, formats=("html", "pdf"), out_dir: Path | None = None,
-                 png: bool | None = None) -> list[Path]:
-    """Render the report(s) of one archive next to it (or into ``out_dir``)."""
+                 png: bool | None = None, force_figures: bool = False) -> list[Path]:
+    """The figures and report stages of one archive, next to it (or into ``out_dir``).
+
+    Figures are redrawn only when their key changed (or ``force_figures``)."""
     archive_path = Path(archive_path)
     data = read_archive(archive_path)
     out_dir = Path(out_dir) if out_dir is not None else archive_path.parent
     out_dir.mkdir(parents=True, exist_ok=True)
     if png is None:
         png = _config_wants_png(data)
-    context = build_context(data, out_dir, png=png)
+    sections, _ = figures_stage(data, out_dir, png, force=force_figures)
+    context = build_context(data, out_dir, png=png, sections=sections)
     return write_formats(render_html(context), out_dir, formats)
 
 
@@ -189,14 +277,11 @@ def write_formats(html_text: str, out_dir: Path, formats) -> list[Path]:
 
 
 def _config_wants_png(data: ArchiveData) -> bool:
-    try:
-        return bool(parse_config_text(data.config_text).data.get("report", {}).get("png", False))
-    except (ConfigError, AttributeError):
-        return False
+    return bool(data.config.get("report", {}).get("png", False))
 
 
 def build_index(out_dir: Path, entries: list[dict[str, Any]]) -> Path:
-    """``index.html`` linking every scene of a batch."""
+    """``index.html``: the gallery of every scene in ``out_dir`` (written atomically)."""
     text = environment().get_template("index.html.j2").render(
         entries=entries, version=__version__,
         created=datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC"))
@@ -207,10 +292,6 @@ def build_index(out_dir: Path, entries: list[dict[str, Any]]) -> Path:
 
 def build_audit_report(audit_path: Path, formats=("html", "pdf")) -> list[Path]:
     """Render the audit table and the figures of every case that is not ok."""
-    from .archive import read_audit
-    from .plots import audit as audit_plots
-    from .scenes.base import FigureSpec
-
     audit_path = Path(audit_path)
     data = read_audit(audit_path)
     out_dir = audit_path.parent

@@ -32,7 +32,12 @@ class RunRecord:
     invariants : dict of str -> ndarray, shape (N,)
     attrs : dict
         method, rtol, atol, nfev, wall_time_s, status, message and anything the
-        integrator adds (nsteps, nreject, h, compile_time_s, method_reason).
+        integrator adds (nsteps, nreject, h, compile_time_s, method_reason), and
+        ``scale_<q>``: the size each invariant's drift is measured against.
+    reference : dict of str -> ndarray, shape (N,)
+        The exact solution (or an independent reference run) sampled on ``t``, per
+        column name: ``/runs/<name>/reference/<column>``; ``attrs["reference_label"]``
+        says what it is.
     """
 
     t: np.ndarray
@@ -40,6 +45,7 @@ class RunRecord:
     columns: list[str]
     invariants: dict[str, np.ndarray] = field(default_factory=dict)
     attrs: dict[str, Any] = field(default_factory=dict)
+    reference: dict[str, np.ndarray] = field(default_factory=dict)
 
     @property
     def status(self) -> str:
@@ -54,6 +60,17 @@ class RunRecord:
 
     def __getitem__(self, name: str) -> np.ndarray:
         return self.column(name)
+
+
+@dataclass(frozen=True)
+class AuditCase:
+    """One extreme case of a kind for ``reportgen audit``: a config (as a dict) and what
+    makes it hard.  ``methods``: alternatives tried besides ``"auto"``."""
+
+    name: str
+    config: dict[str, Any]
+    what: str
+    methods: tuple[str, ...] = ()
 
 
 @dataclass

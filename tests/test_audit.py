@@ -8,11 +8,12 @@ import numpy as np
 
 import stiff_model
 from conftest import pendulum_text
-from reportgen.archive import read_audit
 from reportgen.audit import MethodRun, builtin_cases, run_audit, verdict
+from reportgen.audit_archive import read_audit
 from reportgen.config import parse_config_text
-from reportgen.core.integrators import integrate
-from reportgen.core.stability import stiffness_ratio
+from reportgen.core.integrators import METHODS, RunStatus, integrate
+from reportgen.core.integrators.policy import STIFF_FALLBACK
+from reportgen.core.integrators.stability import stiffness_ratio
 from reportgen.scenes import KINDS, load_scene
 
 
@@ -35,8 +36,9 @@ def test_auto_switches_to_an_implicit_method_on_a_stiff_problem():
     scene = _scene("auto")
     t = np.linspace(0.0, 10.0, 101)
     run = scene.integrate(stiff_model.model(1e5), np.array([1.0]), t)
-    assert run.attrs["method"] == "radau"
-    assert "Stiffness detected" in run.attrs["method_reason"]
+    assert run.attrs["solver_status"] == RunStatus.SWITCHED
+    assert run.attrs["method"] == STIFF_FALLBACK and METHODS[run.attrs["method"]].implicit
+    assert run.attrs["method_reason"]  # says why, for the report
     assert np.max(np.abs(run.y[:, 0] - np.cos(t))) < 1e-8  # exact solution y = cos t
     assert run.status == "ok"
 
@@ -44,7 +46,8 @@ def test_auto_switches_to_an_implicit_method_on_a_stiff_problem():
 def test_named_explicit_method_on_a_stiff_problem_is_flagged():
     scene = _scene("dop853")
     run = scene.integrate(stiff_model.model(1e5), np.array([1.0]), np.linspace(0, 10, 101))
-    assert run.status == "unstable" and "stiff" in run.message
+    assert run.attrs["solver_status"] == RunStatus.STIFF and run.attrs["method"] == "dop853"
+    assert run.status == "unstable" and run.message
 
 
 def test_non_finite_state_is_failed_not_silent():
@@ -52,25 +55,29 @@ def test_non_finite_state_is_failed_not_silent():
     # y' = y² from y = 1 blows up at t = 1
     run = scene.integrate(stiff_model.model(0.0), np.array([1.0]), np.linspace(0, 1, 11))
     assert run.status == "ok"  # the scalar test model is regular: sanity of the harness
+    assert run.attrs["solver_status"] == RunStatus.OK
     from reportgen.core.models import oscillator
 
     bad = scene.integrate(oscillator.model(1.0, -1e4), np.array([1.0, 0.0]),
                           np.linspace(0, 1e3, 11))  # exponential growth e^{100 t}
-    assert bad.status in ("failed", "unstable") and bad.message
+    assert bad.attrs["solver_status"] in (RunStatus.NONFINITE, RunStatus.FAILED)
+    assert bad.status == "failed" and bad.message
 
 
-def _run(status="ok", error=1e-12, reason="", used="dop853"):
+def _run(status="ok", error=1e-12, reason="", used="dop853", solver_status="ok"):
     return MethodRun(method="auto", used=used, status=status, message="boom" if status != "ok"
                      else "", drift=1e-12, error=error, nsteps=10, nreject=0, nfev=100,
-                     wall_time_s=0.01, reason=reason)
+                     wall_time_s=0.01, reason=reason, solver_status=solver_status)
 
 
 def test_verdict_rules():
     assert verdict([_run()])[0] == "ok"
     assert verdict([_run(error=1e-3)])[0] == "inaccurate"
     assert verdict([_run(status="unstable")])[0] == "unstable"
-    assert verdict([_run(reason="x. Stiffness detected …; switched to Radau.", used="radau")])[
-        0] == "stiff"
+    assert verdict([_run(reason="x. Stiffness detected …", used="radau",
+                         solver_status=RunStatus.SWITCHED.value)])[0] == "stiff"
+    # the verdict reads the status, not the wording of the reason
+    assert verdict([_run(reason="the method switched to something")])[0] == "ok"
     v, reason = verdict([_run(status="failed"), _run(used="gauss6")])
     assert v == "unstable" and "gauss6: ok" in reason
 

@@ -63,6 +63,50 @@ def test_kepler_e07_positions_period_elements():
     assert run["x"][i] == pytest.approx(-1.7, abs=1e-9) and abs(run["y"][i]) < 1e-9
 
 
+def test_kepler_curves_stored_for_the_report():
+    # everything the report draws is in the results; checked against closed forms
+    r = simulate(text())
+    a, run = r.analysis, r.runs["main"]
+    # reference on the output grid: apocentre (−1.7, 0) at t = T/2 = π
+    i = int(np.argmin(np.abs(run.t - math.pi)))
+    assert run.reference["x"][i] == pytest.approx(-1.7, abs=1e-12)
+    assert abs(run.reference["y"][i]) < 1e-12
+    assert "Kepler" in run.attrs["reference_label"]
+    # the drawn ellipse: r1 + r2 = 2a about the foci 0 and −2ae ê (focal property)
+    x, y = a["kepler_orbit"]["x"], a["kepler_orbit"]["y"]
+    ex, ey = a["eccentricity_vector"]
+    assert math.hypot(ex, ey) == pytest.approx(0.7, abs=1e-13)  # |A|/(μk) = e
+    assert np.max(np.abs(np.hypot(x, y) + np.hypot(x + 2 * ex, y + 2 * ey) - 2.0)) < 1e-12
+    # V_eff for V = −k/r: r_c = L²/(μk), V_eff(r_c) = −μk²/(2L²) (Goldstein §3.3)
+    mu, k, L = 0.5, 0.5, a["angular_momentum"]
+    curve = a["effective_potential_curve"]
+    assert curve["circular_radius"] == pytest.approx(L**2 / (mu * k), rel=1e-12)
+    assert curve["circular_energy"] == pytest.approx(-mu * k**2 / (2 * L**2), rel=1e-12)
+    dr = curve["r"][1] - curve["r"][0]
+    assert abs(curve["r"][int(np.argmin(curve["effective_potential"]))]
+               - L**2 / (mu * k)) <= dr
+    assert np.allclose(curve["effective_potential"] - curve["potential"],
+                       L**2 / (2 * mu * curve["r"] ** 2), rtol=1e-12, atol=0.0)
+    # both bodies about the centre of mass: m1 r1 + m2 r2 = 0, r1 − r2 = r (3.19)
+    r1, r2 = a["body_tracks"]["r1"], a["body_tracks"]["r2"]
+    assert np.max(np.abs(r1 + r2)) < 1e-15  # m1 = m2
+    assert np.allclose(r1[:, 0] - r2[:, 0], run["x"], rtol=0, atol=1e-15)
+    # |A|/(μk) − e along the run
+    assert np.max(np.abs(a["lrl_eccentricity_error"])) == pytest.approx(
+        a["lrl_eccentricity_drift"], rel=1e-12)
+
+
+def test_eccentricity_vector_is_not_scaled_by_a():
+    # a = −k/(2E) ≠ 1 here: the LRL direction stored for the figure has length e, not a e
+    r = simulate(text(params="", initial="x = 1.0\ny = 0.5\nvx = -0.3\nvy = 1.4",
+                      run="t_end = 10.0\nsamples = 501").replace("m2 = 1.0", "m2 = 3.0")
+                 .replace("k = 0.5", "k = 1.0"))
+    a = r.analysis
+    assert abs(a["semi_major_axis"] - 1.0) > 0.5
+    assert math.hypot(*a["eccentricity_vector"]) == pytest.approx(a["eccentricity"],
+                                                                  rel=1e-12)
+
+
 def test_solve_kepler_extreme_eccentricity():
     M = np.linspace(-20, 20, 2001)
     for e in (0.0, 0.5, 0.9, 0.99, 0.999):
@@ -91,6 +135,15 @@ def test_inverse_cube_correction_apsidal_angle_exact():
     closed = math.pi / math.sqrt(1 - 2 * mu * 0.01 / L**2)  # Landau & Lifshitz §15 problem 3
     assert a["apsidal_angle_exact"] == pytest.approx(closed, rel=1e-10)
     assert abs(a["apsidal_angle_measured"] / closed - 1) < 1e-9
+    # the family drawn in the report: the same angle at every eccentricity
+    family = a["apsidal_angle_family"]
+    assert family["eccentricity"].size > 10 and np.ptp(family["eccentricity"]) > 0.1
+    assert np.allclose(family["angle"], closed, rtol=1e-7, atol=0.0)
+    # pericentre markers: at the stored pericentre times, r is the turning point r_min
+    peri = a["pericentre_positions"]
+    assert peri["x"].size == a["pericentre_times"].size >= 2
+    r_min = a["turning_points"][0]
+    assert np.allclose(np.hypot(peri["x"], peri["y"]), r_min, rtol=1e-3)
 
 
 def test_power_law_apsidal_angle_near_circular_limit():
@@ -111,6 +164,13 @@ def test_power_law_scene_measured_apsidal_angle():
     assert abs(a["apsidal_angle_measured"] / a["apsidal_angle_exact"] - 1) < 1e-9
     assert abs(a["period_measured"] / a["period"] - 1) < 1e-9
     assert 0 < a["eccentricity"] < 1 and r.status == "ok"
+    # the family drawn in the report tends to π/√(2 − n) as e → 0 (Landau & Lifshitz §14)
+    family = a["apsidal_angle_family"]
+    i = int(np.argmin(family["eccentricity"]))
+    assert family["eccentricity"][i] < 0.02
+    assert family["angle"][i] == pytest.approx(math.pi / math.sqrt(0.8), rel=2e-5)
+    j = int(np.argmin(np.abs(family["eccentricity"] - a["eccentricity"])))
+    assert family["angle"][j] == pytest.approx(a["apsidal_angle_exact"], rel=1e-10)
 
 
 def test_unbound_orbit_has_no_period():
@@ -118,6 +178,25 @@ def test_unbound_orbit_has_no_period():
                       run="t_end = 5.0\nsamples = 101"))
     assert "period" not in r.analysis and "period_note" in r.analysis
     assert r.analysis["eccentricity"] > 1
+    assert "kepler_orbit" not in r.analysis and "apsidal_angle_family" not in r.analysis
+    assert not r.runs["main"].reference
+
+
+def test_report_sections_from_the_archive(write_config, cli, tmp_path):
+    # an unbound orbit has no Kepler checks and no apsides: decided from the archive alone
+    from reportgen.archive import read_archive
+    from reportgen.scenes.central_force import CentralForceScene
+
+    cfg = write_config("hyp", text(initial="x = 1.0\ny = 0.0\nvx = 0.0\nvy = 1.6",
+                                   run="t_end = 5.0\nsamples = 101"))
+    code, out, err = cli("run", cfg, "--out", tmp_path / "o", "--jobs", 1, "--format", "html")
+    assert code == 0, out + err
+    data = read_archive(tmp_path / "o" / "hyp" / "run.h5")
+    assert CentralForceScene.default_sections(data) == [
+        "orbit", "two_body", "effective_potential", "invariants", "error_vs_runtime"]
+    figures = sorted(p.name for p in (tmp_path / "o" / "hyp" / "figures").glob("*.svg"))
+    assert figures == ["effective_potential-effective_potential.svg",
+                       "invariants-invariants.svg", "orbit-orbit.svg", "two_body-two_body.svg"]
 
 
 def test_symplectic_method_runs_on_separable_model():

@@ -80,6 +80,12 @@ def test_energy_conserved_and_oscillatory_energy_adiabatic(gni):
     assert a["oscillatory_energy_deviation_times_omega"] == pytest.approx(OMEGA * dev)
     assert a["oscillatory_energy_relative_deviation_times_omega"] == pytest.approx(
         OMEGA * dev / total[0])
+    # the lower panel of the energy-exchange figure is stored: ω (I(t) − I(0)) / I(0)
+    scaled = a["oscillatory_energy_scaled_deviation"]
+    np.testing.assert_allclose(scaled, OMEGA * (total - total[0]) / total[0], rtol=1e-14,
+                               atol=1e-12)
+    assert np.max(np.abs(scaled)) == pytest.approx(
+        a["oscillatory_energy_relative_deviation_times_omega"], rel=1e-14)
     assert len(gni.checks) == 1 and gni.checks[0].rel_error < 1e-9
 
 

@@ -22,8 +22,10 @@ from scipy import special
 
 from reportgen.archive import read_archive
 from reportgen.config import ConfigError, parse_config_text
+from reportgen.core import heavy_top_kinematics as kinematics
+from reportgen.core import heavy_top_theory as theory
 from reportgen.core.integrators import integrate
-from reportgen.core.models import heavy_top as core
+from reportgen.core.models import heavy_top as model_core
 from reportgen.scenes import load_scene
 
 I1, I3, MGL = 1.0, 0.5, 1.0  # the SPEC example top; sleeping threshold ω3 = 4 rad/s
@@ -72,8 +74,8 @@ STATES = {
 
 
 def closed(state):
-    c = core.constants(I1, I3, MGL, *state)
-    return c, core.roots(c)
+    c = theory.constants(I1, I3, MGL, *state)
+    return c, theory.roots(c)
 
 
 @pytest.mark.parametrize("name", STATES)
@@ -84,21 +86,21 @@ def test_cubic_factorizes_with_ordered_roots(name):
     assert math.cos(STATES[name][0]) <= r.u2 + 1e-15 and r.u2 <= 1.0 < r.u3
     u = np.linspace(-1.0, 1.0, 41)
     scale = c.beta * (1 + abs(r.u3)) * 4 + (abs(c.b) + abs(c.a)) ** 2
-    assert np.max(np.abs(core.f_u(u, c) - c.beta * (u - r.u1) * (r.u2 - u) * (r.u3 - u))) \
+    assert np.max(np.abs(theory.f_u(u, c) - c.beta * (u - r.u1) * (r.u2 - u) * (r.u3 - u))) \
         <= 1e-13 * scale
     # in w = 1 − u the small roots keep their relative accuracy: g(w_i) ≈ 0 to rounding
     for w in (r.w1, r.w2):
         h = max(w, 1e-300) * 1e-9
-        assert abs(core.g_w(w, c)) <= abs(core.g_w(w + h, c) - core.g_w(w - h, c)) + 1e-300
+        assert abs(theory.g_w(w, c)) <= abs(theory.g_w(w + h, c) - theory.g_w(w - h, c)) + 1e-300
 
 
 @pytest.mark.parametrize("name", STATES)
 def test_period_and_precession_closed_form_vs_quadrature(name):
     c, r = closed(STATES[name])
-    T, dphi = core.nutation_period(r, c), core.precession_per_period(r, c)
+    T, dphi = theory.nutation_period(r, c), theory.precession_per_period(r, c)
     # closed form (Carlson R_F, R_J) vs adaptive quadrature of ∮du/√f and ∮φ̇ du/√f (10.26)
-    assert abs(T / core.nutation_period_quadrature(r, c) - 1) <= 1e-9
-    assert abs(dphi / core.precession_quadrature(r, c) - 1) <= 1e-9
+    assert abs(T / theory.nutation_period_quadrature(r, c) - 1) <= 1e-9
+    assert abs(dphi / theory.precession_quadrature(r, c) - 1) <= 1e-9
     if r.mc > 1e-6:  # scipy's ellipk, a third, independent K: T = 4K(k²)/√(β(u3 − u1))
         assert abs(T / (4 * special.ellipk(r.m) / math.sqrt(c.beta * (r.u3 - r.u1))) - 1) <= 1e-12
 
@@ -107,12 +109,12 @@ def test_precession_quadrature_in_time_by_direct_integration_of_phi_dot():
     # Δφ as ∫ φ̇ dt of the ODE u̇ = ±√f, φ̇ = (b − au)/(1 − u²) (10.26), by solve_ivp over
     # one period of the sn² solution: independent of both the Π form and the χ substitution
     c, r = closed(STATES["loops (SPEC example)"])
-    T = core.nutation_period(r, c)
+    T = theory.nutation_period(r, c)
     t = np.linspace(0.0, T, 20001)
-    _w, u = core.u_closed_form(t, r, c)
+    _w, u = theory.u_closed_form(t, r, c)
     phi_dot = (c.b - c.a * u) / (1 - u**2)
     dphi = sp_integrate.simpson(phi_dot, x=t)
-    assert abs(dphi / core.precession_per_period(r, c) - 1) <= 1e-9
+    assert abs(dphi / theory.precession_per_period(r, c) - 1) <= 1e-9
 
 
 @pytest.mark.parametrize("preset,case", [("fig4.3a", "loops"), ("fig4.3b", "waves"),
@@ -160,17 +162,17 @@ def test_classification_near_each_boundary():
                               (beta / a, "cusps"), (beta / a * (1 + 1e-6), "loops"),
                               (beta / a * (1 - 1e-6), "waves")]:
         c, r = closed((1.0, 0.0, phi_dot, 6.0))
-        assert core.classify(r, c) == expected, (phi_dot, expected)
+        assert theory.classify(r, c) == expected, (phi_dot, expected)
     # the steady rates (10.45) give no nutation
-    slow, fast = core.steady_precession_rates(I1, I3, MGL, 1.0, 6.0)
+    slow, fast = theory.steady_precession_rates(I1, I3, MGL, 1.0, 6.0)
     for rate in (slow, fast):
-        assert core.classify(*reversed(closed((1.0, 0.0, rate, 6.0)))) == "steady"
+        assert theory.classify(*reversed(closed((1.0, 0.0, rate, 6.0)))) == "steady"
         # ... and a start 1e-6 off the steady rate nutates (slightly), with a period close
         # to the small-oscillation limit 2π/√(β(u3 − u1)) of the steady top
         c, r = closed((1.0, 0.0, rate * (1 + 1e-6), 6.0))
-        assert core.classify(r, c) in ("loops", "waves")
+        assert theory.classify(r, c) in ("loops", "waves")
         c0, r0 = closed((1.0, 0.0, rate, 6.0))
-        assert core.nutation_period(r, c) == pytest.approx(
+        assert theory.nutation_period(r, c) == pytest.approx(
             2 * math.pi / math.sqrt(c0.beta * (r0.u3 - r0.u1)), rel=1e-5)
 
 
@@ -233,6 +235,60 @@ def test_steady_precession_keeps_theta_and_rate():
         assert abs(a["mean_phi_dot"] / rate - 1) <= 1e-9
 
 
+@pytest.mark.parametrize("preset", ["fig4.3a", "sleeping_stable", "steady_fast"])
+def test_stored_curves_are_the_closed_forms(preset):
+    # the report draws only what simulate stored: each curve against its formula
+    s = scene(f'kind = "heavy_top"\npreset = "{preset}"\n[run]\nstudy = false\n')
+    results = s.simulate()
+    a, run = results.analysis, results.runs["main"]
+    theta0 = s.config.initial.theta
+    beta = 2 * MGL / I1
+    # f(u) = β(u − u1)(u2 − u)(u3 − u) (10.31); in w = 1 − u: β(w2 − w)(w − w1)(w − w3)
+    cc = a["cubic_curve"]
+    x, f = cc["x"], cc["f"]
+    if cc["variable"] == "u":
+        factored = beta * (x - a["u1"]) * (a["u2"] - x) * (a["u3"] - x)
+        assert cc["start"] == pytest.approx(math.cos(theta0), abs=1e-15)
+    else:
+        w1, w2, w3 = a["one_minus_u2"], a["one_minus_u1"], 1 - a["u3"]
+        factored = beta * (w2 - x) * (x - w1) * (x - w3)
+        assert 0.0 < w2 < 1e-3 and cc["start"] == pytest.approx(2 * math.sin(theta0 / 2) ** 2)
+    assert np.max(np.abs(f - factored)) <= 1e-9 * np.max(np.abs(f))
+    # V'(θ) = Mgl cos θ + I1 (b − a cos θ)²/(2 sin²θ) (10.28), E' = I1 α/2 (10.30)
+    ep = a["effective_potential"]
+    th = ep["theta"]
+    V = MGL * np.cos(th) + 0.5 * I1 * (a["b"] - a["a"] * np.cos(th)) ** 2 / np.sin(th) ** 2
+    if ep["minus_Mgl"]:  # near the vertical: V' − Mgl, E' − Mgl
+        assert np.max(np.abs(ep["V"] + MGL - V)) <= 1e-12 * MGL
+        assert ep["energy"] + MGL == pytest.approx(0.5 * I1 * a["alpha"], abs=1e-13)
+    else:
+        assert np.max(np.abs(ep["V"] / V - 1)) <= 1e-12
+        assert ep["energy"] == pytest.approx(0.5 * I1 * a["alpha"], rel=1e-14)
+        # the turning angles are where E' = V'(θ): there f(u) = 0
+        for t_turn in (a["theta1"], a["theta2"]):
+            v = MGL * math.cos(t_turn) + 0.5 * I1 * (a["b"] - a["a"] * math.cos(t_turn)) ** 2 \
+                / math.sin(t_turn) ** 2
+            assert v == pytest.approx(ep["energy"], abs=1e-10 * MGL)
+    # steady rates: both roots of I1 cos θ0 φ̇² − I3 ω3 φ̇ + Mgl = 0 (10.45) on the grid,
+    # from the bound I3² ω3² = 4 I1 Mgl cos θ0 (10.46)
+    sr = a["steady_rates"]
+    assert (I3 * sr["omega3_min"]) ** 2 == pytest.approx(4 * I1 * MGL * math.cos(theta0),
+                                                          rel=1e-14)
+    assert np.all(sr["omega3"] > sr["omega3_min"]) and sr["omega3"].size == 400
+    for rate in (sr["slow"], sr["fast"]):
+        residual = I1 * math.cos(theta0) * rate**2 - I3 * sr["omega3"] * rate + MGL
+        assert np.max(np.abs(residual) / (I3 * sr["omega3"] * np.abs(rate))) <= 1e-12
+    assert np.all(sr["slow"] < sr["fast"])
+    # θ(t) of the sn² closed form on the output grid against the integrated θ(t), and the
+    # stored difference in cos θ against the largest one the analysis reports
+    assert run.attrs["reference_label"].startswith("closed form")
+    assert np.max(np.abs(run.reference["theta"] - run["theta"])) <= 1e-7
+    err = a["cos_theta_error"]
+    width = a["one_minus_u1"] - a["one_minus_u2"] if err["relative_to_width"] else 1.0
+    assert np.max(np.abs(err["difference"])) * width == pytest.approx(a["u_max_error"],
+                                                                      rel=1e-3, abs=1e-15)
+
+
 @pytest.mark.parametrize("change,keys", [
     ({"I3 = 0.5": "I3 = 2.5"}, "params.I3"),
     ({"theta = 1.0": "theta = 3.5"}, "initial.theta"),
@@ -263,23 +319,23 @@ def test_quaternion_euler_angles_round_trip():
     rng = np.random.default_rng(3)
     for _ in range(20):
         phi, theta, psi = rng.uniform(-3, 3), rng.uniform(0.01, 3.1), rng.uniform(-3, 3)
-        q = core.euler_to_quaternion(phi, theta, psi)[None, :]
-        th, ph, ps = core.euler_angles(q)
+        q = model_core.euler_to_quaternion(phi, theta, psi)[None, :]
+        th, ph, ps = kinematics.euler_angles(q)
         assert th[0] == pytest.approx(theta, abs=1e-13)
         # φ, ψ modulo 2π
         assert math.remainder(ph[0] - phi, 2 * math.pi) == pytest.approx(0.0, abs=1e-12)
         assert math.remainder(ps[0] - psi, 2 * math.pi) == pytest.approx(0.0, abs=1e-12)
-        e3 = core.symmetry_axis(q)[0]
+        e3 = kinematics.symmetry_axis(q)[0]
         assert np.allclose(e3, [math.sin(theta) * math.sin(phi), -math.sin(theta) * math.cos(phi),
                                 math.cos(theta)], atol=1e-14)
 
 
 def test_integration_conserves_energy_and_momenta():
-    y0 = core.initial_state(0.7, -0.9, 0.4, 5.0)
+    y0 = model_core.initial_state(0.7, -0.9, 0.4, 5.0)
     t = np.linspace(0.0, 20.0, 401)
-    sol = integrate(core.model(I1, I3, MGL), y0, t, method="dop853", rtol=1e-12, atol=1e-14)
-    inv = core.invariants(sol.y, I1, I3, MGL)
-    c = core.constants(I1, I3, MGL, 0.7, -0.9, 0.4, 5.0)
+    sol = integrate(model_core.model(I1, I3, MGL), y0, t, method="dop853", rtol=1e-12, atol=1e-14)
+    inv = model_core.invariants(sol.y, I1, I3, MGL)
+    c = theory.constants(I1, I3, MGL, 0.7, -0.9, 0.4, 5.0)
     # E' = I1 α/2 and p_φ = I1 b (10.25, 10.30) from the Euler-angle initial state
     assert inv["energy"][0] == pytest.approx(0.5 * I1 * c.alpha + 0.5 * I3 * 25.0, rel=1e-14)
     assert inv["p_phi"][0] == pytest.approx(I1 * c.b, rel=1e-14)

@@ -145,13 +145,22 @@ def test_inertia_scene_end_to_end(tmp_path, write_config, cli):
         assert np.allclose(axes.T @ a["tensor"][()] @ axes, np.diag(moments), atol=1e-14)
         assert a["axis_stability"]["axis_2"].attrs["verdict"] == "unstable"
         assert "parallel_axis" in a
+        # the inertia ellipsoid Σ I_k x_k² = 1 (x_k along the principal axes), from the archive
+        surface = a["inertia_ellipsoid/surface"][()]
+        x = surface @ axes
+        assert np.allclose(np.sum(moments * x**2, axis=-1), 1.0, rtol=1e-13)
+        assert np.allclose(a["inertia_ellipsoid/semi_axes"][()], 1 / np.sqrt(moments),
+                           rtol=1e-15)
+        closed = a["closed_form"]
+        assert closed.attrs["max_relative_difference"] < 1e-14
+        assert "exercise 4.9" in closed.attrs["source"]
     html = (tmp_path / "o" / "oct" / "report.html").read_text()
     assert "Parallel-axis shift" in html
 
 
 @pytest.mark.parametrize("shape, key", [
-    ('type = "cone"\nmass = -1.0\nradius = 1.0\nheight = 1.0', "shape.cone.mass"),
-    ('type = "box"\nmass = 1.0\na = 1.0\nb = 0.0\nc = 1.0', "shape.box.b"),
+    ('type = "cone"\nmass = -1.0\nradius = 1.0\nheight = 1.0', "shape.mass"),
+    ('type = "box"\nmass = 1.0\na = 1.0\nb = 0.0\nc = 1.0', "shape.b"),
     ('type = "points"\nmasses = [1.0, 2.0]\npositions = [[0.0, 0.0, 0.0]]', "shape.positions"),
 ])
 def test_inertia_bad_input_names_the_key(tmp_path, write_config, cli, shape, key):

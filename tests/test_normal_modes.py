@@ -211,6 +211,25 @@ def test_chain_matches_closed_form(n):
         assert nodes == list(range(n))  # mode j has j − 1 nodes
 
 
+def test_standing_waves_are_the_fixed_chain_modes():
+    # η_s ∝ sin(jsπ/(N+1)) solves A η = ω_j² M η with ω_j = 2√(k/m) sin(jπ/(2(N+1)))
+    # (notes §5.1; Goldstein §6.4)
+    n, m, k = 9, 2.0, 5.0
+    M, A = core.chain_matrices(np.full(n, m), np.full(n + 1, k))
+    w = core.chain_exact_frequencies(n, m, k)
+    for j in range(1, n + 1):
+        eta = core.chain_standing_wave(n, j, np.arange(1, n + 1))
+        assert np.max(np.abs(A @ eta - w[j - 1] ** 2 * (M @ eta))) < 1e-12 * k
+    # the drawn curves: scaled to 1 at the masses, signed like the computed modes
+    modes = core.solve_modes(M, A).modes
+    s, waves = core.chain_standing_waves(modes[:, :4], n_points=101)
+    assert s[0] == 0.0 and s[-1] == n + 1 and waves.shape == (101, 4)
+    at_masses = core.chain_standing_waves(modes[:, :4], n_points=n + 2)[1][1:-1]
+    assert np.allclose(np.max(np.abs(at_masses), axis=0), 1.0, rtol=1e-12)
+    unit = modes[:, :4] / np.max(np.abs(modes[:, :4]), axis=0)
+    assert np.max(np.abs(at_masses - unit)) < 1e-12
+
+
 def test_free_chain_has_one_translation_zero_mode():
     a = simulate('kind = "normal_modes"\n[chain]\nn = 5\nends = "free"\n').analysis
     assert a["n_zero_modes"] == 1
@@ -290,6 +309,12 @@ def test_co2_archive_has_the_spec_entries_and_no_runs(write_config, cli, tmp_pat
         assert np.all(np.diff(w) >= 0)
         assert np.max(np.abs(modes.T @ M @ modes - np.eye(9))) < 1e-12  # columns mass-normalized
         assert int(an.attrs["n_zero_modes"]) == 5 and int(an.attrs["n_vibrational"]) == 4
+        # what the mode figures draw: the vibrations in the drawing frame, stored
+        frame = an["frame"][()]
+        disp = an["drawing/displacements"][()]
+        assert disp.shape == (4, 3, 3)
+        assert np.allclose(disp[0], modes[:, 5].reshape(3, 3) @ frame.T, rtol=0, atol=1e-15)
+        assert np.allclose(an["drawing/positions"][()][:, 0], [-1.16, 0.0, 1.16], atol=1e-12)
     html = (tmp_path / "o" / "co2" / "report.html").read_text()
     assert "Mode shapes" in html and "Counting the modes" in html
     assert "Time evolution" not in html and "Error against run time" not in html
@@ -317,6 +342,10 @@ def test_coupled_pendula_beats_direct_against_modal():
     assert res.analysis["evolution_max_error"] < 1e-10
     assert not res.analysis["stiff"]
     assert run.status == "ok"
+    # the modal superposition is archived as the run's reference (the report redraws it)
+    assert np.max(np.abs(run.reference["phi1"] - phi1)) < 1e-14
+    assert np.max(np.abs(run.reference["phi2"] - phi2)) < 1e-14
+    assert "modal superposition" in run.attrs["reference_label"]
 
 
 def test_modal_superposition_is_exact_with_zero_modes_and_velocity():

@@ -7,6 +7,7 @@ import math
 import numpy as np
 import pytest
 
+from reportgen.archive import read_archive, write_archive
 from reportgen.config import ConfigError, parse_config_text
 from reportgen.core.models import oscillator as core
 from reportgen.scenes import load_scene
@@ -68,7 +69,41 @@ def test_rest_state_is_rejected():
                                                                               "p = 0.0")))
 
 
-def test_report_is_short(results):
+@pytest.fixture(scope="module")
+def data(results, tmp_path_factory):
+    """The archive of ``results`` read back: what the report sees."""
     scene = load_scene(parse_config_text(TEXT))
-    assert [s.name for s in scene.chosen_sections()] == [
+    path = tmp_path_factory.mktemp("oscillator") / "run.h5"
+    write_archive(path, kind=scene.kind, title=scene.title, scene="test", config_text=TEXT,
+                  config_sha256="0", results=results, resolved_config=scene.resolved_config())
+    return read_archive(path)
+
+
+def test_report_is_short(data):
+    kind = load_scene(parse_config_text(TEXT)).__class__
+    assert [s.name for s in kind.chosen_sections(data)] == [
         "hamilton", "canonical_swap", "hamilton_jacobi"]  # study = false drops the diagram
+
+
+def test_archive_holds_what_the_report_draws(data):
+    run, swapped = data.runs["main"], data.runs["swapped"]
+    t = run.t
+    # closed form on the output grid (notes §4)
+    assert np.allclose(run.reference["q"], np.cos(1.5 * t) + 0.5 / 3.0 * np.sin(1.5 * t),
+                       rtol=0, atol=1e-14)
+    assert np.allclose(run.reference["p"], 0.5 * np.cos(1.5 * t) - 3.0 * np.sin(1.5 * t),
+                       rtol=0, atol=1e-14)
+    # the swap image of the integrated orbit, Q = p, P = −q (6.9)
+    assert np.array_equal(swapped.reference["Q"], run["p"])
+    assert np.array_equal(swapped.reference["P"], -run["q"])
+    # Hamilton–Jacobi (7.38): q = √(2E/mω²) sin ω(t + β), with E, β from the initial state
+    hj = data.analysis["hamilton_jacobi"]
+    e0 = 0.5 * 0.5**2 / 2.0 + 0.5 * 2.0 * 1.5**2
+    beta = math.atan2(3.0, 0.5) / 1.5
+    assert np.allclose(hj["q"], math.sqrt(2 * e0 / (2.0 * 1.5**2)) * np.sin(1.5 * (t + beta)),
+                       rtol=0, atol=1e-12)
+    assert np.max(np.abs(hj["beta"] - beta)) < 1e-10
+    assert np.max(np.abs(hj["energy"] - e0)) < 1e-10 * e0
+    kind = load_scene(parse_config_text(TEXT)).__class__
+    for name in ("hamilton", "canonical_swap", "hamilton_jacobi"):
+        assert getattr(kind, f"section_{name}")(data).figures

@@ -14,6 +14,7 @@ import pytest
 from scipy import special
 
 from conftest import pendulum_text
+from reportgen.archive import read_archive, write_archive
 from reportgen.config import parse_config_text
 from reportgen.core.models import pendulum as core
 from reportgen.scenes import load_scene
@@ -21,6 +22,15 @@ from reportgen.scenes import load_scene
 
 def simulate(text):
     return load_scene(parse_config_text(text)).simulate()
+
+
+def archived(text, path):
+    """Simulate ``text`` and read it back from an archive at ``path``: what a report sees."""
+    scene = load_scene(parse_config_text(text))
+    write_archive(path, kind=scene.kind, title=scene.title, scene="test", config_text=text,
+                  config_sha256="0", results=scene.simulate(),
+                  resolved_config=scene.resolved_config())
+    return type(scene), read_archive(path)
 
 
 @pytest.mark.parametrize("theta0", [0.2, 1.0, 2.5])
@@ -109,3 +119,71 @@ def test_study_has_exact_reference_and_peers():
     assert results.study_attrs["reference_kind"] == "exact"
     ok = study["status"] == (b"ok" if isinstance(study["status"][0], bytes) else "ok")
     assert np.all(np.isfinite(study["error_max"][ok]))
+
+
+def test_archive_holds_the_curves_the_report_draws(tmp_path):
+    theta0 = 1.2
+    w0 = math.sqrt(9.81)
+    kind, data = archived(pendulum_text(theta=theta0, t_end=6.0, samples=601), tmp_path / "a.h5")
+    a, run = data.analysis, data.runs["main"]
+    # period curve T(θ0) = 4 K(sin²(θ0/2)) / ω0 (DLMF 22.19.4), sampled over 0 < θ0 < π
+    curve = a["period_curve"]
+    assert curve["amplitude"][0] > 0 and curve["amplitude"][-1] < math.pi
+    assert np.allclose(curve["period"], 4 * special.ellipk(np.sin(curve["amplitude"] / 2) ** 2)
+                       / w0, rtol=1e-14, atol=0)
+    assert a["amplitude"] == pytest.approx(theta0, rel=1e-14)  # released from rest
+    # reference: sin(θ/2) = k sn(K(m) − ω0 t | m) (DLMF 22.19.2), released-from-rest form
+    m = math.sin(theta0 / 2) ** 2
+    sn, cn, _, _ = special.ellipj(special.ellipk(m) - w0 * run.t, m)
+    assert np.max(np.abs(run.reference["theta"] - 2 * np.arcsin(math.sqrt(m) * sn))) < 1e-12
+    assert np.max(np.abs(run.reference["theta_dot"] + 2 * math.sqrt(m) * w0 * cn)) < 1e-11
+    assert run.attrs["reference_label"] == "exact (Jacobi sn)"
+    # small-angle solution (1.19): θ0 cos ω0 t
+    small = a["small_angle_solution"]
+    assert np.allclose(small["theta"], theta0 * np.cos(w0 * run.t), rtol=0, atol=1e-14)
+    # phase portrait: level sets of θ̇²/2 − ω0² cos θ, separatrix at ω0² (E = m g l)
+    pp = a["phase_portrait"]
+    TH, THD = np.meshgrid(pp["theta"], pp["theta_dot"])
+    assert np.allclose(pp["energy"], 0.5 * THD**2 - 9.81 * np.cos(TH), rtol=0, atol=1e-12)
+    assert pp["separatrix"] == pytest.approx(9.81, rel=1e-15)
+    assert pp["theta_dot"][-1] >= np.max(np.abs(run["theta_dot"]))
+    # no boundary problem configured: the report leaves its section out
+    assert "boundary_value" not in kind.default_sections(data)
+    assert kind.section_period(data).figures and kind.section_time_series(data).figures
+
+
+def test_rotation_archive_has_no_libration_curves(tmp_path):
+    text = pendulum_text(theta=0.0, t_end=4.0, samples=801).replace(
+        "theta = 0.0", "theta = 0.0\ntheta_dot = 7.0")
+    kind, data = archived(text, tmp_path / "r.h5")
+    assert data.analysis["motion"] == "rotation"
+    assert "small_angle_solution" not in data.analysis and "amplitude" not in data.analysis
+    content = kind.section_period(data)
+    assert any("rotates" in n for n in content.notes)
+
+
+def test_reference_run_where_the_elliptic_form_is_unresolved(tmp_path):
+    # θ0 = π − 1e-5: 1 − k² = sin²(5e-6) = 2.5e-11, below EXACT_SOLUTION_MIN_M1
+    theta0 = math.pi - 1e-5
+    assert core.complementary_parameter(theta0, 0.0, math.sqrt(9.81)) < core.EXACT_SOLUTION_MIN_M1
+    kind, data = archived(pendulum_text(theta=theta0, t_end=1.5, samples=301), tmp_path / "s.h5")
+    run = data.runs["main"]
+    assert run.attrs["reference_label"] == "reference run (DOP853, rtol 1e-14)"
+    # lingering at the top: θ stays within 1e-3 of π for 1.5 s (δ cosh ω0 t < 1e-3)
+    assert np.max(np.abs(run.reference["theta"] - math.pi)) < 1e-3
+    assert np.max(np.abs(run["theta"] - run.reference["theta"])) < 1e-6
+    assert "small_angle_solution" in data.analysis
+    assert kind.section_time_series(data).figures
+
+
+def test_boundary_value_section_from_the_archive(tmp_path):
+    text = pendulum_text(t_end=2.0, samples=101, extra="""
+        [boundary]
+        theta0 = 0.3
+        theta1 = -0.2
+        T = 2.5
+        """)
+    kind, data = archived(text, tmp_path / "b.h5")
+    assert "boundary_value" in kind.default_sections(data)
+    content = kind.section_boundary_value(data)
+    assert content.tables[0].rows[0][1] == f"{data.analysis['boundary_value']['action_exact']:.14g}"

@@ -3,14 +3,18 @@
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import h5py
 import numpy as np
 import pytest
 
+from reportgen.core import special
 from reportgen.core.integrators import integrate
 from reportgen.core.models import rigid_body as core
 from reportgen.core.models.rigid_body_splitting import integrate_splitting
+
+REPO = Path(__file__).resolve().parent.parent
 
 # (moments in any order, ω0, expected branch in the sorted frame)
 CASES = [
@@ -87,6 +91,88 @@ def test_intermediate_axis_growth_rate():
     assert math.isclose(measured, gamma, rel_tol=1e-4)
 
 
+def test_special_functions_elliptic_identities():
+    """DLMF 19.2.10: F(φ + nπ | m) = F(φ | m) + 2nK(m); 22.16.1: am(F(φ | m)) = φ, so
+    sn(F) = sin φ, cn(F) = cos φ, dn(F) = √(1 − m sin²φ); m = 0 gives sin, cos, 1."""
+    m = 0.7
+    K = special.ellipk(m)
+    assert special.ellipk(1.0) == math.inf
+    for phi in (0.3, 1.2, -2.0):
+        for n in (-2, 1, 3):
+            assert math.isclose(special.ellipf(phi + n * math.pi, m),
+                                special.ellipf(phi, m) + 2 * n * K, rel_tol=1e-13)
+    phis = np.array([-4.0, -1.0, 0.2, 1.5, 2.5, 7.0])
+    sn, cn, dn = special.jacobi_sn_cn_dn([special.ellipf(p, m) for p in phis], m)
+    assert np.allclose(sn, np.sin(phis), atol=1e-13)
+    assert np.allclose(cn, np.cos(phis), atol=1e-13)
+    assert np.allclose(dn, np.sqrt(1 - m * np.sin(phis) ** 2), atol=1e-13)
+    u = np.linspace(-3.0, 3.0, 13)
+    sn0, cn0, dn0 = special.jacobi_sn_cn_dn(u, 0.0)
+    assert np.allclose(sn0, np.sin(u), atol=1e-15) and np.allclose(cn0, np.cos(u), atol=1e-15)
+    assert np.allclose(dn0, 1.0, atol=1e-15)
+
+
+@pytest.mark.parametrize("I", [(1.0, 2.0, 3.0), (3.0, 1.0, 2.0), (1.0, 1.0, 1.5)])
+def test_polhodes_lie_on_sphere_and_energy_ellipsoid(I):
+    """Each polhode of unit L satisfies |l| = 1 and Σ l_k²/I_k = const (2E/L²); the
+    separatrices have 2E/L² = 1/I2 (Landau & Lifshitz §37)."""
+    I = np.array(I)
+    fam = core.polhode_family(I)
+    distinct = len(set(I)) == 3
+    assert fam.shape == ((20 if distinct else 10), 400, 3)
+    assert np.allclose(np.linalg.norm(fam, axis=2), 1.0, atol=1e-14)
+    e = np.sum(fam**2 / I, axis=2)
+    assert np.max(np.ptp(e, axis=1)) < 1e-13
+    # energies strictly between an extreme axis and the separatrix
+    inv = np.sort(1.0 / I)
+    assert np.all((e[:, 0] > inv[0]) & (e[:, 0] < inv[2]))
+    assert np.all(np.abs(e[:, 0] - 1.0 / np.median(I)) > 1e-3)
+    sep = core.polhode_separatrices(I)
+    if not distinct:
+        assert sep.shape == (0, 400, 3)
+        return
+    assert sep.shape == (2, 400, 3)
+    assert np.allclose(np.linalg.norm(sep, axis=2), 1.0, atol=1e-14)
+    assert np.allclose(np.sum(sep**2 / I, axis=2), 1.0 / np.median(I), atol=1e-14)
+
+
+def test_herpolhode_and_polhode_track_of_a_run():
+    """Poinsot: ω·L/|L| = 2T/|L| is constant; the polhode track is Iω/|Iω|."""
+    I = np.array([1.0, 2.0, 3.0])
+    w = np.array([1.0, 0.5, 1.5])
+    t = np.linspace(0.0, 10.0, 501)
+    sol = integrate(core.model(*I), y0_of(w), t, method="dop853", rtol=1e-12, atol=1e-14)
+    h = core.herpolhode(sol.y[:, :3], sol.y[:, 3:7], I)
+    T2, L = np.sum(I * w**2), np.linalg.norm(I * w)
+    assert np.allclose(h["along_L"], T2 / L, rtol=1e-10)
+    # |ω|² = (ω·n)² + x² + y²: the plane coordinates carry the rest of ω
+    assert np.allclose(h["x"] ** 2 + h["y"] ** 2 + h["along_L"] ** 2,
+                       np.sum(sol.y[:, :3] ** 2, axis=1), rtol=1e-10)
+    track = core.polhode_track(sol.y[:, :3], I)
+    assert np.allclose(track * np.linalg.norm(I * sol.y[:, :3], axis=1)[:, None],
+                       I * sol.y[:, :3], atol=1e-14)
+
+
+def test_impulse_growth_envelope_and_flips():
+    """Δω = I⁻¹ (r × P) (ex. 4.6c); δ(t) = δ0 e^{γt}; flips every 2K(m)/λ."""
+    dw = core.omega_after_impulse([0.0, 0.0, 1.0], [2.0, 4.0, 8.0], [0.0, 0.0, 1.5],
+                                  [0.1, 0.0, 0.0])
+    assert np.allclose(dw, [0.0, 0.15 / 4.0, 1.0], atol=1e-16)
+    assert np.allclose(core.growth_envelope(np.array([0.0, 2.0]), 0.01, 0.5),
+                       [0.01, 0.01 * math.e], rtol=1e-15)
+    I, w = np.array([1.0, 2.0, 3.0]), np.array([0.01, 2.0, 0.01])
+    t = np.linspace(0.0, 40.0, 4001)
+    ell = core.elliptic_parameters(w, I)
+    f = core.flip_analysis(t, core.exact_omega(t, w, I), 1, 1.0, ell["period"] / 2)
+    assert f["axis"] == 2 and len(f["flip_times"]) >= 2
+    assert math.isclose(f["half_period_measured"], ell["period"] / 2, rel_tol=1e-4)
+    assert math.isclose(f["perturbation_initial"], math.hypot(0.01, 0.01), rel_tol=1e-10)
+    assert f["growth_envelope"].shape == t.shape
+    # the Jacobian at steady rotation gives (10.14) about the intermediate axis
+    assert math.isclose(core.steady_rotation_growth_rate(I, 1, 2.0),
+                        2.0 * math.sqrt(1 * 1 / 3), rel_tol=1e-12)
+
+
 @pytest.mark.parametrize("order", [2, 4])
 def test_splitting_order_and_invariants(order):
     I = np.array([1.0, 2.0, 3.0])
@@ -149,6 +235,21 @@ def test_scene_archive_per_spec(tmp_path, write_config, cli):
         assert a.attrs["quaternion_norm_max_deviation"] < 1e-10
         assert "flip" in a and len(a["flip/flip_times"]) >= 2
         assert "symmetric" not in a
+        # the archive is the whole truth: exact ω on the output grid, Poinsot geometry
+        ref = main["reference"]
+        exact = core.exact_omega(t, [0.01, 2.0, 0.01], [1, 2, 3])
+        for k in range(3):
+            assert np.array_equal(ref[f"omega_{k + 1}"][()], exact[:, k])
+        assert "Jacobi elliptic" in main.attrs["reference_label"]
+        assert np.array_equal(f["runs/splitting/reference/omega_1"][()], exact[:, 0])
+        assert f["runs/splitting"].attrs["scale_L_squared"] == main.attrs["scale_L_squared"]
+        assert a["polhodes/family"].shape == (20, 400, 3)
+        assert a["polhodes/separatrices"].shape == (2, 400, 3)
+        assert a["polhodes/track"].shape == (801, 3)
+        her = a["herpolhode"]
+        assert her["x"].shape == (801,) and her.attrs["omega_along_L_spread"] < 1e-9
+        env = a["flip/growth_envelope"][()]
+        assert math.isclose(env[0], math.hypot(0.01, 0.01), rel_tol=1e-14)
     html = (tmp_path / "o" / "dz" / "report.html").read_text()
     assert "Dzhanibekov" in html and "Polhodes" in html
     assert "Precession of the symmetric body" not in html  # promise 3
@@ -175,7 +276,7 @@ def test_cone_impulse_sets_initial_state(tmp_path, write_config, cli):
 @pytest.mark.parametrize("text, key", [
     (rigid_text(body="[params]\nI1 = 1.0\nI2 = 1.0\nI3 = 2.5"), "params.I3"),
     (rigid_text(body='[shape]\ntype = "box"\nmass = 0.0\na = 1.0\nb = 1.0\nc = 1.0'),
-     "shape.box.mass"),
+     "shape.mass"),
     (rigid_text(omega="[1.0, 2.0]"), "initial.omega"),
     (rigid_text(extra="attitude = [1.0, 1.0, 0.0, 0.0]"), "initial.attitude"),
 ])
@@ -186,8 +287,6 @@ def test_bad_input_names_the_key(write_config, cli, text, key):
 
 
 def test_shipped_presets_validate(cli):
-    from tests.conftest import REPO
-
     paths = sorted(REPO.glob("configs/rigid_body_*.toml")) + [REPO / "configs/inertia_cone.toml"]
     assert len(paths) == 5
     code, out, err = cli("validate", *paths)

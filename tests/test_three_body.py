@@ -4,11 +4,16 @@ Sun–Earth–Moon mass ratios (notes 3.35) and the Jacobi kinetic energy (3.33)
 
 from __future__ import annotations
 
+import math
+from types import SimpleNamespace
+
 import numpy as np
+import pytest
 
 from reportgen.config import ConfigError, parse_config_text
 from reportgen.core.models import nbody as core
 from reportgen.scenes import load_scene
+from reportgen.scenes.three_body import ThreeBodyScene
 
 
 def simulate(text):
@@ -31,6 +36,13 @@ def test_figure_eight_returns_after_one_period():
     # independent of the scene's own return check: the stored last sample is t = T
     assert np.max(np.abs(run.y[-1, :9] - run.y[0, :9])) <= 1e-6
     assert r.status == "ok"
+    # equal masses: not a hierarchical triple, so the report shows no moon section
+    assert a["hierarchical"] is False and "moon_relative_position" not in a
+    # the encounter curves the report draws are the pair distances of the stored run
+    pos = run.y[:, :9].reshape(-1, 3, 3)
+    np.testing.assert_array_equal(a["pair_distances"]["r13"],
+                                  np.linalg.norm(pos[:, 2] - pos[:, 0], axis=1))
+    assert a["min_pair_distance"] == min(float(np.min(d)) for d in a["pair_distances"].values())
 
 
 def test_pythagorean_to_t70_energy_and_final_binary():
@@ -64,6 +76,17 @@ def test_sun_earth_moon_mass_ratios_and_jacobi():
     assert abs(a["moon_period_measured"] / a["moon_kepler_period"] - 1) < 0.02
     assert a["moon_reference_error"] < 1e-9
     assert r.status == "ok"
+    # what the moon section draws is stored: the Moon's track about the Earth and ρ1, ρ2 (3.32)
+    y = r.runs["main"].y
+    assert a["hierarchical"] is True
+    np.testing.assert_array_equal(a["moon_relative_position"], y[:, 6:9] - y[:, 3:6])
+    np.testing.assert_array_equal(a["jacobi_coordinates"]["rho1"], y[:, 3:6] - y[:, 0:3])
+    assert a["mass_ratios"]["m2_m1"] == m[1] / m[0] and a["mass_ratios"]["m3_m1"] == m[2] / m[0]
+    # the Moon at 0.0025696 AU (384 400 km), inclined 5.145° (the preset's data)
+    assert a["moon_semi_major_axis"] == pytest.approx(0.0025696, rel=1e-6)
+    assert math.degrees(a["moon_inclination"]) == pytest.approx(5.145, abs=1e-9)
+    # sidereal month 27.32 d = 0.0748 yr (Kepler's third law with the preset's masses)
+    assert a["moon_kepler_period"] * 365.25 == pytest.approx(27.3, rel=0.01)
 
 
 def test_collision_is_an_error():
@@ -85,3 +108,47 @@ def test_collision_is_an_error():
         assert "params.masses" in str(exc)
     else:
         raise AssertionError("negative mass accepted")
+
+
+def test_osculating_orbit_kepler_third_law():
+    # circular orbit of radius R with speed √(K/R), tilted by i about the x axis:
+    # a = R, inclination i, T = 2π √(R³/K) (Kepler's third law, notes 3.31)
+    K, R, inc = 4 * math.pi**2, 2.0, math.radians(30.0)
+    v = math.sqrt(K / R)
+    orbit = core.osculating_orbit([R, 0.0, 0.0], [0.0, v * math.cos(inc), v * math.sin(inc)], K)
+    assert orbit["semi_major_axis"] == pytest.approx(R, rel=1e-14)
+    assert orbit["inclination"] == pytest.approx(inc, rel=1e-14)
+    assert orbit["period"] == pytest.approx(2 * math.pi * math.sqrt(R**3 / K), rel=1e-14)
+    np.testing.assert_allclose(orbit["normal"], [0.0, -math.sin(inc), math.cos(inc)], atol=1e-15)
+    # unbound (v above escape speed √(2K/R)): a < 0 and no period
+    hyper = core.osculating_orbit([R, 0.0, 0.0], [0.0, 1.5 * math.sqrt(2 * K / R), 0.0], K)
+    assert hyper["semi_major_axis"] < 0 and math.isnan(hyper["period"])
+
+
+def test_revolutions_counts_signed_turns():
+    phi = np.linspace(0.0, 2.5 * 2 * math.pi, 1001)
+    rel = np.stack([np.cos(phi), np.sin(phi), np.zeros_like(phi)], axis=1)
+    assert core.revolutions(rel, [0.0, 0.0, 1.0]) == pytest.approx(2.5, rel=1e-12)
+    assert core.revolutions(rel, [0.0, 0.0, -1.0]) == pytest.approx(-2.5, rel=1e-12)
+
+
+def test_natural_scales_bound_the_invariants():
+    scene = load_scene(parse_config_text('kind = "three_body"\npreset = "pythagorean"\n'))
+    y0 = scene._y0()
+    s = core.natural_scales(y0, 1.0, scene.masses)
+    # Burrau's bodies start at rest, r12 = 5, r13 = 4, r23 = 3 (each mass opposite the side
+    # of its own length): E(0) = −U(0) = −(3·4/5 + 3·5/4 + 4·5/3) (G = 1)
+    u0 = 12 / 5 + 15 / 4 + 20 / 3
+    assert s["energy"] == pytest.approx(u0, rel=1e-14)
+    assert float(core.energy(y0, 1.0, scene.masses)[0]) == pytest.approx(-u0, rel=1e-14)
+    assert s["momentum_x"] == s["momentum_y"] > 0 and s["angular_momentum_z"] > 0
+
+
+def test_default_sections_from_the_archive_alone():
+    def data(hierarchical, period):
+        return SimpleNamespace(analysis={"hierarchical": hierarchical},
+                               config=SimpleNamespace(period=period))
+    names = ThreeBodyScene.default_sections(data(False, None))
+    assert "moon" not in names and "periodicity" not in names and "orbits" in names
+    names = ThreeBodyScene.default_sections(data(True, 6.3))
+    assert "moon" in names and "periodicity" in names

@@ -47,6 +47,45 @@ def test_constants_conserved_and_region(state, family):
     if family == "planetary":
         assert eta_lo > 0 and np.all(np.sign(eta) == np.sign(eta[0]))  # one side only
     assert r.status == "ok"
+    # the coordinate lines the report draws lie on ξ = const and η = const
+    grid = a["elliptic_grid"]
+    for level, gx, gy in zip(grid["xi_levels"], grid["ellipses"]["x"], grid["ellipses"]["y"],
+                             strict=True):
+        assert np.allclose(core.elliptic_coordinates(gx, gy, 1.0)[0], level, atol=1e-9)
+    assert grid["xi_levels"][-1] >= np.max(xi)  # the grid covers the orbit
+    hyp_eta = np.repeat(grid["eta_levels"], 2)  # both branches of each hyperbola
+    for level, gx, gy in zip(hyp_eta, grid["hyperbolas"]["x"], grid["hyperbolas"]["y"],
+                             strict=True):
+        assert np.allclose(core.elliptic_coordinates(gx, gy, 1.0)[1], level, atol=1e-9)
+    bounds = a["motion_bounds"]
+    for level, gx, gy in zip(bounds["xi"], bounds["ellipses"]["x"], bounds["ellipses"]["y"],
+                             strict=True):
+        assert np.allclose(core.elliptic_coordinates(gx, gy, 1.0)[0], level, atol=1e-9)
+    assert np.max(bounds["xi"]) == pytest.approx(hi, rel=1e-15)
+    if family == "planetary":
+        # the |η| = η* hyperbola on the orbit's side, both branches
+        assert bounds["eta"].tolist() == [np.sign(eta[0]) * eta_lo]
+        assert bounds["hyperbolas"]["x"].shape[0] == 2
+        assert np.allclose(core.elliptic_coordinates(bounds["hyperbolas"]["x"],
+                                                     bounds["hyperbolas"]["y"], 1.0)[1],
+                           np.sign(eta[0]) * eta_lo, atol=1e-9)
+    else:
+        assert "eta" not in bounds
+
+
+def test_coordinate_lines_closed_forms():
+    # ellipse ξ: r1 + r2 = 2aξ; hyperbola η: r1 − r2 = 2aη (foci at (±a, 0), notes 7.46)
+    a = 0.7
+    x, y = core.coordinate_ellipse(1.3, a)
+    r1, r2 = core.distances(x, y, a)
+    assert np.allclose(r1 + r2, 2 * a * 1.3, rtol=1e-14)
+    assert x[0] == pytest.approx(x[-1]) and y[0] == pytest.approx(y[-1], abs=1e-15)
+    for sign in (1.0, -1.0):
+        x, y = core.coordinate_hyperbola(-0.4, a, 2.0, sign=sign)
+        r1, r2 = core.distances(x, y, a)
+        assert np.allclose(r1 - r2, 2 * a * -0.4, rtol=1e-12)
+        assert np.all(sign * y >= 0)
+        assert np.max((r1 + r2) / (2 * a)) == pytest.approx(2.0, rel=1e-14)
 
 
 def test_separation_constant_is_not_trivially_conserved():

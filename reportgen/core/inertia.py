@@ -147,3 +147,31 @@ def axis_stability(moments, spin: float = 1.0, rtol: float = 1e-12) -> list[dict
         out.append({"moment": float(I[i]), "verdict": verdict, "growth_rate": growth,
                     "oscillation_frequency": freq})
     return out
+
+
+def inertia_ellipsoid(moments, axes, n_u: int = 36, n_v: int = 18) -> dict:
+    """The inertia ellipsoid Σ I_k x_k² = 1 (principal coordinates x_k) in the lab frame.
+
+    Its semi-axes are 1/√I_k along the principal axes (Landau & Lifshitz §32; Poinsot's
+    construction, lecture notes §10).
+
+    Parameters
+    ----------
+    moments : array_like, shape (3,)
+        Principal moments [kg m²].
+    axes : array_like, shape (3, 3)
+        Column k: lab-frame unit vector of principal axis k.
+    n_u, n_v : int
+        Grid of the surface in azimuth u ∈ [0, 2π] and polar angle v ∈ [0, π].
+
+    Returns
+    -------
+    dict
+        ``semi_axes`` (3,) = 1/√I_k [(kg m²)^−½]; ``surface`` (n_u, n_v, 3): lab-frame
+        points of the ellipsoid on the (u, v) grid.
+    """
+    semi = 1.0 / np.sqrt(np.asarray(moments, dtype=float))
+    u, v = np.mgrid[0:2 * np.pi:complex(0, n_u), 0:np.pi:complex(0, n_v)]
+    local = np.stack([semi[0] * np.cos(u) * np.sin(v), semi[1] * np.sin(u) * np.sin(v),
+                      semi[2] * np.cos(v)], axis=-1)
+    return {"semi_axes": semi, "surface": local @ np.asarray(axes, dtype=float).T}

@@ -592,3 +592,250 @@ def pendula_exact_frequencies(n: int, m: float, l: float, g: float, k: float) ->
     N = 2: ω = √(g/l) in phase, √(g/l + 2k/m) out of phase — Goldstein §6.3)."""
     j = np.arange(n)
     return np.sqrt(g / l + 4 * k / m * np.sin(j * math.pi / (2 * n)) ** 2)
+
+
+def rigid_body_basis(mol: Molecule, M: np.ndarray) -> tuple[np.ndarray, list[str]]:
+    """M-orthonormal rigid-body zero modes of a molecule, with their labels.
+
+    Translations first, then the infinitesimal rotations (their M-Gram matrix is the
+    inertia tensor); the rank of each block is found by :func:`m_orthonormalize`, so a
+    linear molecule gets 3 translations and 2 rotations (notes §5.1).
+
+    Parameters
+    ----------
+    mol : Molecule
+    M : ndarray, shape (3n, 3n)
+        Mass matrix of ``mol``.
+
+    Returns
+    -------
+    basis : ndarray, shape (3n, r), r = 5 or 6
+    labels : list of str, length r: "translation" or "rotation"
+    """
+    vecs = mol.rigid_body_vectors()
+    trans = m_orthonormalize(vecs[:, :3], M)
+    rot = m_orthonormalize(vecs[:, 3:], M)
+    return (np.column_stack([trans, rot]),
+            ["translation"] * trans.shape[1] + ["rotation"] * rot.shape[1])
+
+
+def classify_modes(modes: ModeSet, M: np.ndarray, system: str, mol: Molecule | None = None,
+                   rigid_labels: list[str] | tuple[str, ...] = ()) -> list[str]:
+    """A type label per mode of ``modes`` (ascending ω).
+
+    Zero modes take ``rigid_labels`` in order ("translation", "rotation"), then
+    "zero mode (floppy)".  Vibrations of a molecule are named by their potential-energy
+    split (:func:`stretch_character`: symmetric / antisymmetric stretch, bend) and, for a
+    linear molecule, by their geometry (:func:`mode_types_linear`: longitudinal,
+    transverse in-plane / out-of-plane).  A chain or row of pendula (``system`` "chain" or
+    "pendula") names each mode by its node count (:func:`node_count`; two pendula: "in
+    phase" / "out of phase", Goldstein §6.3); any other system: "normal mode".
+
+    Parameters
+    ----------
+    modes : ModeSet
+        From :func:`solve_modes`; columns η_k, shape (n, n).
+    M : ndarray, shape (n, n)
+    system : {"molecule", "chain", "pendula", "matrices"}
+    mol : Molecule or None
+        Required for ``system == "molecule"``.
+    rigid_labels : sequence of str
+
+    Returns
+    -------
+    list of str, length n
+    """
+    n = M.shape[0]
+    coords = mol.internal_coordinates() if mol is not None else []
+    axis = mol.axis() if mol is not None else None
+    types = []
+    for k in range(n):
+        eta = modes.modes[:, k]
+        if k < modes.n_zero:
+            types.append(rigid_labels[k] if k < len(rigid_labels) else "zero mode (floppy)")
+        elif mol is not None:
+            kind = stretch_character(eta, coords)
+            if axis is not None:
+                w1, _ = transverse_directions(axis)
+                geo = mode_types_linear(eta[:, None], M, axis, w1)[0]
+                kind = geo if geo.startswith("transverse") else f"{geo}, {kind}"
+            types.append(kind)
+        elif system in ("chain", "pendula"):
+            nodes = node_count(eta)
+            if system == "pendula" and n == 2:
+                types.append("in phase" if nodes == 0 else "out of phase")
+            else:
+                types.append(f"{nodes} node{'s' if nodes != 1 else ''}")
+        else:
+            types.append("normal mode")
+    return types
+
+
+# --------------------------------------------------------------- triatomic closed forms
+@dataclass(frozen=True)
+class SymmetricXY2:
+    """A symmetric triatomic molecule Y–X–Y: two equal bonds to a centre atom X.
+
+    Attributes
+    ----------
+    centre : int
+        Index of X.
+    ends : (int, int)
+        Indices of the two Y atoms.
+    k : float
+        Stretch constant of both bonds [energy/length²].
+    k_bend : float or None
+        Bend constant of the angle at X [energy/rad²], None without one.
+    r : float
+        Bond length [length].
+    m_y, m_x : float
+        Masses of Y and X [mass].
+    half_angle : float
+        α, half the bond angle Y–X–Y [rad] (π/2 for a linear molecule).
+    linear : bool
+    """
+
+    centre: int
+    ends: tuple[int, int]
+    k: float
+    k_bend: float | None
+    r: float
+    m_y: float
+    m_x: float
+    half_angle: float
+    linear: bool
+
+
+def symmetric_xy2(mol: Molecule) -> SymmetricXY2 | None:
+    """The molecule as a symmetric Y–X–Y triatomic, or None if it is not one.
+
+    It is one when it has 3 atoms and 2 bonds sharing one atom X, with equal
+    stretch constants, equal end masses and equal bond lengths (relative 1e-12).
+    """
+    if mol.n_atoms != 3 or len(mol.bonds) != 2:
+        return None
+    (i1, j1, k1), (i2, j2, k2) = mol.bonds
+    centre = ({i1, j1} & {i2, j2})
+    if len(centre) != 1 or k1 != k2:
+        return None
+    cx = centre.pop()
+    ends = [a for a in range(3) if a != cx]
+    x = mol.positions
+    r1, r2 = (np.linalg.norm(x[e] - x[cx]) for e in ends)
+    my, mx = mol.masses[ends[0]], mol.masses[cx]
+    if mol.masses[ends[1]] != my or abs(r1 - r2) > 1e-12 * r1:
+        return None
+    kb = next((g[3] for g in mol.angles if g[1] == cx), None)
+    return SymmetricXY2(centre=cx, ends=(ends[0], ends[1]), k=k1, k_bend=kb, r=r1, m_y=my,
+                        m_x=mx, half_angle=bond_angle(x, ends[0], cx, ends[1]) / 2,
+                        linear=mol.axis() is not None)
+
+
+def linear_xy2_frequencies(k: float, m_y: float, m_x: float) -> tuple[float, float]:
+    """Stretch frequencies of a linear symmetric triatomic Y–X–Y (Goldstein §6.4; notes
+    §5.1, Fig. 5.1).
+
+    ω_sym = √(k/m_Y) (X at rest), ω_asym = √((k/m_Y)(1 + 2 m_Y/m_X)).
+
+    Returns
+    -------
+    (omega_symmetric, omega_antisymmetric) : floats [rad per time unit]
+    """
+    return math.sqrt(k / m_y), math.sqrt(k / m_y * (1 + 2 * m_y / m_x))
+
+
+def linear_xy2_bend_frequency(k_bend: float, m_y: float, m_x: float, r: float) -> float:
+    """Twofold bend frequency of a linear symmetric triatomic Y–X–Y.
+
+    With the linear-bend coordinate ρ = Σ w·(δx_Y − δx_X)/r (:func:`bend_bvectors`) and
+    the centre of mass at rest: ω² = (2 k_θ/(m_Y r²))(1 + 2 m_Y/m_X).
+    """
+    return math.sqrt(2 * k_bend / (m_y * r * r) * (1 + 2 * m_y / m_x))
+
+
+def bent_xy2_eigenvalues(k: float, k_bend: float, m_y: float, m_x: float, r: float,
+                         half_angle: float) -> tuple[float, float, float]:
+    """Closed forms of a bent symmetric triatomic Y–X–Y in the valence force field.
+
+    Herzberg (1945) ch. II, bond angle 2α:
+    λ₃ = (1 + 2 m_Y sin²α / m_X) k/m_Y (antisymmetric stretch);
+    λ₁ + λ₂ = (1 + 2 m_Y cos²α/m_X) k/m_Y + (2/m_Y)(1 + 2 m_Y sin²α/m_X) k_θ/r²;
+    λ₁ λ₂ = 2 (1 + 2 m_Y/m_X) k k_θ / (m_Y² r²) (symmetric block), λ = ω².
+
+    Returns
+    -------
+    (lambda3, lambda1 + lambda2, lambda1 * lambda2) : floats
+    """
+    s2, c2 = math.sin(half_angle) ** 2, math.cos(half_angle) ** 2
+    lam3 = (1 + 2 * m_y * s2 / m_x) * k / m_y
+    tot = (1 + 2 * m_y * c2 / m_x) * k / m_y + 2 / m_y * (1 + 2 * m_y * s2 / m_x) * k_bend / r**2
+    prod = 2 * (1 + 2 * m_y / m_x) * k * k_bend / (m_y * m_y * r * r)
+    return lam3, tot, prod
+
+
+# ------------------------------------------------------------------ drawn curves
+def chain_standing_wave(n: int, j: int, s: np.ndarray) -> np.ndarray:
+    """Mode j of a uniform chain of N = n masses between fixed walls, sin(j s π/(N+1)).
+
+    Notes §5.1 / Goldstein §6.4; ``s`` (any shape) is the mass index, continuous
+    between the walls at 0 and N + 1.  Returns an array shaped like ``s``.
+    """
+    return np.sin(j * np.asarray(s, dtype=float) * math.pi / (n + 1))
+
+
+def chain_standing_waves(modes: np.ndarray, n_points: int = 200
+                         ) -> tuple[np.ndarray, np.ndarray]:
+    """The standing waves sin(j s π/(N+1)), j = 1..k, sampled between the walls for drawing
+    over the computed modes (fixed-end uniform chain).
+
+    Each wave is scaled so that its largest value at the masses s = 1..N is 1 and signed
+    to match the mode's column.
+
+    Parameters
+    ----------
+    modes : ndarray, shape (N, k)
+        The lowest k modes, ascending.
+    n_points : int
+
+    Returns
+    -------
+    s : ndarray, shape (n_points,), from 0 to N + 1
+    waves : ndarray, shape (n_points, k)
+    """
+    n, k = modes.shape
+    s = np.linspace(0, n + 1, n_points)
+    masses = np.arange(1, n + 1)
+    waves = np.empty((n_points, k))
+    for j in range(k):
+        env = chain_standing_wave(n, j + 1, s)
+        ref = chain_standing_wave(n, j + 1, masses)
+        sgn = np.sign(ref @ modes[:, j]) or 1.0
+        waves[:, j] = sgn * env / np.max(np.abs(ref))
+    return s, waves
+
+
+def drawing_projection(masses: np.ndarray, positions: np.ndarray, frame: np.ndarray,
+                       modes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Equilibrium positions and mode displacements in a molecule's drawing frame.
+
+    Parameters
+    ----------
+    masses : ndarray, shape (n,)
+    positions : ndarray, shape (n, 3)
+    frame : ndarray, shape (3, 3)
+        Rows e1, e2, e3 (:meth:`Molecule.drawing_frame`).
+    modes : ndarray, shape (3n, k)
+
+    Returns
+    -------
+    positions : ndarray, shape (n, 3)
+        x − x_cm in the frame (columns e1, e2, e3).
+    displacements : ndarray, shape (k, n, 3)
+        Each mode's per-atom displacement η_a in the frame.
+    """
+    x = np.asarray(positions, dtype=float)
+    m = np.asarray(masses, dtype=float)
+    xc = x - m @ x / np.sum(m)
+    n = len(x)
+    disps = np.array([modes[:, k].reshape(n, 3) @ frame.T for k in range(modes.shape[1])])
+    return xc @ frame.T, disps.reshape(modes.shape[1], n, 3)

@@ -144,39 +144,24 @@ def closest_approach(t, distances: dict[str, np.ndarray], *, time_unit="", ax=No
     return fig
 
 
-def elliptic_grid_orbit(x, y, *, a, xi_levels, eta_levels, xi_bounds=None, eta_bounds=None,
-                        length_unit="m", ax=None):
+def elliptic_grid_orbit(x, y, *, a, grid, xi_bounds=None, eta_bounds=None, length_unit="m",
+                        ax=None):
     """The orbit over the elliptic-coordinate grid of two centres at (±a, 0).
 
-    ξ = (r1 + r2)/2a ≥ 1 (confocal ellipses), η = (r1 − r2)/2a ∈ [−1, 1] (hyperbolas);
-    x = a ξ η, y = ±a √((ξ² − 1)(1 − η²)).  The bounding coordinate lines of the
-    separated motion are drawn bold when given.
+    ``grid``: the coordinate lines as (x, y) curves, drawn thin: confocal ellipses
+    ξ = (r1 + r2)/2a = const and hyperbola branches η = (r1 − r2)/2a = const.
+    ``xi_bounds`` (ellipses) and ``eta_bounds`` (hyperbola branches): the coordinate
+    lines bounding the separated motion, as (x, y) curves, drawn bold when given.
     """
     fig, ax = new_figure(ax, figsize=(6.8, 5.2))
-    big = max(xi_levels)
-    for xi in xi_levels:  # ellipses
-        th = np.linspace(0.0, 2 * np.pi, 400)
-        ax.plot(a * xi * np.cos(th), a * np.sqrt(xi**2 - 1) * np.sin(th), color=CONTEXT,
-                lw=0.5)
-    for eta in eta_levels:  # hyperbola branches, out to the largest ellipse
-        xi = np.linspace(1.0, big, 300)
-        for sgn in (1.0, -1.0):
-            ax.plot(a * xi * eta, sgn * a * np.sqrt((xi**2 - 1) * (1 - eta**2)), color=CONTEXT,
-                    lw=0.5)
-    th = np.linspace(0.0, 2 * np.pi, 400)
-    if xi_bounds is not None:
-        for i, xi in enumerate(xi_bounds):
-            if xi is not None and xi > 1.0:
-                ax.plot(a * xi * np.cos(th), a * np.sqrt(xi**2 - 1) * np.sin(th),
-                        color=SEPARATRIX, lw=1.5, label="ξ bounds of the motion" if i == 0
-                        or xi_bounds[0] is None or xi_bounds[0] <= 1.0 else None)
-    if eta_bounds is not None:
-        xi = np.linspace(1.0, big, 300)
-        for i, eta in enumerate(eta_bounds):
-            for sgn in (1.0, -1.0):
-                ax.plot(a * xi * eta, sgn * a * np.sqrt((xi**2 - 1) * (1 - eta**2)),
-                        color=REFERENCE, lw=1.5,
-                        label="η bounds of the motion" if (i == 0 and sgn > 0) else None)
+    for gx, gy in grid:
+        ax.plot(gx, gy, color=CONTEXT, lw=0.5)
+    for i, (bx, by) in enumerate(xi_bounds or ()):
+        ax.plot(bx, by, color=SEPARATRIX, lw=1.5,
+                label="ξ bounds of the motion" if i == 0 else None)
+    for i, (bx, by) in enumerate(eta_bounds or ()):
+        ax.plot(bx, by, color=REFERENCE, lw=1.5,
+                label="η bounds of the motion" if i == 0 else None)
     ax.plot(x, y, color=HIGHLIGHT, lw=0.7, label="orbit")
     ax.plot([-a, a], [0, 0], marker="o", color="k", ms=6, ls="none", label="fixed centres")
     ax.plot([x[0]], [y[0]], marker="o", color=HIGHLIGHT, ms=5, ls="none")

@@ -200,8 +200,9 @@ def molecule_snapshots(pos, masses, elements, bonds, displacements, titles):
 def chain_modes(modes, titles, *, coordinate="q", exact_shapes=None, ncols=2):
     """One panel per mode: amplitude of every mass (stems) against its index.
 
-    modes : (n, k) columns to draw; exact_shapes : (n, k) or None, the closed-form
-    standing waves sin(j s π/(N+1)) drawn as a dashed envelope over 0..N+1.
+    modes : (n, k) columns to draw; exact_shapes : None or (s, waves) with s (m,) the
+    mass index over 0..N+1 and waves (m, k) the closed-form standing waves
+    sin(j s π/(N+1)) (scaled and signed like the columns), drawn dashed.
     """
     n, k = modes.shape
     ncols = min(ncols, k)
@@ -216,8 +217,8 @@ def chain_modes(modes, titles, *, coordinate="q", exact_shapes=None, ncols=2):
         ax.vlines(s, 0, v, color=HIGHLIGHT, lw=2)
         ax.plot(s, v, "o", color=HIGHLIGHT, ms=6)
         if exact_shapes is not None:
-            fine, env = exact_shapes(j)
-            ax.plot(fine, env, "--", color=REFERENCE, lw=1)
+            fine, waves = exact_shapes
+            ax.plot(fine, waves[:, j], "--", color=REFERENCE, lw=1)
         ax.set_title(titles[j], fontsize=9)
         ax.set_ylim(-1.25, 1.25)
         ax.set_xlim(0, n + 1)

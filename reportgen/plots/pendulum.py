@@ -5,28 +5,22 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy import special
 
 from .style import CONTEXT, HIGHLIGHT, REFERENCE, SEPARATRIX, new_figure
 
 
-def phase_portrait(theta, theta_dot, *, omega0, ax=None):
-    """Level sets of E/(m l²) = θ̇²/2 − ω0² cos θ over θ ∈ [−π, π] (×2 for a rotating orbit).
+def phase_portrait(theta, theta_dot, *, grid_theta, grid_theta_dot, energy, levels,
+                   separatrix, ax=None):
+    """Given level sets of the phase-plane energy, with the separatrix and the scene's orbit.
 
-    The scene's orbit (``theta``, ``theta_dot``, wrapped to (−π, π]) is drawn on top.
+    ``energy`` (shape (len(grid_theta_dot), len(grid_theta))) is drawn at ``levels``
+    and at ``separatrix``; the orbit (``theta``, ``theta_dot``, wrapped to (−π, π]) on top.
     """
     fig, ax = new_figure(ax, figsize=(6.8, 4.4))
     wrapped = np.mod(np.asarray(theta) + math.pi, 2 * math.pi) - math.pi
-    vmax = max(2.6 * omega0, 1.15 * float(np.max(np.abs(theta_dot))))
-    th = np.linspace(-math.pi, math.pi, 400)
-    thd = np.linspace(-vmax, vmax, 400)
-    TH, THD = np.meshgrid(th, thd)
-    energy = 0.5 * THD**2 - omega0**2 * np.cos(TH)
-    sep = omega0**2
-    levels = np.concatenate([np.linspace(-0.95 * sep, 0.9 * sep, 7),
-                             np.linspace(1.15 * sep, 0.5 * vmax**2, 4)])
+    TH, THD = np.meshgrid(grid_theta, grid_theta_dot)
     ax.contour(TH, THD, energy, levels=np.sort(levels), colors=CONTEXT, linewidths=0.8)
-    ax.contour(TH, THD, energy, levels=[sep], colors=SEPARATRIX, linewidths=1.6)
+    ax.contour(TH, THD, energy, levels=[separatrix], colors=SEPARATRIX, linewidths=1.6)
     # break the orbit where it wraps so no line crosses the plot
     jumps = np.nonzero(np.abs(np.diff(wrapped)) > math.pi)[0] + 1
     for seg_t, seg_v in zip(np.split(wrapped, jumps), np.split(theta_dot, jumps), strict=True):
@@ -43,14 +37,13 @@ def phase_portrait(theta, theta_dot, *, omega0, ax=None):
     return fig
 
 
-def period_against_amplitude(*, omega0, amplitude=None, period=None, period_measured=None,
-                             ax=None):
-    """T(θ0) = 4 K(sin²(θ0/2)) / ω0 over 0 < θ0 < π, with the small-angle period."""
+def period_against_amplitude(*, curve_amplitude, curve_period, small_angle_period,
+                             amplitude=None, period=None, period_measured=None, ax=None):
+    """The given period curve T(θ0) (the exact 4 K(sin²(θ0/2)) / ω0 over 0 < θ0 < π), with
+    the small-angle period and this scene's point."""
     fig, ax = new_figure(ax)
-    amp = np.linspace(1e-3, math.pi - 1e-3, 500)
-    t_exact = 4 * special.ellipk(np.sin(amp / 2) ** 2) / omega0
-    ax.plot(amp, t_exact, color=REFERENCE, label="exact 4K(k)√(l/g)")
-    ax.axhline(2 * math.pi / omega0, color=CONTEXT, linestyle="--", label="small angle 2π√(l/g)")
+    ax.plot(curve_amplitude, curve_period, color=REFERENCE, label="exact 4K(k)√(l/g)")
+    ax.axhline(small_angle_period, color=CONTEXT, linestyle="--", label="small angle 2π√(l/g)")
     if amplitude is not None and period is not None:
         ax.plot([amplitude], [period], "o", color=REFERENCE, markersize=9,
                 markerfacecolor="none", label="this scene, exact")
@@ -58,7 +51,7 @@ def period_against_amplitude(*, omega0, amplitude=None, period=None, period_meas
         ax.plot([amplitude], [period_measured], "x", color=HIGHLIGHT, markersize=9,
                 label="this scene, measured")
     ax.set_xlim(0, math.pi)
-    ax.set_ylim(0, min(float(np.max(t_exact)), 4 * 2 * math.pi / omega0))
+    ax.set_ylim(0, min(float(np.max(curve_period)), 4 * small_angle_period))
     ax.set_xticks([0, math.pi / 4, math.pi / 2, 3 * math.pi / 4, math.pi],
                   ["0", "π/4", "π/2", "3π/4", "π"])
     ax.set_xlabel("amplitude θ0 [rad]")

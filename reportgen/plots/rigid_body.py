@@ -1,5 +1,8 @@
 """Figures of the rigid body: polhodes on the angular-momentum sphere, the herpolhode on the
-invariable plane, the inertia ellipsoid, the intermediate-axis flip."""
+invariable plane, the inertia ellipsoid, the intermediate-axis flip.
+
+They draw what they are given: every curve (polhode family, separatrices, ellipsoid
+surface, growth envelope) is computed in :mod:`reportgen.core` and read from the archive."""
 
 from __future__ import annotations
 
@@ -10,73 +13,24 @@ from .style import CONTEXT, HIGHLIGHT, REFERENCE, SEPARATRIX, new_figure
 AXIS_COLOURS = ("#1f4e79", "#4f8a3c", "#8064a2")
 
 
-def _polhode_family(moments, n_curves: int, n_points: int = 400):
-    """Curves l·l = 1, Σ l_k²/I_k = e on the unit L-sphere, for energies e between the axes.
+def polhodes(family, separatrices, track, *, ax=None):
+    """Polhodes on the unit angular-momentum sphere (body frame): a family, the
+    separatrices and the scene's own, all given as unit vectors L/|L|.
 
-    For curves about axis a (a = smallest or largest moment), with (b, c) the others:
-    l_b = ρ cos φ, l_c = ρ sin φ, l_a = ±√(1 − ρ²),
-    ρ² = (1/I_a − e) / (1/I_a − cos²φ/I_b − sin²φ/I_c).
-    """
-    I = np.asarray(moments, dtype=float)
-    order = np.argsort(I)
-    inv = 1.0 / I
-    e_sep = inv[order[1]]
-    phi = np.linspace(0.0, 2 * np.pi, n_points)
-    curves = []
-    for a, e_axis in ((order[0], inv[order[0]]), (order[2], inv[order[2]])):
-        b, c = [k for k in range(3) if k != a]
-        for f in np.linspace(0.0, 1.0, n_curves + 2)[1:-1]:
-            e = e_axis + f * (e_sep - e_axis)
-            rho2 = (inv[a] - e) / (inv[a] - np.cos(phi) ** 2 * inv[b] - np.sin(phi) ** 2 * inv[c])
-            rho2 = np.clip(rho2, 0.0, 1.0)
-            for sign in (1.0, -1.0):
-                pts = np.empty((phi.size, 3))
-                pts[:, a] = sign * np.sqrt(1.0 - rho2)
-                pts[:, b] = np.sqrt(rho2) * np.cos(phi)
-                pts[:, c] = np.sqrt(rho2) * np.sin(phi)
-                curves.append(pts)
-    return curves
-
-
-def _separatrices(moments, n_points: int = 400):
-    """The two great circles through the intermediate axis: Σ l_k²/I_k = 1/I2 on |l| = 1."""
-    I = np.asarray(moments, dtype=float)
-    s, m, l = np.argsort(I)
-    inv = 1.0 / I
-    # plane: l_s √(1/I_s − 1/I_m) = ± l_l √(1/I_m − 1/I_l)
-    u, v = np.sqrt(inv[s] - inv[m]), np.sqrt(inv[m] - inv[l])
-    phi = np.linspace(0.0, 2 * np.pi, n_points)
-    out = []
-    for sign in (1.0, -1.0):
-        n = np.zeros(3)
-        n[s], n[l] = v, sign * u  # direction in the (s, l) plane lying on the separatrix plane
-        n /= np.linalg.norm(n)
-        e2 = np.zeros(3)
-        e2[m] = 1.0
-        out.append(np.outer(np.cos(phi), n) + np.outer(np.sin(phi), e2))
-    return out
-
-
-def polhodes(moments, L_body, *, n_curves: int = 5, ax=None):
-    """Polhodes on the unit angular-momentum sphere (body frame), separatrices, the scene's own.
-
-    L_body : ndarray, shape (N, 3) — the body-frame angular momentum of the run.
+    family : ndarray, shape (K, n, 3) — curves of a range of energies (grey).
+    separatrices : ndarray, shape (S, n, 3) — S = 2, or 0 for a symmetric body.
+    track : ndarray, shape (N, 3) — the run's body-frame L/|L|.
     """
     fig, ax = new_figure(ax, figsize=(6.4, 6.0), projection="3d")
     u, v = np.mgrid[0:2 * np.pi:40j, 0:np.pi:20j]
     ax.plot_wireframe(np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v), color=CONTEXT,
                       linewidth=0.3, alpha=0.35, rasterized=True)
-    distinct = len(set(np.round(np.asarray(moments) / np.max(moments), 12))) == 3
-    with np.errstate(invalid="ignore", divide="ignore"):
-        family = _polhode_family(moments, n_curves)
     for c in family:
-        if np.all(np.isfinite(c)):
-            ax.plot(c[:, 0], c[:, 1], c[:, 2], color=CONTEXT, linewidth=0.9)
-    for k, c in enumerate(_separatrices(moments) if distinct else []):
+        ax.plot(c[:, 0], c[:, 1], c[:, 2], color=CONTEXT, linewidth=0.9)
+    for k, c in enumerate(separatrices):
         ax.plot(c[:, 0], c[:, 1], c[:, 2], color=SEPARATRIX, linewidth=1.6,
                 label="separatrices (2E = L²/I2)" if k == 0 else None)
-    track = np.asarray(L_body, dtype=float)
-    track = track / np.linalg.norm(track, axis=1, keepdims=True)
+    track = np.asarray(track, dtype=float)
     ax.plot(track[:, 0], track[:, 1], track[:, 2], color=HIGHLIGHT, linewidth=2.4,
             label="this scene's polhode")
     ax.scatter(*track[0], color=HIGHLIGHT, s=30, depthshade=False)
@@ -108,14 +62,15 @@ def herpolhode(x, y, *, ax=None):
     return fig
 
 
-def flips(t, omega, *, growth_rate=None, omega0=None, ax=None):
-    """ω components against time, and (optionally) the linear growth envelope of the
-    perturbation about the intermediate axis."""
+def flips(t, omega, *, envelope=None, ax=None):
+    """ω components against time and (optionally) the linear growth envelope δ0 e^{γt} of
+    the perturbation about the intermediate axis, shape (N,) like ``t``, drawn while it
+    stays below 1.2 max |ω|."""
     fig, ax = new_figure(ax, figsize=(7.0, 4.0))
     for k in range(3):
         ax.plot(t, omega[:, k], color=AXIS_COLOURS[k], label=f"ω{k + 1}")
-    if growth_rate is not None and omega0 is not None:
-        env = omega0 * np.exp(growth_rate * np.asarray(t))
+    if envelope is not None:
+        env = np.asarray(envelope)
         keep = env < 1.2 * np.max(np.abs(omega))
         ax.plot(t[keep], env[keep], "--", color=CONTEXT,
                 label="perturbation ∝ exp(γt), γ from (10.14)")
@@ -125,15 +80,18 @@ def flips(t, omega, *, growth_rate=None, omega0=None, ax=None):
     return fig
 
 
-def inertia_ellipsoid(moments, axes, *, points=None, masses=None, ax=None):
-    """The inertia ellipsoid Σ I_k x_k² = 1 (principal frame turned into the lab by ``axes``)."""
+def inertia_ellipsoid(moments, axes, surface, semi_axes, *, points=None, masses=None,
+                      ax=None):
+    """The inertia ellipsoid Σ I_k x_k² = 1 with its principal axes.
+
+    moments : (3,) principal moments [kg m²] (legend); axes : (3, 3) lab-frame principal
+    axes (columns); surface : (n_u, n_v, 3) lab-frame points of the ellipsoid;
+    semi_axes : (3,) 1/√I_k; points, masses : a point set drawn scaled into the ellipsoid.
+    """
     fig, ax = new_figure(ax, figsize=(6.0, 5.6), projection="3d")
     m = np.asarray(moments, dtype=float)
-    semi = 1.0 / np.sqrt(m)
-    u, v = np.mgrid[0:2 * np.pi:36j, 0:np.pi:18j]
-    local = np.stack([semi[0] * np.cos(u) * np.sin(v), semi[1] * np.sin(u) * np.sin(v),
-                      semi[2] * np.cos(v)], axis=-1)
-    lab = local @ np.asarray(axes).T
+    semi = np.asarray(semi_axes, dtype=float)
+    lab = np.asarray(surface, dtype=float)
     ax.plot_surface(lab[..., 0], lab[..., 1], lab[..., 2], color=REFERENCE, alpha=0.18,
                     linewidth=0.2, edgecolor=REFERENCE, rasterized=True)
     for k in range(3):

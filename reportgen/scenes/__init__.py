@@ -1,43 +1,35 @@
-"""Scene kinds, registered in one place: ``KINDS`` maps a config's ``kind`` to its class.
+"""Scene kinds, found by being here: every module of this package that defines a
+:class:`~reportgen.scenes.base.Scene` subclass with a ``kind`` is a kind.
 
 Adding a kind = one module here + one prose template ``templates/kinds/<kind>.html.j2``
-+ one config in ``configs/``, and one line below.
++ one config in ``configs/``.  Nothing else is edited: ``KINDS``, ``reportgen kinds``
+and the docs discover it.
 """
 
 from __future__ import annotations
 
-from ..config import ConfigError, SourceConfig
-from .base import Scene
-from .central_force import CentralForceScene
-from .fput import FputScene
-from .heavy_top import HeavyTopScene
-from .inertia import InertiaScene
-from .normal_modes import NormalModesScene
-from .oscillator import OscillatorScene
-from .pendulum import PendulumScene
-from .rigid_body import RigidBodyScene
-from .three_body import ThreeBodyScene
-from .two_center import TwoCenterScene
+import importlib
+import pkgutil
 
-KINDS: dict[str, type[Scene]] = {
-    cls.kind: cls
-    for cls in (
-        PendulumScene,
-        OscillatorScene,
-        CentralForceScene,
-        ThreeBodyScene,
-        TwoCenterScene,
-        RigidBodyScene,
-        HeavyTopScene,
-        NormalModesScene,
-        FputScene,
-        InertiaScene,
-    )
-}
+from ..config import ConfigError, SourceConfig
+from .base import REGISTRY, Scene
+
+#: modules of this package that are not kinds
+_NOT_KINDS = {"base", "catalogue"}
+
+
+def _discover() -> dict[str, type[Scene]]:
+    for info in pkgutil.iter_modules(__path__):
+        if info.name not in _NOT_KINDS and not info.name.startswith("_"):
+            importlib.import_module(f"{__name__}.{info.name}")
+    return dict(sorted(REGISTRY.items(), key=lambda item: (item[1].order, item[0])))
+
+
+KINDS: dict[str, type[Scene]] = _discover()
 
 
 def get_kind(kind: str) -> type[Scene]:
-    return KINDS[kind]
+    return REGISTRY[kind]
 
 
 def load_scene(source: SourceConfig) -> Scene:
@@ -46,7 +38,7 @@ def load_scene(source: SourceConfig) -> Scene:
     if kind is None:
         raise ConfigError([f"{source.label}: key 'kind': required key is missing "
                            f"(one of: {', '.join(KINDS)})"])
-    if not isinstance(kind, str) or kind not in KINDS:
+    if not isinstance(kind, str) or kind not in REGISTRY:
         raise ConfigError([f"{source.label}: key 'kind': must be one of "
                            f"{', '.join(KINDS)} (got {kind!r})"])
-    return KINDS[kind].from_source(source)
+    return REGISTRY[kind].from_source(source)

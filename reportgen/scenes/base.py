@@ -1,8 +1,21 @@
-"""The scene base class: owns configuration, presets, sections and the run bookkeeping.
+"""The scene base class: configuration, presets, sections and the run bookkeeping.
 
-A scene kind is one module under ``reportgen/scenes/`` with one subclass of
-:class:`Scene`, registered in ``reportgen/scenes/__init__.py``.  The subclass
-contract:
+A scene kind is one module under ``reportgen/scenes/`` holding one subclass of
+:class:`Scene`; defining the subclass registers the kind (``kinds``, ``validate``,
+``run`` and the docs find it), nothing else is edited.  A kind has two faces:
+
+*simulate* (an instance, built from a validated config)
+    computes every number and curve the report will show and returns them as
+    :class:`~reportgen.results.Results`, which the archive stores.  Numerics come
+    from ``reportgen.core``, named with :func:`reportgen.lazy.lazy_module` so that
+    importing a kind imports no numerics.
+
+*report* (classmethods taking the :class:`~reportgen.archive.ArchiveData` alone)
+    draws and tabulates what the archive holds.  They never import ``reportgen.core``
+    or evaluate physics: ``reportgen report`` works with core unimportable and gives
+    byte-identical figures (``tests/test_archive_only.py``).
+
+The subclass contract:
 
 1. ``kind`` (the config's ``kind``), ``summary`` (one line) and ``Config``, a
    :class:`SceneConfig` subclass declaring the kind's tables (``params``,
@@ -10,19 +23,28 @@ contract:
    ``model_validator``s and raise ``ValueError`` naming the keys.
 2. ``presets``: name -> partial config dict; explicit keys override a preset.
 3. ``sections``: the sections the kind can show, in order, as :class:`Section`;
-   ``default_sections()`` narrows them to what this scene needs.
+   ``default_sections(data)`` narrows them to what this archive holds and needs.
 4. ``simulate(progress)`` -> :class:`~reportgen.results.Results`; use
-   :meth:`integrate` for trajectories so method choice, timing, invariants and
-   stability checks are done one way everywhere.
-5. One method ``section_<name>(data)`` per section, reading only the archived
-   :class:`~reportgen.archive.ArchiveData` and returning :class:`SectionContent`.
+   :meth:`integrate` for trajectories (method choice, timing, invariants and the
+   stability verdict done one way everywhere), :meth:`study` for the
+   error-against-run-time study and :meth:`reference_run` for a reference
+   trajectory where no closed form exists.  Put reference curves on the output grid
+   in ``RunRecord.reference`` and every other curve a figure shows in
+   ``Results.analysis``.
+5. One classmethod ``section_<name>(data)`` per section returning
+   :class:`SectionContent`; ``section_error_vs_runtime`` is provided here and
+   :meth:`invariants_section` draws any run's conserved quantities.
 6. ``headline(data)`` -> short list of (label, value) facts for the summary.
+7. ``build_models()`` (optional): construct the models the run will integrate, so
+   ``validate`` rejects a method that cannot integrate them before anything runs.
 
 The pipeline never special-cases a kind.
 """
 
 from __future__ import annotations
 
+import hashlib
+import json
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -31,6 +53,7 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import numpy as np
 from pydantic import Field, ValidationError
 
+from .. import __version__
 from ..config import (
     ConfigError,
     ReportConfig,
@@ -40,13 +63,22 @@ from ..config import (
     deep_merge,
     format_validation_error,
 )
-from ..results import Results, RunRecord
+from ..lazy import lazy_module
+from ..results import AuditCase, Results, RunRecord
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
     from ..archive import ArchiveData
     from ..core.model import OdeModel
+
+_integrators = lazy_module("reportgen.core.integrators")
+_stability = lazy_module("reportgen.core.integrators.stability")
+_study = lazy_module("reportgen.core.study")
+_common_plots = lazy_module("reportgen.plots.common")
+
+#: config tables that never change the numbers: not part of the simulate key
+PRESENTATION_KEYS = ("title", "report", "preset")
 
 
 class SceneConfig(Strict):
@@ -131,6 +163,10 @@ def _solution_attrs(sol) -> dict[str, Any]:
     }
 
 
+#: every Scene subclass defined so far, by kind (filled by ``__init_subclass__``)
+REGISTRY: dict[str, type[Scene]] = {}
+
+
 class Scene:
     """Base class of every scene kind (see the module docstring for the contract)."""
 
@@ -141,6 +177,19 @@ class Scene:
     sections: ClassVar[tuple[Section, ...]] = ()
     #: sections shown when the config names none (None: all of ``sections``)
     default_section_names: ClassVar[tuple[str, ...] | None] = None
+    #: position in ``reportgen kinds`` and the docs (the SPEC's order)
+    order: ClassVar[int] = 100
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        kind = cls.__dict__.get("kind")
+        if kind is None:
+            return  # an abstract intermediate class
+        other = REGISTRY.get(kind)
+        if other is not None and other.__qualname__ != cls.__qualname__:
+            raise TypeError(f"scene kind {kind!r} is defined twice: {other.__module__} and "
+                            f"{cls.__module__}")
+        REGISTRY[kind] = cls
 
     def __init__(self, config: SceneConfig, source: SourceConfig):
         self.config = config
@@ -149,7 +198,8 @@ class Scene:
     # ----------------------------------------------------------------- config
     @classmethod
     def from_source(cls, source: SourceConfig) -> Scene:
-        """Validate ``source`` (presets applied) and build the scene; ConfigError on any problem."""
+        """Validate ``source`` (presets applied) and build the scene; ConfigError lists
+        every problem found."""
         data = dict(source.data)
         preset = data.get("preset")
         if preset is not None:
@@ -159,66 +209,197 @@ class Scene:
                     [f"{source.label}: key 'preset': must be one of {known} (got {preset!r})"]
                 )
             data = deep_merge(cls.presets[preset], data)
+        problems = [f"{source.label}: {p}" for p in cls._check_report_keys(data)]
         try:
             config = cls.Config.model_validate(data)
         except ValidationError as exc:
-            raise ConfigError(format_validation_error(source.label, exc)) from None
-        scene = cls(config, source)
-        problems = scene._check_report_keys()
+            raise ConfigError(format_validation_error(source.label, exc, cls.Config)
+                              + problems) from None
         if problems:
-            raise ConfigError([f"{source.label}: {p}" for p in problems])
-        return scene
+            raise ConfigError(problems)
+        return cls(config, source)
 
-    def _check_report_keys(self) -> list[str]:
+    @classmethod
+    def _check_report_keys(cls, data: dict) -> list[str]:
         problems = []
-        known = [s.name for s in self.sections]
-        for name in self.config.report.sections or []:
+        known = [s.name for s in cls.sections]
+        report = data.get("report")
+        sections = report.get("sections") if isinstance(report, dict) else None
+        for name in sections if isinstance(sections, list) else []:
             if name not in known:
                 problems.append(
                     f"key 'report.sections': '{name}' is not a section of kind "
-                    f"'{self.kind}' (known: {', '.join(known)})"
+                    f"'{cls.kind}' (known: {', '.join(known)})"
                 )
-        run = self.config.run
-        if run is not None and run.method != "auto":
-            from ..core.integrators import METHODS
-
-            if run.method not in METHODS:
-                problems.append(
-                    f"key 'run.method': unknown integrator (got {run.method!r}; "
-                    f"known: auto, {', '.join(sorted(METHODS))})"
-                )
+        run = data.get("run")
+        method = run.get("method", "auto") if isinstance(run, dict) else "auto"
+        if isinstance(method, str) and method != "auto" and method not in _integrators.METHODS:
+            problems.append(f"key 'run.method': unknown integrator (got {method!r}; known: auto, "
+                            f"{', '.join(sorted(_integrators.METHODS))})")
         return problems
 
     @property
     def title(self) -> str:
         return self.config.title or f"{self.kind.replace('_', ' ')} ({self.source.name})"
 
-    # --------------------------------------------------------------- sections
-    def default_sections(self) -> list[str]:
-        """The sections this scene needs; subclasses drop what their config makes irrelevant."""
-        names = self.default_section_names or tuple(s.name for s in self.sections)
+    def resolved_config(self) -> dict[str, Any]:
+        """The validated config with presets and defaults filled in (JSON types)."""
+        return self.config.model_dump(mode="json")
+
+    def wants_study(self) -> bool:
+        """Whether this run computes the error-against-run-time study (promise 3: not if
+        the report will not show it)."""
+        run = self.config.run
+        if run is None or not run.study:
+            return False
+        if not any(s.name == "error_vs_runtime" for s in self.sections):
+            return False
+        asked = self.config.report.sections
+        return asked is None or "error_vs_runtime" in asked
+
+    def physics_key(self) -> str:
+        """Content key of the simulate stage: the validated, preset-resolved physics and the
+        reportgen version.  Title, ``[report]`` and the preset's name are not in it; whether
+        the study is wanted is (it is computed only then)."""
+        physics = {k: v for k, v in self.resolved_config().items()
+                   if k not in PRESENTATION_KEYS}
+        blob = json.dumps({"physics": physics, "study": self.wants_study(),
+                           "reportgen": __version__}, sort_keys=True, separators=(",", ":"))
+        return hashlib.sha256(blob.encode("utf-8")).hexdigest()
+
+    def models(self) -> list[OdeModel]:
+        """The models :meth:`simulate` integrates with the configured ``[run] method``
+        (not those it integrates with a method it fixes itself), built as simulate builds
+        them and without integrating.  Default: none."""
+        return []
+
+    def build_models(self) -> None:
+        """Construct the models this scene integrates (``validate`` calls it); raise
+        ConfigError when the configured method cannot integrate one."""
+        models = self.models()
+        run = self.config.run
+        if run is None or run.method == "auto":
+            return
+        method = _integrators.METHODS[run.method]
+        problems: list[str] = []
+        for model in models:
+            try:
+                method.check(model)
+            except _integrators.MethodMismatch as exc:
+                line = f"{self.source.label}: key 'run.method': {exc}"
+                if line not in problems:
+                    problems.append(line)
+        if problems:
+            raise ConfigError(problems)
+
+    # ------------------------------------------------- report side (archive only)
+    @classmethod
+    def default_sections(cls, data: ArchiveData) -> list[str]:
+        """The sections this archive needs; subclasses drop what it makes irrelevant."""
+        names = cls.default_section_names or tuple(s.name for s in cls.sections)
         return list(names)
 
-    def chosen_sections(self) -> list[Section]:
-        """The configured sections, or the defaults minus what this run will not produce."""
-        names = self.config.report.sections or self.default_sections()
-        if self.config.run is not None and not self.config.run.study:
+    @classmethod
+    def chosen_sections(cls, data: ArchiveData) -> list[Section]:
+        """The configured sections, or the defaults, minus what the archive does not hold."""
+        asked = data.config.report.sections
+        names = list(asked) if asked else cls.default_sections(data)
+        if data.study is None:
             names = [n for n in names if n != "error_vs_runtime"]
-        return [s for s in self.sections if s.name in names]
+        return [s for s in cls.sections if s.name in names
+                and not (s.integrates and "main" not in data.runs)]
 
-    def headline(self, data: ArchiveData) -> list[tuple[str, str]]:
+    @classmethod
+    def headline(cls, data: ArchiveData) -> list[tuple[str, str]]:
         return []
 
     @classmethod
-    def audit_cases(cls) -> list:
-        """Stiff and extreme cases of this kind for ``reportgen audit`` (AuditCase list)."""
+    def audit_cases(cls) -> list[AuditCase]:
+        """Stiff and extreme cases of this kind for ``reportgen audit``."""
         return []
 
     @staticmethod
     def figure(name: str, figure: Figure, caption: str) -> FigureSpec:
         return FigureSpec(name=name, figure=figure, caption=caption)
 
-    # ------------------------------------------------------------- simulation
+    @classmethod
+    def invariants_section(cls, data: ArchiveData, *, labels: dict[str, str] | None = None,
+                           caption: str = "", run: str = "main") -> SectionContent:
+        """Drift of every conserved quantity of a run (relative to the scales stored with
+        the run), with a table of the largest drift."""
+        rec = data.runs[run]
+        scales = {q: rec.attrs[f"scale_{q}"] for q in rec.invariants
+                  if f"scale_{q}" in rec.attrs}
+        fig = _common_plots.invariant_drift(rec.t, rec.invariants, scales=scales or None,
+                                            labels=labels)
+        rows = []
+        for name, values in rec.invariants.items():
+            drift = rec.attrs.get(f"drift_{name}", float("nan"))
+            rows.append([(labels or {}).get(name, name), fmt(float(values[0]), 14),
+                         fmt_err(drift)])
+        table = Table(caption=f"Conserved quantities (bound for a stable run: relative drift ≤ "
+                              f"{fmt_err(rec.attrs.get('drift_bound', math.nan))})",
+                      header=["quantity", "initial value", "max relative drift"], rows=rows)
+        return SectionContent(
+            figures=[cls.figure("invariants", fig,
+                                caption or "Drift of the conserved quantities.")],
+            tables=[table])
+
+    @classmethod
+    def section_error_vs_runtime(cls, data: ArchiveData) -> SectionContent:
+        """Work-precision diagram and one row per method of ``/study/error_vs_runtime``.
+
+        Each row: the fastest run at least as accurate as scipy DOP853 at rtol 1e-10
+        (the baseline), its speed-up over the baseline, and the smallest error the
+        method reached.  Every run is in the archive's table.
+        """
+        study = data.study
+        if study is None or len(study) == 0:
+            return SectionContent(notes=["The error-against-run-time study was not run for "
+                                         "this scene ([run] study = false)."])
+        fig = _common_plots.work_precision(study)
+        ok = study[study["status"] == "ok"]
+        baseline = ok[(ok["method"] == "scipy_dop853")
+                      & np.isclose(ok["tolerance"], 1e-10, rtol=1e-6, atol=0.0)]
+        base = baseline[0] if len(baseline) else None
+        rows = []
+        for method in dict.fromkeys(study["method"]):
+            runs = ok[ok["method"] == method]
+            if len(runs) == 0:
+                rows.append([str(study[study["method"] == method]["label"][0]), "—", "—", "—",
+                             "—", "failed"])
+                continue
+            best = runs[np.argmin(runs["error_max"])]
+            matched, speedup = "—", "—"
+            if base is not None:
+                good = runs[runs["error_max"] <= base["error_max"]]
+                if len(good):
+                    fastest = good[np.argmin(good["wall_time_s"])]
+                    matched = (f"{_setting(fastest)}: {fmt_err(float(fastest['error_max']))} in "
+                               f"{float(fastest['wall_time_s']) * 1e3:.3g} ms")
+                    speedup = f"{float(base['wall_time_s']) / float(fastest['wall_time_s']):.3g}×"
+            rows.append([str(runs["label"][0]), matched, speedup,
+                         f"{fmt_err(float(best['error_max']))} ({_setting(best)})",
+                         str(len(runs)), "ok"])
+        reference = data.study_attrs.get("reference_kind", "")
+        target = (f"scipy DOP853 at rtol 1e-10 reaches {fmt_err(float(base['error_max']))} in "
+                  f"{float(base['wall_time_s']) * 1e3:.3g} ms" if base is not None
+                  else "no scipy DOP853 baseline run")
+        table = Table(caption=f"Per method: the fastest run at least as accurate as the baseline "
+                              f"({target}), and the smallest error reached. Reference: "
+                              f"{reference}. Wall time: minimum over repeats after a warm-up; "
+                              "compile time excluded. All runs are in /study/error_vs_runtime.",
+                      header=["method", "fastest at baseline error", "speed-up",
+                              "smallest error", "runs", "status"],
+                      rows=rows)
+        return SectionContent(
+            figures=[cls.figure("work_precision", fig,
+                                "Work-precision diagram: max error over the run against wall "
+                                "time. Solid: reportgen's compiled integrators; dashed: scipy "
+                                "solve_ivp.")],
+            tables=[table])
+
+    # --------------------------------------------------- simulate side (physics)
     def simulate(self, progress: ProgressFn | None = None) -> Results:
         raise NotImplementedError
 
@@ -231,57 +412,62 @@ class Scene:
         progress: ProgressFn | None = None,
         n_periods: float | None = None,
         invariant_scales: dict[str, float] | None = None,
+        method: str | None = None,
+        method_reason: str | None = None,
     ) -> RunRecord:
         """Integrate ``model`` with the configured method and return the archived run.
 
         ``invariants(t, y)`` gives the conserved quantities, each shape (N,);
         their drift (relative to ``invariant_scales[name]``, default the
-        invariant's own size) is part of the run's stability verdict.
-        """
-        from ..core.integrators import METHODS, MethodMismatch, choose_auto, integrate
-        from ..core.stability import assess_run, stiffness_signs
+        invariant's own size) is part of the run's stability verdict.  The scales
+        are archived as run attrs ``scale_<name>``.  ``method`` (with ``method_reason``)
+        overrides the config's method, for a scene whose physics decides it.
 
+        The choice, the stiffness switch and the failure verdict are the solver policy's
+        (:func:`reportgen.core.integrators.solve`); its :class:`RunStatus` is archived as
+        the run attr ``solver_status`` next to the overall ``status``.
+        """
         run = self.config.run
-        method, reason = run.method, "named in the config"
-        auto = method == "auto"
-        if auto:
-            method, reason = choose_auto(model, run.rtol, n_periods=n_periods)
+        if method is None:
+            method, method_reason = run.method, "named in the config"
+        spec = _integrators.SolverSpec(method=method, rtol=run.rtol, atol=run.atol, h=run.h,
+                                       reason=method_reason or "chosen by the scene")
         try:
-            sol = integrate(model, y0, t_eval, method=method, rtol=run.rtol, atol=run.atol,
-                            h=run.h, progress=progress)
-        except MethodMismatch as exc:
+            res = _integrators.solve(model, y0, t_eval, spec, n_periods=n_periods,
+                                     progress=progress)
+        except _integrators.MethodMismatch as exc:
             raise ConfigError([f"{self.source.label}: key 'run.method': {exc}"]) from None
-        m = METHODS[method]
-        stiff = stiffness_signs(_solution_attrs(sol), m.adaptive and not m.implicit and not m.peer,
-                                model, sol.t, sol.y)
-        if stiff and auto:
-            # promise 2: an automatic choice that turns out stiff switches, and says so
-            switched = "radau"
-            reason = f"{reason} Stiffness detected with {method}: {stiff}; switched to Radau."
-            method, sol = switched, integrate(model, y0, t_eval, method=switched, rtol=run.rtol,
-                                              atol=run.atol, progress=progress)
+        sol = res.solution
         inv = invariants(sol.t, sol.y) if invariants is not None else {}
-        attrs = _solution_attrs(sol) | {"method_reason": reason}
-        if stiff and not auto:
-            attrs["status"] = "unstable" if sol.status == "ok" else sol.status
-            attrs["message"] = "; ".join(x for x in (
-                sol.message if sol.status != "ok" else "",
-                f"looks stiff for {method}: {stiff}; use method = \"radau\" or \"gauss6\"")
-                if x)
+        attrs = _solution_attrs(sol) | {
+            "method_reason": res.reason, "solver_status": res.status.value,
+            "status": res.status.verdict, "message": res.message}
         record = RunRecord(t=sol.t, y=sol.y, columns=list(model.columns), invariants=inv,
                            attrs=attrs)
-        assess_run(record, rtol=run.rtol, scales=invariant_scales)
+        _stability.assess_run(record, rtol=run.rtol, scales=invariant_scales)
+        for name, scale in (invariant_scales or {}).items():
+            record.attrs[f"scale_{name}"] = float(scale)
         return record
+
+    def reference_run(self, model: OdeModel, y0: np.ndarray, t_eval: np.ndarray) -> np.ndarray:
+        """An independent reference trajectory, shape (N, d), where no closed form exists:
+        compiled DOP853 at rtol 1e-14 (the recipe the study's references share)."""
+        return _study.reference_run(model, y0, t_eval)
 
     def study(self, results: Results, model: OdeModel, y0, t_eval, reference=None,
               progress: ProgressFn | None = None) -> None:
-        """Fill ``results.study`` with the error-against-run-time study, if the config asks."""
-        if self.config.run is None or not self.config.run.study:
+        """Fill ``results.study`` with the error-against-run-time study, if this run wants
+        it (:meth:`wants_study`)."""
+        if not self.wants_study():
             return
-        if "error_vs_runtime" not in [s.name for s in self.chosen_sections()]:
-            return  # promise 3: do not compute what the report will not show
-        from ..core.study import work_precision
-
-        result = work_precision(model, y0, t_eval, reference=reference, progress=progress)
+        result = _study.work_precision(model, y0, t_eval, reference=reference,
+                                       progress=progress)
         results.study = result.to_records()
         results.study_attrs = {"reference_kind": result.reference_kind}
+
+
+def _setting(row) -> str:
+    tol, h = float(row["tolerance"]), float(row["h"])
+    if math.isfinite(tol):
+        return f"rtol {tol:.0e}"
+    return f"h {h:.3g}" if math.isfinite(h) else ""

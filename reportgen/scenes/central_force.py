@@ -18,12 +18,13 @@ import numpy as np
 from pydantic import Field, model_validator
 
 from ..config import Positive, Real, RunConfig, Strict
-from ..core.models import kepler as core
-from ..plots import common as common_plots
-from ..plots import gravitation as plots
-from ..results import Check, Results
+from ..lazy import lazy_module
+from ..results import AuditCase, Check, Results
 from .base import Scene, SceneConfig, Section, SectionContent, Table, fmt, fmt_err
-from .shared import error_vs_runtime_section, invariants_section
+
+core = lazy_module("reportgen.core.models.kepler")
+plots = lazy_module("reportgen.plots.gravitation")
+common_plots = lazy_module("reportgen.plots.common")
 
 
 class Params(Strict):
@@ -85,6 +86,7 @@ class CentralForceConfig(SceneConfig):
 
 class CentralForceScene(Scene):
     kind = "central_force"
+    order = 30
     summary = "two bodies in a central potential: reduced mass, Noether charge, Kepler checks"
     Config = CentralForceConfig
     presets = {
@@ -106,8 +108,6 @@ class CentralForceScene(Scene):
 
     @classmethod
     def audit_cases(cls):
-        from ..audit import AuditCase
-
         def kepler(e, orbits):
             # μ = 1, k = 1: GM = 1, a = 1, period 2π; start at pericentre a(1 − e)
             return AuditCase(
@@ -164,11 +164,14 @@ class CentralForceScene(Scene):
     def elements(self) -> dict:
         return core.orbital_elements(*self._state0(), self.config.params.k / self.mu)
 
-    def default_sections(self):
-        names = [s.name for s in self.sections]
-        if not (self.is_kepler and self.bound):
+    @classmethod
+    def default_sections(cls, data):
+        names = [s.name for s in cls.sections]
+        is_kepler = data.config.params.potential == "kepler"
+        bound = data.analysis["bound"] == "yes"
+        if not (is_kepler and bound):
             names.remove("kepler")
-        if self.is_kepler or not self.bound:
+        if is_kepler or not bound:
             names.remove("apsides")
         return names
 
@@ -206,9 +209,12 @@ class CentralForceScene(Scene):
                        period=core.radial_period(self.energy0, self.L0, self.mu, *self.pot))
         return out
 
+    def models(self) -> list:
+        return [core.model(self.config.params.k, self.mu, self.n, self.epsilon)]
+
     def simulate(self, progress=None) -> Results:
         run, p = self.config.run, self.config.params
-        model = core.model(p.k, self.mu, self.n, self.epsilon)
+        (model,) = self.models()
         y0 = self._state0()
         t = np.linspace(0.0, run.t_end, run.samples)
         scales = self.radial_scales()
@@ -228,6 +234,11 @@ class CentralForceScene(Scene):
                                 "infinity")
         r_min, r_max = core.turning_points(self.energy0, self.L0, self.mu, *self.pot)
         a["turning_points"] = np.array([r_min, r_max])
+        M = p.m1 + p.m2
+        a["mass_fraction_m1"], a["mass_fraction_m2"] = p.m1 / M, p.m2 / M
+        r1, r2 = core.body_positions(main["x"], main["y"], p.m1, p.m2)
+        a["body_tracks"] = {"r1": r1, "r2": r2}
+        a["effective_potential_curve"] = self._effective_potential_curve(r_min, r_max)
         if self.is_kepler and self.bound:
             self._kepler_checks(results, main)
         elif self.bound:
@@ -247,6 +258,17 @@ class CentralForceScene(Scene):
         self.study(results, model, y0, np.linspace(0.0, run.t_end, 201), reference=ref)
         return results
 
+    def _effective_potential_curve(self, r_min: float, r_max: float) -> dict:
+        """V(r) and V_eff(r) on the plotted range, and the circular orbit at this L."""
+        top = 2.2 * r_max if math.isfinite(r_max) else 6.0 * r_min
+        r = np.linspace(0.15 * r_min, top, 800)
+        L, mu = self.L0, self.mu
+        rc = core.circular_radius(L, mu, *self.pot)
+        return {"r": r, "potential": core.potential(r, *self.pot),
+                "effective_potential": core.effective_potential(r, L, mu, *self.pot),
+                "circular_radius": rc,
+                "circular_energy": float(core.effective_potential(rc, L, mu, *self.pot))}
+
     #: a pericentre passage must span this many stored samples to be located reliably
     MIN_SAMPLES_PER_PASSAGE = 4
 
@@ -260,6 +282,13 @@ class CentralForceScene(Scene):
     def _kepler_checks(self, results: Results, main) -> None:
         el, a = self.elements, results.analysis
         x, y, vx, vy = core.kepler_state(main.t, el)
+        main.reference = {"x": x, "y": y, "vx": vx, "vy": vy}
+        main.attrs["reference_label"] = "Kepler's equation E − e sin E = M (Danby §6.6)"
+        # one closed orbit of the exact ellipse, and the eccentricity vector A/(μk)
+        xo, yo, _, _ = core.kepler_state(np.linspace(0.0, el["period"], 721), el)
+        a["kepler_orbit"] = {"x": xo, "y": yo}
+        a["eccentricity_vector"] = el["eccentricity"] * np.array([math.cos(el["omega"]),
+                                                                  math.sin(el["omega"])])
         err = np.hypot(main["x"] - x, main["y"] - y)
         scale = el["semi_major_axis"]
         a["kepler_position_error"] = err
@@ -272,6 +301,7 @@ class CentralForceScene(Scene):
         mu, k = self.mu, self.config.params.k
         ax, ay = main.invariants["lrl_x"], main.invariants["lrl_y"]
         e_lrl = np.hypot(ax, ay) / (mu * k)
+        a["lrl_eccentricity_error"] = e_lrl - el["eccentricity"]
         a["lrl_eccentricity_drift"] = float(np.max(np.abs(e_lrl - el["eccentricity"])))
         results.checks.append(Check("|A|/(μk) at t_end (LRL vector)", float(e_lrl[-1]),
                                     el["eccentricity"], "", "e of the initial state, |A| = μke "
@@ -310,6 +340,7 @@ class CentralForceScene(Scene):
             a["apsidal_angle_closed_form"] = closed
             results.checks.append(Check("apsidal angle by quadrature", exact, closed, "rad",
                                         "π/√(1 − 2με/L²) (Landau & Lifshitz §15 problem 3)"))
+        a["apsidal_angle_family"] = self._apsidal_angle_family()
         period = a["period"]
         if not self._passages_resolved(a["eccentricity"], period):
             a["apsidal_angle_note"] = ("fewer than two resolved pericentre passages: "
@@ -322,6 +353,8 @@ class CentralForceScene(Scene):
         sweep = abs(phi[-1] - phi[0]) / (tp.size - 1)  # angle between pericentres = 2 × apsidal
         a["apsidal_angle_measured"] = 0.5 * sweep
         a["pericentre_times"] = tp
+        a["pericentre_positions"] = {"x": np.interp(tp, main.t, main["x"]),
+                                     "y": np.interp(tp, main.t, main["y"])}
         results.checks.append(Check("apsidal angle measured (pericentre to pericentre / 2)",
                                     0.5 * sweep, exact, "rad",
                                     "∫ (L/μr²) dr/ṙ from r_min to r_max (Goldstein eq. 3.37)"))
@@ -330,12 +363,31 @@ class CentralForceScene(Scene):
         results.checks.append(Check("radial period from pericentre passages", t_meas, period,
                                     "s", "2 ∫ dr/ṙ from r_min to r_max (Goldstein eq. 3.17)"))
 
+    def _apsidal_angle_family(self) -> dict:
+        """Exact apsidal angle against eccentricity at this L, from near-circular orbits up
+        to a little beyond this orbit's energy (bound orbits only)."""
+        mu, L, E0 = self.mu, self.L0, self.energy0
+        k, n, eps = self.pot
+        rc = core.circular_radius(L, mu, k, n, eps)
+        e_circ = float(core.effective_potential(rc, L, mu, k, n, eps))
+        e_max = E0 + 0.3 * (E0 - e_circ) if E0 < 0 else E0
+        energies = e_circ + (min(e_max, 0.0) - e_circ) * np.linspace(0.02, 0.97, 40) ** 2
+        energies = np.unique(np.append(energies[energies < 0], E0))
+        ecc, ang = [], []
+        for E in energies:
+            r1, r2 = core.turning_points(E, L, mu, k, n, eps)
+            ecc.append((r2 - r1) / (r2 + r1))
+            ang.append(core.apsidal_angle(E, L, mu, k, n, eps))
+        return {"eccentricity": np.array(ecc), "angle": np.array(ang)}
+
     # ------------------------------------------------------------------ report
-    def headline(self, data):
-        p, a = self.config.params, data.analysis
-        pot = {"kepler": "V = −k/r", "power": f"V = −k/r^{fmt(self.n)}",
-               "kepler_inverse_cube": f"V = −k/r − ε/r², ε = {fmt(self.epsilon)}"}[p.potential]
-        out = [("bodies", f"m1 = {fmt(p.m1)} kg, m2 = {fmt(p.m2)} kg, μ = {fmt(self.mu)} kg"),
+    @classmethod
+    def headline(cls, data):
+        p, a = data.config.params, data.analysis
+        pot = {"kepler": "V = −k/r", "power": f"V = −k/r^{fmt(p.n)}",
+               "kepler_inverse_cube": f"V = −k/r − ε/r², ε = {fmt(p.epsilon)}"}[p.potential]
+        out = [("bodies", f"m1 = {fmt(p.m1)} kg, m2 = {fmt(p.m2)} kg, "
+                          f"μ = {fmt(a['reduced_mass'])} kg"),
                ("potential", f"{pot}, k = {fmt(p.k)}"),
                ("energy, angular momentum", f"E = {fmt(a['energy'])} J, "
                                             f"L = {fmt(a['angular_momentum'])} kg·m²/s")]
@@ -349,22 +401,16 @@ class CentralForceScene(Scene):
             out.append(("max |r − r_Kepler|", f"{fmt_err(a['kepler_position_error_max'])} m"))
         return out
 
-    def section_orbit(self, data):
-        run = data.runs["main"]
+    @classmethod
+    def section_orbit(cls, data):
+        run, a = data.runs["main"], data.analysis
         ref = lrl = peri = None
-        if self.is_kepler and self.bound:
-            el = self.elements
-            ts = np.linspace(0.0, el["period"], 721)
-            ref = core.kepler_state(ts, el)[:2]
-            lrl = (el["eccentricity"] * el["semi_major_axis"] * math.cos(el["omega"]),
-                   el["eccentricity"] * el["semi_major_axis"] * math.sin(el["omega"]))
-        elif "pericentre_times" in data.analysis:
-            tp = np.asarray(data.analysis["pericentre_times"])
-            xs = np.interp(tp, run.t, run["x"])
-            ys = np.interp(tp, run.t, run["y"])
-            peri = (xs, ys)
-        fig = plots.relative_orbit(run["x"], run["y"], reference=ref, pericentres=peri,
-                                   lrl=None if lrl is None else lrl)
+        if "kepler_orbit" in a:
+            ref = (a["kepler_orbit"]["x"], a["kepler_orbit"]["y"])
+            lrl = tuple(float(v) for v in a["eccentricity_vector"])
+        elif "pericentre_positions" in a:
+            peri = (a["pericentre_positions"]["x"], a["pericentre_positions"]["y"])
+        fig = plots.relative_orbit(run["x"], run["y"], reference=ref, pericentres=peri, lrl=lrl)
         caption = "The relative orbit r(t) = r1 − r2 (3.21)."
         if lrl is not None:
             caption += (" Dashed: the exact ellipse from Kepler's equation; arrow: the "
@@ -372,47 +418,44 @@ class CentralForceScene(Scene):
                         "pericentre (its length |A|/μk = e is given in the legend).")
         elif peri is not None:
             caption += " Triangles: pericentre passages, advancing by twice the apsidal angle."
-        return SectionContent(figures=[self.figure("orbit", fig, caption)])
+        return SectionContent(figures=[cls.figure("orbit", fig, caption)])
 
-    def section_two_body(self, data):
-        run, p = data.runs["main"], self.config.params
-        r1, r2 = core.body_positions(run["x"], run["y"], p.m1, p.m2)
-        fig = plots.two_body_tracks(r1, r2, m1=p.m1, m2=p.m2)
-        facts = [("reduced mass μ = m1 m2/(m1 + m2) (3.20)", f"{fmt(self.mu)} kg"),
+    @classmethod
+    def section_two_body(cls, data):
+        p, a = data.config.params, data.analysis
+        tracks = a["body_tracks"]
+        fig = plots.two_body_tracks(tracks["r1"], tracks["r2"], m1=p.m1, m2=p.m2)
+        facts = [("reduced mass μ = m1 m2/(m1 + m2) (3.20)", f"{fmt(a['reduced_mass'])} kg"),
                  ("r1 = (m2/M) r, r2 = −(m1/M) r (3.19)",
-                  f"m2/M = {fmt(p.m2 / (p.m1 + p.m2))}, m1/M = {fmt(p.m1 / (p.m1 + p.m2))}")]
-        return SectionContent(figures=[self.figure(
+                  f"m2/M = {fmt(a['mass_fraction_m2'])}, m1/M = {fmt(a['mass_fraction_m1'])}")]
+        return SectionContent(figures=[cls.figure(
             "two_body", fig, "Both bodies' tracks in the centre-of-mass frame (R = 0): "
             "similar conics scaled by m2/M and m1/M about the common focus, on opposite sides.")],
             facts=facts)
 
-    def section_effective_potential(self, data):
-        a, mu = data.analysis, self.mu
+    @classmethod
+    def section_effective_potential(cls, data):
+        a = data.analysis
         r_min, r_max = (float(v) for v in np.asarray(a["turning_points"]))
-        top = 2.2 * r_max if math.isfinite(r_max) else 6.0 * r_min
-        r = np.linspace(0.15 * r_min, top, 800)
-        L, E = a["angular_momentum"], a["energy"]
-        v = core.potential(r, *self.pot)
-        v_eff = core.effective_potential(r, L, mu, *self.pot)
-        rc = core.circular_radius(L, mu, *self.pot)
-        fig = plots.effective_potential(r, v, v_eff, energy=E, turning=(r_min, r_max),
-                                        circular=(rc, float(core.effective_potential(
-                                            rc, L, mu, *self.pot))))
+        curve = a["effective_potential_curve"]
+        rc = curve["circular_radius"]
+        fig = plots.effective_potential(curve["r"], curve["potential"],
+                                        curve["effective_potential"], energy=a["energy"],
+                                        turning=(r_min, r_max),
+                                        circular=(rc, curve["circular_energy"]))
         facts = [("turning points r_min, r_max", f"{fmt(r_min, 12)} m, {fmt(r_max, 12)} m"),
                  ("circular orbit at this L", f"r_c = {fmt(rc, 12)} m")]
-        return SectionContent(figures=[self.figure(
+        return SectionContent(figures=[cls.figure(
             "effective_potential", fig, "The radial motion in V_eff(r) = V(r) + L²/(2μr²) "
             "(3.28–3.30): the orbit stays where E ≥ V_eff, between the turning points.")],
             facts=facts)
 
-    def section_kepler(self, data):
+    @classmethod
+    def section_kepler(cls, data):
         run, a = data.runs["main"], data.analysis
-        err = np.asarray(a["kepler_position_error"])
-        A = np.hypot(run.invariants["lrl_x"], run.invariants["lrl_y"])
         fig = common_plots.error_against_time(
-            run.t, {"|r − r_Kepler| [m]": err,
-                    "| |A|/(μk) − e |": A / (self.mu * self.config.params.k)
-                    - a["eccentricity"]}, ylabel="absolute error")
+            run.t, {"|r − r_Kepler| [m]": a["kepler_position_error"],
+                    "| |A|/(μk) − e |": a["lrl_eccentricity_error"]}, ylabel="absolute error")
         rows = [["eccentricity e", fmt(a["eccentricity"], 14), "|A|/(μk) of the initial state"],
                 ["semi-major axis a [m]", fmt(a["semi_major_axis"], 14), "−k/(2E)"],
                 ["period T [s]", fmt(a["period"], 14), "2π√(a³ μ/k) (third law)"]]
@@ -425,39 +468,31 @@ class CentralForceScene(Scene):
                                                     / a["semi_major_axis"] - 1))])
         notes = [a["period_measured_note"]] if "period_measured_note" in a else []
         return SectionContent(
-            figures=[self.figure("kepler_error", fig, "Distance between the stored positions and "
-                                 "the solution of Kepler's equation at the same times, and the "
-                                 "change of the LRL vector's length.")],
+            figures=[cls.figure("kepler_error", fig, "Distance between the stored positions and "
+                                "the solution of Kepler's equation at the same times, and the "
+                                "change of the LRL vector's length.")],
             tables=[Table(caption="Orbit elements from the initial state and as measured",
                           header=["quantity", "value", "source"], rows=rows)],
             facts=[("max |r − r_Kepler|", f"{fmt_err(a['kepler_position_error_max'])} m"),
                    ("max |v − v_Kepler|", f"{fmt_err(a['kepler_velocity_error_max'])} m/s")],
             notes=notes)
 
-    def section_apsides(self, data):
-        a, mu = data.analysis, self.mu
-        k, n, eps = self.pot
-        L = a["angular_momentum"]
-        rc = core.circular_radius(L, mu, k, n, eps)
-        e_circ = float(core.effective_potential(rc, L, mu, k, n, eps))
-        e_max = a["energy"] + 0.3 * (a["energy"] - e_circ) if a["energy"] < 0 else a["energy"]
-        energies = e_circ + (min(e_max, 0.0) - e_circ) * np.linspace(0.02, 0.97, 40) ** 2
-        energies = np.unique(np.append(energies[energies < 0], a["energy"]))
-        ecc, ang = [], []
-        for E in energies:
-            r1, r2 = core.turning_points(E, L, mu, k, n, eps)
-            ecc.append((r2 - r1) / (r2 + r1))
-            ang.append(core.apsidal_angle(E, L, mu, k, n, eps))
-        if self.config.params.potential == "power":
+    @classmethod
+    def section_apsides(cls, data):
+        a = data.analysis
+        power = data.config.params.potential == "power"
+        family = a["apsidal_angle_family"]
+        if power:
             near, label = a["apsidal_angle_near_circular"], "exact quadrature at this L"
         else:
             near = a["apsidal_angle_closed_form"]
             label = "exact quadrature (= π/√(1 − 2με/L²) at every e)"
         measured = ((a["eccentricity"], a["apsidal_angle_measured"])
                     if "apsidal_angle_measured" in a else None)
-        fig = plots.apsidal_angle_family(np.array(ecc), np.array(ang), near_circular=near,
-                                         measured=measured, exact_label=label)
-        if self.config.params.potential != "power":
+        fig = plots.apsidal_angle_family(family["eccentricity"], family["angle"],
+                                         near_circular=near, measured=measured,
+                                         exact_label=label)
+        if not power:
             fig.axes[0].get_lines()[1].set_label("closed form π/√(1 − 2με/L²)")
             fig.axes[0].legend(loc="best")
         rows = [["exact, quadrature (Goldstein eq. 3.37)", fmt(a["apsidal_angle_exact"], 13),
@@ -478,18 +513,17 @@ class CentralForceScene(Scene):
                                      / a["apsidal_angle_exact"] - 1))])
         notes = [a["apsidal_angle_note"]] if "apsidal_angle_note" in a else []
         return SectionContent(
-            figures=[self.figure("apsidal_angle", fig, "Apsidal angle (pericentre to apocentre) "
-                                 "against eccentricity at this angular momentum.")],
+            figures=[cls.figure("apsidal_angle", fig, "Apsidal angle (pericentre to apocentre) "
+                                "against eccentricity at this angular momentum.")],
             tables=[Table(caption="Apsidal angle [rad]", header=["source", "value",
                                                                   "rel. diff to exact"],
                           rows=rows)], notes=notes)
 
-    def section_invariants(self, data):
+    @classmethod
+    def section_invariants(cls, data):
         labels = {"energy": "energy E", "angular_momentum": "angular momentum L",
                   "lrl_x": "LRL A_x", "lrl_y": "LRL A_y"}
-        return invariants_section(self, data, scales=self._invariant_scales(), labels=labels,
-                                  caption="Drift of the conserved quantities: E and L relative "
-                                          "to their size, the LRL components relative to μk.")
-
-    def section_error_vs_runtime(self, data):
-        return error_vs_runtime_section(self, data)
+        return cls.invariants_section(data, labels=labels,
+                                      caption="Drift of the conserved quantities: E and L "
+                                              "relative to their size, the LRL components "
+                                              "relative to μk.")

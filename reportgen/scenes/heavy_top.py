@@ -17,12 +17,15 @@ import numpy as np
 from pydantic import Field, model_validator
 
 from ..config import Positive, Real, RunConfig, Strict
-from ..core.crossings import mean_period, upward_crossings
-from ..core.models import heavy_top as core
+from ..lazy import lazy_module
 from ..plots import heavy_top as plots
-from ..results import Check, Results, RunRecord
+from ..results import AuditCase, Check, Results, RunRecord
 from .base import Scene, SceneConfig, Section, SectionContent, Table, fmt, fmt_err
-from .shared import error_vs_runtime_section, invariants_section
+
+model_core = lazy_module("reportgen.core.models.heavy_top")
+theory = lazy_module("reportgen.core.heavy_top_theory")
+kinematics = lazy_module("reportgen.core.heavy_top_kinematics")
+integrators = lazy_module("reportgen.core.integrators")
 
 CASES = ("loops", "waves", "cusps", "steady", "sleeping")
 ALL_KEYS = ("params.I1, params.I3, params.Mgl, initial.theta, initial.theta_dot, "
@@ -85,7 +88,7 @@ class HeavyTopConfig(SceneConfig):
             if ini.theta == 0.0:
                 raise ValueError("initial.theta / initial.steady: steady precession needs a "
                                  "tilted axis (θ > 0); θ = 0 is the sleeping top")
-            slow, fast = core.steady_precession_rates(p.I1, p.I3, p.Mgl, ini.theta, ini.omega3)
+            slow, fast = theory.steady_precession_rates(p.I1, p.I3, p.Mgl, ini.theta, ini.omega3)
             rate = slow if ini.steady == "slow" else fast
             if math.isnan(slow):
                 bound = 4 * p.I1 * p.Mgl * math.cos(ini.theta)
@@ -107,14 +110,14 @@ class HeavyTopConfig(SceneConfig):
             raise ValueError("initial.omega3 / initial.phi_dot: a = b = 0 is a plane pendulum "
                              "swinging through the vertical, not a top (use kind = "
                              "\"pendulum\")")
-        c = core.constants(p.I1, p.I3, p.Mgl, ini.theta, ini.theta_dot, phi_dot, ini.omega3)
-        r = core.roots(c)
+        c = theory.constants(p.I1, p.I3, p.Mgl, ini.theta, ini.theta_dot, phi_dot, ini.omega3)
+        r = theory.roots(c)
         try:
-            core.check_admissible(r, c)
-        except core.NoAdmissibleInterval as exc:
+            theory.check_admissible(r, c)
+        except theory.NoAdmissibleInterval as exc:
             raise ValueError(f"{ALL_KEYS}: {exc}") from None
         if self.expect_case is not None:
-            case = core.classify(r, c)
+            case = theory.classify(r, c)
             if case != self.expect_case:
                 ratio = c.b / c.a if c.a != 0 else math.inf
                 raise ValueError(
@@ -130,7 +133,7 @@ def _phi_dot(config: HeavyTopConfig) -> float:
     ini, p = config.initial, config.params
     if ini.steady is None:
         return float(ini.phi_dot)
-    slow, fast = core.steady_precession_rates(p.I1, p.I3, p.Mgl, ini.theta, ini.omega3)
+    slow, fast = theory.steady_precession_rates(p.I1, p.I3, p.Mgl, ini.theta, ini.omega3)
     return slow if ini.steady == "slow" else fast
 
 
@@ -146,6 +149,7 @@ def _preset(initial, t_end, samples, case=None, **extra):
 
 class HeavyTopScene(Scene):
     kind = "heavy_top"
+    order = 70
     summary = ("heavy symmetric top: nutation loci (loops, waves, cusps), f(u), steady "
                "precession, the sleeping top")
     Config = HeavyTopConfig
@@ -181,8 +185,6 @@ class HeavyTopScene(Scene):
 
     @classmethod
     def audit_cases(cls):
-        from ..audit import AuditCase
-
         def case(name, initial, t_end, samples, what):
             config = {"kind": "heavy_top", "title": name, "params": dict(_TOP),
                       "initial": initial, "run": {"t_end": t_end, "samples": samples}}
@@ -209,15 +211,8 @@ class HeavyTopScene(Scene):
                  100.0, 5001, "2 % below the threshold: a 1e-6 tilt grows to order one"),
         ]
 
-    def default_sections(self):
-        names = [s.name for s in self.sections]
-        if self.case != "steady" and self.config.initial.steady is None:
-            names.remove("steady_precession")
-        if self.config.sleeping is None:
-            names.remove("sleeping_sweep")
-        if self.case == "sleeping":
-            names.remove("effective_potential")  # V'(θ) is flat-infinite at θ = 0 with b = a
-        return names
+    #: crossings are located reliably only with this many samples per nutation period
+    MIN_SAMPLES_PER_PERIOD = 16
 
     # ----------------------------------------------------------------- helpers
     @property
@@ -225,72 +220,75 @@ class HeavyTopScene(Scene):
         return _phi_dot(self.config)
 
     @property
-    def constants(self) -> core.TopConstants:
+    def constants(self) -> theory.TopConstants:
         p, ini = self.config.params, self.config.initial
-        return core.constants(p.I1, p.I3, p.Mgl, ini.theta, ini.theta_dot, self.phi_dot0,
-                              ini.omega3)
+        return theory.constants(p.I1, p.I3, p.Mgl, ini.theta, ini.theta_dot, self.phi_dot0,
+                                ini.omega3)
 
     @property
-    def roots(self) -> core.Roots:
-        return core.roots(self.constants)
+    def roots(self) -> theory.Roots:
+        return theory.roots(self.constants)
 
     @property
     def case(self) -> str:
-        return core.classify(self.roots, self.constants)
+        return theory.classify(self.roots, self.constants)
 
     @property
     def threshold(self) -> float:
         p = self.config.params
-        return core.sleeping_threshold_omega3(p.I1, p.I3, p.Mgl)
+        return theory.sleeping_threshold_omega3(p.I1, p.I3, p.Mgl)
 
     def _invariants(self, y):
         p = self.config.params
-        return core.invariants(y, p.I1, p.I3, p.Mgl)
+        return model_core.invariants(y, p.I1, p.I3, p.Mgl)
 
     @property
     def scales(self) -> dict[str, float]:
         """Natural sizes of the invariants (drift is relative to them)."""
         p, ini = self.config.params, self.config.initial
-        spin = 0.5 * p.I3 * ini.omega3**2
-        c = self.constants
-        energy = max(abs(0.5 * p.I1 * c.alpha) + spin, p.Mgl)
-        momentum = max(abs(p.I3 * ini.omega3), abs(p.I1 * c.b), math.sqrt(p.I1 * p.Mgl))
-        return {"energy": energy, "p_phi": momentum, "p_psi": momentum}
+        return theory.invariant_scales(p.I1, p.I3, p.Mgl, ini.omega3, self.constants)
 
     # -------------------------------------------------------------- simulation
+    def models(self) -> list:
+        """The top's model (the sleeping sweep integrates it with DOP853, its own choice)."""
+        p = self.config.params
+        return [model_core.model(p.I1, p.I3, p.Mgl)]
+
     def simulate(self, progress=None) -> Results:
         p, ini, run = self.config.params, self.config.initial, self.config.run
         c, r = self.constants, self.roots
-        case = core.classify(r, c)
-        period = core.nutation_period(r, c)
-        precession = core.precession_per_period(r, c)
-        model = core.model(p.I1, p.I3, p.Mgl)
-        y0 = core.initial_state(ini.theta, ini.theta_dot, self.phi_dot0, ini.omega3)
+        case = theory.classify(r, c)
+        period = theory.nutation_period(r, c)
+        precession = theory.precession_per_period(r, c)
+        (model,) = self.models()
+        y0 = model_core.initial_state(ini.theta, ini.theta_dot, self.phi_dot0, ini.omega3)
         t = np.linspace(0.0, run.t_end, run.samples)
         results = Results()
         raw = self.integrate(model, y0, t, invariants=lambda _t, y: self._invariants(y),
                              invariant_scales=self.scales, progress=progress,
                              n_periods=run.t_end / period if math.isfinite(period) else None)
-        main, kin = self._derived_run(raw)
+        main, motion = self._derived_run(raw)
         results.runs["main"] = main
 
-        slow, fast = core.steady_precession_rates(p.I1, p.I3, p.Mgl, ini.theta, ini.omega3)
-        w_cf, _u_cf = core.u_closed_form(t, r, c)
-        u_err = np.abs(kin["w"] - w_cf)
-        measured_T, measured_dphi = self._measured(t, kin, r)
+        slow, fast = theory.steady_precession_rates(p.I1, p.I3, p.Mgl, ini.theta, ini.omega3)
+        w_cf, _u_cf = theory.u_closed_form(t, r, c)
+        u_err = np.abs(motion["w"] - w_cf)
+        measured_T, measured_dphi = kinematics.measure_nutation(
+            t, motion, w1=r.w1, w2=r.w2, period=period,
+            min_samples_per_period=self.MIN_SAMPLES_PER_PERIOD)
         a = {
             "a": c.a, "b": c.b, "alpha": c.alpha, "beta": c.beta,
             "b_over_a": c.b / c.a if c.a != 0 else math.nan,
             "u1": r.u1, "u2": r.u2, "u3": r.u3,
             "one_minus_u1": r.w2, "one_minus_u2": r.w1,
-            "theta1": _theta_of_w(r.w1), "theta2": _theta_of_w(r.w2),
+            "theta1": theory.theta_of_w(r.w1), "theta2": theory.theta_of_w(r.w2),
             "k2": r.m if r.w2 > r.w3 else math.nan,
             "case": case,
             "nutation_period": period,
-            "nutation_period_quadrature": core.nutation_period_quadrature(r, c),
+            "nutation_period_quadrature": theory.nutation_period_quadrature(r, c),
             "nutation_period_measured": measured_T,
             "precession_per_period": precession,
-            "precession_quadrature": core.precession_quadrature(r, c),
+            "precession_quadrature": theory.precession_quadrature(r, c),
             "precession_measured": measured_dphi,
             "reduced_energy": 0.5 * p.I1 * c.alpha,
             "steady_rate_slow": slow, "steady_rate_fast": fast,
@@ -298,15 +296,17 @@ class HeavyTopScene(Scene):
             "phi_dot0": self.phi_dot0,
             "sleeping_threshold_omega3": self.threshold,
             "sleeping_stable": bool(abs(ini.omega3) > self.threshold),
-            "sleeping_growth_rate": core.sleeping_growth_rate(p.I1, p.I3, p.Mgl, ini.omega3),
+            "sleeping_growth_rate": theory.sleeping_growth_rate(p.I1, p.I3, p.Mgl, ini.omega3),
             "u_max_error": float(np.max(u_err)),
             "mean_phi_dot": float((main["phi"][-1] - main["phi"][0]) / (t[-1] - t[0])),
         }
         a["period_sensitivity"] = self._period_sensitivity(main, period)
         results.analysis.update(a)
+        self._store_closed_form(results, main)
         self._checks(results, main)
-        if self.config.sleeping is not None and "sleeping_sweep" in [
-                s.name for s in self.chosen_sections()]:
+        if self.config.sleeping is not None:
+            # computed whenever [sleeping] is given: [report] edits re-stamp the archive
+            # without simulating again, and the section must then still find it
             results.analysis["sleeping_sweep"] = self._sleeping_sweep()
         self.study(results, model, y0, np.linspace(0.0, run.t_end, 201), progress=progress)
         return results
@@ -314,25 +314,65 @@ class HeavyTopScene(Scene):
     def _derived_run(self, raw: RunRecord) -> tuple[RunRecord, dict]:
         """The archived run: Euler angles, axis, rates and the integrated state."""
         p = self.config.params
-        y = raw.y
-        q = y[:, :4] / np.linalg.norm(y[:, :4], axis=1)[:, None]
-        theta, phi, psi = core.euler_angles(q)
-        e3, e3_dot, e3_ddot = core.axis_kinematics(y, p.I1, p.I3, p.Mgl)
-        rho = np.hypot(e3[:, 0], e3[:, 1])
-        on_axis = rho == 0.0  # exactly vertical: φ undefined, rates stored as 0
-        safe = np.where(on_axis, 1.0, rho)
-        rho_dot = np.where(on_axis, 0.0, (e3[:, 0] * e3_dot[:, 0] + e3[:, 1] * e3_dot[:, 1]) / safe)
-        theta_dot = rho_dot * e3[:, 2] - e3_dot[:, 2] * rho
-        phi_dot = np.where(on_axis, 0.0,
-                           (e3[:, 0] * e3_dot[:, 1] - e3[:, 1] * e3_dot[:, 0]) / safe**2)
+        m = kinematics.derived_motion(raw.y, p.I1, p.I3, p.Mgl)
         columns = ["theta", "phi", "psi", "axis_x", "axis_y", "axis_z", "theta_dot", "phi_dot",
-                   *core.COLUMNS]
-        data = np.column_stack([theta, phi, psi, e3, theta_dot, phi_dot, y])
-        w = 2.0 * (q[:, 1] ** 2 + q[:, 2] ** 2)  # 1 − cos θ without cancellation
-        kin = {"w": w, "w_dot": -e3_dot[:, 2], "w_ddot": -e3_ddot[:, 2], "phi": phi,
-               "phi_dot": phi_dot}
+                   *model_core.COLUMNS]
+        data = np.column_stack([m["theta"], m["phi"], m["psi"], m["axis"], m["theta_dot"],
+                                m["phi_dot"], raw.y])
         return RunRecord(t=raw.t, y=data, columns=columns, invariants=raw.invariants,
-                         attrs=raw.attrs), kin
+                         attrs=raw.attrs), m
+
+    def _store_closed_form(self, results: Results, main: RunRecord) -> None:
+        """Everything the report draws from the closed form, sampled here: θ(t) of the
+        sn² solution on the run's grid, cos θ − closed form, f(u) near its roots, V'(θ)
+        and the steady-rate curves against ω3."""
+        p, ini = self.config.params, self.config.initial
+        a = results.analysis
+        c, r = self.constants, self.roots
+        # θ(t) in closed form on the output grid, and the integration's difference in cos θ
+        w_cf, _u = theory.u_closed_form(main.t, r, c)
+        main.reference = {"theta": theory.theta_of_w(w_cf)}
+        main.attrs["reference_label"] = ("closed form cos θ = u1 + (u2 − u1) sn²(λt + τ0 | k²), "
+                                         "λ = ½√(β(u3 − u1)) (Goldstein ex. 4.10)")
+        q = np.column_stack([main["q_w"], main["q_x"], main["q_y"], main["q_z"]])
+        w = kinematics.one_minus_cos_theta(q)
+        width = a["one_minus_u1"] - a["one_minus_u2"]
+        relative = bool(width > 0.0)
+        a["cos_theta_error"] = {"difference": (w - w_cf) / width if relative else w - w_cf,
+                                "relative_to_width": relative}
+        # f(u) (10.31); near the vertical in w = 1 − u, where [u1, u2] would be invisible
+        w2 = a["one_minus_u1"]
+        if 0.0 < w2 < 1e-3:
+            x = np.linspace(0.0, 1.25 * w2, 1201)
+            a["cubic_curve"] = {"variable": "w", "x": x, "f": theory.g_w(x, c),
+                                "root1": a["one_minus_u2"], "root2": w2, "root3": 1.0 - a["u3"],
+                                "ratio": -c.B / c.a if c.a else math.nan, "start": c.w0}
+        else:
+            hi = min(max(1.05, a["u3"] + 0.1 * (a["u3"] - a["u1"])), 3.0) if math.isfinite(
+                a["u3"]) else 1.5
+            x = np.linspace(-1.0, hi, 1201)
+            a["cubic_curve"] = {"variable": "u", "x": x, "f": theory.f_u(x, c),
+                                "root1": a["u1"], "root2": a["u2"], "root3": a["u3"],
+                                "ratio": a["b_over_a"], "start": math.cos(ini.theta)}
+        # V'(θ) (10.28); on the vertical (the sleeping top) it is not drawn
+        if a["case"] != "sleeping":
+            if a["theta2"] < 0.05:
+                # near the vertical V' − Mgl is of order θ²: evaluated in w = 1 − cos θ
+                theta = np.linspace(0.5 * a["theta1"], 1.5 * a["theta2"], 1500)
+                V, energy = theory.effective_potential_near_vertical(theta, p.I1, p.Mgl, c)
+                shifted = True
+            else:
+                theta = np.linspace(1e-3, math.pi - 1e-3, 1500)
+                V = theory.effective_potential(theta, p.I1, p.Mgl, c)
+                energy, shifted = a["reduced_energy"], False
+            a["effective_potential"] = {"theta": theta, "V": V, "energy": energy,
+                                        "minus_Mgl": shifted}
+        # the two steady precession rates (10.45) against the spin, from the bound (10.46)
+        w_min = theory.steady_precession_min_omega3(p.I1, p.I3, p.Mgl, ini.theta)
+        lo = w_min * 1.0001 if math.isfinite(w_min) else 0.1
+        om = np.linspace(lo, max(3.0 * abs(ini.omega3), 2 * lo), 400)
+        slow, fast = theory.steady_precession_curve(p.I1, p.I3, p.Mgl, ini.theta, om)
+        a["steady_rates"] = {"omega3": om, "slow": slow, "fast": fast, "omega3_min": w_min}
 
     def _period_sensitivity(self, main: RunRecord, period: float) -> float:
         """|ΔT/T| if E' were off by the run's own energy drift (conditioning of T).
@@ -344,39 +384,8 @@ class HeavyTopScene(Scene):
         p, ini = self.config.params, self.config.initial
         e = main.invariants["energy"]
         drift = max(float(np.max(np.abs(e - e[0]))), np.finfo(float).eps * self.scales["energy"])
-        theta_dot = math.sqrt(ini.theta_dot**2 + 2.0 * drift / p.I1)
-        c = core.constants(p.I1, p.I3, p.Mgl, ini.theta, theta_dot, self.phi_dot0, ini.omega3)
-        try:
-            perturbed = core.nutation_period(core.roots(c), c)
-        except (ValueError, ArithmeticError):
-            return math.nan
-        return abs(perturbed / period - 1.0) if math.isfinite(period) else math.nan
-
-    #: crossings are located reliably only with this many samples per nutation period
-    MIN_SAMPLES_PER_PERIOD = 16
-
-    def _measured(self, t, kin, r: core.Roots) -> tuple[float, float]:
-        """Nutation period and precession per period measured from the trajectory.
-
-        Upward crossings of w = 1 − cos θ through the middle of [w1, w2] (quintic
-        Hermite, ``core/crossings.py``); φ at those times by cubic Hermite
-        interpolation of the stored φ, φ̇.  NaN without nutation or with too few samples.
-        """
-        if r.sleeping or r.w2 - r.w1 <= core.STEADY_RTOL * r.w2:
-            return math.nan, math.nan
-        period = core.nutation_period(r, core.constants(  # for the sampling check only
-            self.config.params.I1, self.config.params.I3, self.config.params.Mgl,
-            self.config.initial.theta, self.config.initial.theta_dot, self.phi_dot0,
-            self.config.initial.omega3))
-        if not math.isfinite(period) or (t[-1] / period) * self.MIN_SAMPLES_PER_PERIOD > len(t):
-            return math.nan, math.nan
-        level = 0.5 * (r.w1 + r.w2)
-        times = upward_crossings(t, kin["w"], kin["w_dot"], kin["w_ddot"], level=level)
-        T = mean_period(times)
-        if times.size < 2:
-            return T, math.nan
-        phis = _hermite(t, kin["phi"], kin["phi_dot"], times)
-        return T, float((phis[-1] - phis[0]) / (times.size - 1))
+        return theory.period_sensitivity(p.I1, p.I3, p.Mgl, ini.theta, ini.theta_dot,
+                                         self.phi_dot0, ini.omega3, drift, period)
 
     def _checks(self, results: Results, main: RunRecord) -> None:
         a = results.analysis
@@ -404,7 +413,7 @@ class HeavyTopScene(Scene):
         if r.w2 > r.w1 and not r.sleeping:
             w = 2.0 * (main["q_x"] ** 2 + main["q_y"] ** 2) / (
                 main["q_w"] ** 2 + main["q_x"] ** 2 + main["q_y"] ** 2 + main["q_z"] ** 2)
-            w_cf, _ = core.u_closed_form(main.t[-1:], r, self.constants)
+            w_cf, _ = theory.u_closed_form(main.t[-1:], r, self.constants)
             results.checks.append(Check("cos θ(t_end)", 1.0 - float(w[-1]), 1.0 - float(w_cf[0]),
                                         "", "u1 + (u2−u1) sn²(λt + τ0 | k²) (FIELD-NOTES; "
                                         "Goldstein ex. 4.10)", scale=r.w2 - r.w1))
@@ -426,33 +435,43 @@ class HeavyTopScene(Scene):
 
     def _sleeping_sweep(self) -> dict:
         """Tops tilted by ``tilt`` at several spins across the threshold (10.50)."""
-        from ..core.integrators import integrate
-
         p, sl, run = self.config.params, self.config.sleeping, self.config.run
         t_end = sl.t_end or run.t_end
         t = np.linspace(0.0, t_end, 1001)
         ratios = np.array(sorted(sl.omega3_over_threshold), dtype=float)
-        model = core.model(p.I1, p.I3, p.Mgl)
+        model = model_core.model(p.I1, p.I3, p.Mgl)
         thetas, status = [], []
         for ratio in ratios:
-            y0 = core.initial_state(sl.tilt, 0.0, 0.0, ratio * self.threshold)
-            sol = integrate(model, y0, t, method="dop853", rtol=run.rtol, atol=run.atol)
-            q = sol.y[:, :4]
-            thetas.append(2.0 * np.arctan2(np.hypot(q[:, 1], q[:, 2]), np.hypot(q[:, 0], q[:, 3])))
+            y0 = model_core.initial_state(sl.tilt, 0.0, 0.0, ratio * self.threshold)
+            sol = integrators.integrate(model, y0, t, method="dop853", rtol=run.rtol, atol=run.atol)
+            thetas.append(kinematics.tilt_angle(sol.y[:, :4]))
             status.append(sol.status)
         thetas = np.array(thetas)
         return {
             "t": t, "omega3_over_threshold": ratios, "omega3": ratios * self.threshold,
             "theta": thetas, "theta_max": thetas.max(axis=1), "tilt": sl.tilt,
-            "growth_rate": np.array([core.sleeping_growth_rate(p.I1, p.I3, p.Mgl,
-                                                               x * self.threshold)
+            "growth_rate": np.array([theory.sleeping_growth_rate(p.I1, p.I3, p.Mgl,
+                                                                 x * self.threshold)
                                      for x in ratios]),
             "status": [str(s) for s in status],
         }
 
-    # ----------------------------------------------------------------- report
-    def headline(self, data):
-        p, ini = self.config.params, self.config.initial
+    # ------------------------------------------------------ report (archive only)
+    @classmethod
+    def default_sections(cls, data):
+        names = [s.name for s in cls.sections]
+        a = data.analysis
+        if a["case"] != "steady" and data.config.initial.steady is None:
+            names.remove("steady_precession")
+        if "sleeping_sweep" not in a:
+            names.remove("sleeping_sweep")
+        if a["case"] == "sleeping":
+            names.remove("effective_potential")  # V'(θ) is flat-infinite at θ = 0 with b = a
+        return names
+
+    @classmethod
+    def headline(cls, data):
+        p, ini = data.config.params, data.config.initial
         a = data.analysis
         facts = [
             ("parameters", f"I1 = {fmt(p.I1)} kg m², I3 = {fmt(p.I3)} kg m², "
@@ -473,7 +492,8 @@ class HeavyTopScene(Scene):
                       f"{fmt(a['sleeping_threshold_omega3'])} rad/s (10.50)"))
         return facts
 
-    def section_nutation_locus(self, data):
+    @classmethod
+    def section_nutation_locus(cls, data):
         run = data.runs["main"]
         a = data.analysis
         axis = np.column_stack([run["axis_x"], run["axis_y"], run["axis_z"]])
@@ -484,30 +504,25 @@ class HeavyTopScene(Scene):
                  "steady": "u1 = u2: no nutation, steady precession on one circle",
                  "sleeping": "the sleeping top: the axis stays vertical"}[a["case"]]
         return SectionContent(
-            figures=[self.figure("nutation_locus", fig,
-                                 f"Path of the symmetry axis; dashed: the turning circles "
-                                 f"θ1 = arccos u2 and θ2 = arccos u1. Case: {label}.")],
+            figures=[cls.figure("nutation_locus", fig,
+                                f"Path of the symmetry axis; dashed: the turning circles "
+                                f"θ1 = arccos u2 and θ2 = arccos u1. Case: {label}.")],
             facts=[("case", a["case"]), ("θ1, θ2", f"{fmt(a['theta1'])} rad, "
                                                    f"{fmt(a['theta2'])} rad")])
 
-    def section_cubic(self, data):
+    @classmethod
+    def section_cubic(cls, data):
         a = data.analysis
-        c = self.constants
-        w1, w2 = a["one_minus_u2"], a["one_minus_u1"]
-        if 0.0 < w2 < 1e-3:
-            # near the vertical the interval is invisible on [−1, 1]: plot against w = 1 − u
-            w = np.linspace(0.0, 1.25 * w2, 1201)
-            w3 = 1.0 - a["u3"]
-            fig = plots.cubic(w, core.g_w(w, c), u1=w1, u2=w2, u3=w3,
-                              b_over_a=-c.B / c.a if c.a else math.nan, u0=c.w0,
+        cc = a["cubic_curve"]
+        if cc["variable"] == "w":
+            # near the vertical the interval is invisible on [−1, 1]: drawn against w = 1 − u
+            fig = plots.cubic(cc["x"], cc["f"], u1=cc["root1"], u2=cc["root2"], u3=cc["root3"],
+                              b_over_a=cc["ratio"], u0=cc["start"],
                               xlabel="1 − u = 1 − cos θ  (near the vertical)",
                               names=("1 − u2", "1 − u1", "1 − u3"), ratio_label="1 − b/a")
         else:
-            hi = min(max(1.05, a["u3"] + 0.1 * (a["u3"] - a["u1"])), 3.0) if math.isfinite(
-                a["u3"]) else 1.5
-            u = np.linspace(-1.0, hi, 1201)
-            fig = plots.cubic(u, core.f_u(u, c), u1=a["u1"], u2=a["u2"], u3=a["u3"],
-                              b_over_a=a["b_over_a"], u0=math.cos(self.config.initial.theta))
+            fig = plots.cubic(cc["x"], cc["f"], u1=cc["root1"], u2=cc["root2"], u3=cc["root3"],
+                              b_over_a=cc["ratio"], u0=cc["start"])
         rows = [
             ["a = I3 ω3/I1 (10.25)", fmt(a["a"], 14), "1/s"],
             ["b = p_φ/I1 (10.25)", fmt(a["b"], 14), "1/s"],
@@ -551,87 +566,79 @@ class HeavyTopScene(Scene):
         if (not math.isfinite(a["nutation_period_measured"])
                 and a["case"] not in ("steady", "sleeping")):
             notes.append(f"No measured period: the run covers fewer than two nutation periods "
-                         f"or stores fewer than {self.MIN_SAMPLES_PER_PERIOD} samples per "
+                         f"or stores fewer than {cls.MIN_SAMPLES_PER_PERIOD} samples per "
                          f"period.")
         facts = [("sensitivity of T to an energy error of the run's drift",
                   fmt_err(sens))] if math.isfinite(sens) else []
         return SectionContent(
             facts=facts,
-            figures=[self.figure("f_of_u", fig, "f(u) = (1 − u²)(α − βu) − (b − au)² (10.31): "
-                                 "the motion is confined to u1 ≤ u ≤ u2 where f ≥ 0; "
-                                 "u3 > 1 is unphysical. Dashed: b/a, where φ̇ = 0.")],
+            figures=[cls.figure("f_of_u", fig, "f(u) = (1 − u²)(α − βu) − (b − au)² (10.31): "
+                                "the motion is confined to u1 ≤ u ≤ u2 where f ≥ 0; "
+                                "u3 > 1 is unphysical. Dashed: b/a, where φ̇ = 0.")],
             tables=[table, table2], notes=notes)
 
-    def section_effective_potential(self, data):
+    @classmethod
+    def section_effective_potential(cls, data):
         a = data.analysis
-        p = self.config.params
-        c = self.constants
-        if a["theta2"] < 0.05:
-            # near the vertical V' − Mgl is of order θ²: evaluate it in w = 1 − cos θ
-            theta = np.linspace(0.5 * a["theta1"], 1.5 * a["theta2"], 1500)
-            w = 2.0 * np.sin(0.5 * theta) ** 2
-            V = -p.Mgl * w + 0.5 * p.I1 * (c.B + c.a * w) ** 2 / (w * (2.0 - w))
-            fig = plots.effective_potential(theta, V, energy=0.5 * p.I1 * c.A,
+        ep = a.get("effective_potential")
+        if ep is None:
+            return SectionContent(notes=["The sleeping top stays on the vertical, where "
+                                         "V'(θ) is not defined: nothing to draw."])
+        if ep["minus_Mgl"]:
+            fig = plots.effective_potential(ep["theta"], ep["V"], energy=ep["energy"],
                                             theta1=a["theta1"], theta2=a["theta2"],
                                             ylabel="V'(θ) − Mgl [J]")
         else:
-            theta = np.linspace(1e-3, math.pi - 1e-3, 1500)
-            V = core.effective_potential(theta, p.I1, p.Mgl, c)
-            fig = plots.effective_potential(theta, V, energy=a["reduced_energy"],
+            fig = plots.effective_potential(ep["theta"], ep["V"], energy=ep["energy"],
                                             theta1=a["theta1"], theta2=a["theta2"])
-        return SectionContent(figures=[self.figure(
+        return SectionContent(figures=[cls.figure(
             "effective_potential", fig,
             "V'(θ) = Mgl cos θ + I1 (b − a cos θ)²/(2 sin²θ) (10.28) and the energy E' = "
             "E − I3ω3²/2: θ oscillates between the turning angles θ1 and θ2 where E' = V'.")])
 
-    def section_time_series(self, data):
+    @classmethod
+    def section_time_series(cls, data):
         run = data.runs["main"]
         a = data.analysis
-        w_cf, _u = core.u_closed_form(run.t, self.roots, self.constants)
-        theta_cf = 2.0 * np.arcsin(np.sqrt(np.clip(0.5 * w_cf, 0.0, 1.0)))
-        q = np.column_stack([run["q_w"], run["q_x"], run["q_y"], run["q_z"]])
-        w = 2.0 * (q[:, 1] ** 2 + q[:, 2] ** 2) / np.sum(q**2, axis=1)
-        width = a["one_minus_u1"] - a["one_minus_u2"]
-        relative = width > 0.0
-        fig = plots.time_series(run.t, run["theta"], theta_cf, run["phi_dot"],
-                                (w - w_cf) / width if relative else w - w_cf,
-                                theta1=a["theta1"], theta2=a["theta2"],
+        err = a["cos_theta_error"]
+        relative = err["relative_to_width"]
+        fig = plots.time_series(run.t, run["theta"], run.reference["theta"], run["phi_dot"],
+                                err["difference"], theta1=a["theta1"], theta2=a["theta2"],
                                 error_label="|Δcos θ| / (u2 − u1)" if relative
                                 else "|cos θ − closed form|")
         return SectionContent(
-            figures=[self.figure("time_series", fig,
-                                 "θ(t) integrated (quaternion attitude) against the closed form "
-                                 "cos θ = u1 + (u2 − u1) sn²(λt + τ0 | k²), λ = ½√(β(u3 − u1)); "
-                                 "φ̇(t) = (b − a cos θ)/sin²θ (10.26); and the difference in "
-                                 "cos θ.")],
+            figures=[cls.figure("time_series", fig,
+                                "θ(t) integrated (quaternion attitude) against the closed form "
+                                "cos θ = u1 + (u2 − u1) sn²(λt + τ0 | k²), λ = ½√(β(u3 − u1)); "
+                                "φ̇(t) = (b − a cos θ)/sin²θ (10.26); and the difference in "
+                                "cos θ.")],
             facts=[("max |cos θ − closed form|", fmt_err(a["u_max_error"]))])
 
-    def section_steady_precession(self, data):
+    @classmethod
+    def section_steady_precession(cls, data):
         a = data.analysis
-        p, ini = self.config.params, self.config.initial
-        cos = math.cos(ini.theta)
-        w_min = 2.0 * math.sqrt(p.I1 * p.Mgl * cos) / p.I3 if cos > 0 else math.nan
-        lo = w_min * 1.0001 if math.isfinite(w_min) else 0.1
-        om = np.linspace(lo, max(3.0 * abs(ini.omega3), 2 * lo), 400)
-        rates = np.array([core.steady_precession_rates(p.I1, p.I3, p.Mgl, ini.theta, x)
-                          for x in om])
-        fig = plots.steady_rates(om, rates[:, 0], rates[:, 1], omega3_min=w_min,
-                                 omega3_config=ini.omega3, rate_config=a["phi_dot0"],
-                                 rate_measured=a["mean_phi_dot"])
+        sr = a["steady_rates"]
+        fig = plots.steady_rates(sr["omega3"], sr["slow"], sr["fast"],
+                                 omega3_min=sr["omega3_min"],
+                                 omega3_config=data.config.initial.omega3,
+                                 rate_config=a["phi_dot0"], rate_measured=a["mean_phi_dot"])
         table = Table(caption="Steady precession at θ0 (10.45)",
                       header=["root", "φ̇ [rad/s]"],
                       rows=[["slow  2Mgl/(I3ω3 + √D)", fmt(a["steady_rate_slow"], 14)],
                             ["fast  (I3ω3 + √D)/(2 I1 cos θ0)", fmt(a["steady_rate_fast"], 14)],
                             ["mean φ̇ of the integration", fmt(a["mean_phi_dot"], 14)]])
         return SectionContent(
-            figures=[self.figure("steady_rates", fig,
-                                 "The two steady precession rates φ̇ = [I3ω3 ± √(I3²ω3² − "
-                                 "4I1Mgl cos θ0)]/(2I1 cos θ0) (10.45) against the spin; they "
-                                 "exist only for I3²ω3² ≥ 4I1Mgl cos θ0 (10.46).")],
+            figures=[cls.figure("steady_rates", fig,
+                                "The two steady precession rates φ̇ = [I3ω3 ± √(I3²ω3² − "
+                                "4I1Mgl cos θ0)]/(2I1 cos θ0) (10.45) against the spin; they "
+                                "exist only for I3²ω3² ≥ 4I1Mgl cos θ0 (10.46).")],
             tables=[table])
 
-    def section_sleeping_sweep(self, data):
-        sw = data.analysis["sleeping_sweep"]
+    @classmethod
+    def section_sleeping_sweep(cls, data):
+        sw = data.analysis.get("sleeping_sweep")
+        if sw is None:
+            return SectionContent(notes=["No sweep: the config has no [sleeping] table."])
         fig = plots.sleeping_sweep(sw["t"], sw["theta"], sw["omega3_over_threshold"],
                                    theta_max=sw["theta_max"])
         rows = [[fmt(float(x)), fmt(float(w)),
@@ -646,33 +653,14 @@ class HeavyTopScene(Scene):
                               "linear growth rate ½√(2β − a²) [1/s]", "largest tilt [rad]"],
                       rows=rows)
         return SectionContent(
-            figures=[self.figure("sleeping_sweep", fig,
-                                 "Below ω3² = 4I1Mgl/I3² (10.50) a small tilt grows "
-                                 "exponentially to order one; above it the tilt stays of the "
-                                 "order of its initial value.")],
+            figures=[cls.figure("sleeping_sweep", fig,
+                                "Below ω3² = 4I1Mgl/I3² (10.50) a small tilt grows "
+                                "exponentially to order one; above it the tilt stays of the "
+                                "order of its initial value.")],
             tables=[table])
 
-    def section_invariants(self, data):
-        return invariants_section(
-            self, data, scales=self.scales,
-            labels={"energy": "energy E", "p_phi": "p_φ = L·ẑ", "p_psi": "p_ψ = I3 ω3"},
+    @classmethod
+    def section_invariants(cls, data):
+        return cls.invariants_section(
+            data, labels={"energy": "energy E", "p_phi": "p_φ = L·ẑ", "p_psi": "p_ψ = I3 ω3"},
             caption="Drift of E, p_φ and p_ψ relative to their natural sizes.")
-
-    def section_error_vs_runtime(self, data):
-        return error_vs_runtime_section(self, data)
-
-
-def _theta_of_w(w: float) -> float:
-    """θ = 2 arcsin √(w/2) for w = 1 − cos θ (accurate near the vertical)."""
-    return 2.0 * math.asin(math.sqrt(min(1.0, max(0.0, 0.5 * w))))
-
-
-def _hermite(t, x, xdot, times):
-    """Cubic Hermite interpolation of x(t) with slopes xdot at ``times``."""
-    idx = np.clip(np.searchsorted(t, times) - 1, 0, len(t) - 2)
-    h = t[idx + 1] - t[idx]
-    s = (times - t[idx]) / h
-    h00, h10 = 2 * s**3 - 3 * s**2 + 1, s**3 - 2 * s**2 + s
-    h01, h11 = -2 * s**3 + 3 * s**2, s**3 - s**2
-    return h00 * x[idx] + h10 * h * xdot[idx] + h01 * x[idx + 1] + h11 * h * xdot[idx + 1]
-

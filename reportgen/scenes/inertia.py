@@ -15,11 +15,13 @@ import numpy as np
 from pydantic import Field, model_validator
 
 from ..config import Positive, Real, Strict
-from ..core import inertia as core
-from ..core.rotations import euler_matrix
-from ..plots import rigid_body as plots
+from ..lazy import lazy_module
 from ..results import Check, Results
 from .base import Scene, SceneConfig, Section, SectionContent, Table, fmt, fmt_err
+
+core = lazy_module("reportgen.core.inertia")
+rotations = lazy_module("reportgen.core.rotations")
+plots = lazy_module("reportgen.plots.rigid_body")
 
 
 class _ShapeBase(Strict):
@@ -37,7 +39,7 @@ class _ShapeBase(Strict):
         return self
 
     def rotation(self) -> np.ndarray:
-        return np.eye(3) if self.euler_angles is None else euler_matrix(*self.euler_angles)
+        return np.eye(3) if self.euler_angles is None else rotations.euler_matrix(*self.euler_angles)
 
     def lab_tensor(self) -> np.ndarray:
         return core.rotate_tensor(self.body_tensor(), self.rotation())
@@ -202,6 +204,7 @@ class InertiaConfig(SceneConfig):
 
 class InertiaScene(Scene):
     kind = "inertia"
+    order = 90
     summary = "inertia tensor of a shape or point set, principal axes, stable spin axes"
     Config = InertiaConfig
     presets = {
@@ -215,9 +218,10 @@ class InertiaScene(Scene):
         Section("stability", "Stability of free spin about each principal axis"),
     )
 
-    def default_sections(self):
-        names = [s.name for s in self.sections]
-        if self.config.shape.about is None:
+    @classmethod
+    def default_sections(cls, data):
+        names = [s.name for s in cls.sections]
+        if "parallel_axis" not in data.analysis:
             names.remove("parallel_axis")
         return names
 
@@ -235,9 +239,16 @@ class InertiaScene(Scene):
             "mass": float(shape.mass),
             "shape": shape.describe(),
             "axis_stability": {f"axis_{k + 1}": s for k, s in enumerate(stab)},
+            "inertia_ellipsoid": core.inertia_ellipsoid(moments, axes),
         })
-        if shape.type != "points":
+        if shape.type == "points":
+            results.analysis["points"] = {"positions": shape.lab_positions(),
+                                          "masses": np.asarray(shape.masses, dtype=float)}
+        else:
             closed = np.sort(np.diag(shape.body_tensor()))
+            results.analysis["closed_form"] = {
+                "principal_moments": closed, "source": shape.closed_form_source(),
+                "max_relative_difference": float(np.max(np.abs(moments - closed)) / closed[2])}
             for k in range(3):
                 results.checks.append(Check(
                     f"principal moment I{k + 1} (diagonalized lab tensor)", float(moments[k]),
@@ -259,7 +270,8 @@ class InertiaScene(Scene):
                     float(direct[idx]), "kg m²", "(8.49) against the direct sum Σ m (r² δ − r r)"))
         return results
 
-    def headline(self, data):
+    @classmethod
+    def headline(cls, data):
         a = data.analysis
         m = a["principal_moments"]
         verdicts = [a["axis_stability"][f"axis_{k + 1}"]["verdict"] for k in range(3)]
@@ -267,7 +279,8 @@ class InertiaScene(Scene):
                 ("principal moments", ", ".join(f"{fmt(x)}" for x in m) + " kg m²"),
                 ("spin stability", ", ".join(f"I{k + 1}: {v}" for k, v in enumerate(verdicts)))]
 
-    def section_tensor(self, data):
+    @classmethod
+    def section_tensor(cls, data):
         a = data.analysis
         T, m, ax = a["tensor"], a["principal_moments"], a["principal_axes"]
         tensor = Table(caption="Inertia tensor about the centre of mass, lab frame [kg m²]",
@@ -280,23 +293,24 @@ class InertiaScene(Scene):
                           rows=[[f"{k + 1}", fmt(float(m[k]), 12),
                                  "(" + ", ".join(f"{float(v):+.6f}" for v in ax[:, k]) + ")"]
                                 for k in range(3)])
-        shape = self.config.shape
-        fig = plots.inertia_ellipsoid(m, ax, points=shape.lab_positions()
-                                      if shape.type == "points" else None,
-                                      masses=shape.masses if shape.type == "points" else None)
+        ell = a["inertia_ellipsoid"]
+        pts = a.get("points")
+        fig = plots.inertia_ellipsoid(m, ax, ell["surface"], ell["semi_axes"],
+                                      points=pts["positions"] if pts else None,
+                                      masses=pts["masses"] if pts else None)
         notes = []
-        if shape.type != "points":
-            closed = np.sort(np.diag(shape.body_tensor()))
-            err = float(np.max(np.abs(m - closed)) / closed[2])
-            notes.append(f"Closed form: {shape.closed_form_source()}; largest relative "
-                         f"difference of the diagonalized moments: {fmt_err(err)}.")
+        if "closed_form" in a:
+            cf = a["closed_form"]
+            notes.append(f"Closed form: {cf['source']}; largest relative difference of the "
+                         f"diagonalized moments: {fmt_err(cf['max_relative_difference'])}.")
         return SectionContent(
-            figures=[self.figure("inertia_ellipsoid", fig,
-                                 "Inertia ellipsoid Σ I_k x_k² = 1 (semi-axes 1/√I_k) with the "
-                                 "principal axes; points shown where the body is a point set.")],
+            figures=[cls.figure("inertia_ellipsoid", fig,
+                                "Inertia ellipsoid Σ I_k x_k² = 1 (semi-axes 1/√I_k) with the "
+                                "principal axes; points shown where the body is a point set.")],
             tables=[tensor, principal], notes=notes)
 
-    def section_parallel_axis(self, data):
+    @classmethod
+    def section_parallel_axis(cls, data):
         p = data.analysis["parallel_axis"]
         T = p["tensor"]
         return SectionContent(tables=[
@@ -310,13 +324,22 @@ class InertiaScene(Scene):
                          "(" + ", ".join(f"{float(v):+.6f}" for v in p["principal_axes"][:, k])
                          + ")"] for k in range(3)])])
 
-    def section_stability(self, data):
-        return stability_table_section(data.analysis["axis_stability"],
-                                       data.analysis["principal_moments"], spin=None)
+    @classmethod
+    def section_stability(cls, data):
+        return stability_table_section(data.analysis)
 
 
-def stability_table_section(stability: dict, moments, spin: float | None) -> SectionContent:
-    """Table of the linear stability of free rotation about each principal axis."""
+def stability_table_section(analysis: dict) -> SectionContent:
+    """Table of the linear stability of free rotation about each principal axis, from an
+    archive's ``analysis`` alone (shared by ``inertia`` and ``rigid_body``).
+
+    Reads ``axis_stability/axis_<k>`` (verdict, growth_rate, oscillation_frequency and,
+    from ``rigid_body``, growth_rate_jacobian), ``principal_moments`` and, when the rates
+    are for a given spin rather than per unit spin, ``spin`` [rad/s].
+    """
+    stability = analysis["axis_stability"]
+    moments = analysis["principal_moments"]
+    spin = analysis.get("spin")
     rows = []
     unit = "1/s" if spin is not None else "× Ω"
     for k in range(3):

@@ -20,18 +20,18 @@ import numpy as np
 from pydantic import Field, model_validator
 
 from ..config import Positive, Real, Strict
-from ..core import normal_modes as core
-from ..core.models import linear_chain
+from ..lazy import lazy_module
 from ..plots import normal_modes as plots
-from ..results import Check, Results
+from ..results import AuditCase, Check, Results
 from .base import Scene, SceneConfig, Section, SectionContent, Table, fmt, fmt_err
-from .shared import error_vs_runtime_section
+
+core = lazy_module("reportgen.core.normal_modes")
+linear_chain = lazy_module("reportgen.core.models.linear_chain")
 
 #: ω_max / ω_min (non-zero) at or above which direct integration is treated as stiff
 STIFF_RATIO = 1e3
-#: ω_max · h of the implicit Gauss–Legendre 6 step used for a stiff evolution under "auto"
-#: (measured on ω_max/ω_min = 10³: max error ≈ 3e-10 of the amplitude over 3000 fast periods)
-STIFF_STEP = 0.5
+#: mode-shape panels drawn for a chain, row of pendula or matrix system (the lowest modes)
+SHAPES_SHOWN = 8
 
 
 class Atom(Strict):
@@ -259,6 +259,7 @@ _H2O = {  # r(O–H) = 0.9572 Å, ∠HOH = 104.5°
 
 class NormalModesScene(Scene):
     kind = "normal_modes"
+    order = 80
     summary = ("small oscillations A η = ω² M η of [[atoms]] with [[bonds]] and [[angles]] "
                "(zero-based atom indices), or top-level M and A matrices, a [chain] or "
                "[pendula]; rigid-body zero modes, 3n−6/3n−5 vibrations, mode shapes; "
@@ -286,8 +287,6 @@ class NormalModesScene(Scene):
 
     @classmethod
     def audit_cases(cls):
-        from ..audit import AuditCase
-
         return [AuditCase(
             name="normal modes: stiffness ratio 10⁴ (frequency ratio 10³)",
             what="heavy mass on a soft spring (k = 1), light mass on a stiff one (k = 10⁴; "
@@ -300,11 +299,12 @@ class NormalModesScene(Scene):
                     "evolve": {"displacement": [0.1, 0.1], "t_end": 10.0},
                     "run": {"samples": 1001}})]
 
-    def default_sections(self):
-        names = [s.name for s in self.sections]
-        if not self.config.atoms:
+    @classmethod
+    def default_sections(cls, data):
+        names = [s.name for s in cls.sections]
+        if data.analysis["source"] != "molecule":
             names.remove("counting")
-        if self.config.evolve is None:
+        if "main" not in data.runs:
             names = [n for n in names if n not in ("evolution", "error_vs_runtime")]
         return names
 
@@ -317,6 +317,12 @@ class NormalModesScene(Scene):
         return core.Molecule(masses=masses, positions=positions,
                              bonds=tuple((b.atoms[0], b.atoms[1], b.k) for b in c.bonds),
                              angles=tuple((*a.atoms, a.k) for a in c.angles))
+
+    def system(self) -> str:
+        """Which way the config gives the system: molecule, chain, pendula or matrices."""
+        c = self.config
+        return ("molecule" if c.atoms else "chain" if c.chain is not None
+                else "pendula" if c.pendula is not None else "matrices")
 
     def coordinate_names(self) -> list[str]:
         c = self.config
@@ -356,24 +362,44 @@ class NormalModesScene(Scene):
         return None
 
     # -------------------------------------------------------------- simulation
+    def _solve(self):
+        """The matrices and normal modes: ``(M, A, molecule, symmetry operations,
+        rigid-body labels, modes)``; molecule and operations are None unless given by atoms."""
+        M, A = self.matrices()
+        if self.config.atoms:
+            mol = self.molecule()
+            ops = mol.symmetry_operations(A)
+            rigid, rigid_labels = core.rigid_body_basis(mol, M)
+            return M, A, mol, ops, rigid_labels, core.solve_modes(M, A, rigid, ops)
+        return M, A, None, None, [], core.solve_modes(M, A)
+
+    @staticmethod
+    def _stiffness_ratio(modes) -> float:
+        vib = modes.omega[modes.n_zero:]
+        return float(vib.max() / vib.min()) if vib.size else 1.0
+
+    def _evolve_model(self, M, A, modes, ratio: float):
+        """The linear model the [evolve] run integrates and whether it is stiff."""
+        stiff = bool(ratio >= STIFF_RATIO)
+        return linear_chain.model(M, A, self.coordinate_names(), stiff_hint=stiff,
+                                  omega_max=float(modes.omega.max())), stiff
+
+    def models(self) -> list:
+        """The linear model of the [evolve] run; none without [evolve]."""
+        if self.config.evolve is None:
+            return []
+        M, A, *_, modes = self._solve()
+        return [self._evolve_model(M, A, modes, self._stiffness_ratio(modes))[0]]
+
     def simulate(self, progress=None) -> Results:
         c = self.config
         results = Results()
-        M, A = self.matrices()
+        M, A, mol, ops, rigid_labels, modes = self._solve()
         a = results.analysis
-        mol = None
-        if c.atoms:
-            mol = self.molecule()
-            ops = mol.symmetry_operations(A)
-            rigid, rigid_labels = self.rigid_basis(mol, M)
-            modes = core.solve_modes(M, A, rigid, ops)
-        else:
-            rigid_labels = []
-            modes = core.solve_modes(M, A)
         n = M.shape[0]
+        system = self.system()
         a.update({
-            "source": ("molecule" if mol is not None else "chain" if c.chain is not None
-                       else "pendula" if c.pendula is not None else "matrices"),
+            "source": system,
             "frequencies": modes.omega, "omega_squared": modes.omega2, "modes": modes.modes,
             "n_dof": n, "n_zero_modes": modes.n_zero, "n_vibrational": n - modes.n_zero,
             "degenerate_group": modes.groups, "mass_matrix": M, "hessian": A,
@@ -386,9 +412,8 @@ class NormalModesScene(Scene):
         a["three_step_max_difference"] = float(np.max(np.abs(w_gen - w_3)) / scale)
         a["orthonormality_error"] = float(np.max(np.abs(modes.modes.T @ M @ modes.modes
                                                         - np.eye(n))))
-        a["mode_type"] = self.mode_types(modes, M, mol, rigid_labels)
-        vib = modes.omega[modes.n_zero:]
-        a["stiffness_ratio"] = float(vib.max() / vib.min()) if vib.size else 1.0
+        a["mode_type"] = core.classify_modes(modes, M, system, mol, rigid_labels)
+        a["stiffness_ratio"] = self._stiffness_ratio(modes)
         if mol is not None:
             self._molecule_analysis(results, mol, modes, M, ops)
         exact = self.exact_frequencies()
@@ -404,44 +429,13 @@ class NormalModesScene(Scene):
                                         float(w_ex[j]), "rad/s", src))
             results.checks.append(Check(f"ω_{n} (highest)", float(w_num[-1]), float(w_ex[-1]),
                                         "rad/s", src))
+        if c.chain is not None and c.chain.ends == "fixed":
+            # the closed-form standing waves drawn over the lowest modes
+            s, waves = core.chain_standing_waves(modes.modes[:, modes.n_zero:][:, :SHAPES_SHOWN])
+            a["standing_waves"] = {"s": s, "amplitude": waves}
         if c.evolve is not None:
             self._evolve(results, M, A, modes, progress)
         return results
-
-    @staticmethod
-    def rigid_basis(mol: core.Molecule, M: np.ndarray) -> tuple[np.ndarray, list[str]]:
-        """M-orthonormal translations, then rotations about the principal axes (rank checked)."""
-        vecs = mol.rigid_body_vectors()
-        trans = core.m_orthonormalize(vecs[:, :3], M)
-        rot = core.m_orthonormalize(vecs[:, 3:], M)  # Gram matrix = inertia tensor
-        return (np.column_stack([trans, rot]),
-                ["translation"] * trans.shape[1] + ["rotation"] * rot.shape[1])
-
-    def mode_types(self, modes, M, mol, rigid_labels) -> list[str]:
-        c = self.config
-        n = M.shape[0]
-        types = []
-        for k in range(n):
-            eta = modes.modes[:, k]
-            if k < modes.n_zero:
-                types.append(rigid_labels[k] if k < len(rigid_labels) else "zero mode (floppy)")
-            elif mol is not None:
-                coords = mol.internal_coordinates()
-                kind = core.stretch_character(eta, coords)
-                if mol.axis() is not None:
-                    w1, _ = core.transverse_directions(mol.axis())
-                    geo = core.mode_types_linear(eta[:, None], M, mol.axis(), w1)[0]
-                    kind = geo if geo.startswith("transverse") else f"{geo}, {kind}"
-                types.append(kind)
-            elif c.chain is not None or c.pendula is not None:
-                nodes = core.node_count(eta)
-                if c.pendula is not None and n == 2:
-                    types.append("in phase" if nodes == 0 else "out of phase")
-                else:
-                    types.append(f"{nodes} node{'s' if nodes != 1 else ''}")
-            else:
-                types.append("normal mode")
-        return types
 
     def _molecule_analysis(self, results, mol, modes, M, ops):
         a = results.analysis
@@ -449,12 +443,17 @@ class NormalModesScene(Scene):
         n_atoms = mol.n_atoms
         n_rot = modes.n_rigid - 3
         expected_zero = 3 + (2 if axis is not None else 3)
+        frame = mol.drawing_frame()
+        z = modes.n_zero
+        positions, displacements = core.drawing_projection(mol.masses, mol.positions, frame,
+                                                            modes.modes[:, z:])
         a.update({
             "masses": mol.masses, "positions": mol.positions,
             "elements": [at.element or "X" for at in self.config.atoms],
             "bonds": np.array([b[:2] for b in mol.bonds], dtype=np.int64).reshape(-1, 2),
             "angles": np.array([g[:3] for g in mol.angles], dtype=np.int64).reshape(-1, 3),
-            "linear": axis is not None, "frame": mol.drawing_frame(),
+            "linear": axis is not None, "frame": frame,
+            "drawing": {"positions": positions, "displacements": displacements},
             "n_rigid_translations": 3, "n_rigid_rotations": n_rot,
             "expected_zero_modes": expected_zero,
             "expected_vibrational": 3 * n_atoms - expected_zero,
@@ -474,56 +473,40 @@ class NormalModesScene(Scene):
             types = a["mode_type"][modes.n_zero:]
             a["n_longitudinal"] = sum(t.startswith("longitudinal") for t in types)
             a["n_transverse"] = sum(t.startswith("transverse") for t in types)
+            # a linear molecule: n − 1 longitudinal, 2(n − 2) transverse vibrations
+            a["expected_longitudinal"] = n_atoms - 1
+            a["expected_transverse"] = 2 * (n_atoms - 2)
         self._triatomic_checks(results, mol, modes)
 
     def _triatomic_checks(self, results, mol, modes):
         """Closed forms for symmetric XY₂ (Y–X–Y) molecules with one bend."""
-        if mol.n_atoms != 3 or len(mol.bonds) != 2:
+        xy2 = core.symmetric_xy2(mol)
+        if xy2 is None:
             return
-        (i1, j1, k1), (i2, j2, k2) = mol.bonds
-        centre = ({i1, j1} & {i2, j2})
-        if len(centre) != 1 or k1 != k2:
-            return
-        cx = centre.pop()
-        ends = [a for a in range(3) if a != cx]
-        x = mol.positions
-        r1, r2 = (np.linalg.norm(x[e] - x[cx]) for e in ends)
-        my, mx = mol.masses[ends[0]], mol.masses[cx]
-        if mol.masses[ends[1]] != my or abs(r1 - r2) > 1e-12 * r1:
-            return
-        k = k1
-        kb = next((g[3] for g in mol.angles if g[1] == cx), None)
+        k, kb, my, mx, r = xy2.k, xy2.k_bend, xy2.m_y, xy2.m_x, xy2.r
         types = list(results.analysis["mode_type"])
         w = modes.omega
 
         def find(label):
             return [float(w[i]) for i, t in enumerate(types) if label in t]
 
-        if mol.axis() is not None:
+        if xy2.linear:
             # Goldstein §6.4 (linear triatomic molecule); notes §5.1, Fig. 5.1
             src = "Goldstein §6.4: ω² = k/m_O, (k/m_O)(1 + 2m_O/m_C)"
+            w_sym, w_asym = core.linear_xy2_frequencies(k, my, mx)
             sym, asym = find("longitudinal, symmetric"), find("longitudinal, antisymmetric")
             if sym:
-                results.checks.append(Check("ω symmetric stretch", sym[0], math.sqrt(k / my),
-                                            "", src))
+                results.checks.append(Check("ω symmetric stretch", sym[0], w_sym, "", src))
             if asym:
-                results.checks.append(Check("ω antisymmetric stretch", asym[0],
-                                            math.sqrt(k / my * (1 + 2 * my / mx)), "", src))
+                results.checks.append(Check("ω antisymmetric stretch", asym[0], w_asym, "", src))
             bend = find("transverse")
             if kb is not None and len(bend) == 2:
-                # linear-bend coordinate ρ = Σ w·(δx_end − δx_C)/r with COM fixed:
-                # ω² = (2 k_θ / (m_O r²))(1 + 2 m_O/m_C) (derived in core.bend_bvectors' basis)
-                ref = math.sqrt(2 * kb / (my * r1 * r1) * (1 + 2 * my / mx))
-                results.checks.append(Check("ω bend (twofold)", bend[1], ref, "",
+                results.checks.append(Check("ω bend (twofold)", bend[1],
+                                            core.linear_xy2_bend_frequency(kb, my, mx, r), "",
                                             "ω² = (2k_θ/(m_O r²))(1 + 2m_O/m_C), linear bend"))
         elif kb is not None:
-            # Herzberg (1945) ch. II, XY₂ valence force field, 2α the bond angle:
-            # λ3 = (1 + 2 m_Y sin²α / m_X) k/m_Y;  λ1 λ2 = 2 (1 + 2 m_Y/m_X) k k_θ / (m_Y² r²);
-            # λ1 + λ2 = (1 + 2 m_Y cos²α/m_X) k/m_Y + (2/m_Y)(1 + 2 m_Y sin²α/m_X) k_θ/r².
-            alpha = core.bond_angle(x, ends[0], cx, ends[1]) / 2
-            s2, c2 = math.sin(alpha) ** 2, math.cos(alpha) ** 2
             src = "Herzberg (1945) ch. II, XY₂ valence force field"
-            lam3 = (1 + 2 * my * s2 / mx) * k / my
+            lam3, tot, prod = core.bent_xy2_eigenvalues(k, kb, my, mx, r, xy2.half_angle)
             asym = find("antisymmetric stretch")
             if len(asym) == 1:
                 results.checks.append(Check("ω antisymmetric stretch", asym[0], math.sqrt(lam3),
@@ -531,8 +514,6 @@ class NormalModesScene(Scene):
             others = [float(v) ** 2 for i, v in enumerate(w)
                       if i >= modes.n_zero and "antisymmetric" not in types[i]]
             if len(others) == 2:
-                prod = 2 * (1 + 2 * my / mx) * k * kb / (my * my * r1 * r1)
-                tot = (1 + 2 * my * c2 / mx) * k / my + 2 / my * (1 + 2 * my * s2 / mx) * kb / r1**2
                 results.checks.append(Check("ω₁² + ω₂² (symmetric block)", sum(others), tot, "",
                                             src))
                 results.checks.append(Check("ω₁² ω₂² (symmetric block)", others[0] * others[1],
@@ -552,8 +533,7 @@ class NormalModesScene(Scene):
         t = np.linspace(0.0, run.t_end, run.samples)
         q0, v0 = self.initial_state()
         ratio = a["stiffness_ratio"]
-        stiff = bool(ratio >= STIFF_RATIO)
-        model = linear_chain.model(M, A, self.coordinate_names(), stiff_hint=stiff)
+        model, stiff = self._evolve_model(M, A, modes, ratio)
         y0 = np.concatenate([q0, M @ v0])
         vib = modes.omega[modes.omega > 0]
         n_periods = run.t_end * float(vib.min()) / (2 * math.pi) if vib.size else None
@@ -562,31 +542,18 @@ class NormalModesScene(Scene):
         def invariants(_t, y):
             return {"energy": linear_chain.energy(y, M, A)}
 
-        runner, stiff_reason = self, ""
-        if stiff and run.method == "auto":
-            # Oscillatory stiffness: the fast mode is excited and must be followed, so Radau
-            # (what choose_auto gives a stiff_hint model) both damps it and needs ~10⁶ steps
-            # at rtol 1e-12.  Gauss–Legendre 6 is implicit (A-stable) and symplectic: no
-            # stability bound on h, no damping; h resolves the fastest mode.
-            h = min(STIFF_STEP / float(modes.omega.max()), float(t[1] - t[0]))
-            cfg = self.config.model_copy(update={"run": run.model_copy(
-                update={"method": "gauss6", "h": h})})
-            runner = type(self)(cfg, self.source)
-            stiff_reason = (f"stiff (ω_max/ω_min = {ratio:.3g}): switched to the implicit "
-                            f"symplectic Gauss–Legendre 6 with h = {STIFF_STEP:g}/ω_max = "
-                            f"{h:.3g} (Radau would damp the excited fast mode); the modal "
-                            "superposition is the exact reference.")
-        main = runner.integrate(model, y0, t, invariants=invariants, progress=progress,
-                                n_periods=n_periods, invariant_scales={"energy": e0 or None})
-        if stiff_reason:
-            main.attrs["method_reason"] = stiff_reason
-        results.runs["main"] = main
+        main = self.integrate(model, y0, t, invariants=invariants, progress=progress,
+                              n_periods=n_periods, invariant_scales={"energy": e0 or None})
 
         def reference(ts):
             q, v = core.modal_evolution(modes.modes, modes.omega, M, q0, v0, ts)
             return np.column_stack([q, v @ M.T])
 
         ref = reference(t)
+        main.reference = {col: ref[:, i] for i, col in enumerate(main.columns)}
+        main.attrs["reference_label"] = ("modal superposition q = Σ η_k (a_k cos ω_k t + "
+                                         "b_k sin ω_k t / ω_k), p = M q̇ (notes §5.1)")
+        results.runs["main"] = main
         n = M.shape[0]
         err_q = np.abs(main.y[:, :n] - ref[:, :n])
         a["evolution_max_error"] = float(np.max(err_q))
@@ -611,15 +578,17 @@ class NormalModesScene(Scene):
         self.study(results, model, y0, t_study, reference=reference, progress=progress)
 
     # ------------------------------------------------------------------- report
-    def _vib(self, data):
+    @staticmethod
+    def _vib(data):
         a = data.analysis
         z = int(a["n_zero_modes"])
         return z, np.asarray(a["frequencies"])[z:], list(a["mode_type"])[z:]
 
-    def headline(self, data):
+    @classmethod
+    def headline(cls, data):
         a = data.analysis
-        z, w, types = self._vib(data)
-        out = [("system", self._describe(a)),
+        z, w, types = cls._vib(data)
+        out = [("system", cls._describe(a)),
                ("vibrations", f"{int(a['n_vibrational'])} of {int(a['n_dof'])} coordinates "
                               f"({z} zero modes)")]
         if w.size:
@@ -647,13 +616,14 @@ class NormalModesScene(Scene):
             return f"{int(a['n_dof'])} coupled pendula"
         return f"M and A given ({int(a['n_dof'])} coordinates)"
 
-    def section_spectrum(self, data):
+    @classmethod
+    def section_spectrum(cls, data):
         a = data.analysis
-        z, w, types = self._vib(data)
+        z, w, types = cls._vib(data)
         groups = np.asarray(a["degenerate_group"])[z:]
         exact = a.get("frequencies_exact")
         fig = plots.spectrum(w, types, groups, exact=None if exact is None else
-                             np.asarray(exact)[z:], unit=self._omega_unit())
+                             np.asarray(exact)[z:], unit=cls._omega_unit(a))
         rows = []
         w2 = np.asarray(a["omega_squared"])[z:]
         for i, (wi, t) in enumerate(zip(w, types, strict=True)):
@@ -675,81 +645,68 @@ class NormalModesScene(Scene):
         if exact is not None:
             facts.append(("closed form", str(a["closed_form_source"])))
         return SectionContent(
-            figures=[self.figure("spectrum", fig, "Vibrational frequencies; bar height is the "
-                                 "degeneracy" + ("; hollow circles: closed form." if exact is not
-                                                 None else "."))],
+            figures=[cls.figure("spectrum", fig, "Vibrational frequencies; bar height is the "
+                                "degeneracy" + ("; hollow circles: closed form." if exact is not
+                                                None else "."))],
             tables=[Table("Vibrational modes (zero modes omitted), ascending ω", header, rows)],
             facts=facts)
 
-    def _omega_unit(self) -> str:
-        c = self.config
-        if c.pendula is not None:
-            return "rad/s"
-        if c.atoms:
-            return "rad per time unit"
-        return "rad/s"
+    @staticmethod
+    def _omega_unit(a) -> str:
+        return "rad per time unit" if a["source"] == "molecule" else "rad/s"
 
-    def _titles(self, data):
-        z, w, types = self._vib(data)
+    @classmethod
+    def _titles(cls, data):
+        z, w, types = cls._vib(data)
         return [f"ω{z + i + 1} = {fmt(wi, 5)}: {t}" for i, (wi, t) in
                 enumerate(zip(w, types, strict=True))]
 
-    def section_mode_shapes(self, data):
+    @classmethod
+    def section_mode_shapes(cls, data):
         a = data.analysis
-        z, w, _ = self._vib(data)
+        z, w, _ = cls._vib(data)
         modes = np.asarray(a["modes"])[:, z:]
-        titles = self._titles(data)
+        titles = cls._titles(data)
         figs = []
         src = a["source"]
         if src == "molecule":
-            frame = np.asarray(a["frame"])
-            x = np.asarray(a["positions"], dtype=float)
-            xc = x - np.asarray(a["masses"]) @ x / np.sum(a["masses"])
-            xy = xc @ frame[:2].T
-            n = len(x)
-            disps = [modes[:, k].reshape(n, 3) @ frame.T for k in range(modes.shape[1])]
+            pos = np.asarray(a["drawing"]["positions"])
+            disps = list(np.asarray(a["drawing"]["displacements"]))
             bonds = [tuple(b) for b in np.asarray(a["bonds"]).tolist()]
             elems = list(a["elements"])
-            fig = plots.molecule_modes(xy, a["masses"], elems, bonds, disps, titles)
-            figs.append(self.figure("modes", fig, "Each vibration at equilibrium: arrows are the "
-                                    "mass-normalized displacement η (scaled to be visible); faint "
-                                    "atoms the extreme phases ωt = 0, π; ⊙/⊗ motion toward/away "
-                                    "from the viewer."))
+            fig = plots.molecule_modes(pos[:, :2], a["masses"], elems, bonds, disps, titles)
+            figs.append(cls.figure("modes", fig, "Each vibration at equilibrium: arrows are the "
+                                   "mass-normalized displacement η (scaled to be visible); faint "
+                                   "atoms the extreme phases ωt = 0, π; ⊙/⊗ motion toward/away "
+                                   "from the viewer."))
             shown = min(len(disps), 6)
-            snap = plots.molecule_snapshots(xc @ frame.T, a["masses"], elems, bonds,
-                                            disps[:shown],
+            snap = plots.molecule_snapshots(pos, a["masses"], elems, bonds, disps[:shown],
                                             [f"ω{z + i + 1} = {fmt(w[i], 4)}"
                                              for i in range(shown)])
-            figs.append(self.figure("snapshots", snap, "Phase snapshots over half a period: "
-                                    "x(t) = x₀ + η cos ωt for ωt from 0 to π (faint: equilibrium)."))
+            figs.append(cls.figure("snapshots", snap, "Phase snapshots over half a period: "
+                                   "x(t) = x₀ + η cos ωt for ωt from 0 to π (faint: equilibrium)."))
         elif src in ("chain", "pendula"):
-            n = modes.shape[0]
-            shown = min(modes.shape[1], 8)
-            exact_shape = None
-            if src == "chain" and self.config.chain.ends == "fixed":
-                # standing wave η_s ∝ sin(jsπ/(N+1)) (notes §5.1 / Goldstein §6.4)
-                def exact_shape(j):
-                    fine = np.linspace(0, n + 1, 200)
-                    env = np.sin((j + 1) * fine * math.pi / (n + 1))
-                    ref = np.sin((j + 1) * np.arange(1, n + 1) * math.pi / (n + 1))
-                    sgn = np.sign(ref @ modes[:, j]) or 1.0
-                    return fine, sgn * env / np.max(np.abs(ref))
+            shown = min(modes.shape[1], SHAPES_SHOWN)
+            waves = a.get("standing_waves")
+            exact = None if waves is None else (np.asarray(waves["s"]),
+                                                np.asarray(waves["amplitude"])[:, :shown])
             fig = plots.chain_modes(modes[:, :shown], titles[:shown],
                                     coordinate="q" if src == "chain" else "φ",
-                                    exact_shapes=exact_shape)
+                                    exact_shapes=exact)
             cap = ("Mode shapes: amplitude of each " + ("mass" if src == "chain" else "pendulum") +
-                   (" (dashed: the standing wave sin(jsπ/(N+1)))." if exact_shape else "."))
+                   (" (dashed: the standing wave sin(jsπ/(N+1)))." if exact is not None else "."))
             if shown < modes.shape[1]:
                 cap += f" The {shown} lowest of {modes.shape[1]} modes are shown."
-            figs.append(self.figure("modes", fig, cap))
+            figs.append(cls.figure("modes", fig, cap))
         else:
-            shown = min(modes.shape[1], 8)
+            shown = min(modes.shape[1], SHAPES_SHOWN)
             fig = plots.matrix_modes(modes[:, :shown], titles[:shown], list(a["coordinate_names"]))
-            figs.append(self.figure("modes", fig, "Components of each mode η (normalized to the "
-                                    "largest)."))
+            figs.append(cls.figure("modes", fig, "Components of each mode η (normalized to the "
+                                   "largest)."))
         return SectionContent(figures=figs)
 
-    def section_counting(self, data):
+    @classmethod
+    def section_counting(cls, data):
         a = data.analysis
         n_atoms = len(a["masses"])
         linear = bool(a["linear"])
@@ -764,9 +721,9 @@ class NormalModesScene(Scene):
                  f"3n − {int(a['expected_zero_modes'])} = {int(a['expected_vibrational'])}"]]
         if linear:
             rows += [["longitudinal vibrations", str(int(a["n_longitudinal"])),
-                      f"n − 1 = {n_atoms - 1}"],
+                      f"n − 1 = {int(a['expected_longitudinal'])}"],
                      ["transverse vibrations", str(int(a["n_transverse"])),
-                      f"2(n − 2) = {2 * (n_atoms - 2)}"]]
+                      f"2(n − 2) = {int(a['expected_transverse'])}"]]
         notes = []
         if int(a["n_floppy"]):
             notes.append(f"{int(a['n_floppy'])} internal mode(s) have ω = 0: the force field "
@@ -779,31 +736,25 @@ class NormalModesScene(Scene):
                    ("symmetry operations found", str(int(a["n_symmetry_operations"])))],
             notes=notes)
 
-    def section_evolution(self, data):
+    @classmethod
+    def section_evolution(cls, data):
         a = data.analysis
         run = data.runs["main"]
-        M = np.asarray(a["mass_matrix"])
-        n = M.shape[0]
-        q0 = run.y[0, :n]
-        v0 = np.linalg.solve(M, run.y[0, n:])
-        q_ref, _ = core.modal_evolution(np.asarray(a["modes"]), np.asarray(a["frequencies"]), M,
-                                        q0, v0, run.t)
+        n = int(a["n_dof"])
+        q_ref = np.column_stack([run.reference[c] for c in run.columns[:n]])
         amp = np.max(np.abs(q_ref), axis=0)
         show = [int(i) for i in np.argsort(-amp, kind="stable")[:min(3, n)] if amp[i] > 0]
         show.sort()
         unit = {"pendula": " [rad]", "molecule": " [length unit]"}.get(a["source"], "")
         names = [run.columns[i].replace("phi", "φ") + unit for i in show]
         fig = plots.evolution(run.t, run.y[:, show], q_ref[:, show], names,
-                              time_unit="s" if not self.config.atoms else "time units")
+                              time_unit="time units" if a["source"] == "molecule" else "s")
         facts = [("method", f"{run.attrs.get('method')} ({run.attrs.get('method_reason', '')})"),
                  ("max |q_direct − q_modal|", fmt_err(a["evolution_max_error"])),
                  ("largest amplitude", fmt(a["evolution_amplitude"], 6)),
                  ("stiffness", str(a["stiff_reason"]))]
         return SectionContent(
-            figures=[self.figure("evolution", fig, "Coordinates with the largest amplitude: direct "
-                                 "integration of M q̈ + A q = 0 against the exact modal "
-                                 "superposition; bottom: their largest difference.")],
+            figures=[cls.figure("evolution", fig, "Coordinates with the largest amplitude: direct "
+                                "integration of M q̈ + A q = 0 against the exact modal "
+                                "superposition; bottom: their largest difference.")],
             facts=facts)
-
-    def section_error_vs_runtime(self, data):
-        return error_vs_runtime_section(self, data)

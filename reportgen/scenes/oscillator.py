@@ -15,12 +15,13 @@ import numpy as np
 from pydantic import Field, model_validator
 
 from ..config import Positive, Real, RunConfig, Strict
-from ..core.models import oscillator as core
+from ..lazy import lazy_module
 from ..plots import common as common_plots
 from ..plots import oscillator as plots
-from ..results import Check, Results
+from ..results import AuditCase, Check, Results
 from .base import Scene, SceneConfig, Section, SectionContent, fmt, fmt_err
-from .shared import error_vs_runtime_section
+
+core = lazy_module("reportgen.core.models.oscillator")
 
 
 class Params(Strict):
@@ -48,6 +49,7 @@ class OscillatorConfig(SceneConfig):
 
 class OscillatorScene(Scene):
     kind = "oscillator"
+    order = 20
     summary = "harmonic oscillator H = p²/2m + m ω² q²/2: Hamilton, canonical swap, Hamilton–Jacobi"
     Config = OscillatorConfig
     presets = {
@@ -63,8 +65,6 @@ class OscillatorScene(Scene):
 
     @classmethod
     def audit_cases(cls):
-        from ..audit import AuditCase
-
         def case(name, m, omega, t_end, what, samples=2001):
             return AuditCase(name=name, what=what, methods=("dop853", "yoshida8", "gauss6"),
                              config={"kind": "oscillator", "title": name,
@@ -79,9 +79,15 @@ class OscillatorScene(Scene):
                  "momentum scale 1e-20: absolute tolerances must not swamp it"),
         ]
 
-    def exact(self, t):
+    def closed_form(self, t):
+        """q(t), p(t) in closed form (simulate side)."""
         p, ini = self.config.params, self.config.initial
         return core.exact_solution(t, ini.q, ini.p, p.m, p.omega)
+
+    def models(self) -> list:
+        """The Hamilton model of H and the model of K(Q, P) = H(−P, Q) (the swapped run)."""
+        prm = self.config.params
+        return [core.hamilton_model(prm.m, prm.omega), core.swapped_model(prm.m, prm.omega)]
 
     def simulate(self, progress=None) -> Results:
         prm, ini, run = self.config.params, self.config.initial, self.config.run
@@ -97,18 +103,23 @@ class OscillatorScene(Scene):
             return {"energy": core.energy(-y[:, 1], y[:, 0], prm.m, prm.omega)}
 
         results = Results()
-        model = core.hamilton_model(prm.m, prm.omega)
+        model, swapped_model = self.models()
         main = self.integrate(model, y0, t, invariants=invariants, progress=progress,
                               n_periods=n_periods, invariant_scales={"energy": e0})
         results.runs["main"] = main
-        q_ex, p_ex = self.exact(t)
+        q_ex, p_ex = self.closed_form(t)
+        main.reference = {"q": q_ex, "p": p_ex}
+        main.attrs["reference_label"] = "closed form"
         Q0, P0 = core.swap(ini.q, ini.p)
-        swapped = self.integrate(core.swapped_model(prm.m, prm.omega), np.array([Q0, P0]), t,
+        swapped = self.integrate(swapped_model, np.array([Q0, P0]), t,
                                  invariants=swapped_invariants, n_periods=n_periods,
                                  invariant_scales={"energy": e0})
         results.runs["swapped"] = swapped
 
+        # the image (Q, P) = (p, −q) of the integrated H orbit: what integrating K must give
         Q, P = core.swap(main["q"], main["p"])
+        swapped.reference = {"Q": Q, "P": P}
+        swapped.attrs["reference_label"] = "(p, −q) of the integrated H orbit"
         e, beta = core.hamilton_jacobi_constants(main["q"], main["p"], t, prm.m, prm.omega)
         q_hj, p_hj = core.hamilton_jacobi_solution(t, e[0], beta[0], prm.m, prm.omega)
         results.analysis.update({
@@ -124,6 +135,9 @@ class OscillatorScene(Scene):
             "hj_beta_drift": float(np.max(np.abs(beta - beta[0]))),
             "hj_q_max_difference": float(np.max(np.abs(main["q"] - q_hj))),
             "poisson_bracket_QP": 1.0,  # {Q, P}_(q,p) = ∂Q/∂q ∂P/∂p − ∂Q/∂p ∂P/∂q = 0 − (1)(−1)
+            # along the integrated trajectory, on the main run's grid: the new canonical pair
+            # (E, β) and q(t) of the Hamilton–Jacobi solution (7.38) from their initial values
+            "hamilton_jacobi": {"energy": e, "beta": beta, "q": q_hj},
         })
         # errors relative to the amplitudes: q or p itself passes through zero
         q_amp, p_amp = math.sqrt(2 * e0 / (prm.m * prm.omega**2)), math.sqrt(2 * prm.m * e0)
@@ -138,11 +152,12 @@ class OscillatorScene(Scene):
                                     float(main["q"][-1]), "m", "integration of H (7.38)",
                                     scale=q_amp))
         self.study(results, model, y0, np.linspace(0.0, run.t_end, 201),
-                   reference=lambda ts: np.column_stack(self.exact(ts)))
+                   reference=lambda ts: np.column_stack(self.closed_form(ts)))
         return results
 
-    def headline(self, data):
-        p, ini = self.config.params, self.config.initial
+    @classmethod
+    def headline(cls, data):
+        p, ini = data.config.params, data.config.initial
         a = data.analysis
         return [
             ("parameters", f"m = {fmt(p.m)} kg, ω = {fmt(p.omega)} rad/s "
@@ -152,52 +167,50 @@ class OscillatorScene(Scene):
             ("max |q − q_exact|", f"{fmt_err(a['q_max_error'])} m"),
         ]
 
-    def section_hamilton(self, data):
+    @classmethod
+    def section_hamilton(cls, data):
         run = data.runs["main"]
-        q_ex, p_ex = self.exact(run.t)
+        q_ex, p_ex = run.reference["q"], run.reference["p"]
         fig = common_plots.timeseries_against_reference(
             run.t, {"q": run["q"], "p": run["p"]}, {"q": q_ex, "p": p_ex},
-            ylabels={"q": "q [m]", "p": "p [kg·m/s]"}, reference_label="closed form")
+            ylabels={"q": "q [m]", "p": "p [kg·m/s]"},
+            reference_label=run.attrs["reference_label"])
         err = common_plots.error_against_time(
             run.t, {"|q − q_exact| [m]": run["q"] - q_ex, "|p − p_exact| [kg·m/s]": run["p"] - p_ex},
             ylabel="absolute error")
         return SectionContent(
-            figures=[self.figure("qp", fig, "q̇ = ∂H/∂p = p/m, ṗ = −∂H/∂q = −mω²q integrated, "
-                                 "against the closed form."),
-                     self.figure("error", err, "Error against the closed form.")],
+            figures=[cls.figure("qp", fig, "q̇ = ∂H/∂p = p/m, ṗ = −∂H/∂q = −mω²q integrated, "
+                                "against the closed form."),
+                     cls.figure("error", err, "Error against the closed form.")],
             facts=[("energy drift", fmt_err(run.attrs.get("drift_energy", math.nan)) +
                     " (relative)")])
 
-    def section_canonical_swap(self, data):
+    @classmethod
+    def section_canonical_swap(cls, data):
         run, swapped = data.runs["main"], data.runs["swapped"]
-        Q, P = core.swap(run["q"], run["p"])
+        Q, P = swapped.reference["Q"], swapped.reference["P"]
         fig = plots.swap_phase_planes(run["q"], run["p"], swapped["Q"], swapped["P"], Q, P)
         a = data.analysis
         return SectionContent(
-            figures=[self.figure("swap", fig, "Left: the orbit in (q, p). Right: K(Q, P) = "
-                                 "Q²/2m + mω²P²/2 integrated from (Q0, P0) = (p0, −q0), over the "
-                                 "image Q = p, P = −q of the left orbit.")],
+            figures=[cls.figure("swap", fig, "Left: the orbit in (q, p). Right: K(Q, P) = "
+                                "Q²/2m + mω²P²/2 integrated from (Q0, P0) = (p0, −q0), over the "
+                                "image Q = p, P = −q of the left orbit.")],
             facts=[("generating function", "F1(q, Q) = q Q  ⇒  p = ∂F1/∂q = Q,  P = −∂F1/∂Q = −q"),
                    ("new Hamiltonian", "K(Q, P) = H(−P, Q) = Q²/2m + m ω² P²/2"),
                    ("Poisson bracket {Q, P}", "1 (canonical)"),
                    ("max |(Q, P)_integrated − (p, −q)|", fmt_err(a["swap_max_difference"]))])
 
-    def section_hamilton_jacobi(self, data):
+    @classmethod
+    def section_hamilton_jacobi(cls, data):
         run = data.runs["main"]
-        prm = self.config.params
         a = data.analysis
-        e, beta = core.hamilton_jacobi_constants(run["q"], run["p"], run.t, prm.m, prm.omega)
-        q_hj, _ = core.hamilton_jacobi_solution(run.t, a["hj_energy"], a["hj_beta"], prm.m,
-                                                prm.omega)
-        fig = plots.hamilton_jacobi(run.t, run["q"], q_hj, e, beta)
+        hj = a["hamilton_jacobi"]
+        fig = plots.hamilton_jacobi(run.t, run["q"], hj["q"], hj["energy"], hj["beta"])
         return SectionContent(
-            figures=[self.figure("hj", fig, "Top: q(t) = √(2E/mω²) sin ω(t + β) from the complete "
-                                 "integral S = W(q, E) − E t against the integration. Bottom: the "
-                                 "new canonical pair (E, β) evaluated along the integrated "
-                                 "trajectory stays constant.")],
+            figures=[cls.figure("hj", fig, "Top: q(t) = √(2E/mω²) sin ω(t + β) from the complete "
+                                "integral S = W(q, E) − E t against the integration. Bottom: the "
+                                "new canonical pair (E, β) evaluated along the integrated "
+                                "trajectory stays constant.")],
             facts=[("E", f"{fmt(a['hj_energy'], 14)} J"), ("β = ∂S/∂E", f"{fmt(a['hj_beta'], 14)} s"),
                    ("max |β(t) − β(0)| along the integration", fmt_err(a["hj_beta_drift"]) + " s"),
                    ("max |q_HJ − q_integrated|", fmt_err(a["hj_q_max_difference"]) + " m")])
-
-    def section_error_vs_runtime(self, data):
-        return error_vs_runtime_section(self, data)

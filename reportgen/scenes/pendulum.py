@@ -12,16 +12,15 @@ import math
 
 import numpy as np
 from pydantic import Field, model_validator
-from scipy import integrate as sp_integrate
 
 from ..config import Positive, Real, RunConfig, Strict
-from ..core.crossings import mean_period, upward_crossings
-from ..core.models import pendulum as core
+from ..lazy import lazy_module
 from ..plots import common as common_plots
 from ..plots import pendulum as plots
-from ..results import Check, Results
+from ..results import AuditCase, Check, Results
 from .base import Scene, SceneConfig, Section, SectionContent, Table, fmt, fmt_err
-from .shared import error_vs_runtime_section, invariants_section
+
+core = lazy_module("reportgen.core.models.pendulum")
 
 
 class Params(Strict):
@@ -71,6 +70,7 @@ class PendulumConfig(SceneConfig):
 
 class PendulumScene(Scene):
     kind = "pendulum"
+    order = 10
     summary = "nonlinear plane pendulum m l² θ'' + m g l sin θ = 0 and its small-angle limit"
     Config = PendulumConfig
     presets = {
@@ -92,16 +92,22 @@ class PendulumScene(Scene):
         Section("error_vs_runtime", "Error against run time", integrates=True),
     )
 
-    def default_sections(self):
-        names = [s.name for s in self.sections]
-        if self.config.boundary is None:
+    #: crossings are located reliably only with this many samples per period
+    MIN_SAMPLES_PER_PERIOD = 16
+    #: phase-portrait grid: points per axis
+    PHASE_GRID = 400
+    #: period-curve samples over 0 < θ0 < π
+    PERIOD_CURVE_POINTS = 500
+
+    @classmethod
+    def default_sections(cls, data):
+        names = [s.name for s in cls.sections]
+        if "boundary_value" not in data.analysis:
             names.remove("boundary_value")
         return names
 
     @classmethod
     def audit_cases(cls):
-        from ..audit import AuditCase
-
         w0 = math.sqrt(9.81)
         base = {"kind": "pendulum", "params": {"g": 9.81, "l": 1.0}}
 
@@ -157,18 +163,15 @@ class PendulumScene(Scene):
             return "exact (Jacobi sn)"
         return "reference run (DOP853, rtol 1e-14)"
 
-    def exact(self, t):
+    def reference_solution(self, t):
         """θ(t), θ̇(t): the elliptic-function solution, or — closer to the separatrix than
-        double precision resolves it — an integration at rtol 1e-14 (said so in the report)."""
+        double precision resolves it — the reference run at rtol 1e-14 (said so in the report)."""
         p, ini = self.config.params, self.config.initial
         if self.has_exact_solution:
             return core.exact_solution(t, ini.theta, ini.theta_dot, p.g, p.l)
-        from ..core.integrators import integrate
-
-        t = np.asarray(t, dtype=np.float64)
-        sol = integrate(core.model(p.g, p.l), np.array([ini.theta, ini.theta_dot]), t,
-                        method="dop853", rtol=1e-14, atol=1e-16)
-        return sol.y[:, 0], sol.y[:, 1]
+        y = self.reference_run(core.model(p.g, p.l), np.array([ini.theta, ini.theta_dot]),
+                               np.asarray(t, dtype=np.float64))
+        return y[:, 0], y[:, 1]
 
     def energy(self, theta, theta_dot):
         p = self.config.params
@@ -180,9 +183,12 @@ class PendulumScene(Scene):
         return p.m * p.g * p.l
 
     # -------------------------------------------------------------- simulation
+    def models(self) -> list:
+        return [core.model(self.config.params.g, self.config.params.l)]
+
     def simulate(self, progress=None) -> Results:
         p, ini, run = self.config.params, self.config.initial, self.config.run
-        model = core.model(p.g, p.l)
+        (model,) = self.models()
         y0 = np.array([ini.theta, ini.theta_dot])
         t = np.linspace(0.0, run.t_end, run.samples)
         period = core.exact_period(ini.theta, ini.theta_dot, p.g, p.l)
@@ -195,10 +201,13 @@ class PendulumScene(Scene):
         )
         results.runs["main"] = main
         theta, theta_dot = main.y[:, 0], main.y[:, 1]
-        exact_theta, exact_theta_dot = self.exact(t)
+        exact_theta, exact_theta_dot = self.reference_solution(t)
+        main.reference = {"theta": exact_theta, "theta_dot": exact_theta_dot}
+        main.attrs["reference_label"] = self.reference_label
         err = np.abs(theta - exact_theta)
 
-        measured = self._measured_period(t, theta, theta_dot)
+        measured = core.measured_period(t, theta, theta_dot, ini.theta, ini.theta_dot, p.g, p.l,
+                                        min_samples_per_period=self.MIN_SAMPLES_PER_PERIOD)
         results.analysis.update({
             "period": period,
             "period_measured": measured,
@@ -211,6 +220,16 @@ class PendulumScene(Scene):
             "theta_max_error": float(np.max(err)),
             "theta_dot_max_error": float(np.max(np.abs(theta_dot - exact_theta_dot))),
         })
+        if self.m1 > 0:
+            # the linearised solution (1.19), drawn against the run; meaningless for rotation
+            th_lin, thd_lin = core.small_angle_solution(t, ini.theta, ini.theta_dot, p.g, p.l)
+            results.analysis["small_angle_solution"] = {"theta": th_lin, "theta_dot": thd_lin}
+            results.analysis["amplitude"] = core.libration_amplitude(ini.theta, ini.theta_dot,
+                                                                     self.omega0)
+        results.analysis["phase_portrait"] = self._phase_portrait(theta_dot)
+        amp = np.linspace(1e-3, math.pi - 1e-3, self.PERIOD_CURVE_POINTS)
+        results.analysis["period_curve"] = {"amplitude": amp,
+                                            "period": core.libration_period(amp, self.omega0)}
         if math.isfinite(measured):
             results.checks.append(Check("period (measured from θ(t))", measured, period, "s",
                                         "4K(k)·√(l/g), DLMF 22.19.4" if self.m1 > 0
@@ -221,86 +240,36 @@ class PendulumScene(Scene):
         e = main.invariants["energy"]
         results.checks.append(Check("energy E(t_end)", float(e[-1]), float(e[0]), "J",
                                     "E(0), conserved", scale=self.energy_scale))
-        if self.config.boundary is not None:
-            bvp = self._boundary_value()
+        b = self.config.boundary
+        if b is not None:
+            bvp = core.boundary_value_problem(b.theta0, b.theta1, b.T, p.g, p.l, p.m)
             results.analysis["boundary_value"] = bvp
             results.checks.append(Check("action S of the linear BVP (numerical quadrature)",
                                         bvp["action_numeric"], bvp["action_exact"], "J·s",
                                         "closed form (2.4) on solution (1.21)"))
         self.study(results, model, y0, np.linspace(0.0, run.t_end, 201),
-                   reference=(lambda ts: np.column_stack(self.exact(ts)))
+                   reference=(lambda ts: np.column_stack(self.reference_solution(ts)))
                    if self.has_exact_solution else None)
         return results
 
-    #: crossings are located reliably only with this many samples per period
-    MIN_SAMPLES_PER_PERIOD = 16
-
-    def _measured_period(self, t, theta, theta_dot) -> float:
-        """Mean period from upward crossings of θ through its centre (or of 2π steps).
-
-        NaN when the output is too sparse to resolve a period (fewer than
-        ``MIN_SAMPLES_PER_PERIOD`` samples per period) or shorter than two periods.
-        """
-        p, ini = self.config.params, self.config.initial
-        n_periods = self.config.run.t_end / core.exact_period(ini.theta, ini.theta_dot, p.g, p.l)
-        if n_periods * self.MIN_SAMPLES_PER_PERIOD > len(t) - 1:
-            return float("nan")
-        accel = -self.omega0**2 * np.sin(theta)
-        if self.m1 > 0.0:
-            centre = 2 * math.pi * round(self.config.initial.theta / (2 * math.pi))
-            return mean_period(upward_crossings(t, theta, theta_dot, accel, level=centre))
-        sign = 1.0 if self.config.initial.theta_dot >= 0 else -1.0
-        x = sign * (theta - theta[0])  # increases monotonically while rotating
-        turns = int(np.floor(x[-1] / (2 * math.pi)))
-        times = [0.0] + [upward_crossings(t, x, sign * theta_dot, sign * accel,
-                                          level=2 * math.pi * n)[0]
-                         for n in range(1, turns + 1)]
-        return mean_period(np.array(times))
-
-    def _boundary_value(self) -> dict:
-        """Linear BVP (1.21) in closed form and numerically, with its action (2.4) both ways."""
-        b, p = self.config.boundary, self.config.params
-        w, M = self.omega0, p.m * p.l**2
-        t = np.linspace(0.0, b.T, 401)
-        exact = (b.theta0 * np.sin(w * (b.T - t)) + b.theta1 * np.sin(w * t)) / math.sin(w * b.T)
-        action_exact = M * w / (2 * math.sin(w * b.T)) * (
-            (b.theta0**2 + b.theta1**2) * math.cos(w * b.T) - 2 * b.theta0 * b.theta1)
-
-        def linear(_t, y):
-            return np.vstack([y[1], -w**2 * y[0]])
-
-        def nonlinear(_t, y):
-            return np.vstack([y[1], -w**2 * np.sin(y[0])])
-
-        def bc(ya, yb):
-            return np.array([ya[0] - b.theta0, yb[0] - b.theta1])
-
-        guess = np.vstack([exact, np.gradient(exact, t)])
-        lin = sp_integrate.solve_bvp(linear, bc, t, guess, tol=1e-10, max_nodes=100000)
-        non = sp_integrate.solve_bvp(nonlinear, bc, t, guess, tol=1e-10, max_nodes=100000)
-        fine = np.linspace(0.0, b.T, 20001)
-
-        def action(sol, potential):
-            th, thd = sol.sol(fine)
-            lagrangian = 0.5 * M * thd**2 - potential(th)
-            return float(sp_integrate.simpson(lagrangian, x=fine))
-
-        action_numeric = action(lin, lambda th: 0.5 * M * w**2 * th**2)
-        action_nonlinear = action(non, lambda th: M * w**2 * (1 - np.cos(th)))
-        return {
-            "t": t,
-            "theta_exact": exact,
-            "theta_numeric": lin.sol(t)[0],
-            "theta_nonlinear": non.sol(t)[0] if non.success else np.full_like(t, np.nan),
-            "action_exact": float(action_exact),
-            "action_numeric": action_numeric,
-            "action_nonlinear": action_nonlinear if non.success else float("nan"),
-            "nonlinear_converged": bool(non.success),
-        }
+    def _phase_portrait(self, theta_dot) -> dict:
+        """Level sets of E/(m l²) over θ ∈ [−π, π] and |θ̇| ≤ vmax (wide enough for the orbit):
+        librations below the separatrix, rotations above it."""
+        w = self.omega0
+        vmax = max(2.6 * w, 1.15 * float(np.max(np.abs(theta_dot))))
+        th = np.linspace(-math.pi, math.pi, self.PHASE_GRID)
+        thd = np.linspace(-vmax, vmax, self.PHASE_GRID)
+        TH, THD = np.meshgrid(th, thd)
+        sep = core.separatrix_level(w)
+        levels = np.concatenate([np.linspace(-0.95 * sep, 0.9 * sep, 7),
+                                 np.linspace(1.15 * sep, 0.5 * vmax**2, 4)])
+        return {"theta": th, "theta_dot": thd, "energy": core.reduced_energy(TH, THD, w),
+                "levels": levels, "separatrix": float(sep)}
 
     # ----------------------------------------------------------------- report
-    def headline(self, data):
-        p, ini = self.config.params, self.config.initial
+    @classmethod
+    def headline(cls, data):
+        p, ini = data.config.params, data.config.initial
         a = data.analysis
         return [
             ("parameters", f"g = {fmt(p.g)} m/s², l = {fmt(p.l)} m, m = {fmt(p.m)} kg"),
@@ -311,58 +280,68 @@ class PendulumScene(Scene):
             ("max |θ − θ_exact|", f"{fmt_err(a['theta_max_error'])} rad over the run"),
         ]
 
-    def section_time_series(self, data):
+    @classmethod
+    def section_time_series(cls, data):
         run = data.runs["main"]
-        p, ini = self.config.params, self.config.initial
-        th_ex, thd_ex = self.exact(run.t)
-        th_lin, thd_lin = core.small_angle_solution(run.t, ini.theta, ini.theta_dot, p.g, p.l)
+        th_ex, thd_ex = run.reference["theta"], run.reference["theta_dot"]
+        small = data.analysis.get("small_angle_solution")
         fig = common_plots.timeseries_against_reference(
             run.t, {"theta": run["theta"], "theta_dot": run["theta_dot"]},
             {"theta": th_ex, "theta_dot": thd_ex},
             ylabels={"theta": "θ [rad]", "theta_dot": "θ̇ [rad/s]"},
-            reference_label=self.reference_label,
-            extra={"theta": th_lin, "theta_dot": thd_lin} if self.m1 > 0 else None,
+            reference_label=run.attrs["reference_label"],
+            extra={"theta": small["theta"], "theta_dot": small["theta_dot"]}
+            if small is not None else None,
         )
         err = common_plots.error_against_time(
             run.t, {"|θ − θ_exact| [rad]": run["theta"] - th_ex,
                     "|θ̇ − θ̇_exact| [rad/s]": run["theta_dot"] - thd_ex},
             ylabel="absolute error")
         return SectionContent(figures=[
-            self.figure("timeseries", fig, "θ(t) and θ̇(t) integrated, against the exact "
-                        "elliptic-function solution and the small-angle solution (1.19)."),
-            self.figure("error", err, "Error of the integration against the exact solution."),
+            cls.figure("timeseries", fig, "θ(t) and θ̇(t) integrated, against the exact "
+                       "elliptic-function solution and the small-angle solution (1.19)."),
+            cls.figure("error", err, "Error of the integration against the exact solution."),
         ])
 
-    def section_phase_portrait(self, data):
+    @classmethod
+    def section_phase_portrait(cls, data):
         run = data.runs["main"]
-        fig = plots.phase_portrait(run["theta"], run["theta_dot"], omega0=self.omega0)
-        return SectionContent(figures=[self.figure(
+        grid = data.analysis["phase_portrait"]
+        fig = plots.phase_portrait(run["theta"], run["theta_dot"], grid_theta=grid["theta"],
+                                   grid_theta_dot=grid["theta_dot"], energy=grid["energy"],
+                                   levels=grid["levels"], separatrix=grid["separatrix"])
+        return SectionContent(figures=[cls.figure(
             "phase", fig, "Phase portrait: librations (closed curves), the separatrix "
             "E = m g l through (±π, 0), and rotations; this scene's orbit highlighted.")])
 
-    def section_period(self, data):
+    @classmethod
+    def section_period(cls, data):
         a = data.analysis
-        amp = 2 * math.asin(min(1.0, math.sqrt(self.k2))) if self.m1 > 0 else None
+        libration = a["motion"] == "libration"
+        curve = a["period_curve"]
         fig = plots.period_against_amplitude(
-            omega0=self.omega0, amplitude=amp, period=a["period"],
-            period_measured=a["period_measured"] if self.m1 > 0 else None)
+            curve_amplitude=curve["amplitude"], curve_period=curve["period"],
+            small_angle_period=a["period_small_angle"],
+            amplitude=a["amplitude"] if libration else None, period=a["period"],
+            period_measured=a["period_measured"] if libration else None)
         facts = [("exact period", f"{fmt(a['period'], 14)} s"),
                  ("measured from θ(t)", f"{fmt(a['period_measured'], 14)} s"),
                  ("relative difference", fmt_err(abs(a['period_measured'] / a['period'] - 1)))]
-        notes = [] if self.m1 > 0 else [
+        notes = [] if libration else [
             "This scene rotates; its period is the time of one full turn, 2K(1/k²)/(k ω0)."]
         if not math.isfinite(a["period_measured"]):
             notes.append(f"No measured period: the run covers fewer than two periods or stores "
-                         f"fewer than {self.MIN_SAMPLES_PER_PERIOD} samples per period.")
-        return SectionContent(figures=[self.figure(
+                         f"fewer than {cls.MIN_SAMPLES_PER_PERIOD} samples per period.")
+        return SectionContent(figures=[cls.figure(
             "period", fig, "Period against amplitude: exact 4K(k)√(l/g), k = sin(θ0/2), "
             "against the small-angle period 2π√(l/g).")], facts=facts, notes=notes)
 
-    def section_boundary_value(self, data):
+    @classmethod
+    def section_boundary_value(cls, data):
         bvp = data.analysis["boundary_value"]
         fig = plots.boundary_value(bvp["t"], bvp["theta_exact"], bvp["theta_numeric"],
                                    bvp["theta_nonlinear"])
-        b = self.config.boundary
+        b = data.config.boundary
         table = Table(
             caption="Action S = ∫ L dt (2.4) along the boundary-value solution",
             header=["solution", "action [J·s]", "rel. error vs closed form"],
@@ -372,16 +351,13 @@ class PendulumScene(Scene):
                   ["nonlinear pendulum, solve_bvp", fmt(bvp["action_nonlinear"], 14),
                    "(different problem)"]])
         return SectionContent(
-            figures=[self.figure("bvp", fig, f"θ(0) = {fmt(b.theta0)} rad, θ(T) = "
-                                 f"{fmt(b.theta1)} rad, T = {fmt(b.T)} s: the linearised "
-                                 "solution (1.21) in closed form and numerically, and the "
-                                 "nonlinear pendulum's solution with the same ends.")],
+            figures=[cls.figure("bvp", fig, f"θ(0) = {fmt(b.theta0)} rad, θ(T) = "
+                                f"{fmt(b.theta1)} rad, T = {fmt(b.T)} s: the linearised "
+                                "solution (1.21) in closed form and numerically, and the "
+                                "nonlinear pendulum's solution with the same ends.")],
             tables=[table])
 
-    def section_energy(self, data):
-        return invariants_section(self, data, scales={"energy": self.energy_scale},
-                                  labels={"energy": "energy E"},
-                                  caption="Energy drift relative to m g l.")
-
-    def section_error_vs_runtime(self, data):
-        return error_vs_runtime_section(self, data)
+    @classmethod
+    def section_energy(cls, data):
+        return cls.invariants_section(data, labels={"energy": "energy E"},
+                                      caption="Energy drift relative to m g l.")

@@ -26,16 +26,16 @@ import numpy as np
 from pydantic import Field, model_validator
 
 from ..config import Positive, Real, RunConfig, Strict
-from ..core import inertia as inertia_core
-from ..core.models import rigid_body as core
-from ..core.models.rigid_body_splitting import integrate_splitting
-from ..core.rotations import quat_to_matrix
-from ..plots import common as common_plots
-from ..plots import rigid_body as plots
-from ..results import Check, Results, RunRecord
+from ..lazy import lazy_module
+from ..results import AuditCase, Check, Results, RunRecord
 from .base import Scene, SceneConfig, Section, SectionContent, Table, fmt, fmt_err
 from .inertia import Shape, stability_table_section
-from .shared import error_vs_runtime_section, invariants_section
+
+inertia_core = lazy_module("reportgen.core.inertia")
+core = lazy_module("reportgen.core.models.rigid_body")
+splitting = lazy_module("reportgen.core.models.rigid_body_splitting")
+common_plots = lazy_module("reportgen.plots.common")
+plots = lazy_module("reportgen.plots.rigid_body")
 
 #: ω0 within this angle of the intermediate axis: the scene is a Dzhanibekov demonstration
 FLIP_ANGLE = 0.2
@@ -45,6 +45,18 @@ class Params(Strict):
     I1: Positive = Field(description="principal moment about body axis 1 [kg m²]")
     I2: Positive = Field(description="principal moment about body axis 2 [kg m²]")
     I3: Positive = Field(description="principal moment about body axis 3 [kg m²]")
+
+    @model_validator(mode="after")
+    def _triangle(self):
+        # checked on the table itself, so it is reported together with problems elsewhere
+        k = inertia_core.triangle_violation((self.I1, self.I2, self.I3))
+        if k is not None:
+            names = ["I1", "I2", "I3"]
+            others = " + ".join(n for i, n in enumerate(names) if i != k)
+            raise ValueError(f"params.{names[k]}: violates the triangle inequality "
+                             f"{names[k]} ≤ {others} that every real body satisfies "
+                             f"(got I1 = {self.I1}, I2 = {self.I2}, I3 = {self.I3})")
+        return self
 
 
 class Initial(Strict):
@@ -99,15 +111,6 @@ class RigidBodyConfig(SceneConfig):
                 if getattr(self.shape, key) is not None:
                     raise ValueError(f"shape.{key}: not used by rigid_body (the body frame is "
                                      "the principal frame; set initial.attitude instead)")
-        else:
-            p = self.params
-            k = inertia_core.triangle_violation((p.I1, p.I2, p.I3))
-            if k is not None:
-                names = ["I1", "I2", "I3"]
-                others = " + ".join(n for i, n in enumerate(names) if i != k)
-                raise ValueError(f"params.{names[k]}: violates the triangle inequality "
-                                 f"{names[k]} ≤ {others} that every real body satisfies "
-                                 f"(got I1 = {p.I1}, I2 = {p.I2}, I3 = {p.I3})")
         if self.impulse is not None:
             if len(self.impulse.P) != 3:
                 raise ValueError(f"impulse.P: expected [Px, Py, Pz] (got {self.impulse.P})")
@@ -132,6 +135,7 @@ def body_moments(config: RigidBodyConfig) -> np.ndarray:
 
 class RigidBodyScene(Scene):
     kind = "rigid_body"
+    order = 60
     summary = "torque-free rigid body: Euler's equations, attitude, polhodes, axis stability"
     Config = RigidBodyConfig
     presets = {
@@ -169,8 +173,6 @@ class RigidBodyScene(Scene):
 
     @classmethod
     def audit_cases(cls):
-        from ..audit import AuditCase
-
         # I = (1, 2, 3): L² = 2E·I2 when I1ω1²(I1 − I2) + I3ω3²(I3 − I2) = 0, i.e. ω1 = √3 ω3
         return [AuditCase(
             name="rigid body on the intermediate-axis separatrix",
@@ -182,12 +184,15 @@ class RigidBodyScene(Scene):
                     "initial": {"omega": [math.sqrt(3.0), 0.0, 1.0]},
                     "run": {"t_end": 30.0, "samples": 3001}})]
 
-    def default_sections(self):
-        names = [s.name for s in self.sections]
-        if self.symmetric is None:
+    @classmethod
+    def default_sections(cls, data):
+        names = [s.name for s in cls.sections]
+        if "symmetric" not in data.analysis:
             names.remove("symmetric_precession")
-        if self.spherical:
+        if data.analysis.get("spherical", False):
             names.remove("polhodes")  # every direction is a principal axis: no polhodes
+        if "splitting" not in data.runs:
+            names.remove("geometric_integrator")
         return names
 
     # ----------------------------------------------------------------- helpers
@@ -203,7 +208,7 @@ class RigidBodyScene(Scene):
         if imp is None:
             return w
         r = self.config.shape.apex() if imp.at == "apex" else np.asarray(imp.at, dtype=float)
-        return w + np.cross(r, np.asarray(imp.P, dtype=float)) / self.moments
+        return core.omega_after_impulse(w, self.moments, r, imp.P)
 
     @property
     def symmetric(self):
@@ -245,6 +250,15 @@ class RigidBodyScene(Scene):
         return h if h is not None else 2 * math.pi / float(np.linalg.norm(self.omega0)) / 200
 
     # -------------------------------------------------------------- simulation
+    def wants_splitting(self) -> bool:
+        """Whether the report will show the splitting integrator (only then is it run)."""
+        asked = self.config.report.sections
+        return asked is None or "geometric_integrator" in asked
+
+    def models(self) -> list:
+        """The Euler–quaternion model (the splitting run is the scene's own method)."""
+        return [core.model(*self.moments)]
+
     def simulate(self, progress=None) -> Results:
         run = self.config.run
         I, w0 = self.moments, self.omega0
@@ -252,7 +266,7 @@ class RigidBodyScene(Scene):
         q0 /= np.linalg.norm(q0)
         y0 = np.concatenate([w0, q0])
         spin = float(np.linalg.norm(w0))
-        model = core.model(*I)
+        (model,) = self.models()
         t = np.linspace(0.0, run.t_end, run.samples)
         results = Results()
         scales = self._scales(y0)
@@ -267,11 +281,12 @@ class RigidBodyScene(Scene):
 
         stability = inertia_core.axis_stability(I, spin=spin)
         for k, s in enumerate(stability):
-            s["growth_rate_jacobian"] = self._jacobian_growth(model, k, spin)
+            s["growth_rate_jacobian"] = core.steady_rotation_growth_rate(I, k, spin)
         analysis = {
             "principal_moments": I,
             "axis_stability": {f"axis_{k + 1}": s for k, s in enumerate(stability)},
             "spin": spin,
+            "spherical": self.spherical,
             "omega_initial": w0,
             "omega_max_error": float(np.max(err)),
             "quaternion_norm_max_deviation": q_dev,
@@ -286,9 +301,20 @@ class RigidBodyScene(Scene):
             ref_source = "Jacobi elliptic solution (Landau & Lifshitz §37)"
         else:
             axis, Omega = self.symmetric
-            analysis["symmetric"] = self._symmetric_analysis(t, main.y[:, :3], axis, Omega)
+            analysis["symmetric"] = core.symmetric_precession_analysis(t, main.y[:, :3], I, axis,
+                                                                       Omega)
             ref_source = "symmetric-body solution (10.9)–(10.10)"
         analysis["reference"] = ref_source
+        main.reference = {c: exact[:, k] for k, c in enumerate(core.COLUMNS[:3])}
+        main.attrs["reference_label"] = ref_source
+        # Poinsot's geometry: polhodes on the L-sphere, herpolhode on the invariable plane
+        analysis["polhodes"] = {"family": core.polhode_family(I),
+                                "separatrices": core.polhode_separatrices(I),
+                                "track": core.polhode_track(main.y[:, :3], I)}
+        her = core.herpolhode(main.y[:, :3], main.y[:, 3:7], I)
+        analysis["herpolhode"] = {"x": her["x"], "y": her["y"],
+                                  "omega_along_L": float(her["along_L"][0]),
+                                  "omega_along_L_spread": float(np.ptp(her["along_L"]))}
         for k in range(3):
             results.checks.append(Check(f"ω{k + 1}(t_end)", float(main.y[-1, k]),
                                         float(exact[-1, k]), "rad/s", ref_source, scale=spin))
@@ -302,8 +328,10 @@ class RigidBodyScene(Scene):
                 s["growth_rate_jacobian"], s["growth_rate"], "1/s",
                 "Ω√((I2−I1)(I3−I2)/(I1 I3)), (10.14)"))
         if self.is_flip_demo:
-            analysis["flip"] = self._flip_analysis(t, main.y[:, :3], k2, stability[k2],
-                                                   analysis.get("elliptic"))
+            elliptic = analysis.get("elliptic")
+            analysis["flip"] = core.flip_analysis(
+                t, main.y[:, :3], k2, stability[k2]["growth_rate"],
+                elliptic["period"] / 2.0 if elliptic else math.nan)
             f = analysis["flip"]
             if math.isfinite(f["half_period_measured"]):
                 results.checks.append(Check("time between flips (zero crossings of ω_b)",
@@ -315,8 +343,10 @@ class RigidBodyScene(Scene):
                 results.checks.append(Check("body-frame precession rate Ω",
                                             sym["Omega_measured"], sym["Omega"], "rad/s",
                                             "Ω = (I1 − I3) ω3 / I1, (10.10)"))
-        if "geometric_integrator" in [s.name for s in self.chosen_sections()]:
-            split = self._splitting_run(y0, t, exact, scales)
+        if self.wants_splitting():
+            split = self._splitting_run(y0, t, scales)
+            split.reference = dict(main.reference)
+            split.attrs["reference_label"] = ref_source
             results.runs["splitting"] = split
             analysis["splitting_omega_max_error"] = float(
                 np.max(np.abs(split.y[:, :3] - exact)))
@@ -327,21 +357,11 @@ class RigidBodyScene(Scene):
             results.study = self._splitting_study(results.study, model, y0, t_study)
         return results
 
-    @staticmethod
-    def _jacobian_growth(model, axis: int, spin: float) -> float:
-        """Largest real part of the eigenvalues of the ω-block of the Jacobian at steady
-        rotation Ω e_axis: an independent check of (10.12)–(10.14)."""
-        y = np.zeros(7)
-        y[axis] = spin
-        y[3] = 1.0
-        J = model.jacobian(0.0, y)[:3, :3]
-        return float(np.max(np.linalg.eigvals(J).real))
-
-    def _splitting_run(self, y0, t, exact, scales) -> RunRecord:
+    def _splitting_run(self, y0, t, scales) -> RunRecord:
         I = self.moments
         order, h = self.config.splitting.order, self.splitting_step
-        _, _, compile_s = integrate_splitting(I, y0, t[:2], h, order)  # compile outside timing
-        Y, nsteps, wall = integrate_splitting(I, y0, t, h, order)
+        _, _, compile_s = splitting.integrate_splitting(I, y0, t[:2], h, order)  # compile
+        Y, nsteps, wall = splitting.integrate_splitting(I, y0, t, h, order)
         inv = core.invariants(Y, I)
         drift = {f"drift_{k}": float(np.max(np.abs(v - v[0])) / scales[k])
                  for k, v in inv.items()}
@@ -353,23 +373,21 @@ class RigidBodyScene(Scene):
             "method_reason": "explicit Lie–Poisson splitting into free rotations about the "
                              "principal axes (no function evaluations)",
             "status": "ok" if ok else "failed", "message": "" if ok else "non-finite state",
-            **drift})
+            **drift, **{f"scale_{k}": float(v) for k, v in scales.items()}})
 
     def _splitting_study(self, study, model, y0, t_eval):
         """Append rows for the splitting integrator (orders 2 and 4) to the study table."""
-        from ..core.integrators import integrate
-
-        ref = integrate(model, y0, t_eval, method="dop853", rtol=1e-14, atol=1e-16).y
+        ref = self.reference_run(model, y0, t_eval)
         h0 = 2 * math.pi / float(np.linalg.norm(y0[:3])) / 10
         rows = []
         I = self.moments
         for order in (2, 4):
-            integrate_splitting(I, y0, t_eval[:2], h0, order)
+            splitting.integrate_splitting(I, y0, t_eval[:2], h0, order)
             for k in range(12):
                 h = h0 * 2.0 ** (-k / 1.0)
                 best = None
                 for _ in range(3):
-                    Y, nsteps, wall = integrate_splitting(I, y0, t_eval, h, order)
+                    Y, nsteps, wall = splitting.integrate_splitting(I, y0, t_eval, h, order)
                     best = wall if best is None else min(best, wall)
                 e = np.abs(Y - ref)
                 rows.append((f"splitting{order}", f"axis splitting, order {order}", "fixed",
@@ -381,37 +399,16 @@ class RigidBodyScene(Scene):
                           for r in rows], dtype=study.dtype)
         return np.concatenate([study, extra])
 
-    def _symmetric_analysis(self, t, omega, axis, Omega) -> dict:
-        b, c = (axis + 1) % 3, (axis + 2) % 3
-        angle = np.unwrap(np.arctan2(omega[:, c], omega[:, b]))
-        perp = float(np.hypot(omega[0, b], omega[0, c]))
-        measured = float(-np.polyfit(t, angle, 1)[0]) if perp > 1e-8 * abs(omega[0, axis]) \
-            else math.nan
-        I = self.moments
-        return {"axis": axis + 1, "Omega": Omega, "Omega_measured": measured,
-                "omega_perp": perp,
-                "space_precession_rate": float(np.linalg.norm(I * omega[0]) / I[b])}
-
-    def _flip_analysis(self, t, omega, k, stab, elliptic) -> dict:
-        """Zero crossings of the intermediate component: flip times and their spacing."""
-        wb = omega[:, k]
-        idx = np.nonzero(np.sign(wb[1:]) != np.sign(wb[:-1]))[0]
-        times = t[idx] - wb[idx] * (t[idx + 1] - t[idx]) / (wb[idx + 1] - wb[idx])
-        measured = float(np.mean(np.diff(times))) if times.size >= 2 else math.nan
-        exact = elliptic["period"] / 2.0 if elliptic else math.nan
-        return {"axis": k + 1, "flip_times": times if times.size else np.zeros(0),
-                "half_period_measured": measured, "half_period_exact": exact,
-                "growth_rate": stab["growth_rate"]}
-
-    # ----------------------------------------------------------------- report
-    def headline(self, data):
+    # ------------------------------------------------- report (archive only)
+    @classmethod
+    def headline(cls, data):
         a = data.analysis
         I, w = a["principal_moments"], a["omega_initial"]
         st = a["axis_stability"]
         facts = [
             ("principal moments", f"I1 = {fmt(I[0])}, I2 = {fmt(I[1])}, I3 = {fmt(I[2])} kg m²"),
             ("initial ω (body)", "(" + ", ".join(fmt(float(x)) for x in w) + ") rad/s"
-             + (" after the impulse" if self.config.impulse is not None else "")),
+             + (" after the impulse" if data.config.get("impulse") is not None else "")),
             ("axis stability", ", ".join(f"{k[-1]}: {v['verdict']}" for k, v in st.items())),
             ("max |ω − ω_exact|", f"{fmt_err(a['omega_max_error'])} rad/s ({a['reference']})"),
             ("max ||q| − 1|", f"{fmt_err(a['quaternion_norm_max_deviation'])} (integrator "
@@ -421,65 +418,53 @@ class RigidBodyScene(Scene):
             facts.append(("branch", f"{a['elliptic']['branch']}, m = {fmt(a['elliptic']['m'])}"))
         return facts
 
-    def section_omega(self, data):
+    @classmethod
+    def section_omega(cls, data):
         run = data.runs["main"]
-        exact = core.exact_omega(run.t, data.analysis["omega_initial"],
-                                 data.analysis["principal_moments"])
         names = ["omega_1", "omega_2", "omega_3"]
+        exact = run.reference
         fig = common_plots.timeseries_against_reference(
-            run.t, {n: run[n] for n in names}, {n: exact[:, k] for k, n in enumerate(names)},
+            run.t, {n: run[n] for n in names}, {n: exact[n] for n in names},
             ylabels={n: f"ω{k + 1} [rad/s]" for k, n in enumerate(names)},
             reference_label=data.analysis["reference"])
         err = common_plots.error_against_time(
-            run.t, {f"|ω{k + 1} − exact|": run[n] - exact[:, k] for k, n in enumerate(names)},
+            run.t, {f"|ω{k + 1} − exact|": run[n] - exact[n] for k, n in enumerate(names)},
             ylabel="absolute error [rad/s]")
         return SectionContent(figures=[
-            self.figure("omega", fig, "Body-frame angular velocity integrated (Euler's equations "
-                        "(10.5)) against the exact solution."),
-            self.figure("omega_error", err, "Error of ω against the exact solution.")],
+            cls.figure("omega", fig, "Body-frame angular velocity integrated (Euler's equations "
+                       "(10.5)) against the exact solution."),
+            cls.figure("omega_error", err, "Error of ω against the exact solution.")],
             facts=[("max |ω − ω_exact|", f"{fmt_err(data.analysis['omega_max_error'])} rad/s")])
 
-    def section_polhodes(self, data):
-        run = data.runs["main"]
-        I = data.analysis["principal_moments"]
-        L = run.y[:, :3] * I
-        fig = plots.polhodes(I, L)
-        return SectionContent(figures=[self.figure(
+    @classmethod
+    def section_polhodes(cls, data):
+        p = data.analysis["polhodes"]
+        fig = plots.polhodes(p["family"], p["separatrices"], p["track"])
+        return SectionContent(figures=[cls.figure(
             "polhodes", fig, "Polhodes: the body-frame L on the sphere |L| = const cut by the "
             "energy ellipsoid Σ L_k²/I_k = 2E. Grey: a family of energies; orange: the "
             "separatrices through the intermediate axis; red: this scene.")])
 
-    def section_herpolhode(self, data):
-        run = data.runs["main"]
-        I = data.analysis["principal_moments"]
-        R = quat_to_matrix(run.y[:, 3:7])
-        w_space = np.einsum("nij,nj->ni", R, run.y[:, :3])
-        L = np.einsum("nij,nj->ni", R, run.y[:, :3] * I)[0]
-        n = L / np.linalg.norm(L)
-        e1 = np.cross(n, [1.0, 0.0, 0.0] if abs(n[0]) < 0.9 else [0.0, 1.0, 0.0])
-        e1 /= np.linalg.norm(e1)
-        e2 = np.cross(n, e1)
-        along = w_space @ n
-        fig = plots.herpolhode(w_space @ e1, w_space @ e2)
-        spread = float(np.ptp(along))
+    @classmethod
+    def section_herpolhode(cls, data):
+        h = data.analysis["herpolhode"]
+        fig = plots.herpolhode(h["x"], h["y"])
         return SectionContent(
-            figures=[self.figure("herpolhode", fig, "Herpolhode: the tip of ω (space frame) "
-                                 "rolling on the invariable plane perpendicular to L.")],
-            facts=[("ω·L/|L| = 2T/|L|", f"{fmt(float(along[0]))} rad/s, spread over the run "
-                                         f"{fmt_err(spread)}")])
+            figures=[cls.figure("herpolhode", fig, "Herpolhode: the tip of ω (space frame) "
+                                "rolling on the invariable plane perpendicular to L.")],
+            facts=[("ω·L/|L| = 2T/|L|", f"{fmt(float(h['omega_along_L']))} rad/s, spread over "
+                                         f"the run {fmt_err(h['omega_along_L_spread'])}")])
 
-    def section_stability(self, data):
+    @classmethod
+    def section_stability(cls, data):
         a = data.analysis
-        content = stability_table_section(a["axis_stability"], a["principal_moments"],
-                                          spin=a["spin"])
+        content = stability_table_section(a)
         if "flip" in a:
             f = a["flip"]
             run = data.runs["main"]
             k = int(f["axis"]) - 1
-            others = [i for i in range(3) if i != k]
-            perp0 = float(np.linalg.norm(run.y[0, others]))
-            fig = plots.flips(run.t, run.y[:, :3], growth_rate=f["growth_rate"], omega0=perp0)
-            content.figures.append(self.figure(
+            fig = plots.flips(run.t, run.y[:, :3], envelope=f["growth_envelope"])
+            content.figures.append(cls.figure(
                 "flips", fig, f"Dzhanibekov effect: spin started close to the intermediate axis "
                 f"{k + 1}; the perturbation grows at γ = {fmt(f['growth_rate'])} 1/s and the "
                 "body flips over, again and again."))
@@ -489,7 +474,8 @@ class RigidBodyScene(Scene):
                                        f"2K(m)/λ = {fmt(f['half_period_exact'])} s exact")]
         return content
 
-    def section_symmetric_precession(self, data):
+    @classmethod
+    def section_symmetric_precession(cls, data):
         s = data.analysis["symmetric"]
         return SectionContent(facts=[
             ("symmetry axis", str(s["axis"])),
@@ -499,25 +485,31 @@ class RigidBodyScene(Scene):
             ("precession of the figure axis about L, |L|/I⊥", f"{fmt(s['space_precession_rate'])}"
                                                                 " rad/s")])
 
-    def section_geometric_integrator(self, data):
+    @classmethod
+    def section_geometric_integrator(cls, data):
+        if "splitting" not in data.runs:
+            return SectionContent(notes=["The splitting integrator was not run for this "
+                                         "archive (the section was not asked for when it "
+                                         "was simulated)."])
         split = data.runs["splitting"]
         a = data.analysis
-        exact = core.exact_omega(split.t, a["omega_initial"], a["principal_moments"])
+        exact = split.reference
+        names = ["omega_1", "omega_2", "omega_3"]
         fig = common_plots.error_against_time(
-            split.t, {f"|ω{k + 1} − exact|": split.y[:, k] - exact[:, k] for k in range(3)},
+            split.t, {f"|ω{k + 1} − exact|": split[n] - exact[n] for k, n in enumerate(names)},
             ylabel="absolute error [rad/s]")
-        scales = self._scales(split.y[0])
+        scales = {q: split.attrs[f"scale_{q}"] for q in split.invariants}
         inv = common_plots.invariant_drift(split.t, split.invariants, scales=scales)
         rows = [[name, fmt_err(float(split.attrs.get(f"drift_{name}", math.nan))),
                  fmt_err(float(data.runs["main"].attrs.get(f"drift_{name}", math.nan)))]
                 for name in split.invariants]
         return SectionContent(
-            figures=[self.figure("splitting_error", fig,
-                                 f"Error of the {split.attrs['method']} axis splitting "
-                                 f"(h = {fmt(split.attrs['h'])} s) against the exact solution."),
-                     self.figure("splitting_invariants", inv, "Invariants under the splitting: "
-                                 "L² and the space-frame L are kept to round-off, the energy "
-                                 "error stays bounded.")],
+            figures=[cls.figure("splitting_error", fig,
+                                f"Error of the {split.attrs['method']} axis splitting "
+                                f"(h = {fmt(split.attrs['h'])} s) against the exact solution."),
+                     cls.figure("splitting_invariants", inv, "Invariants under the splitting: "
+                                "L² and the space-frame L are kept to round-off, the energy "
+                                "error stays bounded.")],
             tables=[Table(caption="Max relative drift of each invariant",
                           header=["quantity", "splitting", f"main run "
                                   f"({data.runs['main'].attrs['method']})"], rows=rows)],
@@ -525,15 +517,12 @@ class RigidBodyScene(Scene):
                     f" rad/s in {float(split.attrs['wall_time_s']) * 1e3:.3g} ms, "
                     f"{int(split.attrs['nsteps'])} steps")])
 
-    def section_invariants(self, data):
-        run = data.runs["main"]
-        return invariants_section(
-            self, data, scales=self._scales(run.y[0]),
+    @classmethod
+    def section_invariants(cls, data):
+        return cls.invariants_section(
+            data,
             labels={"twice_energy": "2T", "L_squared": "L² (body frame)",
                     "L_x": "L_x (space)", "L_y": "L_y (space)", "L_z": "L_z (space)",
                     "quaternion_norm": "|q|"},
             caption="Drift of 2T, L² and the space-frame L, relative to their natural scales; "
                     "|q| as integrated (the archived attitude is renormalized afterwards).")
-
-    def section_error_vs_runtime(self, data):
-        return error_vs_runtime_section(self, data)

@@ -20,12 +20,14 @@ import numpy as np
 from pydantic import Field, model_validator
 
 from ..config import Positive, Real, RunConfig, Strict
-from ..core.models import kepler as kepler_core
-from ..core.models import nbody as core
+from ..lazy import lazy_module
 from ..plots import gravitation as plots
-from ..results import Check, Results
+from ..results import AuditCase, Check, Results
 from .base import Scene, SceneConfig, Section, SectionContent, Table, fmt, fmt_err
-from .shared import error_vs_runtime_section, invariants_section
+
+core = lazy_module("reportgen.core.models.nbody")
+kepler_core = lazy_module("reportgen.core.models.kepler")
+integrators = lazy_module("reportgen.core.integrators")
 
 Vector3 = Annotated[list[Real], Field(min_length=3, max_length=3)]
 
@@ -122,6 +124,7 @@ HIERARCHY_RATIO = 0.05
 
 class ThreeBodyScene(Scene):
     kind = "three_body"
+    order = 40
     summary = "three gravitating bodies: Sun–Earth–Moon (Jacobi coordinates), figure-eight, " \
               "Pythagorean problem"
     Config = ThreeBodyConfig
@@ -138,8 +141,6 @@ class ThreeBodyScene(Scene):
 
     @classmethod
     def audit_cases(cls):
-        from ..audit import AuditCase
-
         return [AuditCase(
             name="Pythagorean three-body problem to t = 70",
             what="masses 3, 4, 5 from rest: close encounters down to ~1e-4 before a binary "
@@ -154,37 +155,11 @@ class ThreeBodyScene(Scene):
     @property
     def hierarchical(self) -> bool:
         m = self.masses
-        return m[1] / m[0] < HIERARCHY_RATIO and m[2] / m[1] < HIERARCHY_RATIO
-
-    def default_sections(self):
-        names = [s.name for s in self.sections]
-        if not self.hierarchical:
-            names.remove("moon")
-        if self.config.period is None:
-            names.remove("periodicity")
-        return names
+        return bool(m[1] / m[0] < HIERARCHY_RATIO and m[2] / m[1] < HIERARCHY_RATIO)
 
     def _y0(self):
         ini = self.config.initial
         return np.concatenate([np.ravel(ini.positions), np.ravel(ini.velocities)]).astype(float)
-
-    def _scales(self) -> dict:
-        """Natural sizes: |potential energy|, and momenta m √(G M/ℓ) for the mean distance ℓ."""
-        G, m = self.config.params.G, self.masses
-        pos, _ = core.split(self._y0())
-        r = np.array(core.pair_distances(pos))[:, 0]
-        pot = G * (m[0] * m[1] / r[0] + m[0] * m[2] / r[1] + m[1] * m[2] / r[2])
-        ell = float(np.mean(r))
-        speed = math.sqrt(G * m.sum() / ell)
-        y0 = self._y0()
-        _, vel = core.split(y0)
-        p_scale = max(float(np.sum(m * np.linalg.norm(vel[0], axis=1))), float(m.sum()) * speed)
-        l_scale = max(float(np.sum(m * np.linalg.norm(pos[0], axis=1)))
-                      * float(np.max(np.linalg.norm(vel[0], axis=1))), float(m.sum()) * ell * speed)
-        out = {"energy": max(abs(float(core.energy(y0, G, m)[0])), pot)}
-        out.update({f"momentum_{c}": p_scale for c in "xyz"})
-        out.update({f"angular_momentum_{c}": l_scale for c in "xyz"})
-        return out
 
     def _invariants(self, t, y):
         G, m = self.config.params.G, self.masses
@@ -195,18 +170,23 @@ class ThreeBodyScene(Scene):
         return inv
 
     # --------------------------------------------------------------- simulation
+    def models(self) -> list:
+        return [core.model(self.config.params.G, self.masses)]
+
     def simulate(self, progress=None) -> Results:
         run, cfg = self.config.run, self.config
         G, m = cfg.params.G, self.masses
-        model = core.model(G, m)
+        (model,) = self.models()
         y0 = self._y0()
         t = np.linspace(0.0, run.t_end, run.samples)
+        scales = core.natural_scales(y0, G, m)
         results = Results()
         main = self.integrate(model, y0, t, invariants=self._invariants,
-                              invariant_scales=self._scales(), progress=progress,
+                              invariant_scales=scales, progress=progress,
                               n_periods=run.t_end / cfg.period if cfg.period else None)
         results.runs["main"] = main
         a = results.analysis
+        a["hierarchical"] = self.hierarchical
         e = main.invariants["energy"]
         e_err = float(np.max(np.abs(e - e[0]))) / abs(e[0]) if e[0] != 0 else math.nan
         a["energy_error_max"] = e_err
@@ -220,25 +200,26 @@ class ThreeBodyScene(Scene):
         P = core.momentum(main.y, m)
         results.checks.append(Check("|P(t_end) − P(0)| (total momentum)",
                                     float(np.linalg.norm(P[-1] - P[0])), 0.0, "",
-                                    "P(0), conserved", scale=self._scales()["momentum_x"]))
+                                    "P(0), conserved", scale=scales["momentum_x"]))
         pos, _ = core.split(main.y)
-        dists = np.array(core.pair_distances(pos))
+        r12, r13, r23 = core.pair_distances(pos)
+        dists = np.array([r12, r13, r23])
+        a["pair_distances"] = {"r12": r12, "r13": r13, "r23": r23}
         a["min_pair_distance"] = float(np.min(dists))
         a["min_pair_distance_time"] = float(main.t[np.argmin(np.min(dists, axis=0))])
         if cfg.period is not None:
             self._periodicity(results, model, y0, main)
         if self.hierarchical:
-            self._hierarchy(results, main)
+            self._hierarchy(results, model, main)
         self.study(results, model, y0, np.linspace(0.0, run.t_end, 201))
         return results
 
     def _periodicity(self, results, model, y0, main):
         """Integrate exactly to t = period (same method and tolerances) and compare with y0."""
-        from ..core.integrators import integrate
-
         T, run = self.config.period, self.config.run
-        sol = integrate(model, y0, np.array([0.0, T]), method=str(main.attrs["method"]),
-                        rtol=run.rtol, atol=run.atol, h=run.h)
+        sol = integrators.integrate(model, y0, np.array([0.0, T]),
+                                    method=str(main.attrs["method"]),
+                                    rtol=run.rtol, atol=run.atol, h=run.h)
         pos0, vel0 = core.split(y0)
         pos1, vel1 = core.split(sol.y[-1])
         dpos = float(np.max(np.linalg.norm(pos1[0] - pos0[0], axis=1)))
@@ -250,36 +231,29 @@ class ThreeBodyScene(Scene):
                                     "2000; Simó)" if T == FIGURE_EIGHT_PERIOD
                                     else f"periodic orbit, T = {T:g} (config)", scale=1.0))
 
-    def _hierarchy(self, results, main):
+    def _hierarchy(self, results, model, main):
         """Osculating Kepler elements of the primary pair and of body 3 about body 2; the
-        Jacobi kinetic energy (3.33) against the Cartesian one."""
+        Jacobi kinetic energy (3.33) against the Cartesian one; the curves the moon section
+        draws (relative track, Jacobi coordinates)."""
         G, m = self.config.params.G, self.masses
         y = main.y
         pos, vel = core.split(y)
         a = results.analysis
+        a["mass_ratios"] = {"m2_m1": float(m[1] / m[0]), "m3_m1": float(m[2] / m[0])}
         rel = pos[:, 2] - pos[:, 1]
         relv = vel[:, 2] - vel[:, 1]
+        a["moon_relative_position"] = rel
         # the Moon's osculating orbit about the Earth (two-body elements, K = G(m2 + m3))
-        h_vec = np.cross(rel[0], relv[0])
-        n_hat = h_vec / np.linalg.norm(h_vec)
-        a["moon_inclination"] = float(math.acos(n_hat[2]))
-        K = G * (m[1] + m[2])
-        r0, v0 = np.linalg.norm(rel[0]), np.linalg.norm(relv[0])
-        eps = 0.5 * v0**2 - K / r0
-        a["moon_semi_major_axis"] = -K / (2 * eps)
-        a["moon_kepler_period"] = 2 * math.pi * math.sqrt(a["moon_semi_major_axis"] ** 3 / K)
+        orbit = core.osculating_orbit(rel[0], relv[0], G * (m[1] + m[2]))
+        a["moon_inclination"] = orbit["inclination"]
+        a["moon_semi_major_axis"] = orbit["semi_major_axis"]
+        a["moon_kepler_period"] = orbit["period"]
         # sidereal period measured from the angle of the relative track in its initial plane
-        e1 = rel[0] / np.linalg.norm(rel[0])
-        e2 = np.cross(n_hat, e1)
-        ang = np.unwrap(np.arctan2(rel @ e2, rel @ e1))
-        turns = (ang[-1] - ang[0]) / (2 * math.pi)
+        turns = core.revolutions(rel, orbit["normal"])
         if turns >= 1.0:  # compared in the report, not a check: the Sun's tide shifts it
             a["moon_period_measured"] = float(main.t[-1] - main.t[0]) / turns
-        from ..core.integrators import integrate
-
-        tight = integrate(core.model(G, m), self._y0(), main.t[[0, -1]], method="dop853",
-                          rtol=1e-14, atol=1e-16)
-        pos_ref, _ = core.split(tight.y[-1])
+        tight = self.reference_run(model, self._y0(), main.t[[0, -1]])
+        pos_ref, _ = core.split(tight[-1])
         d_ref = float(np.linalg.norm((pos_ref[0, 2] - pos_ref[0, 1]) - rel[-1]))
         a["moon_reference_error"] = d_ref
         results.checks.append(Check(f"{self.config.names[2]} about {self.config.names[1]} at "
@@ -291,14 +265,31 @@ class ThreeBodyScene(Scene):
         a["jacobi_kinetic_identity_error"] = float(np.max(np.abs(T_jac - T_cart) / T_cart))
         M, mu1, mu2 = core.jacobi_masses(m)
         a["jacobi_masses"] = np.array([M, mu1, mu2])
+        (_, rho1, rho2), _ = core.jacobi(y, m)
+        a["jacobi_coordinates"] = {"rho1": rho1, "rho2": rho2}
         el = kepler_core.orbital_elements(*pos[0, 1, :2] - pos[0, 0, :2],
                                           *vel[0, 1, :2] - vel[0, 0, :2], G * (m[0] + m[1]))
         a["earth_eccentricity"] = el["eccentricity"]
 
     # ------------------------------------------------------------------ report
-    def headline(self, data):
-        p, a = self.config.params, data.analysis
-        names = self.config.names
+    @staticmethod
+    def _positions(run) -> np.ndarray:
+        """The archived positions as (N, 3, 3): time, body, xyz (columns x1 … z3 first)."""
+        return np.asarray(run.y)[:, :9].reshape(-1, 3, 3)
+
+    @classmethod
+    def default_sections(cls, data):
+        names = [s.name for s in cls.sections]
+        if not data.analysis.get("hierarchical", False):
+            names.remove("moon")
+        if data.config.period is None:
+            names.remove("periodicity")
+        return names
+
+    @classmethod
+    def headline(cls, data):
+        p, a = data.config.params, data.analysis
+        names = data.config.names
         out = [("bodies", ", ".join(f"{n}: m = {fmt(x)}" for n, x in zip(names, p.masses,
                                                                           strict=True))
                 + f"; G = {fmt(p.G)}"),
@@ -312,38 +303,40 @@ class ThreeBodyScene(Scene):
                         f"max |r_i(T) − r_i(0)| = {fmt_err(a['return_position_error'])}"))
         if "moon_period_measured" in a:
             out.append(("Moon about the Earth", f"period {fmt(a['moon_period_measured'], 8)} "
-                        f"{self.config.time_unit} (Kepler two-body "
+                        f"{data.config.time_unit} (Kepler two-body "
                         f"{fmt(a['moon_kepler_period'], 8)})"))
         return out
 
-    def section_orbits(self, data):
-        run = data.runs["main"]
-        pos, _ = core.split(run.y)
-        fig = plots.three_body_orbits(pos, labels=self.config.names,
-                                      length_unit=self.config.length_unit)
-        figures = [self.figure("orbits", fig, "Tracks of the three bodies projected on the "
-                               "x–y plane.")]
-        if np.ptp(pos[:, :, 2]) > 1e-3 * np.ptp(pos[:, :, :2]) and not self.hierarchical:
-            fig2 = plots.three_body_orbits(pos, labels=self.config.names,
-                                           length_unit=self.config.length_unit, plane=(0, 2))
-            figures.append(self.figure("orbits_xz", fig2, "The same tracks in the x–z plane."))
+    @classmethod
+    def section_orbits(cls, data):
+        pos = cls._positions(data.runs["main"])
+        names, unit = data.config.names, data.config.length_unit
+        fig = plots.three_body_orbits(pos, labels=names, length_unit=unit)
+        figures = [cls.figure("orbits", fig, "Tracks of the three bodies projected on the "
+                              "x–y plane.")]
+        if (np.ptp(pos[:, :, 2]) > 1e-3 * np.ptp(pos[:, :, :2])
+                and not data.analysis.get("hierarchical", False)):
+            fig2 = plots.three_body_orbits(pos, labels=names, length_unit=unit, plane=(0, 2))
+            figures.append(cls.figure("orbits_xz", fig2, "The same tracks in the x–z plane."))
         return SectionContent(figures=figures)
 
-    def section_moon(self, data):
-        run, a = data.runs["main"], data.analysis
-        pos, _ = core.split(run.y)
-        names, unit = self.config.names, self.config.length_unit
-        rel = pos[:, 2] - pos[:, 1]
+    @classmethod
+    def section_moon(cls, data):
+        a = data.analysis
+        names, unit = data.config.names, data.config.length_unit
+        rel = np.asarray(a["moon_relative_position"])
         fig = plots.relative_track(rel[:, 0], rel[:, 1], label=f"{names[2]} − {names[1]}",
                                    centre_label=names[1], length_unit=unit)
-        (_, rho1, rho2), _ = core.jacobi(run.y, self.masses)
+        jac = a["jacobi_coordinates"]
+        rho1, rho2 = np.asarray(jac["rho1"]), np.asarray(jac["rho2"])
         fig2 = plots.three_body_orbits(
             np.stack([rho1, rho2, np.zeros_like(rho1)], axis=1)[:, :2],
             labels=["ρ1 = r2 − r1", "ρ2 = r3 − (m1 r1 + m2 r2)/(m1 + m2)"],
             length_unit=unit)
         M, mu1, mu2 = np.asarray(a["jacobi_masses"])
-        facts = [("mass ratios (3.35)", f"m2/m1 = {fmt(self.masses[1] / self.masses[0])}, "
-                                        f"m3/m1 = {fmt(self.masses[2] / self.masses[0])}"),
+        ratios = a["mass_ratios"]
+        facts = [("mass ratios (3.35)", f"m2/m1 = {fmt(ratios['m2_m1'])}, "
+                                        f"m3/m1 = {fmt(ratios['m3_m1'])}"),
                  ("Jacobi masses (3.33)", f"M = {fmt(M)}, μ1 = {fmt(mu1)}, μ2 = {fmt(mu2)}"),
                  ("max |T_Jacobi − T_Cartesian| / T", fmt_err(a["jacobi_kinetic_identity_error"])),
                  (f"{names[2]}'s orbit about {names[1]}",
@@ -354,44 +347,43 @@ class ThreeBodyScene(Scene):
             rows.append(["sidereal period, measured", fmt(a["moon_period_measured"], 10)])
         rows.append(["two-body Kepler period", fmt(a["moon_kepler_period"], 10)])
         return SectionContent(
-            figures=[self.figure("moon", fig, f"{names[2]}'s track relative to {names[1]}: a "
-                                 "near-Keplerian ellipse slowly perturbed by the Sun's tide."),
-                     self.figure("jacobi", fig2, "Jacobi coordinates (3.32): ρ1, the inner "
-                                 "pair's separation, and ρ2, the third body from the inner "
-                                 "pair's centre of mass (x–y projection).")],
+            figures=[cls.figure("moon", fig, f"{names[2]}'s track relative to {names[1]}: a "
+                                "near-Keplerian ellipse slowly perturbed by the Sun's tide."),
+                     cls.figure("jacobi", fig2, "Jacobi coordinates (3.32): ρ1, the inner "
+                                "pair's separation, and ρ2, the third body from the inner "
+                                "pair's centre of mass (x–y projection).")],
             facts=facts,
             tables=[Table(caption=f"{names[2]}'s period about {names[1]} "
-                                  f"[{self.config.time_unit}]", header=["", "value"],
+                                  f"[{data.config.time_unit}]", header=["", "value"],
                           rows=rows)])
 
-    def section_periodicity(self, data):
+    @classmethod
+    def section_periodicity(cls, data):
         a = data.analysis
         return SectionContent(facts=[
             ("period T", fmt(a["period"], 12)),
             ("max |r_i(T) − r_i(0)|", fmt_err(a["return_position_error"])),
             ("max |v_i(T) − v_i(0)|", fmt_err(a["return_velocity_error"]))])
 
-    def section_encounters(self, data):
-        run = data.runs["main"]
-        pos, _ = core.split(run.y)
-        r12, r13, r23 = core.pair_distances(pos)
-        n = self.config.names
-        fig = plots.closest_approach(run.t, {f"{n[0]}–{n[1]}": r12, f"{n[0]}–{n[2]}": r13,
-                                             f"{n[1]}–{n[2]}": r23},
-                                     time_unit=self.config.time_unit)
-        a = data.analysis
+    @classmethod
+    def section_encounters(cls, data):
+        run, a = data.runs["main"], data.analysis
+        d = a["pair_distances"]
+        n = data.config.names
+        fig = plots.closest_approach(run.t, {f"{n[0]}–{n[1]}": d["r12"],
+                                             f"{n[0]}–{n[2]}": d["r13"],
+                                             f"{n[1]}–{n[2]}": d["r23"]},
+                                     time_unit=data.config.time_unit)
         return SectionContent(
-            figures=[self.figure("pair_distances", fig, "Distances between the bodies (log "
-                                 "scale); close encounters are the deep minima, sampled at the "
-                                 "stored times only.")],
+            figures=[cls.figure("pair_distances", fig, "Distances between the bodies (log "
+                                "scale); close encounters are the deep minima, sampled at the "
+                                "stored times only.")],
             facts=[("smallest stored pair distance", f"{fmt(a['min_pair_distance'])} at t ≈ "
                                                      f"{fmt(a['min_pair_distance_time'])}")])
 
-    def section_invariants(self, data):
-        return invariants_section(self, data, scales=self._scales(),
-                                  caption="Drift of energy (relative to the initial potential "
-                                          "energy), total momentum and angular momentum "
-                                          "(relative to natural momentum scales).")
-
-    def section_error_vs_runtime(self, data):
-        return error_vs_runtime_section(self, data)
+    @classmethod
+    def section_invariants(cls, data):
+        return cls.invariants_section(data, caption="Drift of energy (relative to the initial "
+                                                    "potential energy), total momentum and "
+                                                    "angular momentum (relative to natural "
+                                                    "momentum scales).")

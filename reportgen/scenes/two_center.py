@@ -15,11 +15,12 @@ import numpy as np
 from pydantic import Field, model_validator
 
 from ..config import Positive, Real, RunConfig, Strict
-from ..core.models import two_center as core
-from ..plots import gravitation as plots
+from ..lazy import lazy_module
 from ..results import Check, Results
 from .base import Scene, SceneConfig, Section, SectionContent, fmt, fmt_err
-from .shared import error_vs_runtime_section, invariants_section
+
+core = lazy_module("reportgen.core.models.two_center")
+plots = lazy_module("reportgen.plots.gravitation")
 
 
 class Params(Strict):
@@ -59,6 +60,7 @@ FAMILY_TEXT = {
 
 class TwoCenterScene(Scene):
     kind = "two_center"
+    order = 50
     summary = "Euler's problem of two fixed centres: elliptic coordinates, separation constant"
     Config = TwoCenterConfig
     sections = (
@@ -91,9 +93,12 @@ class TwoCenterScene(Scene):
         return {"energy": core.energy(*y.T, p.mu, p.a),
                 "separation_constant": core.separation_constant(*y.T, p.mu, p.a)}
 
+    def models(self) -> list:
+        return [core.model(self.config.params.mu, self.config.params.a)]
+
     def simulate(self, progress=None) -> Results:
         run, p = self.config.run, self.config.params
-        model = core.model(p.mu, p.a)
+        (model,) = self.models()
         y0 = self._y0()
         t = np.linspace(0.0, run.t_end, run.samples)
         results = Results()
@@ -111,6 +116,7 @@ class TwoCenterScene(Scene):
         a["xi_range_run"] = np.array([float(np.min(xi)), float(np.max(xi))])
         a["eta_abs_range_run"] = np.array([float(np.min(np.abs(eta))),
                                            float(np.max(np.abs(eta)))])
+        a.update(self._coordinate_lines(xi, eta, bounds))
         scales = self._scales()
         for name, label in (("energy", "energy E(t_end)"),
                             ("separation_constant", "separation constant C(t_end)")):
@@ -126,8 +132,59 @@ class TwoCenterScene(Scene):
         self.study(results, model, y0, np.linspace(0.0, run.t_end, 201))
         return results
 
-    def headline(self, data):
-        p, a = self.config.params, data.analysis
+    def _coordinate_lines(self, xi, eta, bounds) -> dict:
+        """The elliptic-coordinate grid drawn under the orbit, and the coordinate lines
+        that bound the motion (p_ξ = 0 or p_η = 0), as (x, y) curves.
+
+        ``elliptic_grid``: ellipses ξ = const out to a little beyond the orbit and
+        hyperbolas η = const (both branches, y ≥ 0 then y ≤ 0) out to the largest
+        ellipse.  ``motion_bounds``: the ξ bounds > 1 and, for a planetary orbit, the
+        hyperbola |η| = η* on the orbit's side; for E > 0 the |η| limit on both sides.
+        """
+        a = self.config.params.a
+        xi_top = max(float(np.max(xi)), 1.5) * 1.05
+        xi_levels = np.linspace(1.0, xi_top, 8)[1:]
+        eta_levels = np.linspace(-0.9, 0.9, 7)
+        xi_bounds = [v for v in (bounds["xi_min"], bounds["xi_max"])
+                     if math.isfinite(v) and v > 1.0]
+        eta_bounds = []
+        if bounds["eta_abs_min"] > 0:
+            side = float(np.sign(np.mean(eta)))
+            eta_bounds.append(side * bounds["eta_abs_min"])
+        if bounds["eta_abs_max"] < 1:
+            eta_bounds += [-bounds["eta_abs_max"], bounds["eta_abs_max"]]
+
+        def curves(levels, hyperbolas):
+            xs, ys = [], []
+            for level in levels:
+                if hyperbolas:
+                    for sign in (1.0, -1.0):
+                        x, y = core.coordinate_hyperbola(level, a, xi_top, sign=sign)
+                        xs.append(x)
+                        ys.append(y)
+                else:
+                    x, y = core.coordinate_ellipse(level, a)
+                    xs.append(x)
+                    ys.append(y)
+            return {"x": np.array(xs), "y": np.array(ys)}
+
+        out = {"elliptic_grid": {"xi_levels": xi_levels, "eta_levels": eta_levels,
+                                 "ellipses": curves(xi_levels, False),
+                                 "hyperbolas": curves(eta_levels, True)}}
+        bound_lines = {}
+        if xi_bounds:
+            bound_lines["xi"] = np.array(xi_bounds)
+            bound_lines["ellipses"] = curves(xi_bounds, False)
+        if eta_bounds:
+            bound_lines["eta"] = np.array(eta_bounds)
+            bound_lines["hyperbolas"] = curves(eta_bounds, True)
+        if bound_lines:
+            out["motion_bounds"] = bound_lines
+        return out
+
+    @classmethod
+    def headline(cls, data):
+        p, a = data.config.params, data.analysis
         run = data.runs["main"]
         return [("centres", f"μ = {fmt(p.mu)} each at (±{fmt(p.a)}, 0)"),
                 ("constants", f"E = {fmt(a['energy'], 12)}, C = "
@@ -136,43 +193,39 @@ class TwoCenterScene(Scene):
                 ("max relative drift", f"E {fmt_err(run.attrs.get('drift_energy', math.nan))}, "
                  f"C {fmt_err(run.attrs.get('drift_separation_constant', math.nan))}")]
 
-    def section_orbit(self, data):
-        run, a, p = data.runs["main"], data.analysis, self.config.params
+    @classmethod
+    def section_orbit(cls, data):
+        run, a, p = data.runs["main"], data.analysis, data.config.params
         xi_b = [float(v) for v in np.asarray(a["xi_bounds"])]
         eta_b = [float(v) for v in np.asarray(a["eta_abs_bounds"])]
-        x, y = run["x"], run["y"]
-        xi_top = max(float(np.max(core.elliptic_coordinates(x, y, p.a)[0])), 1.5) * 1.05
-        xi_levels = list(np.linspace(1.0, xi_top, 8)[1:])
-        eta_levels = list(np.linspace(-0.9, 0.9, 7))
-        eta_draw = []
-        if eta_b[0] > 0:
-            side = float(np.sign(np.mean(core.elliptic_coordinates(x, y, p.a)[1])))
-            eta_draw.append(side * eta_b[0])
-        if eta_b[1] < 1:
-            eta_draw += [-eta_b[1], eta_b[1]]
+
+        def curves(group):
+            return list(zip(group["x"], group["y"], strict=True))
+
+        grid = a["elliptic_grid"]
+        bound = a.get("motion_bounds", {})
         fig = plots.elliptic_grid_orbit(
-            x, y, a=p.a, xi_levels=xi_levels, eta_levels=eta_levels,
-            xi_bounds=[xi_b[0] if xi_b[0] > 1 else None,
-                       xi_b[1] if math.isfinite(xi_b[1]) else None],
-            eta_bounds=eta_draw or None)
+            run["x"], run["y"], a=p.a,
+            grid=curves(grid["ellipses"]) + curves(grid["hyperbolas"]),
+            xi_bounds=curves(bound["ellipses"]) if "ellipses" in bound else None,
+            eta_bounds=curves(bound["hyperbolas"]) if "hyperbolas" in bound else None)
         xr, er = np.asarray(a["xi_range_run"]), np.asarray(a["eta_abs_range_run"])
         facts = [("family", FAMILY_TEXT[a["family"]]),
                  ("ξ bounds from (7.59)", f"[{fmt(xi_b[0], 10)}, {fmt(xi_b[1], 10)}]; "
                                           f"sampled run: [{fmt(xr[0], 10)}, {fmt(xr[1], 10)}]"),
                  ("|η| bounds from (7.59)", f"[{fmt(eta_b[0], 10)}, {fmt(eta_b[1], 10)}]; "
                                             f"sampled run: [{fmt(er[0], 10)}, {fmt(er[1], 10)}]")]
-        return SectionContent(figures=[self.figure(
+        return SectionContent(figures=[cls.figure(
             "orbit", fig, "The orbit over the elliptic-coordinate grid: confocal ellipses "
             "ξ = (r1 + r2)/2a = const and hyperbolas η = (r1 − r2)/2a = const with foci at the "
             "two centres. Bold: the coordinate lines where p_ξ = 0 or p_η = 0, which bound the "
             "motion.")], facts=facts)
 
-    def section_invariants(self, data):
-        return invariants_section(self, data, scales=self._scales(),
-                                  labels={"energy": "energy E",
-                                          "separation_constant": "separation constant C"},
-                                  caption="Drift of E (relative to |V(0)|) and of the separation "
-                                          "constant C (relative to max(|L1 L2|, 2aμ) at t = 0).")
-
-    def section_error_vs_runtime(self, data):
-        return error_vs_runtime_section(self, data)
+    @classmethod
+    def section_invariants(cls, data):
+        return cls.invariants_section(data, labels={"energy": "energy E",
+                                                    "separation_constant":
+                                                        "separation constant C"},
+                                      caption="Drift of E (relative to |V(0)|) and of the "
+                                              "separation constant C (relative to "
+                                              "max(|L1 L2|, 2aμ) at t = 0).")

@@ -4,18 +4,19 @@ Subclass contract
 -----------------
 1. Set the class attributes ``name``, ``label``, ``order`` and the capability flags
    (``adaptive``, ``symplectic``, ``implicit``, ``needs_separable``, ``symmetric``,
-   ``peer``).  Flags are data: tests and the study select methods by them.
+   ``peer``, ``compiled``).  Flags are data: tests and the study select methods by them.
 2. Compiled methods implement ``start(kern, model, y0, t_eval, Y, rtol, atol, h)``
    returning a :class:`Run` whose ``advance(i0, i1)`` fills ``Y[i0:i1]`` and returns a
    status code from ``_kernel_template`` (``OK`` ...).  Bookkeeping (chunking,
-   progress, timing, failure messages, the Solution) is done once, in
-   :func:`reportgen.core.integrators.integrate`.
+   progress, timing, the failure :class:`SolveCode` and message, the Solution) is
+   done once, in :func:`reportgen.core.integrators.integrate`.
 3. ``check(model)`` raises :class:`MethodMismatch` before any work when the method
    cannot run on the model.
 """
 
 from __future__ import annotations
 
+import enum
 from dataclasses import dataclass
 
 import numpy as np
@@ -23,6 +24,26 @@ import numpy as np
 
 class MethodMismatch(Exception):
     """The method needs structure the model does not offer (raised before any work)."""
+
+
+class SolveCode(enum.StrEnum):
+    """How one integrator run ended: the structured cause behind ``Solution.message``.
+
+    Decisions (the solver policy, the stability verdict) read this code, never the
+    message text, which is for people.
+    """
+
+    OK = "ok"
+    #: the state, or every trial step's right-hand side, became NaN or inf
+    NONFINITE = "nonfinite"
+    #: the adaptive step fell below 10 eps |t| with finite values
+    STEP_UNDERFLOW = "step_underflow"
+    #: the budget of accepted steps (``max_steps``) ran out
+    MAX_STEPS = "max_steps"
+    #: the Newton iteration of an implicit method did not converge
+    NEWTON = "newton"
+    #: a peer (scipy) solver reported failure
+    SOLVER_ERROR = "solver_error"
 
 
 @dataclass(frozen=True)
@@ -39,6 +60,10 @@ class Solution:
         Largest step actually used by a fixed-step method (<= the requested h).
     nsteps, nreject : int
         Accepted / rejected steps (-1 when the peer solver does not report them).
+    code : SolveCode
+        How the run ended; ``status`` is ``"ok"`` exactly when ``code`` is OK.
+    message : str
+        ``"ok"``, or a sentence saying where and why the run failed (for people).
     wall_time_s : float
         Integration time, excluding compilation (``compile_time_s``, which is 0
         when the kernel was already compiled or loaded in this process).
@@ -53,14 +78,19 @@ class Solution:
     nfev: int
     nsteps: int
     nreject: int
-    status: str
+    code: SolveCode
     message: str
     wall_time_s: float
     compile_time_s: float
 
     @property
     def ok(self) -> bool:
-        return self.status == "ok"
+        return self.code is SolveCode.OK
+
+    @property
+    def status(self) -> str:
+        """``"ok"`` or ``"failed"`` (the cause is :attr:`code`)."""
+        return "ok" if self.ok else "failed"
 
 
 class Method:
@@ -74,7 +104,10 @@ class Method:
     implicit: bool = False
     needs_separable: bool = False
     symmetric: bool = False
+    #: a scipy solver run for comparison in the study (not offered by ``auto``)
     peer: bool = False
+    #: a numba kernel driven by :func:`~.driver.run_compiled` (else the method's ``solve``)
+    compiled: bool = True
 
     def check(self, model) -> None:
         if self.needs_separable and model.separable is None:
@@ -96,3 +129,42 @@ class Run:
 
     def advance(self, i0: int, i1: int) -> int:
         raise NotImplementedError
+
+    def last_trial_finite(self) -> bool:
+        """Whether the last attempted step gave finite values (adaptive runs override)."""
+        return True
+
+
+class RunStatus(enum.StrEnum):
+    """What the policy made of one run (archived as the run attr ``solver_status``)."""
+
+    OK = "ok"
+    #: a method named explicitly looks stiff (kept, flagged)
+    STIFF = "stiff"
+    #: the step budget ran out
+    MAX_STEPS = "max_steps"
+    #: the state (or every trial step) became NaN or inf
+    NONFINITE = "nonfinite"
+    #: any other integrator failure (step-size underflow, Newton, scipy)
+    FAILED = "failed"
+    #: the automatic choice met stiffness and used an implicit method: it looked stiff and
+    #: was redone with the fallback, or the model was marked stiff in advance
+    SWITCHED = "switched"
+
+    @property
+    def verdict(self) -> str:
+        """The run's archived ``status``: ``"ok"``, ``"unstable"`` or ``"failed"``."""
+        if self in (RunStatus.OK, RunStatus.SWITCHED):
+            return "ok"
+        return "unstable" if self is RunStatus.STIFF else "failed"
+
+
+#: integrator outcome -> policy status (before the stiffness checks)
+STATUS_OF_CODE = {
+    SolveCode.OK: RunStatus.OK,
+    SolveCode.MAX_STEPS: RunStatus.MAX_STEPS,
+    SolveCode.NONFINITE: RunStatus.NONFINITE,
+    SolveCode.STEP_UNDERFLOW: RunStatus.FAILED,
+    SolveCode.NEWTON: RunStatus.FAILED,
+    SolveCode.SOLVER_ERROR: RunStatus.FAILED,
+}

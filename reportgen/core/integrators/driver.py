@@ -7,14 +7,24 @@ import time
 import numpy as np
 
 from . import _kernel_template as codes
-from .base import Method, MethodMismatch, Solution
+from .base import Method, MethodMismatch, Solution, SolveCode
+from .explicit_rk import DOP853
 from .kernels import kernels_for
+from .registry import METHODS
 
+#: kernel status codes (``_kernel_template``) -> how the run ended
+_CODE = {
+    codes.OK: SolveCode.OK,
+    codes.NONFINITE: SolveCode.NONFINITE,
+    codes.UNDERFLOW: SolveCode.STEP_UNDERFLOW,
+    codes.MAXSTEPS: SolveCode.MAX_STEPS,
+    codes.NEWTON: SolveCode.NEWTON,
+}
 _FAIL_REASON = {
-    codes.NONFINITE: "the state became non-finite (NaN or inf)",
-    codes.UNDERFLOW: "step size underflow (h < 10 eps |t|)",
-    codes.NEWTON: "the Newton iteration for the implicit stages did not converge "
-                  "(try a smaller h)",
+    SolveCode.NONFINITE: "the state or the right-hand side became non-finite (NaN or inf)",
+    SolveCode.STEP_UNDERFLOW: "step size underflow (h < 10 eps |t|)",
+    SolveCode.NEWTON: "the Newton iteration for the implicit stages did not converge "
+                      "(try a smaller h)",
 }
 _N_CHUNKS = 20
 _WARMED: set = set()
@@ -59,7 +69,6 @@ def default_step(method: Method, kern, model, y0, t_eval, rtol) -> float:
        Tp would be ``rtol * max(1, |y0|)``: like an adaptive method's rtol it bounds the
        error per stretch of ~200 natural steps, not over arbitrarily long runs.
     """
-    from .explicit_rk import DOP853
 
     span = t_eval[-1] - t_eval[0]
     whole = np.array([t_eval[0], t_eval[-1]])
@@ -73,7 +82,10 @@ def default_step(method: Method, kern, model, y0, t_eval, rtol) -> float:
     ends = []
     for h in (h1, h1 / 2):
         Y = np.full((2, y0.size), np.nan)
-        method.start(kern, model, y0, probe, Y, rtol, rtol, h).advance(0, 2)
+        try:
+            method.start(kern, model, y0, probe, Y, rtol, rtol, h).advance(0, 2)
+        except np.linalg.LinAlgError:  # non-finite Newton matrix: Y[1] stays NaN
+            pass
         ends.append(Y[1])
     err = float(np.max(np.abs(ends[0] - ends[1]))) / (1.0 - 2.0 ** -method.order)
     target = rtol * max(1.0, float(np.max(np.abs(y0))))
@@ -90,7 +102,6 @@ def run_compiled(method: Method, model, y0, t_eval, rtol, atol, h, progress, max
     compile_s = _compile(method, kern, model, y0, t_eval)
     N, d = t_eval.size, y0.size
     if not method.adaptive and h is None and N > 1:
-        from .explicit_rk import DOP853
 
         compile_s += _compile(DOP853(), kern, model, y0, t_eval)  # the probe's scout
         h = default_step(method, kern, model, y0, t_eval, rtol)  # not in wall_time_s
@@ -109,7 +120,16 @@ def run_compiled(method: Method, model, y0, t_eval, rtol, atol, h, progress, max
     bounds = np.linspace(0, i_end, n_chunks + 1).round().astype(int)
     status = codes.OK
     for k in range(n_chunks):
-        status = run.advance(int(bounds[k]), int(bounds[k + 1]))
+        try:
+            status = run.advance(int(bounds[k]), int(bounds[k + 1]))
+        except np.linalg.LinAlgError:
+            # the Newton matrix I - h A (x) J of an implicit method could not be inverted:
+            # numba raises this for a NaN/inf Jacobian (an exactly singular matrix needs
+            # h a_ii λ = 1 to the last bit); the failing step lies after the last output
+            status = codes.NONFINITE
+            done = np.all(np.isfinite(Y), axis=1)
+            last = int(np.argmin(done)) - 1 if not done.all() else N - 1
+            run.t_fail = float(t_eval[max(last, 0)])
         if progress is not None:
             progress(float(bounds[k + 1]) / N)
         if status != codes.OK:
@@ -119,20 +139,22 @@ def run_compiled(method: Method, model, y0, t_eval, rtol, atol, h, progress, max
         status = codes.MAXSTEPS
         run.t_fail = float(t_eval[i_end - 1])
     counters = run.counters
+    code = _CODE[status]
+    if code is SolveCode.STEP_UNDERFLOW and not run.last_trial_finite():
+        code = SolveCode.NONFINITE  # the step collapsed because every trial gave NaN/inf
     message = "ok"
-    if status != codes.OK:
-        reason = _FAIL_REASON.get(status, f"max_steps = {max_steps} exceeded")
+    if code is not SolveCode.OK:
+        reason = _FAIL_REASON.get(code, f"max_steps = {max_steps} exceeded")
         bad = ~np.all(np.isfinite(Y), axis=1)
         last = int(np.argmax(bad)) - 1 if bad.any() else N - 1
         message = (f"{method.name} failed at t = {run.t_fail:.6g}: {reason}; "
                    f"outputs valid up to t = {t_eval[max(last, 0)]:.6g}")
-        if status == codes.UNDERFLOW and run.__dict__.get("y") is not None:
+        if code is SolveCode.STEP_UNDERFLOW and run.__dict__.get("y") is not None:
             message += f" (|y| = {np.max(np.abs(run.y)):.3g}; the solution may blow up)"
     return Solution(
         t=t_eval.copy(), y=Y, method=method.name, rtol=float(rtol), atol=float(atol),
         h=None if method.adaptive else run.h_used, nfev=int(counters[0]),
-        nsteps=int(counters[1]), nreject=int(counters[2]),
-        status="ok" if status == codes.OK else "failed", message=message,
+        nsteps=int(counters[1]), nreject=int(counters[2]), code=code, message=message,
         wall_time_s=wall, compile_time_s=compile_s)
 
 
@@ -172,9 +194,9 @@ def integrate(model, y0, t_eval, method: str = "dop853", rtol: float = 1e-10,
         Before any work, if the method needs structure the model lacks.
     ValueError
         Malformed ``y0`` / ``t_eval`` / unknown method.  Numerical failures never
-        raise: they give ``status="failed"`` and a message.
+        raise: they give ``status="failed"``, a :class:`SolveCode` in ``code`` and a
+        message.
     """
-    from . import METHODS
 
     if method not in METHODS:
         raise ValueError(f"method: expected one of {sorted(METHODS)}, got {method!r}")
@@ -183,13 +205,13 @@ def integrate(model, y0, t_eval, method: str = "dop853", rtol: float = 1e-10,
     y0, t_eval = _validate(model, y0, t_eval)
     if h is not None and not (h > 0 and np.isfinite(h)):
         raise ValueError(f"h: expected a positive step, got {h}")
-    if m.peer or hasattr(m, "solve"):
+    if not m.compiled:
         return m.solve(model, y0, t_eval, rtol, atol, progress)
     if t_eval.size == 1:
         return Solution(t=t_eval.copy(), y=y0[None, :].copy(), method=method, rtol=rtol,
-                        atol=atol, h=h, nfev=0, nsteps=0, nreject=0, status="ok",
+                        atol=atol, h=h, nfev=0, nsteps=0, nreject=0, code=SolveCode.OK,
                         message="ok", wall_time_s=0.0, compile_time_s=0.0)
     return run_compiled(m, model, y0, t_eval, rtol, atol, h, progress, max_steps)
 
 
-__all__ = ["integrate", "MethodMismatch", "Solution"]
+__all__ = ["integrate", "MethodMismatch", "SolveCode", "Solution"]

@@ -127,6 +127,15 @@ class EmbeddedRun(Run):
         self.t_fail = float(self.state[0])
         return int(status)
 
+    def last_trial_finite(self) -> bool:
+        """Whether the stages of the last attempted step were finite.
+
+        ``K[1:n_stages]`` keep the stages of the last attempt, accepted or rejected, so
+        a step size that collapsed because every trial gave NaN/inf is told apart from
+        a genuine underflow with finite values.
+        """
+        return bool(np.all(np.isfinite(self.K[1:self.m.n_stages])))
+
 
 class RK45(EmbeddedRungeKutta):
     """Dormand-Prince 5(4), FSAL, 4th-order dense output (Shampine 1986), tableau as scipy."""

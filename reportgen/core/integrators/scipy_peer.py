@@ -12,7 +12,7 @@ import warnings
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from .base import Method, Solution
+from .base import Method, Solution, SolveCode
 
 EPS = np.finfo(float).eps
 SCIPY_MIN_RTOL = 100 * EPS  # solve_ivp clamps rtol below this (with a warning)
@@ -21,6 +21,7 @@ SCIPY_MIN_RTOL = 100 * EPS  # solve_ivp clamps rtol below this (with a warning)
 class ScipyMethod(Method):
     adaptive = True
     peer = True
+    compiled = False
     scipy_name: str
 
     def solve(self, model, y0, t_eval, rtol, atol, progress=None) -> Solution:
@@ -42,18 +43,20 @@ class ScipyMethod(Method):
         if n_ok:
             Y[:n_ok] = res.y.T
         finite = np.all(np.isfinite(Y[:n_ok]), axis=1)
-        status, message = "ok", "ok"
+        code, message = SolveCode.OK, "ok"
         if not res.success or n_ok < N or not finite.all():
             bad = int(np.argmin(finite)) if not finite.all() else n_ok
             Y[bad:] = np.nan
             t_last = t_eval[bad - 1] if bad > 0 else t_eval[0]
-            status = "failed"
+            # solve_ivp reports failure as prose only; what we can tell structurally is
+            # a non-finite state (ours to check) versus any other solver failure
+            code = SolveCode.SOLVER_ERROR if finite.all() else SolveCode.NONFINITE
             message = (f"{self.label} failed after t = {t_last:.6g}: "
                        f"{res.message if not res.success else 'non-finite state'}")
         if progress is not None:
             progress(1.0)
         return Solution(t=t_eval.copy(), y=Y, method=self.name, rtol=rtol_eff, atol=float(atol),
-                        h=None, nfev=int(res.nfev), nsteps=-1, nreject=-1, status=status,
+                        h=None, nfev=int(res.nfev), nsteps=-1, nreject=-1, code=code,
                         message=message, wall_time_s=wall, compile_time_s=0.0)
 
 

@@ -150,3 +150,24 @@ def oscillatory_energies(q, p, omega):
     x1 = (q[:, 1::2] - q[:, 0::2]) / math.sqrt(2.0)
     y1 = (p[:, 1::2] - p[:, 0::2]) / math.sqrt(2.0)
     return 0.5 * (y1**2 + omega**2 * x1**2)
+
+
+def scaled_adiabatic_deviation(total, omega):
+    """ω (I(t) − I(0)) / I(0), the adiabatic-invariant wobble scaled by ω.
+
+    Parameters
+    ----------
+    total : array_like, shape (N,)
+        The total oscillatory energy I = Σ_j I_j (GNI eq. I.5.3) on the output grid.
+    omega : float
+        Frequency ω of the stiff springs.
+
+    Returns
+    -------
+    ndarray, shape (N,)
+        Of order one over long times, since I(t) = I(0) + O(1/ω) (GNI §I.5.1, §XIII).
+        Divides by 1 instead of I(0) when I(0) = 0.
+    """
+    total = np.asarray(total, dtype=np.float64)
+    scale = abs(float(total[0])) or 1.0
+    return omega * (total - total[0]) / scale

@@ -71,8 +71,12 @@ def jac(t, y, params, out):
             out[n + i, j] = -a[i, j]
 
 
-def model(M: np.ndarray, A: np.ndarray, names: list[str], stiff_hint: bool = False) -> OdeModel:
-    """The OdeModel of M q̈ + A q = 0; ``names`` are the n coordinate names (columns q…, p_q…)."""
+def model(M: np.ndarray, A: np.ndarray, names: list[str], stiff_hint: bool = False,
+          omega_max: float | None = None) -> OdeModel:
+    """The OdeModel of M q̈ + A q = 0; ``names`` are the n coordinate names (columns q…, p_q…).
+
+    ``omega_max`` (the fastest normal-mode frequency) lets the solver policy pick a step
+    that resolves the fastest mode when the model is ``stiff_hint``."""
     M = np.asarray(M, dtype=np.float64)
     A = np.asarray(A, dtype=np.float64)
     n = M.shape[0]
@@ -82,7 +86,8 @@ def model(M: np.ndarray, A: np.ndarray, names: list[str], stiff_hint: bool = Fal
     columns = tuple(names) + tuple(f"p_{c}" for c in names)
     return OdeModel(name="small oscillations", columns=columns, rhs=rhs, params=params,
                     separable=Separable(n=n, drift=drift, kick=kick), jac=jac,
-                    stiff_hint=stiff_hint)
+                    stiff_hint=stiff_hint,
+                    extra={} if omega_max is None else {"omega_max": float(omega_max)})
 
 
 def energy(y: np.ndarray, M: np.ndarray, A: np.ndarray) -> np.ndarray:

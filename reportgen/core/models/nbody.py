@@ -21,6 +21,8 @@ References
 
 from __future__ import annotations
 
+import math
+
 import numba
 import numpy as np
 
@@ -144,3 +146,97 @@ def jacobi_kinetic_energy(y, masses):
 def cartesian_kinetic_energy(y, masses):
     _, vel = split(y)
     return 0.5 * np.einsum("b,nbk,nbk->n", np.asarray(masses, dtype=np.float64), vel, vel)
+
+
+def natural_scales(y0, G, masses):
+    """Natural sizes of the conserved quantities, the scales their drift is measured against.
+
+    Parameters
+    ----------
+    y0 : array_like, shape (18,)
+        Initial state (positions, then velocities, body by body).
+    G : float
+        Gravitational constant.
+    masses : array_like, shape (3,)
+
+    Returns
+    -------
+    dict
+        ``energy``: max(|E(0)|, |U(0)|) with U = Σ G m_i m_j / r_ij the size of the potential
+        energy; ``momentum_x|y|z``: max(Σ m_i |v_i(0)|, M √(G M/ℓ)) with ℓ the mean initial
+        pair distance (the circular speed at ℓ); ``angular_momentum_x|y|z``:
+        max(Σ m_i |r_i(0)| · max |v_i(0)|, M ℓ √(G M/ℓ)).
+    """
+    y0 = np.asarray(y0, dtype=np.float64)
+    m = np.asarray(masses, dtype=np.float64)
+    pos, vel = split(y0)
+    r = np.array(pair_distances(pos))[:, 0]
+    pot = G * (m[0] * m[1] / r[0] + m[0] * m[2] / r[1] + m[1] * m[2] / r[2])
+    ell = float(np.mean(r))
+    speed = math.sqrt(G * m.sum() / ell)
+    p_scale = max(float(np.sum(m * np.linalg.norm(vel[0], axis=1))), float(m.sum()) * speed)
+    l_scale = max(float(np.sum(m * np.linalg.norm(pos[0], axis=1)))
+                  * float(np.max(np.linalg.norm(vel[0], axis=1))), float(m.sum()) * ell * speed)
+    out = {"energy": max(abs(float(energy(y0, G, m)[0])), pot)}
+    out.update({f"momentum_{c}": p_scale for c in "xyz"})
+    out.update({f"angular_momentum_{c}": l_scale for c in "xyz"})
+    return out
+
+
+def osculating_orbit(r, v, K):
+    """Osculating two-body orbit in space of a relative position and velocity.
+
+    Parameters
+    ----------
+    r, v : array_like, shape (3,)
+        Relative position and velocity (e.g. Moon − Earth), in length and length/time.
+    K : float
+        G (m_a + m_b) of the pair, length³/time².
+
+    Returns
+    -------
+    dict
+        ``normal``: unit vector along h = r × v, shape (3,); ``inclination``: angle of the
+        orbit plane to the x–y plane, arccos(ĥ_z) [rad]; ``semi_major_axis``: a = −K/(2ε)
+        with ε = v²/2 − K/r (vis-viva; negative for unbound orbits); ``period``: Kepler's
+        third law 2π √(a³/K) (nan if unbound).
+
+    References
+    ----------
+    Lecture notes §3, eq. (3.31); Goldstein, *Classical Mechanics*, 3rd ed., eq. (3.71).
+    """
+    r = np.asarray(r, dtype=np.float64)
+    v = np.asarray(v, dtype=np.float64)
+    h = np.cross(r, v)
+    normal = h / np.linalg.norm(h)
+    eps = 0.5 * np.linalg.norm(v) ** 2 - K / np.linalg.norm(r)
+    a = float(-K / (2 * eps))
+    period = 2 * math.pi * math.sqrt(a**3 / K) if a > 0 else math.nan
+    return {"normal": normal, "inclination": float(math.acos(normal[2])),
+            "semi_major_axis": a, "period": period}
+
+
+def revolutions(rel, normal):
+    """Signed number of turns of a relative track about ``normal``.
+
+    Parameters
+    ----------
+    rel : array_like, shape (N, 3)
+        The relative position at successive times (sampled densely enough that the
+        angle moves by less than π between samples).
+    normal : array_like, shape (3,)
+        Unit normal of the reference plane (e.g. the initial orbit plane); the angle is
+        measured in that plane from the direction of ``rel[0]``.
+
+    Returns
+    -------
+    float
+        (φ(t_N) − φ(t_0)) / 2π with φ unwrapped; the mean sidereal period over the span
+        is then (t_N − t_0) / turns.
+    """
+    rel = np.asarray(rel, dtype=np.float64)
+    n_hat = np.asarray(normal, dtype=np.float64)
+    e1 = rel[0] / np.linalg.norm(rel[0])
+    e2 = np.cross(n_hat, e1)
+    ang = np.unwrap(np.arctan2(rel @ e2, rel @ e1))
+    return float((ang[-1] - ang[0]) / (2 * math.pi))

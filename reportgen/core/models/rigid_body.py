@@ -41,10 +41,10 @@ import math
 
 import numba
 import numpy as np
-from scipy import special
 
+from .. import special
 from ..model import OdeModel
-from ..rotations import quat_rotate
+from ..rotations import quat_rotate, quat_to_matrix
 
 COLUMNS = ("omega_1", "omega_2", "omega_3", "q_w", "q_x", "q_y", "q_z")
 
@@ -135,13 +135,6 @@ def invariants(y, moments) -> dict[str, np.ndarray]:
 
 
 # --------------------------------------------------------------- exact solution
-def _incomplete_F(phi, m):
-    """F(φ | m) for any real φ, continued quasi-periodically: F(φ + nπ) = F(φ) + 2nK(m)."""
-    n = round(phi / math.pi)
-    base = float(special.ellipkinc(phi - n * math.pi, m))
-    return base if n == 0 else base + 2.0 * n * float(special.ellipk(m))
-
-
 def _elliptic_sorted(t, w0, I):
     """Case L² > 2E·I_b with moments I = (Ia, Ib, Ic), Ib strictly between Ia and Ic.
 
@@ -165,8 +158,8 @@ def _elliptic_sorted(t, w0, I):
         return np.column_stack([np.zeros_like(t), np.zeros_like(t), np.full_like(t, w0[2])])
     cn0 = max(-1.0, min(1.0, w0[0] / A1))
     sn0 = max(-1.0, min(1.0, s2 * w0[1] / A2))
-    tau0 = _incomplete_F(math.atan2(sn0, cn0), m)
-    sn, cn, dn, _ = special.ellipj(lam * t + tau0, m)
+    tau0 = special.ellipf(math.atan2(sn0, cn0), m)
+    sn, cn, dn = special.jacobi_sn_cn_dn(lam * t + tau0, m)
     return np.column_stack([A1 * cn, s2 * A2 * sn, s3 * A3 * dn])
 
 
@@ -248,7 +241,7 @@ def elliptic_parameters(omega0, moments) -> dict:
         lam2 = (I2 - I1) * (E2 * I3 - L2) / (I1 * I2 * I3)
         m = (I3 - I2) * (L2 - E2 * I1) / ((I2 - I1) * (E2 * I3 - L2))
     lam = math.sqrt(max(lam2, 0.0))
-    K = float(special.ellipk(m)) if m < 1 else math.inf
+    K = special.ellipk(m)
     return {"branch": branch, "lambda": lam, "m": m, "twice_energy": E2, "L_squared": L2,
             "period": 4.0 * K / lam if lam > 0 else math.inf}
 
@@ -261,3 +254,225 @@ def symmetric_precession_rate(moments, omega0) -> tuple[int, float] | None:
         if abs(I[b] - I[c]) <= 1e-13 * I.max() and abs(I[s] - I[b]) > 1e-13 * I.max():
             return s, float((I[b] - I[s]) * omega0[s] / I[b])
     return None
+
+
+# ------------------------------------------------------------------ initial state
+def omega_after_impulse(omega, moments, r, P) -> np.ndarray:
+    """Body-frame ω just after an impulse P applied at the point r (exercise 4.6c).
+
+    The angular impulse about the centre of mass is ΔL = r × P, so (principal frame)
+    ω⁺ = ω + I⁻¹ (r × P), i.e. Δω_k = (r × P)_k / I_k.
+
+    Parameters
+    ----------
+    omega : array_like, shape (3,)
+        Body-frame angular velocity before the impulse [rad/s].
+    moments : array_like, shape (3,)
+        Principal moments along the body axes [kg m²].
+    r : array_like, shape (3,)
+        Point of application relative to the centre of mass, body frame [m].
+    P : array_like, shape (3,)
+        Impulse, body frame [kg m/s].
+
+    Returns
+    -------
+    ndarray, shape (3,)  [rad/s]
+    """
+    w = np.asarray(omega, dtype=float)
+    return w + np.cross(np.asarray(r, dtype=float), np.asarray(P, dtype=float)) \
+        / np.asarray(moments, dtype=float)
+
+
+# --------------------------------------------------------------------- stability
+def steady_rotation_growth_rate(moments, axis: int, spin: float) -> float:
+    """Largest real part of the eigenvalues of the ω-block of the Jacobian of Euler's
+    equations (10.5) at steady rotation ``spin`` e_axis [1/s].
+
+    An independent (numerical) check of the closed-form rates (10.12)–(10.14) of
+    :func:`reportgen.core.inertia.axis_stability`: Ω√((I2−I1)(I3−I2)/(I1 I3)) about the
+    intermediate axis, 0 (purely imaginary eigenvalues) about the others.
+    """
+    y = np.zeros(7)
+    y[axis] = spin
+    y[3] = 1.0
+    J = model(*np.asarray(moments, dtype=float)).jacobian(0.0, y)[:3, :3]
+    return float(np.max(np.linalg.eigvals(J).real))
+
+
+def growth_envelope(t, perturbation0: float, growth_rate: float) -> np.ndarray:
+    """Linear growth δ(t) = δ0 e^{γt} of a perturbation about the intermediate axis (10.14),
+    shape (N,) like ``t`` [rad/s]."""
+    return perturbation0 * np.exp(growth_rate * np.asarray(t))
+
+
+def flip_analysis(t, omega, axis: int, growth_rate: float, half_period_exact: float) -> dict:
+    """Zero crossings of the intermediate component ω_b(t): the Dzhanibekov flips.
+
+    Crossing times are located by linear interpolation between samples; their mean
+    spacing is compared with half the elliptic period, 2K(m)/λ.
+
+    Parameters
+    ----------
+    t : ndarray, shape (N,)  [s]
+    omega : ndarray, shape (N, 3)  body-frame ω [rad/s]
+    axis : int
+        Index (0-based) of the intermediate axis b.
+    growth_rate : float
+        γ of (10.14) [1/s].
+    half_period_exact : float
+        2K(m)/λ [s] (NaN when not known).
+
+    Returns
+    -------
+    dict
+        ``axis`` (1-based), ``flip_times`` (K,), ``half_period_measured`` (NaN for
+        fewer than two flips), ``half_period_exact``, ``growth_rate``,
+        ``perturbation_initial`` = |ω⊥(0)| (the components off the axis) and
+        ``growth_envelope`` = |ω⊥(0)| e^{γt}, shape (N,).
+    """
+    wb = omega[:, axis]
+    idx = np.nonzero(np.sign(wb[1:]) != np.sign(wb[:-1]))[0]
+    times = t[idx] - wb[idx] * (t[idx + 1] - t[idx]) / (wb[idx + 1] - wb[idx])
+    measured = float(np.mean(np.diff(times))) if times.size >= 2 else math.nan
+    others = [i for i in range(3) if i != axis]
+    perp0 = float(np.linalg.norm(omega[0, others]))
+    return {"axis": axis + 1, "flip_times": times if times.size else np.zeros(0),
+            "half_period_measured": measured, "half_period_exact": half_period_exact,
+            "growth_rate": growth_rate, "perturbation_initial": perp0,
+            "growth_envelope": growth_envelope(t, perp0, growth_rate)}
+
+
+def symmetric_precession_analysis(t, omega, moments, axis: int, Omega: float) -> dict:
+    """Measured body-frame precession of a symmetric body against (10.10).
+
+    The phase of ω⊥ = ω_b + i ω_c turns at −Ω; its measured rate is minus the slope of
+    a straight-line fit to the unwrapped phase (NaN when |ω⊥| is zero to 1e-8 of ω_s).
+    Seen from space the figure axis precesses about L at |L|/I⊥.
+
+    Parameters
+    ----------
+    t : ndarray, shape (N,)  [s]
+    omega : ndarray, shape (N, 3)  body-frame ω [rad/s]
+    moments : array_like, shape (3,)  [kg m²]
+    axis : int
+        0-based symmetry axis s (the odd moment).
+    Omega : float
+        Ω = (I⊥ − I_s) ω_s / I⊥ [rad/s] (10.10).
+
+    Returns
+    -------
+    dict: ``axis`` (1-based), ``Omega``, ``Omega_measured``, ``omega_perp`` [rad/s],
+    ``space_precession_rate`` = |L|/I⊥ [rad/s].
+    """
+    b, c = (axis + 1) % 3, (axis + 2) % 3
+    angle = np.unwrap(np.arctan2(omega[:, c], omega[:, b]))
+    perp = float(np.hypot(omega[0, b], omega[0, c]))
+    measured = float(-np.polyfit(t, angle, 1)[0]) if perp > 1e-8 * abs(omega[0, axis]) \
+        else math.nan
+    I = np.asarray(moments, dtype=float)
+    return {"axis": axis + 1, "Omega": Omega, "Omega_measured": measured,
+            "omega_perp": perp,
+            "space_precession_rate": float(np.linalg.norm(I * omega[0]) / I[b])}
+
+
+# ----------------------------------------------------------- Poinsot geometry
+def polhode_family(moments, n_curves: int = 5, n_points: int = 400) -> np.ndarray:
+    """Polhodes of unit angular momentum: curves l·l = 1, Σ l_k²/I_k = e on the unit L-sphere
+    (body frame), for energies e spread between each extreme axis and the separatrix.
+
+    For curves about axis a (smallest or largest moment), with (b, c) the others::
+
+        l_b = ρ cos φ,  l_c = ρ sin φ,  l_a = ±√(1 − ρ²),
+        ρ² = (1/I_a − e) / (1/I_a − cos²φ/I_b − sin²φ/I_c)
+
+    (Landau & Lifshitz §37, Fig. 52).  ``n_curves`` energies per axis, both signs of l_a.
+    Curves that are not defined (degenerate moments: 0/0) are left out.
+
+    Returns
+    -------
+    ndarray, shape (K, n_points, 3)
+        K ≤ 4 n_curves closed curves of unit vectors L/|L|; K = 0 for a spherical top.
+    """
+    I = np.asarray(moments, dtype=float)
+    order = np.argsort(I)
+    phi = np.linspace(0.0, 2 * np.pi, n_points)
+    curves = []
+    with np.errstate(invalid="ignore", divide="ignore"):
+        inv = 1.0 / I
+        e_sep = inv[order[1]]
+        for a, e_axis in ((order[0], inv[order[0]]), (order[2], inv[order[2]])):
+            b, c = [k for k in range(3) if k != a]
+            for f in np.linspace(0.0, 1.0, n_curves + 2)[1:-1]:
+                e = e_axis + f * (e_sep - e_axis)
+                rho2 = (inv[a] - e) / (inv[a] - np.cos(phi) ** 2 * inv[b]
+                                       - np.sin(phi) ** 2 * inv[c])
+                rho2 = np.clip(rho2, 0.0, 1.0)
+                for sign in (1.0, -1.0):
+                    pts = np.empty((phi.size, 3))
+                    pts[:, a] = sign * np.sqrt(1.0 - rho2)
+                    pts[:, b] = np.sqrt(rho2) * np.cos(phi)
+                    pts[:, c] = np.sqrt(rho2) * np.sin(phi)
+                    if np.all(np.isfinite(pts)):
+                        curves.append(pts)
+    return np.array(curves) if curves else np.zeros((0, n_points, 3))
+
+
+def polhode_separatrices(moments, n_points: int = 400) -> np.ndarray:
+    """The two separatrices 2E = L²/I2 on the unit L-sphere: great circles through the
+    intermediate axis, in the planes l_s √(1/I_s − 1/I_m) = ± l_l √(1/I_m − 1/I_l)
+    (s, m, l: smallest, intermediate, largest moment).
+
+    Returns
+    -------
+    ndarray, shape (2, n_points, 3), or (0, n_points, 3) unless the three moments are
+    distinct (to 12 digits): a symmetric body has no separatrix.
+    """
+    I = np.asarray(moments, dtype=float)
+    phi = np.linspace(0.0, 2 * np.pi, n_points)
+    if len(set(np.round(I / np.max(I), 12))) != 3:
+        return np.zeros((0, n_points, 3))
+    s, m, l = np.argsort(I)
+    inv = 1.0 / I
+    u, v = np.sqrt(inv[s] - inv[m]), np.sqrt(inv[m] - inv[l])
+    out = []
+    for sign in (1.0, -1.0):
+        n = np.zeros(3)
+        n[s], n[l] = v, sign * u  # direction in the (s, l) plane lying on the separatrix plane
+        n /= np.linalg.norm(n)
+        e2 = np.zeros(3)
+        e2[m] = 1.0
+        out.append(np.outer(np.cos(phi), n) + np.outer(np.sin(phi), e2))
+    return np.array(out)
+
+
+def polhode_track(omega, moments) -> np.ndarray:
+    """The polhode of a trajectory: body-frame L/|L| = Iω/|Iω|, shape (N, 3)."""
+    L = np.asarray(omega, dtype=float) * np.asarray(moments, dtype=float)
+    return L / np.linalg.norm(L, axis=1, keepdims=True)
+
+
+def herpolhode(omega, quat, moments) -> dict:
+    """The herpolhode: the tip of the space-frame ω on the invariable plane (Poinsot).
+
+    The plane is perpendicular to the (conserved) space-frame L, taken at the first
+    sample; (e1, e2) is an orthonormal basis of it.  ω·L/|L| = 2T/|L| is constant.
+
+    Parameters
+    ----------
+    omega : ndarray, shape (N, 3)  body-frame ω [rad/s]
+    quat : ndarray, shape (N, 4)  attitude quaternions (body -> space)
+    moments : array_like, shape (3,)  [kg m²]
+
+    Returns
+    -------
+    dict: ``x``, ``y`` (N,) = ω·e1, ω·e2 [rad/s]; ``along_L`` (N,) = ω·L/|L| [rad/s].
+    """
+    I = np.asarray(moments, dtype=float)
+    R = quat_to_matrix(quat)
+    w_space = np.einsum("nij,nj->ni", R, omega)
+    L = np.einsum("nij,nj->ni", R, omega * I)[0]
+    n = L / np.linalg.norm(L)
+    e1 = np.cross(n, [1.0, 0.0, 0.0] if abs(n[0]) < 0.9 else [0.0, 1.0, 0.0])
+    e1 /= np.linalg.norm(e1)
+    e2 = np.cross(n, e1)
+    return {"x": w_space @ e1, "y": w_space @ e2, "along_L": w_space @ n}

@@ -140,3 +140,54 @@ def coordinate_bounds(E, C, mu, a):
     else:
         out["family"] = "satellite"
     return out
+
+
+def coordinate_ellipse(xi, a, samples=400):
+    """The coordinate line ξ = const (ξ > 1): the ellipse with foci at (±a, 0).
+
+    x = a ξ cos θ, y = a √(ξ² − 1) sin θ for θ in [0, 2π] (from x = a ξ η,
+    y = a √((ξ² − 1)(1 − η²)) with η = cos θ).
+
+    Parameters
+    ----------
+    xi : float
+        Elliptic coordinate ξ = (r1 + r2)/2a ≥ 1 of the line.
+    a : float
+        Half the distance between the centres [m].
+    samples : int
+        Number of points on the closed curve.
+
+    Returns
+    -------
+    x, y : ndarray, shape (samples,)
+        Points of the ellipse [m], the first equal to the last.
+    """
+    th = np.linspace(0.0, 2 * np.pi, samples)
+    return a * xi * np.cos(th), a * np.sqrt(xi**2 - 1) * np.sin(th)
+
+
+def coordinate_hyperbola(eta, a, xi_max, sign=1.0, samples=300):
+    """One branch of the coordinate line η = const: a hyperbola with foci at (±a, 0).
+
+    x = a ξ η, y = ±a √((ξ² − 1)(1 − η²)) for ξ from 1 (on the x-axis) to ``xi_max``.
+
+    Parameters
+    ----------
+    eta : float
+        Elliptic coordinate η = (r1 − r2)/2a in [−1, 1] of the line.
+    a : float
+        Half the distance between the centres [m].
+    xi_max : float
+        ξ of the ellipse where the branch is cut off.
+    sign : float
+        +1.0 for the branch in y ≥ 0, −1.0 for its mirror image in y ≤ 0.
+    samples : int
+        Number of points on the branch.
+
+    Returns
+    -------
+    x, y : ndarray, shape (samples,)
+        Points of the branch [m].
+    """
+    xi = np.linspace(1.0, xi_max, samples)
+    return a * xi * eta, sign * a * np.sqrt((xi**2 - 1) * (1 - eta**2))

@@ -2,7 +2,8 @@
 
 Checks applied to every integrated run:
 
-* the integrator's own status (non-finite state, step-size collapse, step limit);
+* the solver policy's status (``solver_status``: non-finite state, step limit,
+  other failure, stiffness of a named explicit method);
 * non-finite values anywhere in the stored state;
 * drift of every conserved quantity beyond a bound tied to the tolerance asked for;
 * signs of stiffness in an explicit adaptive run: many rejected steps, or a step
@@ -17,6 +18,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
+
+from .base import RunStatus, SolveCode
 
 #: relative invariant drift allowed per unit of requested rtol, and its floor
 DRIFT_PER_RTOL = 1e4
@@ -65,21 +68,23 @@ def _fd_jacobian(model, t, y):
     return jac
 
 
-def stiffness_signs(attrs: dict, explicit_adaptive: bool, model=None, t=None, y=None) -> str | None:
+def stiffness_signs(sol, explicit_adaptive: bool, model=None) -> str | None:
     """Why an explicit adaptive run looks stiff, or None.
 
-    Signs: the step budget ran out; the mean step sits at the stability bound
-    (:func:`stiffness_ratio` > ``STIFF_H_RHO``); or the controller keeps proposing
-    steps that get rejected.
+    ``sol`` is the run's :class:`~reportgen.core.integrators.Solution`.  Signs: the
+    integrator gave up with finite values (its ``code`` is a step budget used up or a
+    step-size underflow); the mean step sits at the stability bound
+    (:func:`stiffness_ratio` > ``STIFF_H_RHO``, needs ``model``); or the controller
+    keeps proposing steps that get rejected.
     """
+
     if not explicit_adaptive:
         return None
-    steps, rejected = int(attrs.get("nsteps", 0)), int(attrs.get("nreject", 0))
-    message = str(attrs.get("message", ""))
-    if attrs.get("status") == "failed" and ("max_steps" in message or "step size" in message):
-        return f"explicit method gave up ({message})"
+    steps, rejected = int(sol.nsteps), int(sol.nreject)
+    if sol.code in (SolveCode.MAX_STEPS, SolveCode.STEP_UNDERFLOW):
+        return f"explicit method gave up ({sol.message})"
     if model is not None and steps >= STIFF_MIN_STEPS:
-        ratio = stiffness_ratio(model, t, y, steps)
+        ratio = stiffness_ratio(model, sol.t, sol.y, steps)
         if ratio > STIFF_H_RHO:
             return (f"mean step × largest decay rate of the Jacobian = {ratio:.1f}: the step "
                     f"is limited by stability, not accuracy")
@@ -111,10 +116,15 @@ def drift_bound(rtol: float, fixed_step: bool) -> float:
 def assess_run(record, rtol: float, scales: dict[str, float] | None = None) -> None:
     """Set ``record.attrs['status']``/``['message']`` from the checks above (in place).
 
-    Also stores ``drift_<name>`` attrs, the relative drift of each invariant.
+    The starting verdict is the solver policy's (``attrs['solver_status']``, a
+    :class:`~reportgen.core.integrators.RunStatus` value: ok/switched -> "ok",
+    stiff -> "unstable", a failure -> "failed"), else ``attrs['status']``.  Also
+    stores ``drift_<name>`` attrs, the relative drift of each invariant.
     """
+
     attrs = record.attrs
-    status = attrs.get("status", "ok")
+    solver = attrs.get("solver_status")
+    status = RunStatus(solver).verdict if solver else attrs.get("status", "ok")
     messages = [attrs["message"]] if attrs.get("message") else []
     if status == "ok" and not np.all(np.isfinite(record.y)):
         status = "failed"

@@ -1,0 +1,122 @@
+"""Low-level HDF5 encoding shared by the scene archive and the audit archive.
+
+Arrays carry the fletcher32 checksum (a corrupted chunk raises on read instead of
+returning wrong numbers) and shuffle + gzip; strings are UTF-8; structured arrays
+become compound tables; nested dicts become groups.
+"""
+
+from __future__ import annotations
+
+import platform
+import sys
+from typing import Any
+
+import h5py
+import numpy as np
+
+STR = h5py.string_dtype("utf-8")
+
+
+class ArchiveError(Exception):
+    """An archive that cannot be read: names the file and what is wrong."""
+
+
+def provenance() -> dict[str, str]:
+    import matplotlib
+    import numba
+    import scipy
+
+    return {
+        "python": sys.version.split()[0],
+        "numpy": np.__version__,
+        "scipy": scipy.__version__,
+        "h5py": h5py.__version__,
+        "hdf5": h5py.version.hdf5_version,
+        "matplotlib": matplotlib.__version__,
+        "numba": numba.__version__,
+        "platform": platform.platform(),
+    }
+
+
+def dataset(group: h5py.Group, name: str, data) -> h5py.Dataset:
+    data = np.asarray(data)
+    if data.dtype.kind in "US":
+        data = data.astype(object)
+    if data.dtype == object:
+        return group.create_dataset(name, data=data, dtype=STR)
+    if data.ndim == 0 or data.size == 0:
+        return group.create_dataset(name, data=data)
+    return group.create_dataset(
+        name, data=data, chunks=True, fletcher32=True, shuffle=True, compression="gzip",
+        compression_opts=4,
+    )
+
+
+def attr_value(value):
+    if isinstance(value, str):
+        return value
+    if isinstance(value, (bool, np.bool_)):
+        return np.bool_(value)
+    if isinstance(value, (list, tuple)) and value and all(isinstance(v, str) for v in value):
+        return np.array(value, dtype=STR)
+    return value
+
+
+def write_mapping(group: h5py.Group, mapping: dict[str, Any]) -> None:
+    """Scalars and strings become attrs, arrays datasets, dicts subgroups."""
+    for key, value in mapping.items():
+        if isinstance(value, dict):
+            write_mapping(group.create_group(key), value)
+        elif isinstance(value, np.ndarray) or (
+            isinstance(value, (list, tuple)) and not all(isinstance(v, str) for v in value)
+        ):
+            dataset(group, key, value)
+        else:
+            group.attrs[key] = attr_value(value)
+
+
+def table(group: h5py.Group, name: str, records: np.ndarray) -> h5py.Dataset:
+    """A structured array as a compound dataset; string fields become UTF-8 strings."""
+    fields = []
+    for fname in records.dtype.names:
+        kind = records.dtype[fname].kind
+        fields.append((fname, STR if kind in "OUS" else records.dtype[fname]))
+    dtype = np.dtype(fields)
+    out = np.empty(records.shape, dtype=dtype)
+    for fname in records.dtype.names:
+        col = records[fname]
+        out[fname] = col.astype(str).astype(object) if col.dtype.kind in "OUS" else col
+    return group.create_dataset(name, data=out, chunks=True if out.size else None,
+                                fletcher32=bool(out.size))
+
+
+def decode(value):
+    if isinstance(value, bytes):
+        return value.decode("utf-8")
+    if isinstance(value, np.ndarray) and value.dtype == object:
+        return [decode(v) for v in value.tolist()]
+    if isinstance(value, np.generic):
+        return value.item()
+    return value
+
+
+def read_mapping(group: h5py.Group) -> dict[str, Any]:
+    out: dict[str, Any] = {k: decode(v) for k, v in group.attrs.items()}
+    for key, item in group.items():
+        if isinstance(item, h5py.Group):
+            out[key] = read_mapping(item)
+        elif item.dtype.kind == "O":
+            out[key] = decode(item[()])
+        else:
+            out[key] = item[()]
+    return out
+
+
+def read_table(ds: h5py.Dataset) -> np.ndarray:
+    raw = ds[()]
+    fields = [(n, object if raw.dtype[n].kind in "OS" else raw.dtype[n]) for n in raw.dtype.names]
+    out = np.empty(raw.shape, dtype=fields)
+    for n in raw.dtype.names:
+        col = raw[n]
+        out[n] = [decode(v) for v in col] if raw.dtype[n].kind in "OS" else col
+    return out

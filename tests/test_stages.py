@@ -1,0 +1,116 @@
+"""The staged pipeline: simulate -> figures -> report -> index, each run only when its
+inputs changed (content keys), and the index as a gallery of the whole output folder."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import h5py
+import numpy as np
+import pytest
+
+from conftest import pendulum_text
+from reportgen.archive import ArchiveError, read_archive, summarize
+from reportgen.pipeline import run_scene
+
+FIXTURE = Path(__file__).resolve().parent / "data" / "archive_v1_pendulum.h5"
+
+
+def _arrays(path: Path) -> dict[str, bytes]:
+    out = {}
+
+    def visit(name, obj):
+        if isinstance(obj, h5py.Dataset) and name.startswith("runs/"):
+            out[name] = obj[()].tobytes() if obj.dtype.kind != "O" else repr(obj[()]).encode()
+
+    with h5py.File(path, "r") as f:
+        f.visititems(visit)
+    return out
+
+
+def test_title_edit_rerenders_without_simulating(write_config, tmp_path):
+    path = write_config("pend", pendulum_text(title="First title"))
+    out = tmp_path / "out"
+    first = run_scene(str(path), str(out), formats=("html",))
+    assert first.ok and first.stages == ["simulate", "report"], first
+    archive = out / "pend" / "run.h5"
+    before = _arrays(archive)
+    figures_before = {p.name: p.stat().st_mtime_ns for p in (out / "pend" / "figures").iterdir()}
+
+    again = run_scene(str(path), str(out), formats=("html",))
+    assert again.stages == [] and again.skipped
+
+    path.write_text(pendulum_text(title="A new title"))
+    edited = run_scene(str(path), str(out), formats=("html",))
+    assert edited.stages == ["restamp", "report"], edited
+    assert _arrays(archive) == before  # trajectory bytes unchanged
+    data = read_archive(archive)
+    assert data.title == "A new title" and "A new title" in data.config_text
+    html = (out / "pend" / "report.html").read_text(encoding="utf-8")
+    assert "A new title" in html and "First title" not in html
+    # the figures stage's key did not change: no figure was redrawn
+    assert {p.name: p.stat().st_mtime_ns
+            for p in (out / "pend" / "figures").iterdir()} == figures_before
+
+
+def test_physics_edit_resimulates_and_force_reruns(write_config, tmp_path):
+    path = write_config("pend", pendulum_text(t_end=10.0))
+    out = tmp_path / "out"
+    run_scene(str(path), str(out), formats=("html",))
+    key = read_archive(out / "pend" / "run.h5").attrs["physics_key"]
+    path.write_text(pendulum_text(t_end=11.0))
+    edited = run_scene(str(path), str(out), formats=("html",))
+    assert "simulate" in edited.stages
+    assert read_archive(out / "pend" / "run.h5").attrs["physics_key"] != key
+    forced = run_scene(str(path), str(out), force=True, formats=("html",))
+    assert forced.stages == ["simulate", "report"]
+
+
+def test_report_section_edit_redraws_without_simulating(write_config, tmp_path):
+    path = write_config("pend", pendulum_text())
+    out = tmp_path / "out"
+    run_scene(str(path), str(out), formats=("html",))
+    path.write_text(pendulum_text(extra='\n[report]\nsections = ["phase_portrait"]\n'))
+    edited = run_scene(str(path), str(out), formats=("html",))
+    assert edited.stages == ["restamp", "report"], edited
+    html = (out / "pend" / "report.html").read_text(encoding="utf-8")
+    assert 'id="phase_portrait"' in html and 'id="time_series"' not in html
+
+
+def test_index_is_a_gallery_of_the_whole_folder(write_config, tmp_path, cli):
+    out = tmp_path / "out"
+    a = write_config("first", pendulum_text(theta=0.5))
+    b = write_config("second", pendulum_text(theta=1.5))
+    assert cli("run", a, "--out", out, "--jobs", "1", "--format", "html")[0] == 0
+    assert cli("run", b, "--out", out, "--jobs", "1", "--format", "html")[0] == 0
+    index = (out / "index.html").read_text(encoding="utf-8")
+    for name in ("first", "second"):
+        assert f'id="scene-{name}"' in index
+        assert f'href="{name}/report.html"' in index and f'href="{name}/run.h5"' in index
+        assert f'src="{name}/figures/' in index  # thumbnail of the first figure
+    assert "rel. error" in index and "pendulum" in index
+    assert not list(out.glob(".index.html.*"))
+
+
+def test_fixture_archive_of_format_1_still_opens(tmp_path, cli):
+    data = read_archive(FIXTURE)
+    assert data.format_version == 1 and data.kind == "pendulum"
+    run = data.runs["main"]
+    assert run.columns == ["theta", "theta_dot"] and run.y.shape == (101, 2)
+    # the stored run is the pendulum released at theta0 = 1 rad from rest
+    assert run.y[0, 0] == 1.0 and np.all(np.abs(run.y[:, 0]) <= 1.0 + 1e-9)
+    assert "theta_max_error" in data.analysis
+    assert "kind      pendulum" in summarize(FIXTURE)
+    code, _, err = cli("report", FIXTURE)
+    assert code == 2 and "format_version 1" in err and "reportgen run" in err
+
+
+def test_unreadable_newer_format_is_named(tmp_path):
+    path = tmp_path / "new.h5"
+    with h5py.File(FIXTURE, "r") as src, h5py.File(path, "w") as dst:
+        for key in src:
+            src.copy(key, dst)
+        dst.attrs.update(dict(src.attrs))
+        dst.attrs["format_version"] = 99
+    with pytest.raises(ArchiveError, match="newer reportgen"):
+        read_archive(path)
