@@ -114,3 +114,26 @@ def test_unreadable_newer_format_is_named(tmp_path):
         dst.attrs["format_version"] = 99
     with pytest.raises(ArchiveError, match="newer reportgen"):
         read_archive(path)
+
+
+def test_physics_key_covers_what_simulate_computes_and_nothing_else():
+    """Title and section order do not change the simulate key; asking for a section whose
+    data is computed only on request (the study, rigid_body's geometric integrator) does."""
+    from reportgen.config import parse_config_text
+    from reportgen.scenes import load_scene
+
+    def key(title="A body", t_end=10.0, sections=None):
+        text = (f'kind = "rigid_body"\ntitle = "{title}"\n[params]\nI1 = 1.0\nI2 = 2.0\n'
+                f'I3 = 3.0\n[initial]\nomega = [0.1, 1.0, 0.1]\n[run]\nt_end = {t_end}\n')
+        if sections is not None:
+            text += f"[report]\nsections = {sections!r}\n".replace("'", '"')
+        return load_scene(parse_config_text(text)).physics_key()
+
+    plain = key()
+    assert key(title="Another title") == plain
+    assert key(t_end=11.0) != plain
+    few = ["polhodes", "invariants"]
+    assert key(sections=few) != plain  # neither the study nor the splitting run is wanted
+    assert key(sections=["invariants"]) == key(sections=few)
+    assert key(sections=[*few, "geometric_integrator"]) != key(sections=few)
+    assert key(sections=[*few, "error_vs_runtime"]) != key(sections=few)

@@ -179,6 +179,9 @@ class Scene:
     default_section_names: ClassVar[tuple[str, ...] | None] = None
     #: position in ``reportgen kinds`` and the docs (the SPEC's order)
     order: ClassVar[int] = 100
+    #: sections whose data ``simulate`` computes only when the report shows them (costly
+    #: work, promise 3); which of them are wanted is part of the simulate key
+    computed_on_request: ClassVar[tuple[str, ...]] = ("error_vs_runtime",)
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
@@ -246,24 +249,31 @@ class Scene:
         """The validated config with presets and defaults filled in (JSON types)."""
         return self.config.model_dump(mode="json")
 
+    def wants_section(self, name: str) -> bool:
+        """Whether the report will show section ``name`` (the configured list, else all the
+        kind's sections)."""
+        asked = self.config.report.sections
+        return any(s.name == name for s in self.sections) and (asked is None or name in asked)
+
+    def computes(self, name: str) -> bool:
+        """Whether ``simulate`` computes the data of the on-request section ``name``."""
+        return self.wants_study() if name == "error_vs_runtime" else self.wants_section(name)
+
     def wants_study(self) -> bool:
         """Whether this run computes the error-against-run-time study (promise 3: not if
         the report will not show it)."""
         run = self.config.run
-        if run is None or not run.study:
-            return False
-        if not any(s.name == "error_vs_runtime" for s in self.sections):
-            return False
-        asked = self.config.report.sections
-        return asked is None or "error_vs_runtime" in asked
+        return run is not None and run.study and self.wants_section("error_vs_runtime")
 
     def physics_key(self) -> str:
         """Content key of the simulate stage: the validated, preset-resolved physics and the
         reportgen version.  Title, ``[report]`` and the preset's name are not in it; whether
-        the study is wanted is (it is computed only then)."""
+        the study and the other ``computed_on_request`` sections are wanted is (they are
+        computed only then)."""
         physics = {k: v for k, v in self.resolved_config().items()
                    if k not in PRESENTATION_KEYS}
-        blob = json.dumps({"physics": physics, "study": self.wants_study(),
+        computed = sorted(name for name in self.computed_on_request if self.computes(name))
+        blob = json.dumps({"physics": physics, "computed": computed,
                            "reportgen": __version__}, sort_keys=True, separators=(",", ":"))
         return hashlib.sha256(blob.encode("utf-8")).hexdigest()
 

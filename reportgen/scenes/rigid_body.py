@@ -136,6 +136,7 @@ def body_moments(config: RigidBodyConfig) -> np.ndarray:
 class RigidBodyScene(Scene):
     kind = "rigid_body"
     order = 60
+    computed_on_request = ("error_vs_runtime", "geometric_integrator")
     summary = "torque-free rigid body: Euler's equations, attitude, polhodes, axis stability"
     Config = RigidBodyConfig
     presets = {
@@ -252,8 +253,7 @@ class RigidBodyScene(Scene):
     # -------------------------------------------------------------- simulation
     def wants_splitting(self) -> bool:
         """Whether the report will show the splitting integrator (only then is it run)."""
-        asked = self.config.report.sections
-        return asked is None or "geometric_integrator" in asked
+        return self.wants_section("geometric_integrator")
 
     def models(self) -> list:
         """The Euler–quaternion model (the splitting run is the scene's own method)."""
