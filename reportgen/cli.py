@@ -7,10 +7,12 @@ Exit status: 0 all scenes ok; 1 some scene failed or was flagged unstable;
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from pathlib import Path
 
 from . import __version__
+from .cache import NO_CACHE_ENV, PeerCache
 from .config import FORMATS, ConfigError
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
@@ -63,6 +65,8 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--format", type=_formats, default=None, metavar="html,pdf",
                      help="report formats (default: the config's [report] formats)")
     run.add_argument("--force", action="store_true", help="re-run scenes whose archive is current")
+    run.add_argument("--no-cache", action="store_true",
+                     help="measure scipy peers again instead of using the user cache")
     run.add_argument("--scheduler", default=None, metavar="ADDR",
                      help="Dask distributed scheduler address (needs the 'dask' extra)")
     run.add_argument("--time-limit", type=_seconds, default=None, metavar="SECONDS",
@@ -84,6 +88,9 @@ def build_parser() -> argparse.ArgumentParser:
     audit.add_argument("paths", nargs="*", metavar="PATH")
     audit.add_argument("--out", default="output/audit", metavar="DIR")
     audit.add_argument("--format", type=_formats, default=FORMATS, metavar="html,pdf")
+
+    cache = sub.add_parser("cache", help="the user cache of peer (scipy) measurements")
+    cache.add_argument("action", choices=("info", "clear"))
 
     bench = sub.add_parser("bench", help="error against run time, against peer solvers")
     bench.add_argument("paths", nargs="*", metavar="PATH")
@@ -110,6 +117,9 @@ def _usage(message: str) -> int:
 
 def cmd_run(args) -> int:
     from .pipeline import UsageError, batch_status, run_batch
+
+    if args.no_cache:
+        os.environ[NO_CACHE_ENV] = "1"  # inherited by the scene processes
 
     try:
         outcomes = run_batch(args.paths, out_root=args.out, jobs=args.jobs, formats=args.format,
@@ -176,6 +186,8 @@ def cmd_bench(args) -> int:
     from .bench import run_bench
     from .pipeline import UsageError
 
+    os.environ[NO_CACHE_ENV] = "1"  # peers measured in the same run as ours
+
     try:
         return run_bench(args.paths)
     except UsageError as exc:
@@ -192,7 +204,17 @@ def cmd_audit(args) -> int:
         return _usage(str(exc))
 
 
+def cmd_cache(args) -> int:
+    cache = PeerCache()
+    if args.action == "clear":
+        print(f"removed {cache.clear()} entries from {cache.root}")
+    else:
+        print(cache.info())
+    return EXIT_OK
+
+
 COMMANDS = {
+    "cache": cmd_cache,
     "audit": cmd_audit,
     "run": cmd_run,
     "report": cmd_report,

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+import tempfile
 import textwrap
 from pathlib import Path
 
@@ -10,6 +12,11 @@ import pytest
 from reportgen.cli import main
 
 REPO = Path(__file__).resolve().parent.parent
+
+# The peer-measurement cache of the test session lives in a temporary folder, never in
+# the user's ~/.cache (subprocesses started by tests inherit it).
+os.environ["XDG_CACHE_HOME"] = tempfile.mkdtemp(prefix="reportgen-test-cache-")
+os.environ.pop("REPORTGEN_NO_CACHE", None)
 
 
 @pytest.fixture

@@ -22,10 +22,17 @@ solvers are not used as references because they clamp rtol >= 100 eps.
 from __future__ import annotations
 
 import functools
+import hashlib
+import json
 import math
+import os
+import platform
 from dataclasses import dataclass, field
+from datetime import UTC, datetime
+from typing import Protocol
 
 import numpy as np
+import scipy
 
 from .integrators import METHODS, integrate
 
@@ -40,7 +47,38 @@ _RECORD_DTYPE = np.dtype([
     ("method", "S24"), ("label", "S48"), ("kind", "S8"), ("tolerance", "f8"), ("h", "f8"),
     ("error_final", "f8"), ("error_max", "f8"), ("wall_time_s", "f8"), ("nfev", "i8"),
     ("compile_time_s", "f8"), ("status", "S8"), ("repeats", "i4"),
+    ("measured_at", "S20"), ("machine", "S96"), ("cached", "?"),
 ])
+#: bump when a peer row's meaning changes (invalidates cached peer measurements)
+PEER_ROWS_FORMAT = 1
+
+
+class RowCache(Protocol):
+    """Where measured peer rows are kept between runs (e.g. :class:`reportgen.cache.PeerCache`)."""
+
+    def get(self, key: str) -> list[dict] | None: ...
+
+    def put(self, key: str, rows: list[dict]) -> None: ...
+
+
+def machine() -> str:
+    """What a measurement was taken on (host, processor, cores)."""
+    return (f"{platform.node() or 'unknown host'} ({platform.machine()}, "
+            f"{os.cpu_count() or '?'} cores)")[:96]
+
+
+def peer_key(method: str, model, y0, t_eval, grid, y_ref) -> str:
+    """The problem a peer's rows measure: model (name, columns, parameters), initial state,
+    output grid, tolerance ladder, reference, the study's rules and library versions."""
+    h = hashlib.sha256()
+    h.update(json.dumps({"method": method, "model": model.name, "columns": list(model.columns),
+                         "grid": [list(g) for g in grid], "time_cap": TIME_CAP_S,
+                         "repeat_below": REPEAT_BELOW_S, "format": PEER_ROWS_FORMAT,
+                         "scipy": scipy.__version__, "numpy": np.__version__},
+                        sort_keys=True).encode("utf-8"))
+    for array in (np.asarray(model.params, dtype=np.float64), y0, t_eval, y_ref):
+        h.update(np.ascontiguousarray(array, dtype=np.float64).tobytes())
+    return h.hexdigest()
 
 
 @dataclass
@@ -120,7 +158,8 @@ def default_steps(model, y0, t_eval) -> np.ndarray:
 
 
 def work_precision(model, y0, t_eval, reference=None, methods=None, tolerances=None,
-                   steps=None, repeats=3, progress=None) -> StudyResult:
+                   steps=None, repeats=3, progress=None,
+                   cache: RowCache | None = None) -> StudyResult:
     """Run the work-precision sweep.
 
     Parameters
@@ -139,6 +178,10 @@ def work_precision(model, y0, t_eval, reference=None, methods=None, tolerances=N
         Steps of fixed-step methods, largest first; default :func:`default_steps`.
     repeats : int
         Timed runs after the warm-up (a warm-up slower than 0.1 s is the only run).
+    cache : RowCache or None
+        Peer (scipy) rows are taken from it when it holds this problem (``cached`` is
+        then true and ``measured_at`` / ``machine`` say where they come from) and stored
+        in it after measuring.  Our own methods are always measured.
 
     A method's sweep stops at the first run slower than ``TIME_CAP_S`` or failing, and
     a fixed-step sweep once its error stalls at the round-off floor.
@@ -167,6 +210,8 @@ def work_precision(model, y0, t_eval, reference=None, methods=None, tolerances=N
                           f"(gauss6 h={ref_gauss.h:.3g} for dop853 rows)")
 
     rows: list[dict] = []
+    stamp = {"measured_at": datetime.now(UTC).strftime("%Y-%m-%dT%H:%M:%SZ"),
+             "machine": machine(), "cached": False}
     for k, name in enumerate(methods):
         m = METHODS[name]
         y_ref = refs.get(name, refs["default"])
@@ -175,31 +220,47 @@ def work_precision(model, y0, t_eval, reference=None, methods=None, tolerances=N
                     if r >= MIN_RTOL.get(name, 0.0) and (not m.peer or r >= SCIPY_FLOOR)]
         else:
             grid = [("h", h) for h in steps]
-        seen_h = set()
-        for what, value in grid:
-            kw = dict(rtol=value, atol=value * ATOL_OVER_RTOL) if what == "rtol" else dict(h=value)
-            sol, compile_s, n = _timed(
-                functools.partial(integrate, model, y0, t_eval, method=name, **kw), repeats)
-            if sol.h is not None:
-                if sol.h in seen_h:  # several requested steps cut to the same one
-                    continue
-                seen_h.add(sol.h)
-            err = np.abs(sol.y - y_ref)
-            rows.append(dict(
-                method=name, label=m.label, kind="adaptive" if m.adaptive else "fixed",
-                tolerance=value if what == "rtol" else math.nan,
-                h=sol.h if sol.h is not None else math.nan,
-                error_final=float(np.max(err[-1])), error_max=float(np.max(err)),
-                wall_time_s=sol.wall_time_s, nfev=sol.nfev, compile_time_s=compile_s,
-                status=sol.status, repeats=n))
-            if sol.status != "ok" or sol.wall_time_s > TIME_CAP_S:
-                break
-            if _at_round_off_floor(rows, name):
-                break
+        key = peer_key(name, model, y0, t_eval, grid, y_ref) if m.peer and cache else None
+        stored = cache.get(key) if key is not None else None
+        if stored is not None:
+            rows.extend({**row, "cached": True} for row in stored)
+        else:
+            measured = _sweep(model, y0, t_eval, name, grid, y_ref, repeats, stamp)
+            rows.extend(measured)
+            if key is not None:
+                cache.put(key, measured)
         if progress is not None:
             progress((k + 1) / len(methods))
     return StudyResult(rows=rows, reference_kind=reference_kind,
                        reference_agreement=agreement, skipped=skipped)
+
+
+def _sweep(model, y0, t_eval, name, grid, y_ref, repeats, stamp) -> list[dict]:
+    """The rows of one method over its tolerance or step ladder (see work_precision)."""
+    m = METHODS[name]
+    rows: list[dict] = []
+    seen_h = set()
+    for what, value in grid:
+        kw = dict(rtol=value, atol=value * ATOL_OVER_RTOL) if what == "rtol" else dict(h=value)
+        sol, compile_s, n = _timed(
+            functools.partial(integrate, model, y0, t_eval, method=name, **kw), repeats)
+        if sol.h is not None:
+            if sol.h in seen_h:  # several requested steps cut to the same one
+                continue
+            seen_h.add(sol.h)
+        err = np.abs(sol.y - y_ref)
+        rows.append(dict(
+            method=name, label=m.label, kind="adaptive" if m.adaptive else "fixed",
+            tolerance=value if what == "rtol" else math.nan,
+            h=sol.h if sol.h is not None else math.nan,
+            error_final=float(np.max(err[-1])), error_max=float(np.max(err)),
+            wall_time_s=sol.wall_time_s, nfev=sol.nfev, compile_time_s=compile_s,
+            status=sol.status, repeats=n, **stamp))
+        if sol.status != "ok" or sol.wall_time_s > TIME_CAP_S:
+            break
+        if _at_round_off_floor(rows, name):
+            break
+    return rows
 
 
 def matched_error_speedup(rows, baseline="scipy_dop853", baseline_rtol=1e-10):

@@ -54,6 +54,7 @@ import numpy as np
 from pydantic import Field, ValidationError
 
 from .. import __version__
+from ..cache import default_cache
 from ..config import (
     ConfigError,
     ReportConfig,
@@ -391,6 +392,14 @@ class Scene:
             rows.append([str(runs["label"][0]), matched, speedup,
                          f"{fmt_err(float(best['error_max']))} ({_setting(best)})",
                          str(len(runs)), "ok"])
+        notes = []
+        if "cached" in study.dtype.names and np.any(study["cached"]):
+            cached = study[study["cached"].astype(bool)]
+            where = sorted({(str(r["measured_at"]), str(r["machine"])) for r in cached})
+            notes.append("The scipy rows were measured earlier and taken from the peer "
+                         "measurement cache (reportgen cache info): "
+                         + "; ".join(f"{m} on {w}" for m, w in where)
+                         + ". reportgen's own methods were timed in this run.")
         reference = data.study_attrs.get("reference_kind", "")
         target = (f"scipy DOP853 at rtol 1e-10 reaches {fmt_err(float(base['error_max']))} in "
                   f"{float(base['wall_time_s']) * 1e3:.3g} ms" if base is not None
@@ -407,7 +416,7 @@ class Scene:
                                 "Work-precision diagram: max error over the run against wall "
                                 "time. Solid: reportgen's compiled integrators; dashed: scipy "
                                 "solve_ivp.")],
-            tables=[table])
+            tables=[table], notes=notes)
 
     # --------------------------------------------------- simulate side (physics)
     def simulate(self, progress: ProgressFn | None = None) -> Results:
@@ -467,11 +476,12 @@ class Scene:
     def study(self, results: Results, model: OdeModel, y0, t_eval, reference=None,
               progress: ProgressFn | None = None) -> None:
         """Fill ``results.study`` with the error-against-run-time study, if this run wants
-        it (:meth:`wants_study`)."""
+        it (:meth:`wants_study`).  scipy peers' rows come from the user cache when it
+        holds this problem (:mod:`reportgen.cache`); ours are measured every time."""
         if not self.wants_study():
             return
         result = _study.work_precision(model, y0, t_eval, reference=reference,
-                                       progress=progress)
+                                       progress=progress, cache=default_cache())
         results.study = result.to_records()
         results.study_attrs = {"reference_kind": result.reference_kind}
 
