@@ -8,7 +8,11 @@ acyclic, and ``reportgen.core`` must import nothing above it.
 from __future__ import annotations
 
 import ast
+import subprocess
+import sys
 from pathlib import Path
+
+import pytest
 
 PACKAGE = Path(__file__).resolve().parent.parent / "reportgen"
 
@@ -102,3 +106,24 @@ def test_the_graph_sees_imports():
     assert "reportgen.archive" in graph["reportgen.report"]
     assert "reportgen.scenes.base" in graph["reportgen.scenes"]
     assert "reportgen.core.integrators" in graph["reportgen.scenes.base"]
+
+
+@pytest.mark.parametrize(("args", "absent"), [
+    (["--help"], ("numba", "scipy", "matplotlib", "weasyprint", "h5py", "reportgen.core")),
+    (["kinds"], ("numba", "scipy", "matplotlib", "weasyprint", "h5py")),
+    (["validate", str(PACKAGE.parent / "configs")], ("matplotlib", "weasyprint", "distributed")),
+])
+def test_light_commands_import_only_what_they_use(args, absent):
+    """--help, kinds and validate stay fast: the heavy libraries load only where used."""
+    code = ("import sys\nfrom reportgen.cli import main\ntry:\n    main(sys.argv[1:])\n"
+            "except SystemExit:\n    pass\n"
+            "print('MODULES: ' + ' '.join(sorted(m for m in sys.modules if '.' not in m or "
+            "m.startswith('reportgen.core'))))")
+    proc = subprocess.run([sys.executable, "-c", code, *args], capture_output=True, text=True,
+                          timeout=300)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    last = proc.stdout.strip().splitlines()[-1]
+    assert last.startswith("MODULES: ")
+    loaded = set(last.split()[1:])
+    assert "reportgen" in loaded  # the listing is read
+    assert not loaded & set(absent), sorted(loaded & set(absent))

@@ -17,10 +17,10 @@ from pydantic import Field, model_validator
 
 from ..config import Positive, Real, RunConfig, Strict
 from ..lazy import lazy_module
-from ..plots import fput as plots
 from ..results import AuditCase, Check, Results
 from .base import Scene, SceneConfig, Section, SectionContent, fmt, fmt_err
 
+plots = lazy_module("reportgen.plots.fput")
 core = lazy_module("reportgen.core.models.fput")
 
 GNI = "Hairer, Lubich & Wanner, Geometric Numerical Integration, 2nd ed."

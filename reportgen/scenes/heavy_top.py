@@ -18,10 +18,10 @@ from pydantic import Field, model_validator
 
 from ..config import Positive, Real, RunConfig, Strict
 from ..lazy import lazy_module
-from ..plots import heavy_top as plots
 from ..results import AuditCase, Check, Results, RunRecord
 from .base import Scene, SceneConfig, Section, SectionContent, Table, fmt, fmt_err
 
+plots = lazy_module("reportgen.plots.heavy_top")
 model_core = lazy_module("reportgen.core.models.heavy_top")
 theory = lazy_module("reportgen.core.heavy_top_theory")
 kinematics = lazy_module("reportgen.core.heavy_top_kinematics")

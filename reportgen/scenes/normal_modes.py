@@ -21,10 +21,10 @@ from pydantic import Field, model_validator
 
 from ..config import Positive, Real, Strict
 from ..lazy import lazy_module
-from ..plots import normal_modes as plots
 from ..results import AuditCase, Check, Results
 from .base import Scene, SceneConfig, Section, SectionContent, Table, fmt, fmt_err
 
+plots = lazy_module("reportgen.plots.normal_modes")
 core = lazy_module("reportgen.core.normal_modes")
 linear_chain = lazy_module("reportgen.core.models.linear_chain")
 

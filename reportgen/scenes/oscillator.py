@@ -16,11 +16,11 @@ from pydantic import Field, model_validator
 
 from ..config import Positive, Real, RunConfig, Strict
 from ..lazy import lazy_module
-from ..plots import common as common_plots
-from ..plots import oscillator as plots
 from ..results import AuditCase, Check, Results
 from .base import Scene, SceneConfig, Section, SectionContent, fmt, fmt_err
 
+common_plots = lazy_module("reportgen.plots.common")
+plots = lazy_module("reportgen.plots.oscillator")
 core = lazy_module("reportgen.core.models.oscillator")
 
 

@@ -15,11 +15,11 @@ from pydantic import Field, model_validator
 
 from ..config import Positive, Real, RunConfig, Strict
 from ..lazy import lazy_module
-from ..plots import common as common_plots
-from ..plots import pendulum as plots
 from ..results import AuditCase, Check, Results
 from .base import Scene, SceneConfig, Section, SectionContent, Table, fmt, fmt_err
 
+common_plots = lazy_module("reportgen.plots.common")
+plots = lazy_module("reportgen.plots.pendulum")
 core = lazy_module("reportgen.core.models.pendulum")
 
 

@@ -20,6 +20,7 @@ separatrix; that is why this kind does not loosen it.
 from __future__ import annotations
 
 import math
+from datetime import UTC, datetime
 from typing import Literal
 
 import numpy as np
@@ -33,6 +34,7 @@ from .inertia import Shape, stability_table_section
 
 inertia_core = lazy_module("reportgen.core.inertia")
 core = lazy_module("reportgen.core.models.rigid_body")
+study_core = lazy_module("reportgen.core.study")
 splitting = lazy_module("reportgen.core.models.rigid_body_splitting")
 common_plots = lazy_module("reportgen.plots.common")
 plots = lazy_module("reportgen.plots.rigid_body")
@@ -381,6 +383,7 @@ class RigidBodyScene(Scene):
         h0 = 2 * math.pi / float(np.linalg.norm(y0[:3])) / 10
         rows = []
         I = self.moments
+        stamp = (datetime.now(UTC).strftime("%Y-%m-%dT%H:%M:%SZ"), study_core.machine(), False)
         for order in (2, 4):
             splitting.integrate_splitting(I, y0, t_eval[:2], h0, order)
             for k in range(12):
@@ -392,7 +395,7 @@ class RigidBodyScene(Scene):
                 e = np.abs(Y - ref)
                 rows.append((f"splitting{order}", f"axis splitting, order {order}", "fixed",
                              math.nan, h, float(np.max(e[-1])), float(np.max(e)), best,
-                             0, 0.0, "ok", 3))
+                             0, 0.0, "ok", 3, *stamp))
                 if best > 0.5 or float(np.max(e)) < 1e-12:
                     break
         extra = np.array([tuple(v.encode() if isinstance(v, str) else v for v in r)

@@ -21,10 +21,10 @@ from pydantic import Field, model_validator
 
 from ..config import Positive, Real, RunConfig, Strict
 from ..lazy import lazy_module
-from ..plots import gravitation as plots
 from ..results import AuditCase, Check, Results
 from .base import Scene, SceneConfig, Section, SectionContent, Table, fmt, fmt_err
 
+plots = lazy_module("reportgen.plots.gravitation")
 core = lazy_module("reportgen.core.models.nbody")
 kepler_core = lazy_module("reportgen.core.models.kepler")
 integrators = lazy_module("reportgen.core.integrators")

@@ -13,10 +13,29 @@ Public API::
 
 from __future__ import annotations
 
-from .base import Method, MethodMismatch, RunStatus, Solution, SolveCode
-from .driver import integrate
-from .policy import PolicyResult, SolverSpec, choose_auto, solve
-from .registry import METHODS
+import importlib
 
-__all__ = ["integrate", "solve", "METHODS", "choose_auto", "Solution", "SolveCode",
-           "SolverSpec", "PolicyResult", "RunStatus", "MethodMismatch", "Method"]
+#: public name -> the submodule that defines it.  Loaded on first use (PEP 562), so that
+#: listing the methods (``METHODS``, ``reportgen kinds``) does not import numba or scipy.
+_EXPORTS = {
+    "Method": ".base", "MethodMismatch": ".base", "RunStatus": ".base", "Solution": ".base",
+    "SolveCode": ".base",
+    "integrate": ".driver",
+    "PolicyResult": ".policy", "SolverSpec": ".policy", "choose_auto": ".policy",
+    "solve": ".policy",
+    "METHODS": ".registry",
+}
+
+__all__ = list(_EXPORTS)
+
+
+def __getattr__(name: str):
+    if name not in _EXPORTS:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(_EXPORTS[name], __name__), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_EXPORTS))

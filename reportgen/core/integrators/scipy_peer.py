@@ -10,12 +10,18 @@ import time
 import warnings
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 from .base import Method, Solution, SolveCode
 
 EPS = np.finfo(float).eps
 SCIPY_MIN_RTOL = 100 * EPS  # solve_ivp clamps rtol below this (with a warning)
+
+
+def _solve_ivp():
+    """scipy's solve_ivp, imported when a peer first runs (listing methods stays light)."""
+    from scipy.integrate import solve_ivp
+
+    return solve_ivp
 
 
 class ScipyMethod(Method):
@@ -36,7 +42,7 @@ class ScipyMethod(Method):
         t0 = time.perf_counter()
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)
-            res = solve_ivp(model.f, (t_eval[0], t_eval[-1]), y0, method=self.scipy_name,
+            res = _solve_ivp()(model.f, (t_eval[0], t_eval[-1]), y0, method=self.scipy_name,
                             t_eval=t_eval, rtol=rtol_eff, atol=atol, **kwargs)
         wall = time.perf_counter() - t0
         n_ok = res.t.size
