@@ -310,6 +310,8 @@ class Identity:
     reportgen_version: str
     status: str
     format_version: int
+    message: str = ""
+    wall_time_s: float = 0.0
 
 
 def stored_identity(path: Path) -> Identity | None:
@@ -321,7 +323,9 @@ def stored_identity(path: Path) -> Identity | None:
                             physics_key=decode(a.get("physics_key", "")),
                             reportgen_version=decode(a["reportgen_version"]),
                             status=decode(a.get("status", "ok")),
-                            format_version=int(a.get("format_version", 1)))
+                            format_version=int(a.get("format_version", 1)),
+                            message=decode(a.get("message", "")),
+                            wall_time_s=float(a.get("wall_time_s", 0.0)))
     except (OSError, KeyError):
         return None
 

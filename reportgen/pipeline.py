@@ -21,7 +21,6 @@ from .archive import (
     FORMAT_VERSION,
     Identity,
     gallery_entry,
-    read_archive,
     restamp,
     stored_identity,
     write_archive,
@@ -173,14 +172,9 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
             outcome.stages.append("report")
         outcome.reports = [str(folder / f"report.{f}") for f in wanted]
         outcome.skipped = "simulate" not in outcome.stages
-        outcome.status = identity.status
-        if outcome.skipped:
-            data = read_archive(archive)
-            outcome.message = data.message
-            outcome.wall_time_s = float(data.attrs.get("wall_time_s", 0.0))
-        else:
-            outcome.message = read_archive(archive).message
-            outcome.wall_time_s = time.perf_counter() - start
+        outcome.status, outcome.message = identity.status, identity.message
+        outcome.wall_time_s = (identity.wall_time_s if outcome.skipped
+                               else time.perf_counter() - start)
     except ConfigError as exc:
         outcome.status, outcome.message = "failed", str(exc)
     except Exception as exc:  # noqa: BLE001 - one scene's crash must not stop the batch
@@ -378,10 +372,9 @@ def _up_to_date(scene: Scene, out_root: str, formats) -> Outcome | None:
             or stored.config_sha256 != scene.source.sha256
             or not _report_current(folder, stored, wanted)):
         return None
-    data = read_archive(folder / "run.h5")
     return Outcome(name=scene.source.name, kind=scene.kind, title=scene.title,
-                   status=stored.status, message=data.message, skipped=True,
-                   folder=str(folder), wall_time_s=float(data.attrs.get("wall_time_s", 0.0)),
+                   status=stored.status, message=stored.message, skipped=True,
+                   folder=str(folder), wall_time_s=stored.wall_time_s,
                    reports=[str(folder / f"report.{f}") for f in wanted])
 
 

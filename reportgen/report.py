@@ -154,14 +154,14 @@ def draw_sections(data: ArchiveData, out_dir: Path, png: bool = False) -> list[d
     return sections
 
 
-def cached_sections(data: ArchiveData, out_dir: Path, png: bool) -> list[dict[str, Any]] | None:
-    """The figures stage's stored result if its key matches and every file is there."""
+def cached_sections(out_dir: Path, key: str) -> list[dict[str, Any]] | None:
+    """The figures stage's stored result if its key is ``key`` and every file is there."""
     index = out_dir / "figures" / SECTIONS_FILE
     try:
         stored = json.loads(index.read_text(encoding="utf-8"))
     except (OSError, ValueError):
         return None
-    if stored.get("key") != figures_key(data, png):
+    if stored.get("key") != key:
         return None
     for section in stored["sections"]:
         for fig in section["figures"]:
@@ -176,14 +176,15 @@ SECTIONS_FILE = "sections.json"
 def figures_stage(data: ArchiveData, out_dir: Path, png: bool = False,
                   force: bool = False) -> tuple[list[dict[str, Any]], bool]:
     """(sections, drawn?): reuse the stored figures when current, else draw them."""
+    key = figures_key(data, png)
     if not force:
-        cached = cached_sections(data, out_dir, png)
+        cached = cached_sections(out_dir, key)
         if cached is not None:
             return cached, False
     sections = draw_sections(data, out_dir, png)
     (out_dir / "figures").mkdir(parents=True, exist_ok=True)
     atomic_write(out_dir / "figures" / SECTIONS_FILE, json.dumps(
-        {"key": figures_key(data, png), "sections": sections}, ensure_ascii=False,
+        {"key": key, "sections": sections}, ensure_ascii=False,
         indent=1).encode("utf-8"))
     return sections, True
 

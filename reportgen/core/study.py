@@ -67,6 +67,12 @@ def machine() -> str:
             f"{os.cpu_count() or '?'} cores)")[:96]
 
 
+def measurement_stamp() -> dict:
+    """When and where rows measured now were measured (the study table's last columns)."""
+    return {"measured_at": datetime.now(UTC).strftime("%Y-%m-%dT%H:%M:%SZ"),
+            "machine": machine(), "cached": False}
+
+
 def peer_key(method: str, model, y0, t_eval, grid, y_ref) -> str:
     """The problem a peer's rows measure: model (name, columns, parameters), initial state,
     output grid, tolerance ladder, reference, the study's rules and library versions."""
@@ -210,8 +216,7 @@ def work_precision(model, y0, t_eval, reference=None, methods=None, tolerances=N
                           f"(gauss6 h={ref_gauss.h:.3g} for dop853 rows)")
 
     rows: list[dict] = []
-    stamp = {"measured_at": datetime.now(UTC).strftime("%Y-%m-%dT%H:%M:%SZ"),
-             "machine": machine(), "cached": False}
+    stamp = measurement_stamp()
     for k, name in enumerate(methods):
         m = METHODS[name]
         y_ref = refs.get(name, refs["default"])

@@ -20,7 +20,6 @@ separatrix; that is why this kind does not loosen it.
 from __future__ import annotations
 
 import math
-from datetime import UTC, datetime
 from typing import Literal
 
 import numpy as np
@@ -383,7 +382,7 @@ class RigidBodyScene(Scene):
         h0 = 2 * math.pi / float(np.linalg.norm(y0[:3])) / 10
         rows = []
         I = self.moments
-        stamp = (datetime.now(UTC).strftime("%Y-%m-%dT%H:%M:%SZ"), study_core.machine(), False)
+        stamp = tuple(study_core.measurement_stamp().values())  # measured_at, machine, cached
         for order in (2, 4):
             splitting.integrate_splitting(I, y0, t_eval[:2], h0, order)
             for k in range(12):
