@@ -42,7 +42,7 @@ def scene_bench(scene, print=builtins.print) -> dict | None:
         print(f"{scene.source.name}: integrates nothing; skipped")
         return None
     config = scene.config.model_copy(update={"run": scene.config.run.model_copy(
-        update={"study": True}), "report": scene.config.report.model_copy(
+        update={"study": True, "study_budget": math.inf}), "report": scene.config.report.model_copy(
         update={"sections": None})})
     scene = type(scene)(config, scene.source)
     start = time.perf_counter()

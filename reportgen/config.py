@@ -62,6 +62,9 @@ class RunConfig(Strict):
     atol: float = Field(1e-14, gt=0, lt=1, description="absolute tolerance of adaptive methods")
     h: Positive | None = Field(None, description="step size of fixed-step methods [s]")
     study: bool = Field(True, description="run the error-against-run-time study")
+    study_budget: Annotated[float, Field(gt=0, allow_inf_nan=True)] = Field(
+        1.0, description="seconds the study's timed runs may take together (inf: no budget; "
+                         "scipy DOP853's rtol-1e-10 baseline is always measured)")
 
 
 class ReportConfig(Strict):
@@ -69,7 +72,11 @@ class ReportConfig(Strict):
 
     sections: list[str] | None = Field(None, description="sections to show (default: the kind's)")
     formats: list[Literal["html", "pdf"]] = Field(["html", "pdf"], description="report formats")
-    png: bool = Field(False, description="also save figures as PNG")
+    figure_formats: list[Literal["svg", "pdf", "png"]] = Field(
+        ["svg"], description="figure files written next to the report (SVG always: the HTML "
+                             "inlines it; PDF/PNG are standalone exports)")
+    png: bool = Field(False, description='also save figures as PNG (same as adding "png" to '
+                                         'figure_formats)')
 
 
 @dataclass(frozen=True)

@@ -18,14 +18,13 @@ from pathlib import Path
 from typing import Any
 
 import jinja2
-import matplotlib
 from markupsafe import Markup
 
 from . import __version__
 from .archive import ArchiveData, read_archive
 from .audit_archive import read_audit
 from .fsutil import atomic_write
-from .plots import audit as audit_plots
+from .lazy import lazy_module
 from .scenes import get_kind
 from .scenes.base import FigureSpec, SectionContent, fmt, fmt_err
 
@@ -33,6 +32,12 @@ TEMPLATE_DIRS = (
     Path(__file__).resolve().parent / "templates",  # installed wheel
     Path(__file__).resolve().parent.parent / "templates",  # source checkout
 )
+
+
+# Drawing libraries load on first use: a report whose figures are current (a title edit)
+# renders without importing matplotlib.
+matplotlib = lazy_module("matplotlib")
+audit_plots = lazy_module("reportgen.plots.audit")
 
 
 class ReportError(Exception):
@@ -77,14 +82,25 @@ class SavedFigure:
 _SVG_HEAD = re.compile(r"^.*?(?=<svg)", re.S)
 
 
-def save_figure(spec: FigureSpec, fig_id: str, folder: Path, png: bool = False) -> SavedFigure:
-    """Save one figure as SVG and PDF (PNG on request) with reproducible bytes."""
+#: figure files a report writes unless asked for more: the SVG it inlines
+DEFAULT_FIGURE_FORMATS = ("svg",)
+FIGURE_FORMATS = ("svg", "pdf", "png")
+
+
+def save_figure(spec: FigureSpec, fig_id: str, folder: Path,
+                formats: tuple[str, ...] = DEFAULT_FIGURE_FORMATS) -> SavedFigure:
+    """Save one figure as SVG (always: the HTML inlines it) and as the other ``formats``
+    asked for (PDF, PNG), with reproducible bytes.
+
+    Standalone PDF/PNG files are made only on request (``[report] figure_formats``): a
+    PDF export embeds and subsets its fonts, which costs more than drawing the figure.
+    """
     folder.mkdir(parents=True, exist_ok=True)
     files = {}
     svg_text = ""
-    formats = ("svg", "pdf", "png") if png else ("svg", "pdf")
+    wanted = ["svg", *(f for f in FIGURE_FORMATS if f in formats and f != "svg")]
     with matplotlib.rc_context({"svg.hashsalt": fig_id, "svg.id": fig_id}):
-        for fmt_name in formats:
+        for fmt_name in wanted:
             buf = io.BytesIO()
             metadata = {"svg": {"Date": None}, "pdf": {"CreationDate": None},
                         "png": {"Software": None}}[fmt_name]
@@ -96,6 +112,16 @@ def save_figure(spec: FigureSpec, fig_id: str, folder: Path, png: bool = False) 
             if fmt_name == "svg":
                 svg_text = _SVG_HEAD.sub("", data.decode("utf-8"), count=1)
     return SavedFigure(id=fig_id, caption=spec.caption, svg=Markup(svg_text), files=files)
+
+
+def figure_formats(data: ArchiveData) -> tuple[str, ...]:
+    """The figure files the archived config asks for: ``[report] figure_formats`` (and
+    the older ``png = true``), always with SVG first."""
+    report = data.config.get("report", {}) or {}
+    asked = set(report.get("figure_formats", DEFAULT_FIGURE_FORMATS))
+    if report.get("png", False):
+        asked.add("png")
+    return tuple(f for f in FIGURE_FORMATS if f in asked or f == "svg")
 
 
 # ------------------------------------------------------------------- context
@@ -116,18 +142,20 @@ def kind_of_archive(data: ArchiveData):
 FIGURES_FORMAT = 1
 
 
-def figures_key(data: ArchiveData, png: bool) -> str:
+def figures_key(data: ArchiveData, formats: tuple[str, ...]) -> str:
     """Content key of the figures stage: what the archive's numbers are, which sections
     are drawn, and the reportgen version.  A title edit leaves it unchanged."""
     scene = kind_of_archive(data)
     blob = json.dumps({"physics": data.attrs.get("physics_key", ""),
                        "sections": [s.name for s in scene.chosen_sections(data)],
-                       "png": png, "reportgen": __version__, "format": FIGURES_FORMAT},
+                       "files": list(formats), "reportgen": __version__,
+                       "format": FIGURES_FORMAT},
                       sort_keys=True)
     return hashlib.sha256(blob.encode("utf-8")).hexdigest()
 
 
-def draw_sections(data: ArchiveData, out_dir: Path, png: bool = False) -> list[dict[str, Any]]:
+def draw_sections(data: ArchiveData, out_dir: Path,
+                  formats: tuple[str, ...] = DEFAULT_FIGURE_FORMATS) -> list[dict[str, Any]]:
     """The figures stage: draw every chosen section of the archive into ``out_dir/figures``.
 
     Returns the sections as plain dicts (title, facts, tables, notes, figure files); they
@@ -140,7 +168,8 @@ def draw_sections(data: ArchiveData, out_dir: Path, png: bool = False) -> list[d
         content: SectionContent = getattr(scene, f"section_{section.name}")(data)
         figures = []
         for spec in content.figures:
-            saved = save_figure(spec, f"{section.name}-{spec.name}", out_dir / "figures", png=png)
+            saved = save_figure(spec, f"{section.name}-{spec.name}", out_dir / "figures",
+                                formats)
             figures.append({"id": saved.id, "caption": saved.caption, "files": saved.files})
             spec.figure.clear()
         sections.append({
@@ -173,15 +202,18 @@ def cached_sections(out_dir: Path, key: str) -> list[dict[str, Any]] | None:
 SECTIONS_FILE = "sections.json"
 
 
-def figures_stage(data: ArchiveData, out_dir: Path, png: bool = False,
+def figures_stage(data: ArchiveData, out_dir: Path, formats: tuple[str, ...] | None = None,
                   force: bool = False) -> tuple[list[dict[str, Any]], bool]:
-    """(sections, drawn?): reuse the stored figures when current, else draw them."""
-    key = figures_key(data, png)
+    """(sections, drawn?): reuse the stored figures when current, else draw them.
+
+    ``formats``: the figure files to write; default from the archived config."""
+    formats = figure_formats(data) if formats is None else formats
+    key = figures_key(data, formats)
     if not force:
         cached = cached_sections(out_dir, key)
         if cached is not None:
             return cached, False
-    sections = draw_sections(data, out_dir, png)
+    sections = draw_sections(data, out_dir, formats)
     (out_dir / "figures").mkdir(parents=True, exist_ok=True)
     atomic_write(out_dir / "figures" / SECTIONS_FILE, json.dumps(
         {"key": key, "sections": sections}, ensure_ascii=False,
@@ -200,12 +232,12 @@ def _with_inline_svg(sections: list[dict[str, Any]], out_dir: Path) -> list[dict
     return out
 
 
-def build_context(data: ArchiveData, out_dir: Path, png: bool = False,
+def build_context(data: ArchiveData, out_dir: Path,
                   sections: list[dict[str, Any]] | None = None) -> dict[str, Any]:
     """The one plain dict the scene template renders."""
     scene = kind_of_archive(data)
     if sections is None:
-        sections, _ = figures_stage(data, out_dir, png)
+        sections, _ = figures_stage(data, out_dir)
     sections = _with_inline_svg(sections, out_dir)
     runs = []
     for name, run in data.runs.items():
@@ -243,25 +275,31 @@ def write_pdf(html_text: str, target: Path, base_url: Path) -> None:
 
     import weasyprint
 
+    from .svgslim import inline_svgs_as_images
+
     logging.getLogger("weasyprint").setLevel(logging.ERROR)
     logging.getLogger("fontTools").setLevel(logging.ERROR)
-    pdf = weasyprint.HTML(string=html_text, base_url=str(base_url)).write_pdf()
+    # The figures go to WeasyPrint as <img> of a slimmed copy of their SVG (still vector,
+    # text still text): the HTML parser and the CSS cascade never walk their nodes, and
+    # the SVG drawer has fewer of them.  report.html keeps the SVG as saved.
+    pdf = weasyprint.HTML(string=inline_svgs_as_images(html_text),
+                          base_url=str(base_url)).write_pdf()
     atomic_write(target, pdf)
 
 
 def build_report(archive_path: Path, formats=("html", "pdf"), out_dir: Path | None = None,
-                 png: bool | None = None, force_figures: bool = False) -> list[Path]:
+                 figure_files: tuple[str, ...] | None = None,
+                 force_figures: bool = False) -> list[Path]:
     """The figures and report stages of one archive, next to it (or into ``out_dir``).
 
-    Figures are redrawn only when their key changed (or ``force_figures``)."""
+    Figures are redrawn only when their key changed (or ``force_figures``);
+    ``figure_files`` overrides the config's ``[report] figure_formats``."""
     archive_path = Path(archive_path)
     data = read_archive(archive_path)
     out_dir = Path(out_dir) if out_dir is not None else archive_path.parent
     out_dir.mkdir(parents=True, exist_ok=True)
-    if png is None:
-        png = _config_wants_png(data)
-    sections, _ = figures_stage(data, out_dir, png, force=force_figures)
-    context = build_context(data, out_dir, png=png, sections=sections)
+    sections, _ = figures_stage(data, out_dir, figure_files, force=force_figures)
+    context = build_context(data, out_dir, sections=sections)
     return write_formats(render_html(context), out_dir, formats)
 
 
@@ -275,10 +313,6 @@ def write_formats(html_text: str, out_dir: Path, formats) -> list[Path]:
         write_pdf(html_text, out_dir / "report.pdf", out_dir)
         written.append(out_dir / "report.pdf")
     return written
-
-
-def _config_wants_png(data: ArchiveData) -> bool:
-    return bool(data.config.get("report", {}).get("png", False))
 
 
 def build_index(out_dir: Path, entries: list[dict[str, Any]]) -> Path:

@@ -190,10 +190,11 @@ def test_pdf_has_pages_and_text(batch):
     assert "Summary" in first and "1 / " in first  # page numbers from @page
 
 
-def test_figures_saved_as_svg_and_pdf(batch):
+def test_figures_saved_as_svg_only_by_default(batch):
     _, out, _ = batch
     figs = {p.name for p in (out / "pend" / "figures").iterdir()}
-    assert "phase_portrait-phase.svg" in figs and "phase_portrait-phase.pdf" in figs
+    assert "phase_portrait-phase.svg" in figs
+    assert not any(name.endswith((".pdf", ".png")) for name in figs), figs
 
 
 def test_report_rebuilt_from_copied_archive_alone(batch, tmp_path, cli):

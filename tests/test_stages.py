@@ -77,6 +77,25 @@ def test_report_section_edit_redraws_without_simulating(write_config, tmp_path):
     assert 'id="phase_portrait"' in html and 'id="time_series"' not in html
 
 
+def test_figure_exports_on_request_without_simulating(write_config, tmp_path):
+    """[report] figure_formats adds standalone PDF/PNG files; asking for them later is a
+    report edit (no re-simulation), and the HTML links every file of a figure."""
+    path = write_config("pend", pendulum_text(extra='\n[report]\nsections = ["phase_portrait"]\n'))
+    out = tmp_path / "out"
+    run_scene(str(path), str(out), formats=("html",))
+    figures = out / "pend" / "figures"
+    assert {p.suffix for p in figures.glob("phase_portrait-*")} == {".svg"}
+    path.write_text(pendulum_text(extra='\n[report]\nsections = ["phase_portrait"]\n'
+                                        'figure_formats = ["pdf", "png"]\n'))
+    edited = run_scene(str(path), str(out), formats=("html",))
+    assert edited.stages == ["restamp", "report"], edited
+    assert {p.suffix for p in figures.glob("phase_portrait-*")} == {".svg", ".pdf", ".png"}
+    assert (figures / "phase_portrait-phase.pdf").read_bytes().startswith(b"%PDF")
+    html = (out / "pend" / "report.html").read_text(encoding="utf-8")
+    assert 'href="figures/phase_portrait-phase.pdf"' in html
+    assert 'href="figures/phase_portrait-phase.png"' in html
+
+
 def test_index_is_a_gallery_of_the_whole_folder(write_config, tmp_path, cli):
     out = tmp_path / "out"
     a = write_config("first", pendulum_text(theta=0.5))

@@ -86,3 +86,35 @@ def test_reference_run_and_method_filter():
     assert res.skipped == ["verlet"]
     assert {r["method"] for r in res.rows} == {"dop853", "gauss4"}
     assert res.reference_agreement < 1e-11
+
+
+def test_budget_cuts_ladders_but_keeps_every_method_and_the_baseline():
+    """A (nearly) zero budget: every method still gets its first rung, scipy DOP853 still
+    reaches the rtol-1e-10 baseline, and no other ladder goes past its first rung."""
+    model = pendulum.model(G, L)
+    tolerances = [1e-4, 1e-6, 1e-8, 1e-10, 1e-12]
+    kw = dict(reference=exact, tolerances=tolerances, steps=[T / 50, T / 100, T / 200],
+              repeats=2)
+    tight = work_precision(model, Y0, T_EVAL, budget_s=1e-9, **kw)
+    free = work_precision(model, Y0, T_EVAL, budget_s=float("inf"), **kw)
+    per_method = {}
+    for r in tight.rows:
+        per_method.setdefault(r["method"], []).append(r)
+    assert set(per_method) == STUDIED
+    for name, rows in per_method.items():
+        if name == "scipy_dop853":
+            assert [r["tolerance"] for r in rows] == [1e-4, 1e-6, 1e-8, 1e-10]
+        else:
+            assert len(rows) == 1, (name, rows)
+            assert rows[0]["repeats"] == 1  # no time left for repeats either
+    assert matched_error_speedup(tight)["baseline"]["tolerance"] == 1e-10
+    assert len(free.rows) > len(tight.rows)
+    assert {r["method"] for r in free.rows if r["tolerance"] == 1e-12} >= {"dop853", "rk45"}
+
+
+def test_peer_cache_key_depends_on_the_budget():
+    from reportgen.core.study import peer_key
+
+    args = ("scipy_dop853", pendulum.model(G, L), Y0, T_EVAL, [("rtol", 1e-6)], exact(T_EVAL))
+    assert peer_key(*args, 1.0) != peer_key(*args, 2.0)
+    assert peer_key(*args, 1.0) == peer_key(*args, 1.0)

@@ -16,7 +16,21 @@ other (their max difference is ``reference_agreement``):
   halvings) -- for the ``dop853`` rows, so no method is measured against itself.
 
 Both are >= 100x tighter than the default tightest tolerance 1e-12.  scipy's
-solvers are not used as references because they clamp rtol >= 100 eps.
+solvers are not used as references because they clamp rtol >= 100 eps.  They are made
+once and reused by every row.
+
+Budget
+------
+A study costs what it is worth: ``budget_s`` (default 1 s, ``[run] study_budget``) is
+the time the timed runs of one study may take together (compile time and the
+reference runs not included).  Methods run in order, ours first; each gets an equal
+share of what is left, so time one method leaves unused goes to the next (the scipy
+peers, ~20 us per right-hand-side call, are last and get most of it).  A ladder stops
+before a rung whose predicted cost (the last rung's, times the growth seen between the
+last two) would overrun the method's share; repeats are cut to what the share allows.
+One rung is exempt: scipy DOP853 at rtol 1e-10, the baseline every speed-up in the
+report is measured against, is run when no single run on the way is slower than
+``TIME_CAP_S``.  ``budget_s = inf`` gives the unbudgeted study (``reportgen bench``).
 """
 
 from __future__ import annotations
@@ -39,6 +53,8 @@ from .integrators import METHODS, integrate
 DEFAULT_TOLERANCES = tuple(10.0 ** -k for k in range(4, 13))
 ATOL_OVER_RTOL = 1e-2
 TIME_CAP_S = 1.0  # a run slower than this ends the method's sweep (next one ~2x slower)
+DEFAULT_BUDGET_S = 1.0  # timed runs of one study, all methods together
+BASELINE = ("scipy_dop853", 1e-10)  # the run every speed-up is measured against
 REPEAT_BELOW_S = 0.1  # slower runs are timed once (noise is small relative to their time)
 MIN_RTOL = {"scipy_radau": 1e-10, "scipy_lsoda": 1e-12}
 SCIPY_FLOOR = 100 * np.finfo(float).eps
@@ -50,7 +66,7 @@ _RECORD_DTYPE = np.dtype([
     ("measured_at", "S20"), ("machine", "S96"), ("cached", "?"),
 ])
 #: bump when a peer row's meaning changes (invalidates cached peer measurements)
-PEER_ROWS_FORMAT = 1
+PEER_ROWS_FORMAT = 2  # 2: measured under a study budget
 
 
 class RowCache(Protocol):
@@ -73,12 +89,14 @@ def measurement_stamp() -> dict:
             "machine": machine(), "cached": False}
 
 
-def peer_key(method: str, model, y0, t_eval, grid, y_ref) -> str:
+def peer_key(method: str, model, y0, t_eval, grid, y_ref, budget_s: float = math.inf) -> str:
     """The problem a peer's rows measure: model (name, columns, parameters), initial state,
-    output grid, tolerance ladder, reference, the study's rules and library versions."""
+    output grid, tolerance ladder, reference, the study's rules (time cap, budget) and
+    library versions."""
     h = hashlib.sha256()
     h.update(json.dumps({"method": method, "model": model.name, "columns": list(model.columns),
                          "grid": [list(g) for g in grid], "time_cap": TIME_CAP_S,
+                         "budget": None if math.isinf(budget_s) else budget_s,
                          "repeat_below": REPEAT_BELOW_S, "format": PEER_ROWS_FORMAT,
                          "scipy": scipy.__version__, "numpy": np.__version__},
                         sort_keys=True).encode("utf-8"))
@@ -127,21 +145,48 @@ def _reference_runs(model, y0, t_eval):
     return ref_dop, prev
 
 
-def _timed(run, repeats: int):
-    """Warm-up (also compiles), then the min wall time of ``repeats`` runs.
+def _timed(run, repeats: int, allowance: float = math.inf):
+    """Warm-up (also compiles), then the min wall time of up to ``repeats`` runs.
 
     A warm-up slower than ``REPEAT_BELOW_S`` is itself the single timed run
-    (compile time is excluded from ``wall_time_s`` in any case).
+    (compile time is excluded from ``wall_time_s`` in any case); repeats stop before
+    they would take more than ``allowance`` seconds.  Returns (solution, compile time,
+    timed runs, seconds spent on timed work).
     """
     first = run()
+    spent = first.wall_time_s
     if first.wall_time_s >= REPEAT_BELOW_S or repeats < 1:
-        return first, first.compile_time_s, 1
-    best = None
-    for _ in range(repeats):
+        return first, first.compile_time_s, 1, spent
+    best, n = None, 0
+    while n < repeats and (n == 0 or spent + first.wall_time_s <= allowance):
         sol = run()
+        spent += sol.wall_time_s
+        n += 1
         if best is None or sol.wall_time_s < best.wall_time_s:
             best = sol
-    return best, first.compile_time_s, repeats
+    return best, first.compile_time_s, n, spent
+
+
+class Budget:
+    """Seconds of timed runs left for a study, shared out method by method."""
+
+    def __init__(self, total: float):
+        self.total = float(total)
+        self.spent = 0.0
+
+    def share(self, methods_left: int) -> float:
+        """An equal part of what is left for the next of ``methods_left`` methods."""
+        return max(self.total - self.spent, 0.0) / max(methods_left, 1)
+
+
+def _predicted(costs: list[float]) -> float:
+    """The next rung's cost: the last one's times the growth between the last two
+    (between 1.2x and 8x; 4x when only one rung is known)."""
+    if not costs:
+        return 0.0
+    if len(costs) < 2 or costs[-2] <= 0.0:
+        return 4.0 * costs[-1]
+    return costs[-1] * min(max(costs[-1] / costs[-2], 1.2), 8.0)
 
 
 def _at_round_off_floor(rows, name) -> bool:
@@ -165,7 +210,8 @@ def default_steps(model, y0, t_eval) -> np.ndarray:
 
 def work_precision(model, y0, t_eval, reference=None, methods=None, tolerances=None,
                    steps=None, repeats=3, progress=None,
-                   cache: RowCache | None = None) -> StudyResult:
+                   cache: RowCache | None = None,
+                   budget_s: float = DEFAULT_BUDGET_S) -> StudyResult:
     """Run the work-precision sweep.
 
     Parameters
@@ -188,9 +234,13 @@ def work_precision(model, y0, t_eval, reference=None, methods=None, tolerances=N
         Peer (scipy) rows are taken from it when it holds this problem (``cached`` is
         then true and ``measured_at`` / ``machine`` say where they come from) and stored
         in it after measuring.  Our own methods are always measured.
+    budget_s : float
+        Seconds the timed runs may take together (see the module docstring); ``inf``
+        for no budget.
 
-    A method's sweep stops at the first run slower than ``TIME_CAP_S`` or failing, and
-    a fixed-step sweep once its error stalls at the round-off floor.
+    A method's sweep stops at the first run slower than ``TIME_CAP_S`` or failing, a
+    fixed-step sweep once its error stalls at the round-off floor, and any sweep
+    before a rung that would overrun its share of the budget.
     """
     y0 = np.asarray(y0, dtype=np.float64)
     t_eval = np.asarray(t_eval, dtype=np.float64)
@@ -217,6 +267,7 @@ def work_precision(model, y0, t_eval, reference=None, methods=None, tolerances=N
 
     rows: list[dict] = []
     stamp = measurement_stamp()
+    budget = Budget(budget_s)
     for k, name in enumerate(methods):
         m = METHODS[name]
         y_ref = refs.get(name, refs["default"])
@@ -225,12 +276,14 @@ def work_precision(model, y0, t_eval, reference=None, methods=None, tolerances=N
                     if r >= MIN_RTOL.get(name, 0.0) and (not m.peer or r >= SCIPY_FLOOR)]
         else:
             grid = [("h", h) for h in steps]
-        key = peer_key(name, model, y0, t_eval, grid, y_ref) if m.peer and cache else None
+        key = (peer_key(name, model, y0, t_eval, grid, y_ref, budget_s)
+               if m.peer and cache else None)
         stored = cache.get(key) if key is not None else None
         if stored is not None:
             rows.extend({**row, "cached": True} for row in stored)
         else:
-            measured = _sweep(model, y0, t_eval, name, grid, y_ref, repeats, stamp)
+            measured = _sweep(model, y0, t_eval, name, grid, y_ref, repeats, stamp, budget,
+                              len(methods) - k)
             rows.extend(measured)
             if key is not None:
                 cache.put(key, measured)
@@ -240,15 +293,28 @@ def work_precision(model, y0, t_eval, reference=None, methods=None, tolerances=N
                        reference_agreement=agreement, skipped=skipped)
 
 
-def _sweep(model, y0, t_eval, name, grid, y_ref, repeats, stamp) -> list[dict]:
+def _sweep(model, y0, t_eval, name, grid, y_ref, repeats, stamp, budget: Budget,
+           methods_left: int) -> list[dict]:
     """The rows of one method over its tolerance or step ladder (see work_precision)."""
     m = METHODS[name]
+    allowance = budget.share(methods_left)
     rows: list[dict] = []
+    costs: list[float] = []
+    spent = 0.0
     seen_h = set()
     for what, value in grid:
+        # the baseline rung and the looser ones on the way to it are never skipped
+        mandatory = (name == BASELINE[0] and what == "rtol"
+                     and value >= BASELINE[1] * (1.0 - 1e-9))
+        if costs and not mandatory and spent + _predicted(costs) > allowance:
+            break
         kw = dict(rtol=value, atol=value * ATOL_OVER_RTOL) if what == "rtol" else dict(h=value)
-        sol, compile_s, n = _timed(
-            functools.partial(integrate, model, y0, t_eval, method=name, **kw), repeats)
+        sol, compile_s, n, cost = _timed(
+            functools.partial(integrate, model, y0, t_eval, method=name, **kw), repeats,
+            max(allowance - spent, 0.0))
+        spent += cost
+        budget.spent += cost
+        costs.append(cost / max(n, 1))
         if sol.h is not None:
             if sol.h in seen_h:  # several requested steps cut to the same one
                 continue

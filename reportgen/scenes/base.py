@@ -401,6 +401,12 @@ class Scene:
                          + "; ".join(f"{m} on {w}" for m, w in where)
                          + ". reportgen's own methods were timed in this run.")
         reference = data.study_attrs.get("reference_kind", "")
+        budget = float(data.study_attrs.get("budget_s", math.inf))
+        if math.isfinite(budget):
+            notes.append(f"Study budget {budget:g} s of timed runs ([run] study_budget): each "
+                         "method's ladder stops before a rung that would overrun its share, "
+                         "so the tightest tolerances and smallest steps may be absent; scipy "
+                         "DOP853 is always run down to the rtol-1e-10 baseline.")
         target = (f"scipy DOP853 at rtol 1e-10 reaches {fmt_err(float(base['error_max']))} in "
                   f"{float(base['wall_time_s']) * 1e3:.3g} ms" if base is not None
                   else "no scipy DOP853 baseline run")
@@ -481,9 +487,11 @@ class Scene:
         if not self.wants_study():
             return
         result = _study.work_precision(model, y0, t_eval, reference=reference,
-                                       progress=progress, cache=default_cache())
+                                       progress=progress, cache=default_cache(),
+                                       budget_s=self.config.run.study_budget)
         results.study = result.to_records()
-        results.study_attrs = {"reference_kind": result.reference_kind}
+        results.study_attrs = {"reference_kind": result.reference_kind,
+                               "budget_s": float(self.config.run.study_budget)}
 
 
 def _setting(row) -> str:
