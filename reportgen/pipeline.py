@@ -257,17 +257,51 @@ def run_batch(paths: list[str], out_root: str = "output", jobs: int | None = Non
 
 def _run_locally(scenes, out_root, force, formats, jobs, progress,
                  time_limit: float | None = None) -> list[Outcome]:
-    """In-process for one job without a time limit; else one forked process per scene."""
-    jobs = max(1, min(jobs or os.cpu_count() or 1, len(scenes)))
+    """Scenes whose archive and reports are current are answered here, without a worker.
+
+    One scene left to do (the edit loop's case) runs in this process when no time limit
+    is set; more run in forked processes, at most ``jobs`` at once, forked after the
+    heavy libraries are imported here (:func:`_preload`), so no scene pays for them.
+    """
+    outcomes, todo = [], []
+    for scene in scenes:
+        current = None if force else _up_to_date(scene, out_root, formats)
+        if current is not None:
+            progress.scene_done(current)
+            outcomes.append(current)
+        else:
+            todo.append(scene)
+    if not todo:
+        return outcomes
+    jobs = max(1, min(jobs or os.cpu_count() or 1, len(todo)))
     if jobs == 1 and time_limit is None:
-        outcomes = []
-        for scene in scenes:
+        for scene in todo:
             outcome = run_scene(str(scene.source.path), out_root, force, formats,
                                 progress=progress.within(scene.source.name))
             progress.scene_done(outcome)
             outcomes.append(outcome)
         return outcomes
-    return _run_in_processes(scenes, out_root, force, formats, jobs, progress, time_limit)
+    _preload(todo, formats)
+    return outcomes + _run_in_processes(todo, out_root, force, formats, jobs, progress,
+                                        time_limit)
+
+
+def _preload(scenes, formats) -> None:
+    """Import, before forking, what every scene process would otherwise import for itself
+    (numba and the integrators, scipy, matplotlib with the figure style, WeasyPrint):
+    forked children share these pages instead of spending seconds each on imports."""
+    import importlib
+
+    modules = ["reportgen.core.integrators", "reportgen.core.study", "scipy.integrate",
+               "scipy.special", "scipy.optimize", "reportgen.report",
+               "reportgen.plots.style", "reportgen.plots.common", "matplotlib.backends.backend_svg"]
+    if any("pdf" in _formats(scene, formats) for scene in scenes):
+        modules.append("weasyprint")
+    for name in modules:
+        try:
+            importlib.import_module(name)
+        except ImportError:  # a missing optional library fails in the scene, with its message
+            pass
 
 
 def _scene_process(conn, config_path, out_root, force, formats) -> None:
@@ -280,6 +314,8 @@ def _run_in_processes(scenes, out_root, force, formats, jobs, progress, time_lim
 
     Killing is safe: archives and reports are renamed into place only when complete.
     """
+    from multiprocessing.connection import wait
+
     ctx = get_context("fork")
     pending = list(scenes)
     running: dict = {}  # process -> (scene, connection, start time)
@@ -293,6 +329,9 @@ def _run_in_processes(scenes, out_root, force, formats, jobs, progress, time_lim
             proc.start()
             send.close()
             running[proc] = (scene, receive, time.monotonic())
+        # sleep until a result or a process exit (or the next time-limit check)
+        waitables = [r for _s, r, _t in running.values()] + [p.sentinel for p in running]
+        wait(waitables, timeout=1.0 if time_limit is not None else None)
         for proc, (scene, receive, started) in list(running.items()):
             outcome = None
             if receive.poll():
@@ -321,8 +360,6 @@ def _run_in_processes(scenes, out_root, force, formats, jobs, progress, time_lim
             del running[proc]
             progress.scene_done(outcome)
             outcomes.append(outcome)
-        if running:
-            time.sleep(0.05)
     return outcomes
 
 

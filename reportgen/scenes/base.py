@@ -286,11 +286,13 @@ class Scene:
 
     def build_models(self) -> None:
         """Construct the models this scene integrates (``validate`` calls it); raise
-        ConfigError when the configured method cannot integrate one."""
-        models = self.models()
+        ConfigError when the configured method cannot integrate one.  With ``method =
+        "auto"`` (the policy picks a method that fits) nothing is built: validation then
+        imports no numerics."""
         run = self.config.run
         if run is None or run.method == "auto":
             return
+        models = self.models()
         method = _integrators.METHODS[run.method]
         problems: list[str] = []
         for model in models:
