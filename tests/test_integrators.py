@@ -9,6 +9,7 @@ Closed forms used:
 """
 
 import math
+import os
 import subprocess
 import sys
 
@@ -256,13 +257,57 @@ def test_default_step_meets_rtol_roughly():
     assert err < 1e-6
 
 
-def test_kernels_load_from_disk_cache_in_a_fresh_process():
-    # The second fresh process must load, not compile (see kernels.py for why we generate).
-    code = ("import numpy as np; from reportgen.core.integrators import integrate;"
-            "from reportgen.core.models import pendulum;"
-            "s = integrate(pendulum.model(9.81, 1.0), np.array([1.0, 0.0]),"
-            " np.linspace(0, 1, 3), method='dop853'); print(s.compile_time_s)")
-    for _ in range(2):
-        out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                             check=True)
-    assert float(out.stdout) < 1.0
+_TWO_MODELS = """
+import numpy as np
+from reportgen.core.integrators import compiled, integrate, kernels
+from reportgen.core.models import oscillator, pendulum
+for model in (pendulum.model(9.81, 1.0), oscillator.model(1.0, 2.0)):
+    for method in ("dop853", "verlet"):
+        integrate(model, np.array([1.0, 0.0]), np.linspace(0, 1, 3), method=method, h=0.1)
+drivers = (compiled.erk_adaptive, compiled.splitting_fixed)
+print(max(len(d.signatures) for d in drivers),
+      sum(sum(d.stats.cache_misses.values()) for d in drivers),
+      min(cf.cache_hits for _f, cf in kernels._CFUNCS.values()))
+"""
+
+
+def test_drivers_compile_once_for_all_models_and_load_from_disk(tmp_path):
+    # One compiled driver serves every model (the model functions are C-callback arguments,
+    # typed by signature), and a second fresh process loads drivers and callbacks from
+    # numba's disk cache (see kernels.py).  A private cache folder: no other test's writes.
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "numba")}
+    runs = [subprocess.run([sys.executable, "-c", _TWO_MODELS], capture_output=True,
+                           text=True, check=True, env=env).stdout.split() for _ in range(2)]
+    assert runs[0][0] == "1"  # one signature per driver for two models
+    n_signatures, misses, min_callback_hits = map(int, runs[1])
+    assert (n_signatures, misses, min_callback_hits) == (1, 0, 1)
+
+
+def test_model_functions_defined_in_a_function_run_uncached():
+    @numba.njit
+    def rhs(t, y, params, out):
+        out[0] = -params[0] * y[0]
+
+    model = OdeModel(name="decay", columns=("y",), rhs=rhs, params=np.array([2.0]))
+    t = np.linspace(0.0, 1.0, 5)
+    for method in ("dop853", "rk4", "gauss4"):
+        sol = integrate(model, np.array([1.0]), t, method=method, h=1e-3)
+        assert sol.ok and np.allclose(sol.y[:, 0], np.exp(-2.0 * t), rtol=1e-6)
+
+
+@numba.njit(cache=True)
+def inverse_rhs(t, y, params, out):
+    out[0] = 1.0 / y[0]  # 1/0 at y = 0
+
+
+def test_division_by_zero_in_a_model_is_nonfinite_not_an_exception():
+    # C callbacks compile with error_model="numpy": x/0 is inf, and an exception could not
+    # leave the callback anyway (kernels.py)
+    model = OdeModel(name="inverse", columns=("y",), rhs=inverse_rhs, params=np.zeros(0))
+    for method in ("rk4", "gauss4", "dop853"):
+        sol = integrate(model, np.array([0.0]), np.linspace(0.0, 1.0, 3), method=method,
+                        h=0.1)
+        assert not sol.ok and np.isnan(sol.y[1:]).all()
+        # the adaptive start sees f(t0, y0) = inf as a collapsing step size
+        assert sol.code is (SolveCode.STEP_UNDERFLOW if method == "dop853"
+                            else SolveCode.NONFINITE), sol.message

@@ -20,6 +20,19 @@ Compiled function signatures (all float64, all write into ``out``)::
 ``params`` is a 1-D float64 array packed by the scene; the compiled functions
 unpack it by position.  Model functions are defined at module level with
 ``numba.njit(cache=True)`` so that their compiled code is cached on disk.
+
+The integrators call them as numba C callbacks (:mod:`reportgen.core.integrators.kernels`):
+each is compiled once more with exactly the signature above (every array C-contiguous)
+and ``error_model="numpy"`` (x/0 gives inf, which the integrators report as
+non-finite).  Hence:
+
+* a model function must not raise: an exception cannot leave a C callback (numba
+  prints it as "unraisable" and the integrator goes on with a half-written ``out``);
+* Helpers: an ``njit`` function that a model function calls with arrays is declared
+  ``numba.njit(cache=True, inline="always")``.  Inlined, it compiles with the
+  callback's error model, and numba can drop the reference counting of its array
+  arguments, which otherwise costs ~50 ns per evaluation (measured: three-body
+  kick + drift 76 ns -> 27 ns).
 """
 
 from __future__ import annotations

@@ -6,10 +6,11 @@ Subclass contract
    (``adaptive``, ``symplectic``, ``implicit``, ``needs_separable``, ``symmetric``,
    ``peer``, ``compiled``).  Flags are data: tests and the study select methods by them.
 2. Compiled methods implement ``start(kern, model, y0, t_eval, Y, rtol, atol, h)``
-   returning a :class:`Run` whose ``advance(i0, i1)`` fills ``Y[i0:i1]`` and returns a
-   status code from ``_kernel_template`` (``OK`` ...).  Bookkeeping (chunking,
-   progress, timing, the failure :class:`SolveCode` and message, the Solution) is
-   done once, in :func:`reportgen.core.integrators.integrate`.
+   (``kern``: the drivers bound to the model, :func:`.kernels.kernels_for`) returning a
+   :class:`Run` whose ``advance(i0, i1)`` fills ``Y[i0:i1]`` and returns a status code
+   from :mod:`.compiled` (``OK`` ...).  Bookkeeping (chunking, progress, timing, the
+   failure :class:`SolveCode` and message, the Solution) is done once, in
+   :func:`reportgen.core.integrators.integrate`.
 3. ``check(model)`` raises :class:`MethodMismatch` before any work when the method
    cannot run on the model.
 """

@@ -6,13 +6,13 @@ import time
 
 import numpy as np
 
-from . import _kernel_template as codes
+from . import compiled as codes
 from .base import Method, MethodMismatch, Solution, SolveCode
 from .explicit_rk import DOP853
 from .kernels import kernels_for
 from .registry import METHODS
 
-#: kernel status codes (``_kernel_template``) -> how the run ended
+#: driver status codes (:mod:`.compiled`) -> how the run ended
 _CODE = {
     codes.OK: SolveCode.OK,
     codes.NONFINITE: SolveCode.NONFINITE,
@@ -47,7 +47,8 @@ def _validate(model, y0, t_eval):
 
 
 def _compile(method: Method, kern, model, y0, t_eval) -> float:
-    """Compile (or load from the on-disk cache) the method's kernel on a tiny problem."""
+    """Compile (or load from the on-disk cache) the method's driver and the model's
+    callbacks it calls, by running it on a tiny problem; the seconds it took."""
     key = (id(kern), type(method).__name__)
     if key in _WARMED:
         return 0.0
@@ -82,10 +83,8 @@ def default_step(method: Method, kern, model, y0, t_eval, rtol) -> float:
     ends = []
     for h in (h1, h1 / 2):
         Y = np.full((2, y0.size), np.nan)
-        try:
-            method.start(kern, model, y0, probe, Y, rtol, rtol, h).advance(0, 2)
-        except np.linalg.LinAlgError:  # non-finite Newton matrix: Y[1] stays NaN
-            pass
+        # a failed probe (e.g. a non-finite Newton matrix) leaves Y[1] NaN
+        method.start(kern, model, y0, probe, Y, rtol, rtol, h).advance(0, 2)
         ends.append(Y[1])
     err = float(np.max(np.abs(ends[0] - ends[1]))) / (1.0 - 2.0 ** -method.order)
     target = rtol * max(1.0, float(np.max(np.abs(y0))))
@@ -120,16 +119,7 @@ def run_compiled(method: Method, model, y0, t_eval, rtol, atol, h, progress, max
     bounds = np.linspace(0, i_end, n_chunks + 1).round().astype(int)
     status = codes.OK
     for k in range(n_chunks):
-        try:
-            status = run.advance(int(bounds[k]), int(bounds[k + 1]))
-        except np.linalg.LinAlgError:
-            # the Newton matrix I - h A (x) J of an implicit method could not be inverted:
-            # numba raises this for a NaN/inf Jacobian (an exactly singular matrix needs
-            # h a_ii λ = 1 to the last bit); the failing step lies after the last output
-            status = codes.NONFINITE
-            done = np.all(np.isfinite(Y), axis=1)
-            last = int(np.argmin(done)) - 1 if not done.all() else N - 1
-            run.t_fail = float(t_eval[max(last, 0)])
+        status = run.advance(int(bounds[k]), int(bounds[k + 1]))
         if progress is not None:
             progress(float(bounds[k + 1]) / N)
         if status != codes.OK:

@@ -28,7 +28,8 @@ class FixedStepRun(Run):
 
     def __init__(self, kernel, head: tuple, t_eval, Y, y0, h, params):
         self.kernel, self.head = kernel, head
-        self.t_eval, self.Y, self.h, self.params = t_eval, Y, h, params
+        self.t_eval, self.Y, self.h = t_eval, Y, h
+        self.params = np.ascontiguousarray(params, dtype=np.float64)  # the callbacks' layout
         self.y = np.array(y0, dtype=np.float64)
         self.counters = np.zeros(3, dtype=np.int64)
         self.tfail = np.full(1, np.nan)
@@ -117,7 +118,8 @@ class EmbeddedRun(Run):
         self.F = np.zeros((7 if m.dense_kind == 1 else 1, d))
         self.state = np.array([t_eval[0], 0.0, t_eval[0], 0.0, 0.0])
         self.counters = np.zeros(3, dtype=np.int64)
-        self.params, self.rtol, self.atol, self.max_steps = model.params, rtol, atol, max_steps
+        self.params = np.ascontiguousarray(model.params, dtype=np.float64)
+        self.rtol, self.atol, self.max_steps = rtol, atol, max_steps
 
     def advance(self, i0, i1):
         status = self.kern.erk_adaptive(

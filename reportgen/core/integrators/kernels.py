@@ -1,161 +1,168 @@
-"""Per-model compiled drivers, cached on disk across processes.
+"""A model's functions as numba C callbacks, and the compiled drivers bound to them.
 
-Why code generation
--------------------
-The obvious design -- ``@njit(cache=True) def driver(rhs, ...)`` with the model's
-dispatcher passed as an argument -- does not cache: numba types a dispatcher
-argument as ``types.Dispatcher(<that object>)``, keyed by object identity, so every
-fresh process misses the on-disk index and recompiles (~0.6 s for a 5-line driver;
-measured with numba 0.68.1: ``cache_misses`` on every run, and the index grows by one
-entry per process).
+Why C callbacks
+---------------
+The drivers (:mod:`.compiled`) take the model's functions as arguments.  Passed as
+they are -- numba dispatchers -- they would be typed as ``types.Dispatcher(<that
+object>)``, keyed by object identity: every fresh process misses numba's on-disk
+cache and recompiles (measured with numba 0.68.1).  The previous design worked around
+this by generating one module per model with the functions bound as globals, which
+cached well but compiled every driver again for every model (~5-6 s per model cold,
+~60 CPU-s for the lecture pack).
 
-Instead, for each model we write a small module that imports the model's compiled
-functions as the globals ``RHS``, ``JAC``, ``DRIFT``, ``KICK`` and appends the driver
-source of :mod:`._kernel_template`.  Calls to global dispatchers are resolved at
-compile time, inlined, and cached normally.  The module text embeds a hash of the
-template and of the model's source file, so editing either rewrites the module and
-invalidates numba's cache (numba itself does not track changes in callee files).
+Here each model function is compiled once more as a C callback, ``numba.cfunc`` with
+the fixed signature of :mod:`reportgen.core.model`.  numba types a cfunc argument as
+``FunctionType[<signature>]``, the same for every model, so each driver is compiled
+once (and loaded from disk in later processes) for all models; a model adds only its
+own small callbacks.  The indirect call costs ~1 ns per evaluation.
 
-Modules go to ``$REPORTGEN_KERNEL_CACHE`` or ``~/.cache/reportgen/kernels``.  Model
-functions that cannot be imported by name (defined inside a function) fall back to an
-uncached in-memory compile.
+Caching and errors
+------------------
+* A callback is cached on disk exactly when the model's dispatcher is (``njit(cache=
+  True)``, as the model modules do); it shares the function's numba cache index, under
+  its own key.  Functions numba cannot cache (made by ``exec``, say) compile in memory.
+* Callbacks are built on first use and memoized per process, so a method pays only for
+  what it calls (an explicit Runge-Kutta never builds ``jac``, ``drift`` or ``kick``).
+* They compile with ``error_model="numpy"``: an exception cannot leave a C callback
+  (numba would print it as "unraisable" and go on with a half-written ``out``), so a
+  division by zero gives inf/nan instead, which the drivers report as NONFINITE.
 """
 
 from __future__ import annotations
 
-import hashlib
-import importlib.util
-import inspect
-import os
-import re
-import sys
-import tempfile
 import threading
-from pathlib import Path
-from types import ModuleType, SimpleNamespace
+from functools import cached_property
 
-_TEMPLATE_PATH = Path(__file__).with_name("_kernel_template.py")
-_LOCK = threading.Lock()
-_MODULES: dict[tuple, ModuleType | SimpleNamespace] = {}
+import numba
+from numba import types
+from numba.core.caching import NullCache
 
+from . import compiled
 
-def cache_dir() -> Path:
-    root = os.environ.get("REPORTGEN_KERNEL_CACHE")
-    return Path(root) if root else Path.home() / ".cache" / "reportgen" / "kernels"
+_VEC = types.float64[::1]
+#: rhs(t, y, params, out) and jac(t, y, params, out): see reportgen.core.model
+RHS_SIG = types.void(types.float64, _VEC, _VEC, _VEC)
+JAC_SIG = types.void(types.float64, _VEC, _VEC, types.float64[:, ::1])
+#: drift(p, params, out) and kick(q, params, out)
+SPLIT_SIG = types.void(_VEC, _VEC, _VEC)
 
-
-def _import_ref(func) -> tuple[str, str] | None:
-    """(module, name) under which ``func`` (a numba dispatcher) can be imported, or None."""
-    py = getattr(func, "py_func", None)
-    if py is None:
-        return None
-    mod, name = py.__module__, py.__qualname__
-    if "<" in name or "." in name:
-        return None
-    module = sys.modules.get(mod)
-    if module is None or getattr(module, name, None) is not func:
-        return None
-    return mod, name
+_LOCK = threading.RLock()
+#: (id(dispatcher), signature) -> (dispatcher, cfunc); the dispatcher is kept so its id stays
+_CFUNCS: dict[tuple[int, str], tuple[object, object]] = {}
+_KERNELS: dict[tuple[int, ...], ModelKernels] = {}
 
 
-def _source_hash(func) -> str:
-    try:
-        text = Path(inspect.getsourcefile(func.py_func)).read_bytes()
-    except (TypeError, OSError):
-        text = repr(func).encode()
-    return hashlib.sha1(text).hexdigest()[:12]
-
-
-def _generated_text(refs: dict, template: str) -> str:
-    lines = ['"""Generated by reportgen.core.integrators.kernels -- do not edit."""']
-    for role, (func, ref) in refs.items():
-        if ref is not None:
-            lines.append(f"# {role}: {ref[0]}.{ref[1]} source sha1 {_source_hash(func)}")
-    lines.append(template)
-    lines.append("# ---- model bindings ----")
-    for role, (_func, ref) in refs.items():
-        if ref is not None:
-            lines.append(f"from {ref[0]} import {ref[1]} as {role}  # noqa: E402")
-    if "JAC" not in refs:
-        lines.append("JAC = fd_jac  # model has no Jacobian")
-    return "\n".join(lines) + "\n"
-
-
-def _write_if_changed(path: Path, text: str) -> None:
-    """Atomic write; an unchanged file keeps its mtime so numba's cache stays valid."""
-    if path.exists() and path.read_text() == text:
-        return
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".tmp")
-    with os.fdopen(fd, "w") as fh:
-        fh.write(text)
-    os.replace(tmp, path)
-
-
-def kernels_for(model) -> ModuleType | SimpleNamespace:
-    """The compiled drivers bound to ``model``'s functions (generated once per process)."""
-    sep = model.separable
-    funcs = {
-        "RHS": model.rhs,
-        "JAC": model.jac,
-        "DRIFT": sep.drift if sep is not None else None,
-        "KICK": sep.kick if sep is not None else None,
-    }
-    key = tuple(id(f) for f in funcs.values())
+def as_cfunc(func, sig):
+    """``func`` (a numba dispatcher) compiled as a C callback of signature ``sig``, memoized."""
+    key = (id(func), str(sig))
     with _LOCK:
-        if key in _MODULES:
-            return _MODULES[key]
-        template = _TEMPLATE_PATH.read_text()
-        refs = {role: (f, _import_ref(f)) for role, f in funcs.items() if f is not None}
-        module = None
-        if all(ref is not None for _f, ref in refs.values()):
-            try:
-                module = _load_generated(refs, template)
-            except OSError:  # cache folder not writable: compile without the disk cache
-                module = None
-        if module is None:
-            module = _compile_in_memory(funcs, template)
-        _MODULES[key] = module
-        return module
+        hit = _CFUNCS.get(key)
+        if hit is not None:
+            return hit[1]
+        py = getattr(func, "py_func", None)
+        if py is None:
+            raise TypeError(f"model functions must be numba.njit dispatchers, got {func!r}")
+        options = {**getattr(func, "targetoptions", {}), "error_model": "numpy"}
+        cache = not isinstance(getattr(func, "_cache", None), NullCache)
+        try:
+            cf = numba.cfunc(sig, cache=cache, **options)(py)
+        except RuntimeError:  # numba cannot locate a cache for this function
+            cf = numba.cfunc(sig, **options)(py)
+        _CFUNCS[key] = (func, cf)
+        return cf
 
 
-def _load_generated(refs: dict, template: str) -> ModuleType:
-    text = _generated_text(refs, template)
-    rhs_mod, rhs_name = refs["RHS"][1]
-    bindings = ",".join(f"{role}={ref[0]}.{ref[1]}" for role, (_f, ref) in refs.items())
-    stem = re.sub(r"\W", "_", f"{rhs_mod}_{rhs_name}")
-    stem += "_" + hashlib.sha1(bindings.encode()).hexdigest()[:6]
-    digest = hashlib.sha1(text.encode()).hexdigest()[:10]
-    name = f"rg_kernels_{stem}_{digest}"
-    path = cache_dir() / f"{name}.py"
-    if not path.exists():
-        _remove_stale(stem, keep=name)
-    _write_if_changed(path, text)
-    spec = importlib.util.spec_from_file_location(name, path)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[name] = module
-    spec.loader.exec_module(module)
-    return module
+@numba.njit(cache=True)
+def _no_jac(t, y, params, out):
+    """Stands in for a missing Jacobian; never called (the driver uses finite differences)."""
 
 
-def _remove_stale(stem: str, keep: str) -> None:
-    """Drop modules (and their numba cache files) generated from older model/template text."""
-    for old in cache_dir().glob(f"rg_kernels_{stem}_*"):
-        if old.stem != keep:
-            for f in [old, *old.parent.glob(f"__pycache__/{old.stem}.*")]:
-                try:
-                    f.unlink()
-                except OSError:
-                    pass
+class ModelKernels:
+    """The drivers of :mod:`.compiled` with one model's callbacks as leading arguments.
+
+    The methods take the drivers' remaining arguments unchanged, so a Run calls
+    ``kern.erk_fixed(A, b, c, ...)`` without knowing how the model is bound.
+    """
+
+    def __init__(self, model):
+        sep = model.separable
+        self._funcs = (model.rhs, model.jac, sep and sep.drift, sep and sep.kick)
+        self.has_jac = model.jac is not None
+
+    @cached_property
+    def rhs(self):
+        return as_cfunc(self._funcs[0], RHS_SIG)
+
+    @cached_property
+    def jac(self):
+        return as_cfunc(self._funcs[1] if self.has_jac else _no_jac, JAC_SIG)
+
+    @cached_property
+    def drift(self):
+        return as_cfunc(self._funcs[2], SPLIT_SIG)
+
+    @cached_property
+    def kick(self):
+        return as_cfunc(self._funcs[3], SPLIT_SIG)
+
+    def erk_adaptive(self, *args):
+        return compiled.erk_adaptive(self.rhs, *args)
+
+    def erk_fixed(self, *args):
+        return compiled.erk_fixed(self.rhs, *args)
+
+    def splitting_fixed(self, *args):
+        return compiled.splitting_fixed(self.drift, self.kick, *args)
+
+    def collocation_fixed(self, *args):
+        """Gauss collocation with the model's Jacobian, or finite differences without one."""
+        return compiled.collocation_fixed(self.rhs, self.jac, not self.has_jac, *args)
 
 
-def _compile_in_memory(funcs: dict, template: str) -> SimpleNamespace:
-    source = template.replace("cache=True", "cache=False")
-    namespace: dict = {"__name__": "rg_kernels_uncached"}
-    exec(compile(source, "<reportgen kernels>", "exec"), namespace)
-    for role, f in funcs.items():
-        if f is not None:
-            namespace[role] = f
-    if funcs["JAC"] is None:
-        namespace["JAC"] = namespace["fd_jac"]
-    return SimpleNamespace(**{k: v for k, v in namespace.items() if not k.startswith("__")})
+def kernels_for(model) -> ModelKernels:
+    """The compiled drivers bound to ``model``'s functions (one object per process and set
+    of functions; the callbacks are compiled or loaded when a driver first needs them)."""
+    sep = model.separable
+    funcs = (model.rhs, model.jac, sep and sep.drift, sep and sep.kick)
+    key = tuple(id(f) for f in funcs)
+    with _LOCK:
+        kern = _KERNELS.get(key)
+        if kern is None:
+            kern = _KERNELS[key] = ModelKernels(model)
+        return kern
+
+
+@numba.njit(cache=True)
+def _unit_rhs(t, y, params, out):
+    """y'' = -y: the model :func:`warm_up` runs every driver on."""
+    out[0] = y[1]
+    out[1] = -y[0]
+
+
+@numba.njit(cache=True)
+def _unit_drift(p, params, out):
+    out[0] = p[0]
+
+
+@numba.njit(cache=True)
+def _unit_kick(q, params, out):
+    out[0] = -q[0]
+
+
+def warm_up() -> None:
+    """Load every driver (compiling it first if numba's cache is empty) by running each
+    once on a 2-D oscillator.  A batch calls this before forking its scene processes, so
+    they inherit loaded drivers instead of each loading -- or, on a cold cache, each
+    compiling -- the same code."""
+    import numpy as np
+
+    from ..model import OdeModel, Separable
+    from .driver import integrate
+
+    model = OdeModel(name="warm-up", columns=("q", "p"), rhs=_unit_rhs,
+                     params=np.zeros(1), separable=Separable(n=1, drift=_unit_drift,
+                                                             kick=_unit_kick))
+    y0, t = np.array([1.0, 0.0]), np.array([0.0, 0.1])
+    for method, kw in (("dop853", {"rtol": 1e-6, "atol": 1e-8}), ("rk4", {"h": 0.05}),
+                       ("verlet", {"h": 0.05}), ("gauss4", {"h": 0.05})):
+        integrate(model, y0, t, method=method, **kw)

@@ -95,8 +95,7 @@ class GaussLegendre(Method):
         dvec = np.linalg.solve(A.T, self.b)  # d^T = b^T A^{-1}, [3] IV.8 eq. (8.2b)
         run = FixedStepRun(kern.collocation_fixed, (A, np.asarray(self.c, float), dvec),
                            t_eval, Y, y0, h, model.params)
-        use_fd = model.jac is None
-        run.tail_args = lambda: (use_fd, self.max_newton_iter)
+        run.tail_args = lambda: (self.max_newton_iter,)
         return run
 
 

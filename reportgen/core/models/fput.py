@@ -30,7 +30,8 @@ import numpy as np
 from ..model import OdeModel, Separable
 
 
-@numba.njit(cache=True)
+# inlined into its callers: see "Helpers" in reportgen.core.model
+@numba.njit(cache=True, inline="always")
 def _grad_v(q, omega, out):
     """∇V(q) of GNI eq. (I.5.1), written into ``out``; q has length 2m (0-based)."""
     n = q.shape[0]

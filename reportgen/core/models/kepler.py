@@ -34,7 +34,8 @@ from ..model import OdeModel, Separable
 #   c_3 = 2 ε / μ   (from V = −ε/r²: dV/dr = 2 ε r^(−3))
 
 
-@numba.njit(cache=True)
+# inlined into its callers: see "Helpers" in reportgen.core.model
+@numba.njit(cache=True, inline="always")
 def _accel_factor(x, y, params):
     r2 = x * x + y * y
     if params[1] == 1.0:

@@ -18,7 +18,8 @@ import numpy as np
 from ..model import OdeModel, Separable
 
 
-@numba.njit(cache=True)
+# inlined into its callers: see "Helpers" in reportgen.core.model
+@numba.njit(cache=True, inline="always")
 def _unpack(params):
     n = int(params[0])
     minv = params[1:1 + n * n].reshape((n, n))

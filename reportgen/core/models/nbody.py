@@ -34,7 +34,8 @@ COLUMNS = tuple(f"{c}{b}" for b in (1, 2, 3) for c in "xyz") + tuple(
 # params = (G, m1, m2, m3)
 
 
-@numba.njit(cache=True)
+# inlined into its callers: see "Helpers" in reportgen.core.model
+@numba.njit(cache=True, inline="always")
 def _accelerations(q, params, out):
     for i in range(9):
         out[i] = 0.0

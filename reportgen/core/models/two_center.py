@@ -33,7 +33,8 @@ from ..model import OdeModel, Separable
 # params = (mu, a)
 
 
-@numba.njit(cache=True)
+# inlined into its callers: see "Helpers" in reportgen.core.model
+@numba.njit(cache=True, inline="always")
 def _accel(x, y, params, out):
     mu, a = params[0], params[1]
     d1x, d2x = x + a, x - a
