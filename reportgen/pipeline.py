@@ -288,8 +288,9 @@ def _run_locally(scenes, out_root, force, formats, jobs, progress,
 
 def _preload(scenes, formats) -> None:
     """Import, before forking, what every scene process would otherwise import for itself
-    (numba and the integrators, scipy, matplotlib with the figure style, WeasyPrint):
-    forked children share these pages instead of spending seconds each on imports."""
+    (numba and the integrators, scipy, matplotlib with the figure style, WeasyPrint) and
+    load the compiled drivers: forked children share these pages instead of spending
+    seconds each on imports, and two children never compile the same driver at once."""
     import importlib
 
     modules = ["reportgen.core.integrators", "reportgen.core.study", "scipy.integrate",
@@ -302,6 +303,9 @@ def _preload(scenes, formats) -> None:
             importlib.import_module(name)
         except ImportError:  # a missing optional library fails in the scene, with its message
             pass
+    from .core.integrators.kernels import warm_up
+
+    warm_up()  # the compiled drivers: loaded (or, on a cold cache, compiled) once, here
 
 
 def _scene_process(conn, config_path, out_root, force, formats) -> None:
