@@ -103,7 +103,8 @@ def test_budget_cuts_ladders_but_keeps_every_method_and_the_baseline():
     assert set(per_method) == STUDIED
     for name, rows in per_method.items():
         if name == "scipy_dop853":
-            assert [r["tolerance"] for r in rows] == [1e-4, 1e-6, 1e-8, 1e-10]
+            # the first rung, then straight on to the baseline
+            assert [r["tolerance"] for r in rows] == [1e-4, 1e-10]
         else:
             assert len(rows) == 1, (name, rows)
             assert rows[0]["repeats"] == 1  # no time left for repeats either
@@ -118,3 +119,28 @@ def test_peer_cache_key_depends_on_the_budget():
     args = ("scipy_dop853", pendulum.model(G, L), Y0, T_EVAL, [("rtol", 1e-6)], exact(T_EVAL))
     assert peer_key(*args, 1.0) != peer_key(*args, 2.0)
     assert peer_key(*args, 1.0) == peer_key(*args, 1.0)
+
+
+def test_peer_runs_over_their_share_are_stopped_and_named(monkeypatch):
+    """A peer whose loosest run overruns its share is stopped (no row) and listed in
+    ``over_budget``; the baseline peer keeps the full time cap."""
+    import reportgen.core.study as study_mod
+
+    monkeypatch.setattr(study_mod, "MIN_PEER_RUN_S", 0.0)
+    t_eval = np.linspace(0.0, 20 * T, 401)
+    res = work_precision(pendulum.model(G, L), Y0, t_eval, reference=exact,
+                         methods=["dop853", "scipy_rk45", "scipy_dop853"],
+                         tolerances=[1e-4, 1e-10], repeats=1, budget_s=1e-9)
+    assert res.over_budget == ["scipy_rk45"]
+    assert {r["method"] for r in res.rows} == {"dop853", "scipy_dop853"}
+    assert matched_error_speedup(res)["baseline"]["tolerance"] == 1e-10
+
+
+def test_peer_time_limit():
+    from reportgen.core.integrators.scipy_peer import PeerTimeLimit, ScipyRK45
+
+    t_eval = np.linspace(0.0, 20 * T, 401)
+    with pytest.raises(PeerTimeLimit):
+        ScipyRK45().solve(pendulum.model(G, L), Y0, t_eval, 1e-10, 1e-12, time_limit=0.0)
+    sol = ScipyRK45().solve(pendulum.model(G, L), Y0, t_eval, 1e-6, 1e-8, time_limit=60.0)
+    assert sol.status == "ok"

@@ -28,9 +28,12 @@ share of what is left, so time one method leaves unused goes to the next (the sc
 peers, ~20 us per right-hand-side call, are last and get most of it).  A ladder stops
 before a rung whose predicted cost (the last rung's, times the growth seen between the
 last two) would overrun the method's share; repeats are cut to what the share allows.
-One rung is exempt: scipy DOP853 at rtol 1e-10, the baseline every speed-up in the
-report is measured against, is run when no single run on the way is slower than
-``TIME_CAP_S``.  ``budget_s = inf`` gives the unbudgeted study (``reportgen bench``).
+A peer's run is stopped once it overruns its share (but never before
+``MIN_PEER_RUN_S``); a peer whose loosest run is stopped has no rows and is named in
+``over_budget``.  One rung is exempt: scipy DOP853 at rtol 1e-10, the baseline every
+speed-up in the report is measured against, is run (looser rungs on the way may be
+skipped) unless it takes longer than ``TIME_CAP_S``.  ``budget_s = inf`` gives the
+unbudgeted study (``reportgen bench``).
 """
 
 from __future__ import annotations
@@ -49,12 +52,14 @@ import numpy as np
 import scipy
 
 from .integrators import METHODS, integrate
+from .integrators.scipy_peer import PeerTimeLimit
 
 DEFAULT_TOLERANCES = tuple(10.0 ** -k for k in range(4, 13))
 ATOL_OVER_RTOL = 1e-2
 TIME_CAP_S = 1.0  # a run slower than this ends the method's sweep (next one ~2x slower)
 DEFAULT_BUDGET_S = 1.0  # timed runs of one study, all methods together
 BASELINE = ("scipy_dop853", 1e-10)  # the run every speed-up is measured against
+MIN_PEER_RUN_S = 0.2  # a peer's first run may always take this long
 REPEAT_BELOW_S = 0.1  # slower runs are timed once (noise is small relative to their time)
 MIN_RTOL = {"scipy_radau": 1e-10, "scipy_lsoda": 1e-12}
 SCIPY_FLOOR = 100 * np.finfo(float).eps
@@ -113,6 +118,8 @@ class StudyResult:
     reference_kind: str
     reference_agreement: float = math.nan
     skipped: list[str] = field(default_factory=list)
+    #: methods whose first run did not finish within their share of the budget (no rows)
+    over_budget: list[str] = field(default_factory=list)
 
     def to_records(self) -> np.ndarray:
         """Structured array (byte strings, fixed width) ready for an HDF5 table."""
@@ -130,11 +137,16 @@ def reference_run(model, y0, t_eval) -> np.ndarray:
     return integrate(model, y0, t_eval, method="dop853", rtol=1e-14, atol=1e-16).y
 
 
-def _reference_runs(model, y0, t_eval):
+def _reference_runs(model, y0, t_eval, time_cap: float = math.inf):
+    """The two references (module docstring).  Halving the gauss6 step stops once two runs
+    agree to 1e-13, after 5 halvings, or before a run predicted (2x the last) to take
+    longer than ``time_cap``; ``reference_agreement`` then says how good it is."""
     ref_dop = integrate(model, y0, t_eval, method="dop853", rtol=1e-14, atol=1e-16)
     span = t_eval[-1] - t_eval[0]
     prev = integrate(model, y0, t_eval, method="gauss6", h=2.0 * span / max(ref_dop.nsteps, 1))
     for _ in range(5):
+        if 2.0 * prev.wall_time_s > time_cap:
+            break
         # halve the step actually used (a step longer than the output spacing is cut to it)
         cur = integrate(model, y0, t_eval, method="gauss6", h=prev.h / 2.0)
         scale = max(1.0, float(np.nanmax(np.abs(cur.y))))
@@ -157,14 +169,17 @@ def _timed(run, repeats: int, allowance: float = math.inf):
     spent = first.wall_time_s
     if first.wall_time_s >= REPEAT_BELOW_S or repeats < 1:
         return first, first.compile_time_s, 1, spent
-    best, n = None, 0
+    best, n = first, 0
     while n < repeats and (n == 0 or spent + first.wall_time_s <= allowance):
-        sol = run()
+        try:
+            sol = run()
+        except PeerTimeLimit:  # a repeat slower than the first: keep what was measured
+            break
         spent += sol.wall_time_s
-        n += 1
-        if best is None or sol.wall_time_s < best.wall_time_s:
+        if n == 0 or sol.wall_time_s < best.wall_time_s:
             best = sol
-    return best, first.compile_time_s, n, spent
+        n += 1
+    return best, first.compile_time_s, max(n, 1), spent
 
 
 class Budget:
@@ -259,7 +274,7 @@ def work_precision(model, y0, t_eval, reference=None, methods=None, tolerances=N
         refs = {"default": y_ref, "dop853": y_ref}
         reference_kind, agreement = "exact", math.nan
     else:
-        ref_dop, ref_gauss = _reference_runs(model, y0, t_eval)
+        ref_dop, ref_gauss = _reference_runs(model, y0, t_eval, time_cap=budget_s / 2.0)
         refs = {"default": ref_dop.y, "dop853": ref_gauss.y}
         agreement = float(np.max(np.abs(ref_dop.y - ref_gauss.y)))
         reference_kind = (f"reference run: dop853 rtol=1e-14 atol=1e-16 "
@@ -290,7 +305,9 @@ def work_precision(model, y0, t_eval, reference=None, methods=None, tolerances=N
         if progress is not None:
             progress((k + 1) / len(methods))
     return StudyResult(rows=rows, reference_kind=reference_kind,
-                       reference_agreement=agreement, skipped=skipped)
+                       reference_agreement=agreement, skipped=skipped,
+                       over_budget=[n for n in methods if not any(r["method"] == n
+                                                                  for r in rows)])
 
 
 def _sweep(model, y0, t_eval, name, grid, y_ref, repeats, stamp, budget: Budget,
@@ -303,15 +320,30 @@ def _sweep(model, y0, t_eval, name, grid, y_ref, repeats, stamp, budget: Budget,
     spent = 0.0
     seen_h = set()
     for what, value in grid:
-        # the baseline rung and the looser ones on the way to it are never skipped
-        mandatory = (name == BASELINE[0] and what == "rtol"
-                     and value >= BASELINE[1] * (1.0 - 1e-9))
-        if costs and not mandatory and spent + _predicted(costs) > allowance:
+        baseline = name == BASELINE[0] and what == "rtol" and math.isclose(value, BASELINE[1])
+        before_baseline = name == BASELINE[0] and what == "rtol" and value > BASELINE[1]
+        over = bool(costs) and spent + _predicted(costs) > allowance
+        if over and before_baseline:
+            continue  # straight on to the baseline rung
+        if over and not baseline:
             break
         kw = dict(rtol=value, atol=value * ATOL_OVER_RTOL) if what == "rtol" else dict(h=value)
-        sol, compile_s, n, cost = _timed(
-            functools.partial(integrate, model, y0, t_eval, method=name, **kw), repeats,
-            max(allowance - spent, 0.0))
+        if m.peer:
+            # a peer's run is stopped when it overruns its share (the baseline: the cap)
+            limit = TIME_CAP_S if baseline else max(allowance - spent, 0.0)
+            run = functools.partial(m.solve, model, y0, t_eval, kw["rtol"], kw["atol"],
+                                    time_limit=max(limit, MIN_PEER_RUN_S))
+        else:
+            run = functools.partial(integrate, model, y0, t_eval, method=name, **kw)
+        try:
+            sol, compile_s, n, cost = _timed(run, repeats, max(allowance - spent, 0.0))
+        except PeerTimeLimit:
+            lost = max(allowance - spent, MIN_PEER_RUN_S)
+            spent += lost
+            budget.spent += lost
+            if before_baseline:
+                continue
+            break
         spent += cost
         budget.spent += cost
         costs.append(cost / max(n, 1))

@@ -409,6 +409,11 @@ class Scene:
                          "method's ladder stops before a rung that would overrun its share, "
                          "so the tightest tolerances and smallest steps may be absent; scipy "
                          "DOP853 is always run down to the rtol-1e-10 baseline.")
+        over = [m for m in str(data.study_attrs.get("over_budget", "")).split(",") if m]
+        if over:
+            notes.append("No run within the study budget (the loosest tolerance was stopped "
+                         "when it overran its share; raise [run] study_budget to include it): "
+                         + ", ".join(over) + ".")
         target = (f"scipy DOP853 at rtol 1e-10 reaches {fmt_err(float(base['error_max']))} in "
                   f"{float(base['wall_time_s']) * 1e3:.3g} ms" if base is not None
                   else "no scipy DOP853 baseline run")
@@ -493,7 +498,8 @@ class Scene:
                                        budget_s=self.config.run.study_budget)
         results.study = result.to_records()
         results.study_attrs = {"reference_kind": result.reference_kind,
-                               "budget_s": float(self.config.run.study_budget)}
+                               "budget_s": float(self.config.run.study_budget),
+                               "over_budget": ",".join(result.over_budget)}
 
 
 def _setting(row) -> str:

@@ -24,13 +24,20 @@ def _solve_ivp():
     return solve_ivp
 
 
+class PeerTimeLimit(Exception):
+    """A peer run stopped at its ``time_limit`` (the study's budget), without a result."""
+
+
 class ScipyMethod(Method):
     adaptive = True
     peer = True
     compiled = False
     scipy_name: str
 
-    def solve(self, model, y0, t_eval, rtol, atol, progress=None) -> Solution:
+    def solve(self, model, y0, t_eval, rtol, atol, progress=None,
+              time_limit: float | None = None) -> Solution:
+        """One solve_ivp run.  ``time_limit`` (seconds): raise :class:`PeerTimeLimit`
+        once the run has taken longer (checked every 32 right-hand-side calls)."""
         rtol_eff = max(float(rtol), SCIPY_MIN_RTOL)
         kwargs = {}
         if self.implicit or self.scipy_name == "LSODA":
@@ -39,11 +46,12 @@ class ScipyMethod(Method):
                 kwargs["jac"] = jac
         N, d = t_eval.size, y0.size
         Y = np.full((N, d), np.nan)
+        fun = model.f if time_limit is None else _with_deadline(model.f, time_limit)
         t0 = time.perf_counter()
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)
-            res = _solve_ivp()(model.f, (t_eval[0], t_eval[-1]), y0, method=self.scipy_name,
-                            t_eval=t_eval, rtol=rtol_eff, atol=atol, **kwargs)
+            res = _solve_ivp()(fun, (t_eval[0], t_eval[-1]), y0, method=self.scipy_name,
+                               t_eval=t_eval, rtol=rtol_eff, atol=atol, **kwargs)
         wall = time.perf_counter() - t0
         n_ok = res.t.size
         if n_ok:
@@ -64,6 +72,20 @@ class ScipyMethod(Method):
         return Solution(t=t_eval.copy(), y=Y, method=self.name, rtol=rtol_eff, atol=float(atol),
                         h=None, nfev=int(res.nfev), nsteps=-1, nreject=-1, code=code,
                         message=message, wall_time_s=wall, compile_time_s=0.0)
+
+
+def _with_deadline(f, seconds: float):
+    deadline = time.perf_counter() + seconds
+    calls = 0
+
+    def fun(t, y):
+        nonlocal calls
+        calls += 1
+        if calls % 32 == 0 and time.perf_counter() > deadline:
+            raise PeerTimeLimit(f"stopped after {seconds:.3g} s")
+        return f(t, y)
+
+    return fun
 
 
 class ScipyRK45(ScipyMethod):
