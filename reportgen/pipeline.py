@@ -303,7 +303,7 @@ def _preload(scenes, formats) -> None:
             importlib.import_module(name)
         except ImportError:  # a missing optional library fails in the scene, with its message
             pass
-    from .core.integrators.kernels import warm_up
+    from .core.integrators.driver import warm_up
 
     warm_up()  # the compiled drivers: loaded (or, on a cold cache, compiled) once, here
 
