@@ -31,6 +31,38 @@ RC = {
 }
 plt.rcParams.update(RC)
 
+
+def _share_text_to_path() -> None:
+    """Let every renderer use matplotlib's one module-level TextToPath.
+
+    Each renderer (one per savefig) builds its own ``TextToPath`` in
+    ``RendererBase.__init__``, and that instance's ``MathTextParser`` is part of the key
+    of matplotlib's mathtext cache: so every save re-parses every mathtext string
+    (log-axis tick labels ``10^{-4}``, offset texts) with pyparsing, several ms each --
+    half the SVG save time of a figure with log axes.  The parse depends only on the
+    string and the font properties, so sharing the instance changes no output byte.
+    Skipped if matplotlib's internals are not what this expects.
+    """
+    import matplotlib.text as mtext
+    import matplotlib.textpath as mtextpath
+
+    if (getattr(mtext, "TextToPath", None) is not mtextpath.TextToPath
+            or not isinstance(getattr(mtextpath, "text_to_path", None), mtextpath.TextToPath)):
+        return
+
+    shared = mtextpath.text_to_path
+
+    class SharedTextToPath(mtextpath.TextToPath):
+        """``TextToPath()`` returning the shared instance (it holds no per-figure state)."""
+
+        def __new__(cls):
+            return shared
+
+    mtext.TextToPath = SharedTextToPath
+
+
+_share_text_to_path()
+
 #: colours with a meaning, used the same way in every figure
 HIGHLIGHT = "#c0504d"  # the scene's own orbit / numerical result
 REFERENCE = "#1f4e79"  # exact or reference solution
