@@ -94,6 +94,11 @@ def build_parser() -> argparse.ArgumentParser:
 
     bench = sub.add_parser("bench", help="error against run time, against peer solvers")
     bench.add_argument("paths", nargs="*", metavar="PATH")
+    bench.add_argument("--pipeline", action="store_true",
+                       help="time the edit loop instead: the pack (PATH, default configs/) "
+                            "cold and warm, a title edit, a physics edit, the light commands")
+    bench.add_argument("--scene", default="pendulum_small",
+                       help="with --pipeline: the scene edited (default pendulum_small)")
     return parser
 
 
@@ -185,6 +190,21 @@ def cmd_validate(args) -> int:
 def cmd_bench(args) -> int:
     from .bench import run_bench
     from .pipeline import UsageError
+
+    if args.pipeline:
+        from pathlib import Path
+
+        from .bench_pipeline import measure
+
+        folder = Path(args.paths[0]) if args.paths else Path("configs")
+        if len(args.paths) > 1 or not folder.is_dir():
+            return _usage(f"bench --pipeline: expected one folder of configs, got "
+                          f"{' '.join(args.paths) or 'configs/ (missing)'}")
+        if not (folder / f"{args.scene}.toml").exists():
+            return _usage(f"bench --pipeline: --scene {args.scene}: no {args.scene}.toml in "
+                          f"{folder}")
+        measure(folder, args.scene)
+        return 0
 
     os.environ[NO_CACHE_ENV] = "1"  # peers measured in the same run as ours
 

@@ -51,6 +51,8 @@ class Outcome:
     reports: list[str] = field(default_factory=list)
     #: the stages that ran: simulate, restamp, report (none: everything was current)
     stages: list[str] = field(default_factory=list)
+    #: seconds per stage that ran (simulate, restamp, figures, html, pdf)
+    stage_s: dict[str, float] = field(default_factory=dict)
 
     @property
     def ok(self) -> bool:
@@ -147,6 +149,7 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
         key = scene.physics_key()
         if (force or stored is None or stored.physics_key != key
                 or stored.format_version < FORMAT_VERSION):
+            t0 = time.perf_counter()
             results = scene.simulate(progress=progress)
             for name, run in results.runs.items():
                 if run.status != "ok":
@@ -157,16 +160,19 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
                           results=results, resolved_config=scene.resolved_config(),
                           physics_key=key)
             outcome.stages.append("simulate")
+            outcome.stage_s["simulate"] = time.perf_counter() - t0
         elif stored.config_sha256 != scene.source.sha256:
+            t0 = time.perf_counter()
             restamp(archive, title=scene.title, config_text=scene.source.text,
                     config_sha256=scene.source.sha256, resolved_config=scene.resolved_config())
             outcome.stages.append("restamp")
+            outcome.stage_s["restamp"] = time.perf_counter() - t0
         identity = stored_identity(archive)
         wanted = _formats(scene, formats)
         if force or not _report_current(folder, identity, wanted):
             from .report import build_report  # matplotlib and jinja2 only when drawing
 
-            build_report(archive, formats=wanted, force_figures=force)
+            build_report(archive, formats=wanted, force_figures=force, timings=outcome.stage_s)
             atomic_write(_report_stamp(folder), json.dumps(
                 {"archive": _archive_stamp(identity), "formats": list(wanted)}).encode("utf-8"))
             outcome.stages.append("report")

@@ -12,6 +12,7 @@ import hashlib
 import io
 import json
 import re
+import time
 from dataclasses import dataclass
 from datetime import UTC, datetime
 from pathlib import Path
@@ -299,29 +300,40 @@ def write_pdf(html_text: str, target: Path, base_url: Path) -> None:
 
 def build_report(archive_path: Path, formats=("html", "pdf"), out_dir: Path | None = None,
                  figure_files: tuple[str, ...] | None = None,
-                 force_figures: bool = False) -> list[Path]:
+                 force_figures: bool = False,
+                 timings: dict[str, float] | None = None) -> list[Path]:
     """The figures and report stages of one archive, next to it (or into ``out_dir``).
 
     Figures are redrawn only when their key changed (or ``force_figures``);
-    ``figure_files`` overrides the config's ``[report] figure_formats``."""
+    ``figure_files`` overrides the config's ``[report] figure_formats``.  ``timings``,
+    if given, receives the seconds spent on figures, html and pdf."""
     archive_path = Path(archive_path)
     data = read_archive(archive_path)
     out_dir = Path(out_dir) if out_dir is not None else archive_path.parent
     out_dir.mkdir(parents=True, exist_ok=True)
+    timings = {} if timings is None else timings
+    t0 = time.perf_counter()
     sections, _ = figures_stage(data, out_dir, figure_files, force=force_figures)
+    timings["figures"] = time.perf_counter() - t0
     context = build_context(data, out_dir, sections=sections)
-    return write_formats(render_html(context), out_dir, formats)
+    return write_formats(render_html(context), out_dir, formats, timings)
 
 
-def write_formats(html_text: str, out_dir: Path, formats) -> list[Path]:
+def write_formats(html_text: str, out_dir: Path, formats,
+                  timings: dict[str, float] | None = None) -> list[Path]:
     """``report.html`` and/or ``report.pdf`` (WeasyPrint's rendering of the same HTML)."""
+    timings = {} if timings is None else timings
     written = []
     if "html" in formats:
+        t0 = time.perf_counter()
         atomic_write(out_dir / "report.html", html_text.encode("utf-8"))
         written.append(out_dir / "report.html")
+        timings["html"] = time.perf_counter() - t0
     if "pdf" in formats:
+        t0 = time.perf_counter()
         write_pdf(html_text, out_dir / "report.pdf", out_dir)
         written.append(out_dir / "report.pdf")
+        timings["pdf"] = time.perf_counter() - t0
     return written
 
 
