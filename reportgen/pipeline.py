@@ -288,8 +288,24 @@ def _run_locally(scenes, out_root, force, formats, jobs, progress,
             outcomes.append(outcome)
         return outcomes
     _preload(todo, formats)
-    return outcomes + _run_in_processes(todo, out_root, force, formats, jobs, progress,
-                                        time_limit)
+    return outcomes + _run_in_processes(_interleave_kinds(todo), out_root, force, formats,
+                                        jobs, progress, time_limit)
+
+
+def _interleave_kinds(scenes: list[Scene]) -> list[Scene]:
+    """The scenes round-robin over their kinds (first of each kind, then second, ...).
+
+    Scenes running at the same time are then of different kinds, so on a cold numba
+    cache two workers do not compile the same kind's functions at once, and a kind's
+    later scenes find its code compiled."""
+    by_kind: dict[str, list[Scene]] = {}
+    for scene in scenes:
+        by_kind.setdefault(scene.kind, []).append(scene)
+    queues = sorted(by_kind.values(), key=len, reverse=True)
+    order = []
+    for i in range(max(len(q) for q in queues)):
+        order.extend(q[i] for q in queues if i < len(q))
+    return order
 
 
 def _preload(scenes, formats) -> None:
