@@ -325,9 +325,21 @@ def _preload(scenes, formats) -> None:
             importlib.import_module(name)
         except ImportError:  # a missing optional library fails in the scene, with its message
             pass
+    _warm_up_drivers()
+
+
+def _warm_up_drivers() -> None:
+    """Load the compiled drivers here, once.  On a cold numba cache, compiling them takes
+    seconds: a forked helper compiles the implicit and splitting drivers into the disk
+    cache while this process compiles the explicit ones, then this process loads those."""
     from .core.integrators.driver import warm_up
 
-    warm_up()  # the compiled drivers: loaded (or, on a cold cache, compiled) once, here
+    ctx = get_context("fork")
+    helper = ctx.Process(target=warm_up, args=(("gauss4", "verlet"),), daemon=True)
+    helper.start()
+    warm_up(("dop853", "rk4"))
+    helper.join()
+    warm_up(("gauss4", "verlet"))  # from the disk cache now (compiled here if it failed)
 
 
 def _scene_process(conn, config_path, out_root, force, formats) -> None:

@@ -226,15 +226,19 @@ def _unit_kick(q, params, out):
     out[0] = -q[0]
 
 
-def warm_up() -> None:
-    """Load every driver (compiling it first if numba's cache is empty) by running each
-    once on a 2-D oscillator.  A batch calls this before forking its scene processes, so
-    they inherit loaded drivers instead of each loading -- or, on a cold cache, each
-    compiling -- the same code."""
+#: one method per compiled driver (the rest share these drivers)
+WARM_UP_METHODS = {"dop853": {"rtol": 1e-6, "atol": 1e-8}, "rk4": {"h": 0.05},
+                   "verlet": {"h": 0.05}, "gauss4": {"h": 0.05}}
+
+
+def warm_up(methods=tuple(WARM_UP_METHODS)) -> None:
+    """Load the drivers of ``methods`` (default: every driver), compiling them first if
+    numba's cache is empty, by running each once on a 2-D oscillator.  A batch calls this
+    before forking its scene processes, so they inherit loaded drivers instead of each
+    loading -- or, on a cold cache, each compiling -- the same code."""
     model = OdeModel(name="warm-up", columns=("q", "p"), rhs=_unit_rhs,
                      params=np.zeros(1), separable=Separable(n=1, drift=_unit_drift,
                                                              kick=_unit_kick))
     y0, t = np.array([1.0, 0.0]), np.array([0.0, 0.1])
-    for method, kw in (("dop853", {"rtol": 1e-6, "atol": 1e-8}), ("rk4", {"h": 0.05}),
-                       ("verlet", {"h": 0.05}), ("gauss4", {"h": 0.05})):
-        integrate(model, y0, t, method=method, **kw)
+    for method in methods:
+        integrate(model, y0, t, method=method, **WARM_UP_METHODS[method])
