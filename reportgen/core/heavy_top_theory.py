@@ -42,7 +42,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import integrate as sp_integrate
+import scipy
 
 from .special import ellipf_carlson, ellipk_carlson, ellippi_carlson, jacobi_sn_agm
 
@@ -282,7 +282,7 @@ def _chi_integral(r: Roots, c: TopConstants, weight) -> float:
     width = math.sqrt(max(r.mc, 1e-300))
     points = [0.5 * math.pi - width * 10.0**j for j in range(int(-math.log10(width)) + 1)]
     points = [p for p in points if 0.0 < p < 0.5 * math.pi]
-    value, _err = sp_integrate.quad(integrand, 0.0, 0.5 * math.pi, epsabs=0.0, epsrel=1e-12,
+    value, _err = scipy.integrate.quad(integrand, 0.0, 0.5 * math.pi, epsabs=0.0, epsrel=1e-12,
                                     limit=1000, points=points or None)
     return 4.0 * value
 

@@ -16,7 +16,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy import special as _sp
+import scipy
 
 
 def ellipk(m: float) -> float:
@@ -25,7 +25,7 @@ def ellipk(m: float) -> float:
     Returns ``math.inf`` for m ≥ 1 (the logarithmic singularity at m = 1).
     """
     m = float(m)
-    return float(_sp.ellipk(m)) if m < 1.0 else math.inf
+    return float(scipy.special.ellipk(m)) if m < 1.0 else math.inf
 
 
 def ellipf(phi: float, m: float) -> float:
@@ -43,8 +43,8 @@ def ellipf(phi: float, m: float) -> float:
         Parameter m = k², 0 ≤ m < 1 (m = 1 only with |φ| < π/2).
     """
     n = round(phi / math.pi)
-    base = float(_sp.ellipkinc(phi - n * math.pi, m))
-    return base if n == 0 else base + 2.0 * n * float(_sp.ellipk(m))
+    base = float(scipy.special.ellipkinc(phi - n * math.pi, m))
+    return base if n == 0 else base + 2.0 * n * float(scipy.special.ellipk(m))
 
 
 def jacobi_sn_cn_dn(u, m: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -61,7 +61,7 @@ def jacobi_sn_cn_dn(u, m: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     -------
     sn, cn, dn : ndarray, shape (N,)
     """
-    sn, cn, dn, _ = _sp.ellipj(np.asarray(u, dtype=float), m)
+    sn, cn, dn, _ = scipy.special.ellipj(np.asarray(u, dtype=float), m)
     return sn, cn, dn
 
 
@@ -78,7 +78,7 @@ def ellipk_carlson(mc: float) -> float:
     mc : float
         Complementary parameter 1 − k², 0 < mc ≤ 1; full relative accuracy as mc → 0.
     """
-    return float(_sp.elliprf(0.0, mc, 1.0))
+    return float(scipy.special.elliprf(0.0, mc, 1.0))
 
 
 def ellipf_carlson(s2: float, mc: float) -> float:
@@ -91,7 +91,7 @@ def ellipf_carlson(s2: float, mc: float) -> float:
     mc : float
         Complementary parameter 1 − m; 1 − m sin²φ = cos²φ + mc sin²φ has no cancellation.
     """
-    return math.sqrt(s2) * float(_sp.elliprf(1.0 - s2, (1.0 - s2) + mc * s2, 1.0))
+    return math.sqrt(s2) * float(scipy.special.elliprf(1.0 - s2, (1.0 - s2) + mc * s2, 1.0))
 
 
 def ellippi_carlson(n: float, one_minus_n: float, mc: float) -> float:
@@ -110,7 +110,8 @@ def ellippi_carlson(n: float, one_minus_n: float, mc: float) -> float:
     mc : float
         Complementary parameter 1 − m.
     """
-    return _sp.elliprf(0.0, mc, 1.0) + n / 3.0 * _sp.elliprj(0.0, mc, 1.0, one_minus_n)
+    sp = scipy.special
+    return sp.elliprf(0.0, mc, 1.0) + n / 3.0 * sp.elliprj(0.0, mc, 1.0, one_minus_n)
 
 
 def jacobi_sn_agm(x, mc: float) -> np.ndarray:

@@ -21,6 +21,7 @@ from .base import Scene, SceneConfig, Section, SectionContent, Table, fmt, fmt_e
 common_plots = lazy_module("reportgen.plots.common")
 plots = lazy_module("reportgen.plots.pendulum")
 core = lazy_module("reportgen.core.models.pendulum")
+theory = lazy_module("reportgen.core.pendulum_theory")  # no numerics: validation uses it
 
 
 class Params(Strict):
@@ -51,7 +52,7 @@ class PendulumConfig(SceneConfig):
     @model_validator(mode="after")
     def _physics(self):
         omega0 = math.sqrt(self.params.g / self.params.l)
-        m1 = core.complementary_parameter(self.initial.theta, self.initial.theta_dot, omega0)
+        m1 = theory.complementary_parameter(self.initial.theta, self.initial.theta_dot, omega0)
         if m1 == 0.0:
             raise ValueError(
                 "initial.theta / initial.theta_dot: the state lies exactly on the separatrix "
@@ -141,13 +142,13 @@ class PendulumScene(Scene):
     @property
     def k2(self) -> float:
         ini = self.config.initial
-        return core.modulus_squared(ini.theta, ini.theta_dot, self.omega0)
+        return theory.modulus_squared(ini.theta, ini.theta_dot, self.omega0)
 
     @property
     def m1(self) -> float:
         """1 − k², accurate near the separatrix."""
         ini = self.config.initial
-        return core.complementary_parameter(ini.theta, ini.theta_dot, self.omega0)
+        return theory.complementary_parameter(ini.theta, ini.theta_dot, self.omega0)
 
     @property
     def motion(self) -> str:
@@ -155,7 +156,7 @@ class PendulumScene(Scene):
 
     @property
     def has_exact_solution(self) -> bool:
-        return abs(self.m1) >= core.EXACT_SOLUTION_MIN_M1
+        return abs(self.m1) >= theory.EXACT_SOLUTION_MIN_M1
 
     @property
     def reference_label(self) -> str:
