@@ -1,0 +1,35 @@
+"""The pendulum_small report says what it said before the edit-loop speed work.
+
+``tests/data/report_content_pendulum_small.json`` was written from release 9b4d653 (the
+commit before the staged study budget, SVG-only figures, compiled-once drivers and the
+slimmed PDF figures) with ``python tests/report_content.py output/pendulum_small FILE``.
+The HTML must have the same sections, headings, figures, fact labels, table headers and
+row labels (rows of the timed study excepted), and the archive the same trajectory and
+invariants to 1e-12.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+from report_content import content
+
+from reportgen.pipeline import run_scene
+
+HERE = Path(__file__).resolve().parent
+STORED = HERE / "data" / "report_content_pendulum_small.json"
+CONFIG = HERE.parent / "configs" / "pendulum_small.toml"
+
+
+def test_report_content_unchanged_since_before_the_speed_work(tmp_path):
+    outcome = run_scene(str(CONFIG), str(tmp_path), formats=("html",))
+    assert outcome.ok, outcome.message
+    before = json.loads(STORED.read_text(encoding="utf-8"))
+    now = content(tmp_path / "pendulum_small")
+    assert now["html"] == before["html"]
+    assert set(now["arrays"]) == set(before["arrays"])
+    for name, values in before["arrays"].items():
+        np.testing.assert_allclose(now["arrays"][name], values, rtol=1e-12, atol=1e-12,
+                                   err_msg=name)
