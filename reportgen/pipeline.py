@@ -125,7 +125,7 @@ def _archive_stamp(identity: Identity) -> str:
 
 def run_scene(config_path: str, out_root: str, force: bool = False,
               formats: tuple[str, ...] | None = None,
-              progress: Callable[[float], None] | None = None) -> Outcome:
+              progress: Callable[[float], None] | None = None, draw_jobs: int = 1) -> Outcome:
     """Run one scene's stages, each only if its inputs changed.  Never raises: failures
     come back in the Outcome.
 
@@ -140,9 +140,14 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
     folder = Path(out_root) / path.stem
     outcome.folder = str(folder)
     start = time.perf_counter()
+    pdf_worker = None
     try:
         scene = load_scene(read_config(path))
         outcome.kind, outcome.title = scene.kind, scene.title
+        if draw_jobs > 1 and "pdf" in _formats(scene, formats):
+            from .report import PdfWorker
+
+            pdf_worker = PdfWorker()  # imports WeasyPrint while this process simulates
         remove_stale_temps(folder)
         archive = folder / "run.h5"
         stored = stored_identity(archive) if archive.exists() else None
@@ -172,7 +177,8 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
         if force or not _report_current(folder, identity, wanted):
             from .report import build_report  # matplotlib and jinja2 only when drawing
 
-            build_report(archive, formats=wanted, force_figures=force, timings=outcome.stage_s)
+            build_report(archive, formats=wanted, force_figures=force, timings=outcome.stage_s,
+                         jobs=draw_jobs, pdf_worker=pdf_worker)
             atomic_write(_report_stamp(folder), json.dumps(
                 {"archive": _archive_stamp(identity), "formats": list(wanted)}).encode("utf-8"))
             outcome.stages.append("report")
@@ -193,6 +199,9 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
         except OSError:
             where = ""
         outcome.message = f"{type(exc).__name__}: {exc}{where}"
+    finally:
+        if pdf_worker is not None:
+            pdf_worker.close()
     return outcome
 
 
@@ -279,11 +288,15 @@ def _run_locally(scenes, out_root, force, formats, jobs, progress,
             todo.append(scene)
     if not todo:
         return outcomes
+    requested = jobs
     jobs = max(1, min(jobs or os.cpu_count() or 1, len(todo)))
     if jobs == 1 and time_limit is None:
+        # the edit loop's one scene: its figures are drawn by as many processes as allowed
+        draw_jobs = max(1, requested or os.cpu_count() or 1) if len(todo) == 1 else 1
         for scene in todo:
             outcome = run_scene(str(scene.source.path), out_root, force, formats,
-                                progress=progress.within(scene.source.name))
+                                progress=progress.within(scene.source.name),
+                                draw_jobs=draw_jobs)
             progress.scene_done(outcome)
             outcomes.append(outcome)
         return outcomes

@@ -156,32 +156,74 @@ def figures_key(data: ArchiveData, formats: tuple[str, ...]) -> str:
 
 
 def draw_sections(data: ArchiveData, out_dir: Path,
-                  formats: tuple[str, ...] = DEFAULT_FIGURE_FORMATS) -> list[dict[str, Any]]:
+                  formats: tuple[str, ...] = DEFAULT_FIGURE_FORMATS,
+                  jobs: int = 1) -> list[dict[str, Any]]:
     """The figures stage: draw every chosen section of the archive into ``out_dir/figures``.
 
     Returns the sections as plain dicts (title, facts, tables, notes, figure files); they
     are kept in ``figures/sections.json`` with the stage's key, so a later report whose
     archive numbers and section list are unchanged reuses them without drawing.
+    ``jobs > 1`` draws the sections in that many forked processes (the edit loop's single
+    scene); each figure's bytes depend only on the archive and its id, not on who drew it.
     """
     scene = kind_of_archive(data)
-    sections = []
-    for section in scene.chosen_sections(data):
-        content: SectionContent = getattr(scene, f"section_{section.name}")(data)
-        figures = []
-        for spec in content.figures:
-            saved = save_figure(spec, f"{section.name}-{spec.name}", out_dir / "figures",
-                                formats)
-            figures.append({"id": saved.id, "caption": saved.caption, "files": saved.files})
-            spec.figure.clear()
-        sections.append({
-            "name": section.name, "title": section.title, "description": section.description,
-            "figures": figures,
-            "content": {"facts": [list(f) for f in content.facts],
-                        "tables": [{"caption": t.caption, "header": list(t.header),
-                                    "rows": [list(r) for r in t.rows]} for t in content.tables],
-                        "notes": list(content.notes)},
-        })
-    return sections
+    chosen = list(scene.chosen_sections(data))
+    jobs = max(1, min(jobs, len(chosen)))
+    if jobs == 1:
+        return [_draw_section(scene, section, data, out_dir, formats) for section in chosen]
+    from multiprocessing import get_context
+
+    import reportgen.plots.common  # noqa: F401 - imported once, before forking
+
+    ctx = get_context("fork")
+    children = []
+    for k in range(1, jobs):
+        receive, send = ctx.Pipe(duplex=False)
+        mine = chosen[k::jobs]
+        proc = ctx.Process(target=_draw_in_child, args=(send, scene, mine, data, out_dir,
+                                                        formats), daemon=True)
+        proc.start()
+        send.close()
+        children.append((proc, receive, k))
+    drawn = {i: _draw_section(scene, chosen[i], data, out_dir, formats)
+             for i in range(0, len(chosen), jobs)}
+    for proc, receive, k in children:
+        try:
+            result = receive.recv()
+        except EOFError:
+            result = RuntimeError(f"figure process ended without a result "
+                                  f"(exit code {proc.exitcode})")
+        proc.join()
+        if isinstance(result, BaseException):
+            raise result
+        drawn.update(zip(range(k, len(chosen), jobs), result, strict=True))
+    return [drawn[i] for i in range(len(chosen))]
+
+
+def _draw_in_child(conn, scene, sections, data, out_dir, formats) -> None:
+    try:
+        conn.send([_draw_section(scene, s, data, out_dir, formats) for s in sections])
+    except BaseException as exc:  # noqa: BLE001 - re-raised in the parent
+        conn.send(RuntimeError(f"{type(exc).__name__}: {exc}"))
+    conn.close()
+
+
+def _draw_section(scene, section, data: ArchiveData, out_dir: Path,
+                  formats: tuple[str, ...]) -> dict[str, Any]:
+    content: SectionContent = getattr(scene, f"section_{section.name}")(data)
+    figures = []
+    for spec in content.figures:
+        saved = save_figure(spec, f"{section.name}-{spec.name}", out_dir / "figures", formats)
+        figures.append({"id": saved.id, "caption": saved.caption, "files": saved.files})
+        spec.figure.clear()
+    return {
+        "name": section.name, "title": section.title, "description": section.description,
+        "figures": figures,
+        "content": {"facts": [list(f) for f in content.facts],
+                    "tables": [{"caption": t.caption, "header": list(t.header),
+                                "rows": [list(r) for r in t.rows]} for t in content.tables],
+                    "notes": list(content.notes)},
+    }
 
 
 def cached_sections(out_dir: Path, key: str) -> list[dict[str, Any]] | None:
@@ -204,7 +246,7 @@ SECTIONS_FILE = "sections.json"
 
 
 def figures_stage(data: ArchiveData, out_dir: Path, formats: tuple[str, ...] | None = None,
-                  force: bool = False) -> tuple[list[dict[str, Any]], bool]:
+                  force: bool = False, jobs: int = 1) -> tuple[list[dict[str, Any]], bool]:
     """(sections, drawn?): reuse the stored figures when current, else draw them.
 
     ``formats``: the figure files to write; default from the archived config."""
@@ -214,7 +256,7 @@ def figures_stage(data: ArchiveData, out_dir: Path, formats: tuple[str, ...] | N
         cached = cached_sections(out_dir, key)
         if cached is not None:
             return cached, False
-    sections = draw_sections(data, out_dir, formats)
+    sections = draw_sections(data, out_dir, formats, jobs)
     (out_dir / "figures").mkdir(parents=True, exist_ok=True)
     atomic_write(out_dir / "figures" / SECTIONS_FILE, json.dumps(
         {"key": key, "sections": sections}, ensure_ascii=False,
@@ -298,29 +340,93 @@ def write_pdf(html_text: str, target: Path, base_url: Path) -> None:
     atomic_write(target, pdf)
 
 
+class PdfWorker:
+    """A forked process that imports WeasyPrint at once and renders one PDF when asked.
+
+    The edit loop's single scene starts one before simulating, so the import (about half
+    a second) overlaps the simulation and the figures instead of following them."""
+
+    def __init__(self):
+        from multiprocessing import get_context
+
+        ctx = get_context("fork")
+        job_out, job_in = ctx.Pipe(duplex=False)
+        result_out, result_in = ctx.Pipe(duplex=False)
+        self._proc = ctx.Process(target=_pdf_worker_main, args=(job_out, result_in),
+                                 daemon=True)
+        self._proc.start()
+        job_out.close()
+        result_in.close()
+        self._jobs, self._results = job_in, result_out
+
+    def write_pdf(self, html_text: str, target: Path, base_url: Path) -> None:
+        """Render like :func:`write_pdf`, in the worker; raise what it raised."""
+        try:
+            self._jobs.send((html_text, str(target), str(base_url)))
+            error = self._results.recv()
+        except (EOFError, OSError, BrokenPipeError):
+            error = f"PDF process ended without a result (exit code {self._proc.exitcode})"
+        if error is not None:
+            raise ReportError(f"{target}: {error}")
+
+    def close(self) -> None:
+        try:
+            self._jobs.send(None)
+        except (OSError, BrokenPipeError):
+            pass
+        self._jobs.close()
+        self._proc.join(timeout=5)
+        if self._proc.is_alive():
+            self._proc.kill()
+            self._proc.join()
+
+
+def _pdf_worker_main(jobs, results) -> None:
+    try:
+        import weasyprint  # noqa: F401 - the point: imported while the parent works
+    except ImportError:
+        pass
+    while True:
+        try:
+            job = jobs.recv()
+        except EOFError:
+            return
+        if job is None:
+            return
+        html_text, target, base_url = job
+        try:
+            write_pdf(html_text, Path(target), Path(base_url))
+            results.send(None)
+        except Exception as exc:  # noqa: BLE001 - sent to the parent, which raises it
+            results.send(f"{type(exc).__name__}: {exc}")
+
+
 def build_report(archive_path: Path, formats=("html", "pdf"), out_dir: Path | None = None,
                  figure_files: tuple[str, ...] | None = None,
                  force_figures: bool = False,
-                 timings: dict[str, float] | None = None) -> list[Path]:
+                 timings: dict[str, float] | None = None, jobs: int = 1,
+                 pdf_worker: PdfWorker | None = None) -> list[Path]:
     """The figures and report stages of one archive, next to it (or into ``out_dir``).
 
     Figures are redrawn only when their key changed (or ``force_figures``);
     ``figure_files`` overrides the config's ``[report] figure_formats``.  ``timings``,
-    if given, receives the seconds spent on figures, html and pdf."""
+    if given, receives the seconds spent on figures, html and pdf; ``jobs`` processes
+    draw the figures; ``pdf_worker`` renders the PDF."""
     archive_path = Path(archive_path)
     data = read_archive(archive_path)
     out_dir = Path(out_dir) if out_dir is not None else archive_path.parent
     out_dir.mkdir(parents=True, exist_ok=True)
     timings = {} if timings is None else timings
     t0 = time.perf_counter()
-    sections, _ = figures_stage(data, out_dir, figure_files, force=force_figures)
+    sections, _ = figures_stage(data, out_dir, figure_files, force=force_figures, jobs=jobs)
     timings["figures"] = time.perf_counter() - t0
     context = build_context(data, out_dir, sections=sections)
-    return write_formats(render_html(context), out_dir, formats, timings)
+    return write_formats(render_html(context), out_dir, formats, timings, pdf_worker)
 
 
 def write_formats(html_text: str, out_dir: Path, formats,
-                  timings: dict[str, float] | None = None) -> list[Path]:
+                  timings: dict[str, float] | None = None,
+                  pdf_worker: PdfWorker | None = None) -> list[Path]:
     """``report.html`` and/or ``report.pdf`` (WeasyPrint's rendering of the same HTML)."""
     timings = {} if timings is None else timings
     written = []
@@ -331,7 +437,8 @@ def write_formats(html_text: str, out_dir: Path, formats,
         timings["html"] = time.perf_counter() - t0
     if "pdf" in formats:
         t0 = time.perf_counter()
-        write_pdf(html_text, out_dir / "report.pdf", out_dir)
+        (pdf_worker.write_pdf if pdf_worker is not None else write_pdf)(
+            html_text, out_dir / "report.pdf", out_dir)
         written.append(out_dir / "report.pdf")
         timings["pdf"] = time.perf_counter() - t0
     return written

@@ -156,3 +156,29 @@ def test_physics_key_covers_what_simulate_computes_and_nothing_else():
     assert key(sections=["invariants"]) == key(sections=few)
     assert key(sections=[*few, "geometric_integrator"]) != key(sections=few)
     assert key(sections=[*few, "error_vs_runtime"]) != key(sections=few)
+
+
+def test_figures_in_parallel_and_pdf_worker_give_the_same_report(write_config, tmp_path):
+    """The edit loop's single scene draws its figures in forked processes and renders its
+    PDF in a worker that imported WeasyPrint early: same files as drawing in one process."""
+    from reportgen.report import PdfWorker, build_report
+
+    path = write_config("pend", pendulum_text(t_end=4.0, samples=401))
+    out = tmp_path / "out"
+    outcome = run_scene(str(path), str(out), formats=("html", "pdf"), draw_jobs=2)
+    assert outcome.ok and outcome.stages == ["simulate", "report"], outcome
+    assert (out / "pend" / "report.pdf").read_bytes().startswith(b"%PDF")
+    archive = out / "pend" / "run.h5"
+    one, two = tmp_path / "one", tmp_path / "two"
+    build_report(archive, formats=("html",), out_dir=one, jobs=1)
+    worker = PdfWorker()
+    try:
+        build_report(archive, formats=("html", "pdf"), out_dir=two, jobs=3, pdf_worker=worker)
+    finally:
+        worker.close()
+    figures = sorted(p.name for p in (one / "figures").glob("*.svg"))
+    assert len(figures) >= 3
+    for name in figures:
+        assert (one / "figures" / name).read_bytes() == (two / "figures" / name).read_bytes()
+    assert (one / "report.html").read_bytes() == (two / "report.html").read_bytes()
+    assert (two / "report.pdf").read_bytes().startswith(b"%PDF")
