@@ -144,7 +144,8 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
     try:
         scene = load_scene(read_config(path))
         outcome.kind, outcome.title = scene.kind, scene.title
-        if draw_jobs > 1 and "pdf" in _formats(scene, formats):
+        wanted = _formats(scene, formats)
+        if draw_jobs > 1 and "pdf" in wanted:
             from .report import PdfWorker
 
             pdf_worker = PdfWorker()  # imports WeasyPrint while this process simulates
@@ -173,7 +174,6 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
             outcome.stages.append("restamp")
             outcome.stage_s["restamp"] = time.perf_counter() - t0
         identity = stored_identity(archive)
-        wanted = _formats(scene, formats)
         if force or not _report_current(folder, identity, wanted):
             from .report import build_report  # matplotlib and jinja2 only when drawing
 
@@ -270,14 +270,9 @@ def run_batch(paths: list[str], out_root: str = "output", jobs: int | None = Non
     return outcomes
 
 
-def _run_locally(scenes, out_root, force, formats, jobs, progress,
-                 time_limit: float | None = None) -> list[Outcome]:
-    """Scenes whose archive and reports are current are answered here, without a worker.
-
-    One scene left to do (the edit loop's case) runs in this process when no time limit
-    is set; more run in forked processes, at most ``jobs`` at once, forked after the
-    heavy libraries are imported here (:func:`_preload`), so no scene pays for them.
-    """
+def _split_current(scenes, out_root, force, formats, progress) -> tuple[list[Outcome], list]:
+    """(outcomes of the scenes whose archive and reports are current, the scenes to run);
+    the current ones are reported to ``progress`` at once.  ``force``: none is current."""
     outcomes, todo = [], []
     for scene in scenes:
         current = None if force else _up_to_date(scene, out_root, formats)
@@ -286,6 +281,18 @@ def _run_locally(scenes, out_root, force, formats, jobs, progress,
             outcomes.append(current)
         else:
             todo.append(scene)
+    return outcomes, todo
+
+
+def _run_locally(scenes, out_root, force, formats, jobs, progress,
+                 time_limit: float | None = None) -> list[Outcome]:
+    """Scenes whose archive and reports are current are answered here, without a worker.
+
+    One scene left to do (the edit loop's case) runs in this process when no time limit
+    is set; more run in forked processes, at most ``jobs`` at once, forked after the
+    heavy libraries are imported here (:func:`_preload`), so no scene pays for them.
+    """
+    outcomes, todo = _split_current(scenes, out_root, force, formats, progress)
     if not todo:
         return outcomes
     requested = jobs
@@ -474,14 +481,7 @@ def _run_on_dask(scenes, out_root, force, formats, scheduler, progress,
     except ImportError:
         raise UsageError("--scheduler needs Dask distributed: pip install 'reportgen[dask]'") \
             from None
-    outcomes, todo = [], []
-    for scene in scenes:
-        current = None if force else _up_to_date(scene, out_root, formats)
-        if current is not None:
-            progress.scene_done(current)
-            outcomes.append(current)
-        else:
-            todo.append(scene)
+    outcomes, todo = _split_current(scenes, out_root, force, formats, progress)
     if not todo:
         return outcomes
     try:
