@@ -138,6 +138,16 @@ def stage_state(A, s, y, h, K, ytmp):
 
 
 @numba.njit(cache=True, inline="always")
+def rk_update(b, nst, y, h, K, out):
+    """``out = y + h sum_s b_s K[s]`` (``out`` may be ``y``: each entry is read first)."""
+    for i in range(y.size):
+        acc = 0.0
+        for s in range(nst):
+            acc += b[s] * K[s, i]
+        out[i] = y[i] + h * acc
+
+
+@numba.njit(cache=True, inline="always")
 def store_row(K, s, f):
     """``K[s] = f``."""
     for i in range(f.size):
@@ -264,11 +274,7 @@ def erk_adaptive(rhs, A, b, c, E, E3, P, nst, kind, err_exp, order,
             stage_state(A, s, y, h, K, ytmp)
             rhs(t + c[s] * h, ytmp, params, ftmp)
             store_row(K, s, ftmp)
-        for i in range(d):
-            acc = 0.0
-            for s in range(nst):
-                acc += b[s] * K[s, i]
-            y_new[i] = y[i] + h * acc
+        rk_update(b, nst, y, h, K, y_new)
         t_new = t + h
         rhs(t_new, y_new, params, f_new)
         counters[0] += nst
@@ -364,11 +370,7 @@ def erk_fixed(rhs, A, b, c, nst, t_eval, i0, i1, Y, y, h_max, params, counters, 
                 stage_state(A, s, y, h, K, ytmp)
                 rhs(t + c[s] * h, ytmp, params, ftmp)
                 store_row(K, s, ftmp)
-            for i in range(d):
-                acc = 0.0
-                for s in range(nst):
-                    acc += b[s] * K[s, i]
-                y[i] += h * acc
+            rk_update(b, nst, y, h, K, y)
             counters[0] += nst
             counters[1] += 1
             if not all_finite(y):
