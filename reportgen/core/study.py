@@ -27,16 +27,15 @@ the time the timed runs of one study may take together (compile time and the
 reference runs not included: a reference is never cut short).  Methods run in order,
 ours first; each gets an equal share of what is left, so time one method leaves unused
 goes to the next (the scipy peers, ~20 us per right-hand-side call, are last and get
-most of it).  A ladder stops
-before a rung whose predicted cost (the last rung's, times the growth seen between the
-last two) would overrun the method's share; repeats are cut to what the share allows.
-A peer's run is stopped once it overruns its share (but never before
-``MIN_PEER_RUN_S``); a peer whose loosest run is stopped has no rows and is named in
-``over_budget``.  Exempt: scipy DOP853 at rtol 1e-10, the baseline every
+most of it).  A ladder stops before a rung whose predicted cost (the last rung's, times
+the growth seen between the last two) would overrun the method's share; repeats are cut
+to what the share allows.  A peer's run is stopped once it overruns its share (but
+never before ``MIN_PEER_RUN_S``); a peer whose loosest run is stopped has no rows and is
+named in ``over_budget``.  Exempt: scipy DOP853 at rtol 1e-10, the baseline every
 speed-up in the report is measured against, is run (looser rungs on the way may be
 skipped) unless it takes longer than ``TIME_CAP_S``; and our compiled adaptive methods
-always run down to rtol 1e-10 (milliseconds).  ``budget_s = inf`` gives the
-unbudgeted study (``reportgen bench``).
+always run down to rtol 1e-10 (milliseconds).  ``budget_s = inf`` gives the unbudgeted
+study (``reportgen bench``).
 """
 
 from __future__ import annotations
