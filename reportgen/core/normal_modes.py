@@ -30,12 +30,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.linalg
 
-#: standard atomic weights [u] (IUPAC 2021, abridged) for ``atoms[i].element``
-ELEMENT_MASSES = {
-    "H": 1.008, "D": 2.014, "He": 4.0026, "Li": 6.94, "B": 10.81, "C": 12.011,
-    "N": 14.007, "O": 15.999, "F": 18.998, "Ne": 20.180, "Na": 22.990, "Si": 28.085,
-    "P": 30.974, "S": 32.06, "Cl": 35.45, "Ar": 39.95, "Br": 79.904, "I": 126.90,
-}
+from .molecule_geometry import ELEMENT_MASSES, bond_angle  # noqa: F401 - part of this module's interface
 
 #: eigenvalues ω² with |ω²| ≤ ZERO_TOL · max|ω²| count as zero (round-off of eigh is ~1e-15)
 ZERO_TOL = 1e-10
@@ -254,12 +249,6 @@ def stretch_bvector(x: np.ndarray, i: int, j: int) -> np.ndarray:
     e = _unit(x[j] - x[i])
     b[3 * i:3 * i + 3], b[3 * j:3 * j + 3] = -e, e
     return b
-
-
-def bond_angle(x: np.ndarray, i: int, j: int, l: int) -> float:
-    """θ at vertex j between bonds j→i and j→l (atan2 form: accurate near 0 and π)."""
-    u, v = x[i] - x[j], x[l] - x[j]
-    return math.atan2(float(np.linalg.norm(np.cross(u, v))), float(u @ v))
 
 
 def is_linear_angle(x: np.ndarray, i: int, j: int, l: int, tol: float = 1e-8) -> bool:

@@ -26,6 +26,7 @@ from .base import Scene, SceneConfig, Section, SectionContent, Table, fmt, fmt_e
 
 plots = lazy_module("reportgen.plots.normal_modes")
 core = lazy_module("reportgen.core.normal_modes")
+geometry = lazy_module("reportgen.core.molecule_geometry")  # no scipy: validation uses it
 linear_chain = lazy_module("reportgen.core.models.linear_chain")
 
 #: ω_max / ω_min (non-zero) at or above which direct integration is treated as stiff
@@ -167,9 +168,9 @@ class NormalModesConfig(SceneConfig):
             if atom.mass is None:
                 if atom.element is None:
                     raise ValueError(f"atoms[{a}]: give `mass` or `element`")
-                if atom.element not in core.ELEMENT_MASSES:
+                if atom.element not in geometry.ELEMENT_MASSES:
                     raise ValueError(f"atoms[{a}].element: unknown element {atom.element!r} "
-                                     f"(known: {', '.join(core.ELEMENT_MASSES)}; or give `mass`)")
+                                     f"(known: {', '.join(geometry.ELEMENT_MASSES)}; or give `mass`)")
         x = np.array([a.position for a in self.atoms], dtype=float)
         size = max(float(np.max(np.ptp(x, axis=0))), 1e-300)
         for a in range(n):
@@ -191,7 +192,7 @@ class NormalModesConfig(SceneConfig):
             if key in seen:
                 raise ValueError(f"angles[{i}].atoms: angle {angle.atoms} given twice")
             seen.add(key)
-            if core.bond_angle(x, a, j, b) < 1e-6:
+            if geometry.bond_angle(x, a, j, b) < 1e-6:
                 raise ValueError(f"angles[{i}].atoms: θ0 = 0 (atoms {a} and {b} on the same ray "
                                  f"from vertex {j}); the bend is undefined")
 
