@@ -13,11 +13,16 @@ $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/pip install --quiet --upgrade pip
 
+# The package is installed editable, which compiles none of its modules; compiling them
+# once here spares every reportgen command about 0.1 s of compiling them again (this
+# matters where PYTHONDONTWRITEBYTECODE is set: Python then never writes them itself).
 setup: $(BIN)/python
 	$(BIN)/pip install --quiet -e .
+	$(BIN)/python -m compileall -q reportgen
 
 setup-test: $(BIN)/python system-test-deps
 	$(BIN)/pip install --quiet -e ".[test]"
+	$(BIN)/python -m compileall -q reportgen
 
 # Debian's chromium (real-browser report test) and poppler-utils (PDF rasterizing test).
 system-test-deps:
