@@ -13,7 +13,8 @@ from pathlib import Path
 
 from . import __version__
 from .cache import NO_CACHE_ENV, PeerCache
-from .config import FORMATS, ConfigError
+from .errors import ConfigError, UsageError
+from .layout import FORMATS
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
 
@@ -121,17 +122,29 @@ def _usage(message: str) -> int:
 
 
 def cmd_run(args) -> int:
-    from .pipeline import UsageError, batch_status, run_batch
+    from .layout import collect_configs
+    from .pdf import edit_loop_worker
 
     if args.no_cache:
         os.environ[NO_CACHE_ENV] = "1"  # inherited by the scene processes
-
     try:
-        outcomes = run_batch(args.paths, out_root=args.out, jobs=args.jobs, formats=args.format,
-                             force=args.force, scheduler=args.scheduler,
-                             time_limit=args.time_limit)
+        configs = collect_configs(args.paths)
     except UsageError as exc:
         return _usage(str(exc))
+    # forked before the heavy imports below, so WeasyPrint's import overlaps them too
+    worker = edit_loop_worker(configs, args.out, args.format, args.jobs, args.force,
+                              args.scheduler)
+    try:
+        from .pipeline import batch_status, run_batch
+
+        outcomes = run_batch(configs, out_root=args.out, jobs=args.jobs, formats=args.format,
+                             force=args.force, scheduler=args.scheduler,
+                             time_limit=args.time_limit, pdf_worker=worker)
+    except UsageError as exc:
+        return _usage(str(exc))
+    finally:
+        if worker is not None:
+            worker.close()
     status = batch_status(outcomes)
     bad = [o for o in outcomes if not o.ok]
     print(f"{len(outcomes) - len(bad)} of {len(outcomes)} scenes ok; index: "

@@ -22,15 +22,8 @@ from typing import Annotated, Any, Literal
 
 from pydantic import AfterValidator, BaseModel, ConfigDict, Field, ValidationError
 
-FORMATS = ("html", "pdf")
-
-
-class ConfigError(Exception):
-    """One or more problems in a scene configuration (exit status 2)."""
-
-    def __init__(self, problems: list[str]):
-        self.problems = problems
-        super().__init__("\n".join(problems))
+from .errors import ConfigError  # noqa: F401 - part of this module's interface
+from .layout import FORMATS  # noqa: F401 - part of this module's interface
 
 
 class Strict(BaseModel):

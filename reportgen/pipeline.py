@@ -12,7 +12,7 @@ import os
 import sys
 import time
 import traceback
-from collections.abc import Callable, Iterable
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from multiprocessing import get_context
 from pathlib import Path
@@ -26,14 +26,12 @@ from .archive import (
     write_archive,
 )
 from .config import ConfigError, read_config
+from .errors import UsageError  # noqa: F401 - part of this module's interface
 from .fsutil import atomic_write, install, remove_stale_temps, temp_name
+from .layout import collect_configs, report_stamp
 from .results import worst_status
 from .scenes import load_scene
 from .scenes.base import Scene
-
-
-class UsageError(Exception):
-    """Bad command-line usage (exit status 2)."""
 
 
 @dataclass
@@ -57,23 +55,6 @@ class Outcome:
     @property
     def ok(self) -> bool:
         return self.status == "ok"
-
-
-def collect_configs(paths: Iterable[str | Path]) -> list[Path]:
-    """Config files named directly, or every ``*.toml`` below a folder, in sorted order."""
-    found: list[Path] = []
-    for raw in paths:
-        path = Path(raw)
-        if path.is_dir():
-            found.extend(sorted(p for p in path.rglob("*.toml") if p.is_file()))
-        elif path.is_file():
-            found.append(path)
-        else:
-            raise UsageError(f"{path}: no such file or folder")
-    unique = list({p.resolve(): p for p in reversed(found)}.values())[::-1]
-    if not unique:
-        raise UsageError("no *.toml config found in " + ", ".join(str(p) for p in paths))
-    return unique
 
 
 def validate_all(paths: list[Path]) -> list[Scene]:
@@ -104,14 +85,10 @@ def _formats(scene: Scene, override: tuple[str, ...] | None) -> tuple[str, ...]:
     return tuple(override) if override else tuple(scene.config.report.formats)
 
 
-def _report_stamp(folder: Path) -> Path:
-    return folder / ".report-stamp.json"
-
-
 def _report_current(folder: Path, identity: Identity, formats) -> bool:
     """Whether every wanted report was rendered from this very archive content."""
     try:
-        stamp = json.loads(_report_stamp(folder).read_text(encoding="utf-8"))
+        stamp = json.loads(report_stamp(folder).read_text(encoding="utf-8"))
     except (OSError, ValueError):
         return False
     return (stamp.get("archive") == _archive_stamp(identity)
@@ -125,7 +102,8 @@ def _archive_stamp(identity: Identity) -> str:
 
 def run_scene(config_path: str, out_root: str, force: bool = False,
               formats: tuple[str, ...] | None = None,
-              progress: Callable[[float], None] | None = None, draw_jobs: int = 1) -> Outcome:
+              progress: Callable[[float], None] | None = None, draw_jobs: int = 1,
+              pdf_worker=None) -> Outcome:
     """Run one scene's stages, each only if its inputs changed.  Never raises: failures
     come back in the Outcome.
 
@@ -134,21 +112,24 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
               archive with the new config text, every array keeping its bytes
     figures   keyed by the physics key, the chosen sections and the version
     report    HTML/PDF from the archive and the figures, when either changed
+
+    ``pdf_worker`` (a :class:`reportgen.pdf.PdfWorker`, owned by the caller) renders
+    the PDF; without one, a scene drawing with ``draw_jobs > 1`` starts its own.
     """
     path = Path(config_path)
     outcome = Outcome(name=path.stem)
     folder = Path(out_root) / path.stem
     outcome.folder = str(folder)
     start = time.perf_counter()
-    pdf_worker = None
+    own_worker = None
     try:
         scene = load_scene(read_config(path))
         outcome.kind, outcome.title = scene.kind, scene.title
         wanted = _formats(scene, formats)
-        if draw_jobs > 1 and "pdf" in wanted:
-            from .report import PdfWorker
+        if pdf_worker is None and draw_jobs > 1 and "pdf" in wanted:
+            from .pdf import PdfWorker
 
-            pdf_worker = PdfWorker()  # imports WeasyPrint while this process simulates
+            pdf_worker = own_worker = PdfWorker()  # imports WeasyPrint while this simulates
         remove_stale_temps(folder)
         archive = folder / "run.h5"
         stored = stored_identity(archive) if archive.exists() else None
@@ -179,7 +160,7 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
 
             build_report(archive, formats=wanted, force_figures=force, timings=outcome.stage_s,
                          jobs=draw_jobs, pdf_worker=pdf_worker)
-            atomic_write(_report_stamp(folder), json.dumps(
+            atomic_write(report_stamp(folder), json.dumps(
                 {"archive": _archive_stamp(identity), "formats": list(wanted)}).encode("utf-8"))
             outcome.stages.append("report")
         outcome.reports = [str(folder / f"report.{f}") for f in wanted]
@@ -200,8 +181,8 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
             where = ""
         outcome.message = f"{type(exc).__name__}: {exc}{where}"
     finally:
-        if pdf_worker is not None:
-            pdf_worker.close()
+        if own_worker is not None:
+            own_worker.close()
     return outcome
 
 
@@ -250,20 +231,34 @@ class Progress:
 def run_batch(paths: list[str], out_root: str = "output", jobs: int | None = None,
               formats: tuple[str, ...] | None = None, force: bool = False,
               scheduler: str | None = None, time_limit: float | None = None,
-              stream=None) -> list[Outcome]:
+              stream=None, pdf_worker=None) -> list[Outcome]:
     """Validate all, run all, write ``index.html``.
 
     Scenes run in-process (``jobs == 1``), in a local pool of ``jobs`` processes,
-    or on the Dask distributed scheduler at ``scheduler``.
+    or on the Dask distributed scheduler at ``scheduler``.  When one scene looks edited,
+    a :class:`reportgen.pdf.PdfWorker` prepares WeasyPrint meanwhile (``pdf_worker``:
+    one the caller started and closes).
     """
     configs = collect_configs(paths)
-    scenes = validate_all(configs)
-    progress = Progress(len(scenes), stream)
-    Path(out_root).mkdir(parents=True, exist_ok=True)
-    if scheduler:
-        outcomes = _run_on_dask(scenes, out_root, force, formats, scheduler, progress, time_limit)
-    else:
-        outcomes = _run_locally(scenes, out_root, force, formats, jobs, progress, time_limit)
+    own_worker = None
+    if pdf_worker is None:
+        from .pdf import edit_loop_worker
+
+        pdf_worker = own_worker = edit_loop_worker(configs, out_root, formats, jobs, force,
+                                                   scheduler)
+    try:
+        scenes = validate_all(configs)
+        progress = Progress(len(scenes), stream)
+        Path(out_root).mkdir(parents=True, exist_ok=True)
+        if scheduler:
+            outcomes = _run_on_dask(scenes, out_root, force, formats, scheduler, progress,
+                                    time_limit)
+        else:
+            outcomes = _run_locally(scenes, out_root, force, formats, jobs, progress,
+                                    time_limit, pdf_worker)
+    finally:
+        if own_worker is not None:
+            own_worker.close()
     order = {s.source.name: i for i, s in enumerate(scenes)}
     outcomes.sort(key=lambda o: order[o.name])
     write_index(out_root, outcomes)
@@ -285,14 +280,17 @@ def _split_current(scenes, out_root, force, formats, progress) -> tuple[list[Out
 
 
 def _run_locally(scenes, out_root, force, formats, jobs, progress,
-                 time_limit: float | None = None) -> list[Outcome]:
+                 time_limit: float | None = None, pdf_worker=None) -> list[Outcome]:
     """Scenes whose archive and reports are current are answered here, without a worker.
 
     One scene left to do (the edit loop's case) runs in this process when no time limit
-    is set; more run in forked processes, at most ``jobs`` at once, forked after the
-    heavy libraries are imported here (:func:`_preload`), so no scene pays for them.
+    is set (its PDF rendered by ``pdf_worker`` if one was started); more run in forked
+    processes, at most ``jobs`` at once, forked after the heavy libraries are imported
+    here (:func:`_preload`), so no scene pays for them.
     """
     outcomes, todo = _split_current(scenes, out_root, force, formats, progress)
+    if pdf_worker is not None and len(todo) != 1:
+        pdf_worker.close()  # started on a hint that did not hold: stop it at once
     if not todo:
         return outcomes
     requested = jobs
@@ -303,7 +301,8 @@ def _run_locally(scenes, out_root, force, formats, jobs, progress,
         for scene in todo:
             outcome = run_scene(str(scene.source.path), out_root, force, formats,
                                 progress=progress.within(scene.source.name),
-                                draw_jobs=draw_jobs)
+                                draw_jobs=draw_jobs,
+                                pdf_worker=pdf_worker if len(todo) == 1 else None)
             progress.scene_done(outcome)
             outcomes.append(outcome)
         return outcomes

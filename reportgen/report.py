@@ -24,32 +24,18 @@ from markupsafe import Markup
 from . import __version__
 from .archive import ArchiveData, read_archive
 from .audit_archive import read_audit
+from .errors import ReportError
 from .fsutil import atomic_write
+from .layout import template_dir
 from .lazy import lazy_module
+from .pdf import PdfWorker, write_pdf  # noqa: F401 - part of this module's interface
 from .scenes import get_kind
 from .scenes.base import FigureSpec, SectionContent, fmt, fmt_err
-
-TEMPLATE_DIRS = (
-    Path(__file__).resolve().parent / "templates",  # installed wheel
-    Path(__file__).resolve().parent.parent / "templates",  # source checkout
-)
-
 
 # Drawing libraries load on first use: a report whose figures are current (a title edit)
 # renders without importing matplotlib.
 matplotlib = lazy_module("matplotlib")
 audit_plots = lazy_module("reportgen.plots.audit")
-
-
-class ReportError(Exception):
-    pass
-
-
-def _template_dir() -> Path:
-    for d in TEMPLATE_DIRS:
-        if (d / "scene.html.j2").exists():
-            return d
-    raise ReportError("templates/ not found next to the reportgen package")
 
 
 _ENV: jinja2.Environment | None = None
@@ -60,7 +46,7 @@ def environment() -> jinja2.Environment:
     global _ENV
     if _ENV is None:
         _ENV = jinja2.Environment(
-            loader=jinja2.FileSystemLoader(_template_dir()),
+            loader=jinja2.FileSystemLoader(template_dir()),
             autoescape=True,
             undefined=jinja2.StrictUndefined,
             trim_blocks=True,
@@ -157,7 +143,7 @@ def figures_key(data: ArchiveData, formats: tuple[str, ...]) -> str:
 
 def draw_sections(data: ArchiveData, out_dir: Path,
                   formats: tuple[str, ...] = DEFAULT_FIGURE_FORMATS,
-                  jobs: int = 1) -> list[dict[str, Any]]:
+                  jobs: int = 1, for_pdf: bool = False) -> list[dict[str, Any]]:
     """The figures stage: draw every chosen section of the archive into ``out_dir/figures``.
 
     Returns the sections as plain dicts (title, facts, tables, notes, figure files); they
@@ -165,12 +151,14 @@ def draw_sections(data: ArchiveData, out_dir: Path,
     archive numbers and section list are unchanged reuses them without drawing.
     ``jobs > 1`` draws the sections in that many forked processes (the edit loop's single
     scene); each figure's bytes depend only on the archive and its id, not on who drew it.
+    ``for_pdf``: also make the figures' slim copies for the PDF (:func:`slim_cache`).
     """
     scene = kind_of_archive(data)
     chosen = list(scene.chosen_sections(data))
     jobs = max(1, min(jobs, len(chosen)))
     if jobs == 1:
-        return [_draw_section(scene, section, data, out_dir, formats) for section in chosen]
+        return [_draw_section(scene, section, data, out_dir, formats, for_pdf)
+                for section in chosen]
     from multiprocessing import get_context
 
     import reportgen.plots.common  # noqa: F401 - imported once, before forking
@@ -181,11 +169,11 @@ def draw_sections(data: ArchiveData, out_dir: Path,
         receive, send = ctx.Pipe(duplex=False)
         mine = chosen[k::jobs]
         proc = ctx.Process(target=_draw_in_child, args=(send, scene, mine, data, out_dir,
-                                                        formats), daemon=True)
+                                                        formats, for_pdf), daemon=True)
         proc.start()
         send.close()
         children.append((proc, receive, k))
-    drawn = {i: _draw_section(scene, chosen[i], data, out_dir, formats)
+    drawn = {i: _draw_section(scene, chosen[i], data, out_dir, formats, for_pdf)
              for i in range(0, len(chosen), jobs)}
     for proc, receive, k in children:
         try:
@@ -200,22 +188,32 @@ def draw_sections(data: ArchiveData, out_dir: Path,
     return [drawn[i] for i in range(len(chosen))]
 
 
-def _draw_in_child(conn, scene, sections, data, out_dir, formats) -> None:
+def _draw_in_child(conn, scene, sections, data, out_dir, formats, for_pdf) -> None:
     try:
-        conn.send([_draw_section(scene, s, data, out_dir, formats) for s in sections])
+        conn.send([_draw_section(scene, s, data, out_dir, formats, for_pdf) for s in sections])
     except BaseException as exc:  # noqa: BLE001 - re-raised in the parent
         conn.send(RuntimeError(f"{type(exc).__name__}: {exc}"))
     conn.close()
 
 
+def slim_cache(out_dir: Path) -> Path:
+    """The folder of the figures' slim copies that the PDF renders (made by the figures
+    stage when a PDF is wanted, else by the first PDF)."""
+    return Path(out_dir) / ".pdf-figures"
+
+
 def _draw_section(scene, section, data: ArchiveData, out_dir: Path,
-                  formats: tuple[str, ...]) -> dict[str, Any]:
+                  formats: tuple[str, ...], for_pdf: bool = False) -> dict[str, Any]:
     content: SectionContent = getattr(scene, f"section_{section.name}")(data)
     figures = []
     for spec in content.figures:
         saved = save_figure(spec, f"{section.name}-{spec.name}", out_dir / "figures", formats)
         figures.append({"id": saved.id, "caption": saved.caption, "files": saved.files})
         spec.figure.clear()
+        if for_pdf:  # here, in the drawing processes, rather than in the PDF stage
+            from .svgslim import warm_cache
+
+            warm_cache(str(saved.svg), slim_cache(out_dir))
     return {
         "name": section.name, "title": section.title, "description": section.description,
         "figures": figures,
@@ -246,7 +244,8 @@ SECTIONS_FILE = "sections.json"
 
 
 def figures_stage(data: ArchiveData, out_dir: Path, formats: tuple[str, ...] | None = None,
-                  force: bool = False, jobs: int = 1) -> tuple[list[dict[str, Any]], bool]:
+                  force: bool = False, jobs: int = 1,
+                  for_pdf: bool = False) -> tuple[list[dict[str, Any]], bool]:
     """(sections, drawn?): reuse the stored figures when current, else draw them.
 
     ``formats``: the figure files to write; default from the archived config."""
@@ -256,7 +255,7 @@ def figures_stage(data: ArchiveData, out_dir: Path, formats: tuple[str, ...] | N
         cached = cached_sections(out_dir, key)
         if cached is not None:
             return cached, False
-    sections = draw_sections(data, out_dir, formats, jobs)
+    sections = draw_sections(data, out_dir, formats, jobs, for_pdf)
     (out_dir / "figures").mkdir(parents=True, exist_ok=True)
     atomic_write(out_dir / "figures" / SECTIONS_FILE, json.dumps(
         {"key": key, "sections": sections}, ensure_ascii=False,
@@ -313,94 +312,6 @@ def render_html(context: dict[str, Any]) -> str:
     return environment().get_template("scene.html.j2").render(**context)
 
 
-def write_pdf(html_text: str, target: Path, base_url: Path) -> None:
-    import gc
-    import logging
-    import tempfile
-
-    import weasyprint
-
-    from .svgslim import inline_svgs_as_images
-
-    logging.getLogger("weasyprint").setLevel(logging.ERROR)
-    logging.getLogger("fontTools").setLevel(logging.ERROR)
-    # The figures go to WeasyPrint as <img> of a slimmed copy of their SVG (still vector,
-    # text still text): the HTML parser and the CSS cascade never walk their nodes, and
-    # the SVG drawer has fewer of them.  report.html keeps the SVG as saved.
-    # WeasyPrint allocates hundreds of thousands of short-lived objects; at the default
-    # gen-0 threshold (700) the cyclic collector takes a tenth of the PDF time.
-    gc_thresholds = gc.get_threshold()
-    gc.set_threshold(max(10_000, gc_thresholds[0]), *gc_thresholds[1:])
-    try:
-        with tempfile.TemporaryDirectory(prefix="reportgen-pdf-") as folder:
-            html_for_pdf = inline_svgs_as_images(html_text, folder=Path(folder))
-            pdf = weasyprint.HTML(string=html_for_pdf, base_url=str(base_url)).write_pdf()
-    finally:
-        gc.set_threshold(*gc_thresholds)
-    atomic_write(target, pdf)
-
-
-class PdfWorker:
-    """A forked process that imports WeasyPrint at once and renders one PDF when asked.
-
-    The edit loop's single scene starts one before simulating, so the import (about half
-    a second) overlaps the simulation and the figures instead of following them."""
-
-    def __init__(self):
-        from multiprocessing import get_context
-
-        ctx = get_context("fork")
-        job_out, job_in = ctx.Pipe(duplex=False)
-        result_out, result_in = ctx.Pipe(duplex=False)
-        self._proc = ctx.Process(target=_pdf_worker_main, args=(job_out, result_in),
-                                 daemon=True)
-        self._proc.start()
-        job_out.close()
-        result_in.close()
-        self._jobs, self._results = job_in, result_out
-
-    def write_pdf(self, html_text: str, target: Path, base_url: Path) -> None:
-        """Render like :func:`write_pdf`, in the worker; raise what it raised."""
-        try:
-            self._jobs.send((html_text, str(target), str(base_url)))
-            error = self._results.recv()
-        except (EOFError, OSError, BrokenPipeError):
-            error = f"PDF process ended without a result (exit code {self._proc.exitcode})"
-        if error is not None:
-            raise ReportError(f"{target}: {error}")
-
-    def close(self) -> None:
-        try:
-            self._jobs.send(None)
-        except (OSError, BrokenPipeError):
-            pass
-        self._jobs.close()
-        self._proc.join(timeout=5)
-        if self._proc.is_alive():
-            self._proc.kill()
-            self._proc.join()
-
-
-def _pdf_worker_main(jobs, results) -> None:
-    try:
-        import weasyprint  # noqa: F401 - the point: imported while the parent works
-    except ImportError:
-        pass
-    while True:
-        try:
-            job = jobs.recv()
-        except EOFError:
-            return
-        if job is None:
-            return
-        html_text, target, base_url = job
-        try:
-            write_pdf(html_text, Path(target), Path(base_url))
-            results.send(None)
-        except Exception as exc:  # noqa: BLE001 - sent to the parent, which raises it
-            results.send(f"{type(exc).__name__}: {exc}")
-
-
 def build_report(archive_path: Path, formats=("html", "pdf"), out_dir: Path | None = None,
                  figure_files: tuple[str, ...] | None = None,
                  force_figures: bool = False,
@@ -418,7 +329,8 @@ def build_report(archive_path: Path, formats=("html", "pdf"), out_dir: Path | No
     out_dir.mkdir(parents=True, exist_ok=True)
     timings = {} if timings is None else timings
     t0 = time.perf_counter()
-    sections, _ = figures_stage(data, out_dir, figure_files, force=force_figures, jobs=jobs)
+    sections, _ = figures_stage(data, out_dir, figure_files, force=force_figures, jobs=jobs,
+                                for_pdf="pdf" in formats)
     timings["figures"] = time.perf_counter() - t0
     context = build_context(data, out_dir, sections=sections)
     return write_formats(render_html(context), out_dir, formats, timings, pdf_worker)
@@ -438,7 +350,7 @@ def write_formats(html_text: str, out_dir: Path, formats,
     if "pdf" in formats:
         t0 = time.perf_counter()
         (pdf_worker.write_pdf if pdf_worker is not None else write_pdf)(
-            html_text, out_dir / "report.pdf", out_dir)
+            html_text, out_dir / "report.pdf", out_dir, slim_cache=slim_cache(out_dir))
         written.append(out_dir / "report.pdf")
         timings["pdf"] = time.perf_counter() - t0
     return written

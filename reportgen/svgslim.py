@@ -17,7 +17,10 @@ SVG into an equivalent, smaller one:
   by more than the stroke width (nothing to clip);
 * ``<g>`` wrappers that carry nothing but an unreferenced id are dissolved, unreferenced
   ids are dropped;
-* coordinates are rounded to ``decimals`` decimals of a point (0.01 pt = 3.5 µm).
+* coordinates are rounded to ``decimals`` decimals of a point (0.01 pt = 3.5 µm);
+* a long polyline (a data line, a contour) keeps only the vertices it needs to stay
+  within ``thin`` points of itself (Ramer-Douglas-Peucker; 0.1 pt = 35 µm, under a
+  hairline), which drops half or more of a dense curve's vertices.
 
 Text stays text (``svg.fonttype = "none"``), so the PDF's figure text stays selectable.
 The result is deterministic (same input, same bytes).  Anything it does not recognise
@@ -33,13 +36,16 @@ image is drawn by WeasyPrint's SVG code, which is also what draws inline SVG).
 from __future__ import annotations
 
 import base64
+import hashlib
 import math
 import re
 import xml.etree.ElementTree as ET
 from pathlib import Path
 from xml.sax.saxutils import escape, quoteattr
 
-__all__ = ["slim_svg", "inline_svgs_as_images"]
+from .fsutil import atomic_write
+
+__all__ = ["slim_svg", "slim_cached", "warm_cache", "prune_cache", "inline_svgs_as_images"]
 
 SVG_NS = "http://www.w3.org/2000/svg"
 XLINK_NS = "http://www.w3.org/1999/xlink"
@@ -130,6 +136,68 @@ def _path_text(segments, dx: float, dy: float, decimals: int) -> str:
     return " ".join(out)
 
 
+#: polylines shorter than this are left as they are
+_THIN_MIN_POINTS = 32
+
+
+def _thinned(segments, tolerance: float):
+    """``segments`` with each long polyline (an M, then L's, perhaps a Z) keeping only
+    the vertices it needs to stay within ``tolerance`` of itself (Ramer-Douglas-Peucker);
+    None when the path has curves or nothing to thin."""
+    if any(command not in "MLZz" for command, _ in segments):
+        return None
+    runs: list[list[float]] = []  # the vertices of each subpath
+    closes: list[str] = []  # its closing command, or ""
+    for command, numbers in segments:
+        if command == "M":
+            runs.append(list(numbers))
+            closes.append("")
+        elif not runs or closes[-1]:
+            return None  # a line after a close, or before any move
+        elif command == "L":
+            runs[-1].extend(numbers)
+        else:
+            closes[-1] = command
+    if not any(len(run) >= 2 * _THIN_MIN_POINTS for run in runs):
+        return None
+    out = []
+    for run, close in zip(runs, closes, strict=True):
+        kept = _rdp(run, tolerance) if len(run) >= 2 * _THIN_MIN_POINTS else None
+        points = kept if kept is not None else [run[i:i + 2] for i in range(0, len(run), 2)]
+        out.append(("M", points[0]))
+        out.extend(("L", point) for point in points[1:])
+        if close:
+            out.append((close, []))
+    return out
+
+
+def _rdp(coordinates: list[float], tolerance: float) -> list[list[float]] | None:
+    """The vertices (x, y) of a polyline that Ramer-Douglas-Peucker keeps, else None when
+    it keeps them all."""
+    import numpy as np
+
+    xy = np.array(coordinates, dtype=float).reshape(-1, 2)
+    keep = np.zeros(len(xy), dtype=bool)
+    keep[0] = keep[-1] = True
+    stack = [(0, len(xy) - 1)]
+    while stack:
+        a, b = stack.pop()
+        if b - a < 2:
+            continue
+        chord = xy[b] - xy[a]
+        rel = xy[a + 1:b] - xy[a]
+        length = math.hypot(chord[0], chord[1])
+        if length > 0:
+            dist = np.abs(rel[:, 0] * chord[1] - rel[:, 1] * chord[0]) / length
+        else:
+            dist = np.hypot(rel[:, 0], rel[:, 1])
+        i = int(np.argmax(dist))
+        if dist[i] > tolerance:
+            keep[a + 1 + i] = True
+            stack.extend(((a, a + 1 + i), (a + 1 + i, b)))
+    return None if keep.all() else xy[keep].tolist()
+
+
 def _path_extent(segments) -> tuple[float, float, float, float] | None:
     xs = [v for _, numbers in segments for v in numbers[0::2]]
     ys = [v for _, numbers in segments for v in numbers[1::2]]
@@ -167,7 +235,7 @@ def _local(tag: str) -> str:
     return tag[len(_S):]
 
 
-def _slim_tree(root: ET.Element, decimals: int) -> None:
+def _slim_tree(root: ET.Element, decimals: int, thin: float) -> None:
     memo: dict[str, list | None] = {}
 
     def parse(d: str):
@@ -244,6 +312,8 @@ def _slim_tree(root: ET.Element, decimals: int) -> None:
             parent.remove(child)
             parent.insert(i, path)
 
+    _merge_marker_runs(root, parse, decimals)
+
     # markers' <defs> that no <use> needs any more
     still_used = _referenced_ids(root)
     parent_of = {child: parent for parent in root.iter() for child in parent}
@@ -277,7 +347,10 @@ def _slim_tree(root: ET.Element, decimals: int) -> None:
         if ex0 - margin > x0 and ey0 - margin > y0 and ex1 + margin < x1 and ey1 + margin < y1:
             del el.attrib["clip-path"]
 
-    # no-op rotations, rounding, whitespace
+    # no-op rotations, rounding, thinning (where user units are points), whitespace
+    transformed = {el for top in root.iter() if top is not root and "transform" in top.attrib
+                   for el in top.iter()}
+    has_viewbox_scale = not _user_unit_is_point(root)
     for el in root.iter():
         if el is root:
             continue
@@ -293,6 +366,8 @@ def _slim_tree(root: ET.Element, decimals: int) -> None:
         d = el.get("d")
         if d is not None:
             segments = parse(d)
+            if segments and thin > 0 and el not in transformed and not has_viewbox_scale:
+                segments = _thinned(segments, thin) or segments
             el.set("d", _path_text(segments, 0.0, 0.0, decimals) if segments
                    else " ".join(_round_numbers(d, decimals).split()))
         for key in _GEOMETRY:
@@ -306,6 +381,74 @@ def _slim_tree(root: ET.Element, decimals: int) -> None:
         if el is not root and "id" in el.attrib and el.get("id") not in used_now:
             del el.attrib["id"]
     _dissolve_groups(root)
+
+
+def _user_unit_is_point(root: ET.Element) -> bool:
+    """Whether one user unit of the drawing is one point (matplotlib's width="Wpt" with
+    viewBox="0 0 W H"), so that tolerances in points apply to coordinates as they are."""
+    width, box = root.get("width", ""), root.get("viewBox", "").replace(",", " ").split()
+    if not width.endswith("pt") or len(box) != 4:
+        return False
+    try:
+        return math.isclose(float(width[:-2]), float(box[2]), rel_tol=1e-9)
+    except ValueError:
+        return False
+
+
+def _paint_order_free(attrs: dict[str, str], segments) -> bool:
+    """Whether drawing copies of this path as one path (all fills, then all strokes) looks
+    the same as drawing them one by one: opaque paint, and no fill showing through
+    another copy's stroke (no fill, no stroke, the same colour for both, or only
+    two-point lines, whose fill paints nothing)."""
+    if any(attrs.get(k, "1") not in ("1", "1.0") for k in ("opacity", "fill-opacity",
+                                                           "stroke-opacity")):
+        return False
+    fill, stroke = attrs.get("fill"), attrs.get("stroke", "none")
+    if fill == "none" or stroke == "none" or (fill is not None and fill == stroke):
+        return True
+    return all(command in "ML" for command, _ in segments) and sum(
+        len(numbers) for _, numbers in segments) == 4 and segments[0][0] == "M"
+
+
+def _merge_marker_runs(root: ET.Element, parse, decimals: int) -> None:
+    """Consecutive sibling paths that differ only by a translation (a line's markers, an
+    axis's tick marks) become one path of translated subpaths, where that looks the same
+    (:func:`_paint_order_free`): one node for WeasyPrint instead of dozens."""
+    for parent in list(root.iter()):
+        children = list(parent)
+        i = 0
+        while i < len(children):
+            first = children[i]
+            key = _marker_key(first, parse)
+            j = i + 1
+            while j < len(children) and key is not None and _marker_key(children[j], parse) == key:
+                j += 1
+            if j - i > 1:
+                parts = []
+                for el in children[i:j]:
+                    dx, dy = _shift(el) or (0.0, 0.0)
+                    parts.append(_path_text(parse(el.get("d")), dx, dy, decimals))
+                first.set("d", " ".join(parts))
+                first.attrib.pop("transform", None)
+                first.tail = children[j - 1].tail
+                for el in children[i + 1:j]:
+                    parent.remove(el)
+            i = j
+
+
+def _marker_key(el: ET.Element, parse):
+    """What must agree for ``el`` to join a run of translated copies, else None."""
+    if el.tag != _S + "path" or "id" in el.attrib:
+        return None
+    if "transform" in el.attrib and _shift(el) is None:
+        return None
+    segments = parse(el.get("d", ""))
+    if not segments:
+        return None
+    attrs = {k: v for k, v in el.attrib.items() if k not in ("d", "transform")}
+    if not _paint_order_free(attrs, segments):
+        return None
+    return tuple(sorted(attrs.items())), el.get("d")
 
 
 def _use_xy(el: ET.Element) -> tuple[float, float]:
@@ -454,9 +597,10 @@ def _serialize(el: ET.Element, out: list[str], in_text: bool = False, root: bool
         out.append(f"</{tag}>")
 
 
-def slim_svg(svg_text: str, decimals: int = 2) -> str:
+def slim_svg(svg_text: str, decimals: int = 2, thin: float = 0.1) -> str:
     """The SVG rewritten lighter for WeasyPrint (see the module docstring); unchanged when
-    it holds something this module does not rewrite."""
+    it holds something this module does not rewrite.  ``thin``: the polyline tolerance in
+    points (0: keep every vertex)."""
     start = svg_text.find("<svg")
     if start < 0:
         return svg_text
@@ -464,7 +608,7 @@ def slim_svg(svg_text: str, decimals: int = 2) -> str:
         root = ET.fromstring(svg_text[start:])
         if root.tag != _S + "svg":
             return svg_text
-        _slim_tree(root, decimals)
+        _slim_tree(root, decimals, thin)
     except (ET.ParseError, _Skip, ValueError):
         return svg_text
     out: list[str] = []
@@ -474,21 +618,61 @@ def slim_svg(svg_text: str, decimals: int = 2) -> str:
 
 _INLINE_SVG = re.compile(r"<svg\b.*?</svg>", re.S)
 
+#: a slim copy's file name changes with this module's output
+_SLIM_VERSION = "2"
+
+
+def slim_cached(svg: str, cache: Path, decimals: int = 2, thin: float = 0.1) -> Path:
+    """The file in ``cache`` holding the slim copy of ``svg`` (an inline ``<svg>`` as the
+    report's HTML carries it), made now unless an earlier call made it.  Named by the
+    content and the settings, so a stale copy is never used."""
+    key = hashlib.sha256(f"{_SLIM_VERSION}:{decimals}:{thin}:{svg}".encode()).hexdigest()
+    path = Path(cache) / f"{key[:32]}.svg"
+    if not path.exists():
+        text = slim_svg(svg, decimals, thin)
+        if "xmlns=" not in text[:text.find(">")]:
+            text = text.replace("<svg", f'<svg xmlns="{SVG_NS}"', 1)
+        Path(cache).mkdir(parents=True, exist_ok=True)
+        atomic_write(path, text.encode("utf-8"))
+    return path
+
+
+def warm_cache(text: str, cache: Path, decimals: int = 2) -> None:
+    """Make the slim copies of the ``<svg>`` elements in ``text`` (the figures stage does
+    this while it draws, so the PDF stage finds them made)."""
+    for match in _INLINE_SVG.finditer(text):
+        slim_cached(match.group(0), cache, decimals)
+
+
+def prune_cache(cache: Path, keep: set[Path]) -> None:
+    """Delete the slim copies in ``cache`` other than ``keep`` (those of older figures)."""
+    keep = {Path(p).resolve() for p in keep}
+    for path in Path(cache).glob("*.svg"):
+        if path.resolve() not in keep:
+            path.unlink(missing_ok=True)
+
 
 def inline_svgs_as_images(html_text: str, slim: bool = True, decimals: int = 2,
-                          folder: Path | None = None) -> str:
+                          folder: Path | None = None, cache: Path | None = None,
+                          used: set[Path] | None = None) -> str:
     """The HTML with every inline ``<svg>...</svg>`` replaced by an ``<img>`` of it (the
     SVG's own width/height give the image's size).
 
-    The image is the slimmed SVG, written to ``folder`` (``figure-<n>.svg``, referenced by
-    a ``file:`` URL) when one is given, else inlined as a ``data:`` URL -- whose long
-    attribute value costs the HTML parser some 5 ms per 100 kB.
+    The image is the slimmed SVG: the copy in ``cache`` (see :func:`slim_cached`; the
+    files used are added to ``used``) when one is given, else written to ``folder``
+    (``figure-<n>.svg``, referenced by a ``file:`` URL), else inlined as a ``data:`` URL
+    -- whose long attribute value costs the HTML parser some 5 ms per 100 kB.
     """
     count = 0
 
     def image(match: re.Match) -> str:
         nonlocal count
         svg = match.group(0)
+        if slim and cache is not None:
+            path = slim_cached(svg, cache, decimals)
+            if used is not None:
+                used.add(path)
+            return f'<img class="svg-figure" alt="" src="{path.resolve().as_uri()}">'
         if slim:
             svg = slim_svg(svg, decimals)
         if "xmlns=" not in svg[:svg.find(">")]:

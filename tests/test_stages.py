@@ -182,3 +182,42 @@ def test_figures_in_parallel_and_pdf_worker_give_the_same_report(write_config, t
         assert (one / "figures" / name).read_bytes() == (two / "figures" / name).read_bytes()
     assert (one / "report.html").read_bytes() == (two / "report.html").read_bytes()
     assert (two / "report.pdf").read_bytes().startswith(b"%PDF")
+
+
+def test_edit_loop_worker_started_only_for_one_edited_scene(write_config, tmp_path):
+    """``reportgen run`` forks the PDF worker before validating only when one config is
+    newer than its report; an unused worker is stopped at once; the PDF's slim figure
+    copies are kept for the next render."""
+    from reportgen.layout import edited_count
+    from reportgen.pdf import PdfWorker, edit_loop_worker
+    from reportgen.pipeline import run_batch
+
+    a = write_config("a", pendulum_text(t_end=2.0, samples=201))
+    b = write_config("b", pendulum_text(t_end=3.0, samples=201))
+    out = tmp_path / "out"
+    assert edited_count([a, b], out) == 2  # no reports yet
+    run_batch([str(a), str(b)], out_root=str(out), jobs=2)
+    assert edited_count([a, b], out) == 0
+    slim = sorted((out / "a" / ".pdf-figures").glob("*.svg"))
+    assert slim  # made while drawing, for the PDF
+
+    a.write_text(a.read_text(encoding="utf-8").replace("title = ", "title = 'x' #"),
+                 encoding="utf-8")
+    assert edited_count([a, b], out) == 1
+    assert edit_loop_worker([a, b], out, formats=("html",)) is None  # no PDF wanted
+    assert edit_loop_worker([a, b], out, jobs=1) is None  # no second process allowed
+    assert edit_loop_worker([a, b], out, scheduler="tcp://127.0.0.1:1") is None
+    unused = edit_loop_worker([a, b], out)
+    assert isinstance(unused, PdfWorker)
+    unused.close()
+    assert not unused._proc.is_alive()
+    unused.close()  # twice is harmless
+
+    worker = edit_loop_worker([a, b], out)
+    try:
+        outcomes = run_batch([str(a), str(b)], out_root=str(out), pdf_worker=worker)
+    finally:
+        worker.close()
+    assert [o.stages for o in outcomes] == [["restamp", "report"], []]
+    assert (out / "a" / "report.pdf").read_bytes().startswith(b"%PDF")
+    assert sorted((out / "a" / ".pdf-figures").glob("*.svg")) == slim

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import base64
 import io
+import math
 import re
 import xml.etree.ElementTree as ET
 
@@ -11,7 +12,13 @@ import matplotlib
 import pytest
 
 from reportgen.plots.style import new_figure
-from reportgen.svgslim import inline_svgs_as_images, slim_svg
+from reportgen.svgslim import (
+    inline_svgs_as_images,
+    prune_cache,
+    slim_cached,
+    slim_svg,
+    warm_cache,
+)
 
 SVG = "{http://www.w3.org/2000/svg}"
 
@@ -64,11 +71,61 @@ def test_slim_is_deterministic_and_idempotent():
     assert slim_svg(once) == once
 
 
-def test_markers_become_translated_paths():
+def test_markers_become_one_path_of_translated_copies():
     svg = _matplotlib_svg()
-    n_uses = svg.count("<use")
+    assert svg.count("<use") >= 10
     slim = slim_svg(svg)
-    assert n_uses and slim.count("translate(") >= n_uses - svg.count("translate(")
+    assert "<use" not in slim
+    # the ten "o" markers (fill and edge of one opaque colour): one path, ten subpaths
+    marker_runs = [d for d in re.findall(r' d="([^"]*)"', slim) if d.count("M") == 10]
+    assert len(marker_runs) == 1 and marker_runs[0].count("z") == 10
+
+
+def test_translucent_markers_stay_apart():
+    """Merged, the fills of overlapping translucent markers would not darken each other:
+    those are left one path per marker."""
+    fig, ax = new_figure(figsize=(3.0, 2.0))
+    ax.plot([0, 1, 2, 3], [0, 1, 0, 1], "o", alpha=0.5)
+    buf = io.BytesIO()
+    with matplotlib.rc_context({"svg.hashsalt": "test", "svg.id": "test"}):
+        fig.savefig(buf, format="svg", metadata={"Date": None})
+    slim = slim_svg(buf.getvalue().decode("utf-8"))
+    assert len([d for d in re.findall(r' d="([^"]*)"', slim) if "C" in d and "z" in d]) == 4
+
+
+def _polyline_svg(points) -> str:
+    d = "M " + " L ".join(f"{x:.4f} {y:.4f}" for x, y in points)
+    return ('<svg xmlns="http://www.w3.org/2000/svg" width="400pt" height="300pt" '
+            f'viewBox="0 0 400 300"><path d="{d}" fill="none" stroke="#000"/></svg>')
+
+
+def _distance_to_polyline(p, vertices) -> float:
+    best = math.inf
+    for (ax, ay), (bx, by) in zip(vertices, vertices[1:], strict=False):
+        dx, dy = bx - ax, by - ay
+        t = 0.0 if dx == dy == 0 else max(0.0, min(1.0, ((p[0] - ax) * dx + (p[1] - ay) * dy)
+                                                    / (dx * dx + dy * dy)))
+        best = min(best, math.hypot(p[0] - ax - t * dx, p[1] - ay - t * dy))
+    return best
+
+
+def test_dense_polyline_thinned_within_tolerance():
+    points = [(10 + 0.38 * i, 290 - 280 * (i / 1000) ** 2) for i in range(1001)]
+    slim = slim_svg(_polyline_svg(points), thin=0.1)
+    d = re.search(r' d="([^"]*)"', slim).group(1)
+    kept = [(float(x), float(y)) for x, y in re.findall(r"([-\d.]+) ([-\d.]+)", d)]
+    assert 10 < len(kept) < len(points) // 4
+    assert kept[0] == (10.0, 290.0) and kept[-1] == pytest.approx(points[-1], abs=0.006)
+    # every dropped vertex within the tolerance (plus the 0.005 pt rounding) of the line
+    assert max(_distance_to_polyline(p, kept) for p in points[::7]) <= 0.1 + 0.01
+    unthinned = slim_svg(_polyline_svg(points), thin=0)
+    assert unthinned.count(" L ") + unthinned.count("L ") >= 1000
+
+
+def test_thinning_only_where_a_user_unit_is_a_point():
+    points = [(0.04 * i, 0.001 * i * i) for i in range(300)]
+    svg = _polyline_svg(points).replace('viewBox="0 0 400 300"', 'viewBox="0 0 40 30"')
+    assert slim_svg(svg, thin=0.1).count("L") == 299
 
 
 def test_unknown_stylesheet_left_alone():
@@ -130,3 +187,20 @@ def test_pdf_figure_text_stays_selectable(tmp_path):
     text = "".join(page.extract_text() for page in pypdf.PdfReader(tmp_path / "out.pdf").pages)
     assert "before" in text and "dense line" in text and "time t [s]" in text
     assert not list(tmp_path.glob("figure-*.svg"))  # the slim copies were temporary
+
+
+def test_slim_copies_cached_by_content(tmp_path):
+    svg = _matplotlib_svg()
+    cache = tmp_path / "slim"
+    warm_cache(f"<figure>{svg}</figure>", cache)
+    (made,) = cache.glob("*.svg")
+    assert made.read_text(encoding="utf-8") == slim_svg(svg)
+    stamp = made.stat().st_mtime_ns
+    used: set = set()
+    out = inline_svgs_as_images(f"<p>a</p>{svg}", cache=cache, used=used)
+    assert used == {made} and made.resolve().as_uri() in out
+    assert made.stat().st_mtime_ns == stamp  # found, not made again
+    other = slim_cached(_matplotlib_svg(markers=False), cache)
+    assert other != made and slim_cached(svg, cache, thin=0) not in (made, other)
+    prune_cache(cache, {made})
+    assert sorted(cache.glob("*.svg")) == [made]

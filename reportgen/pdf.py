@@ -1,0 +1,188 @@
+"""The PDF stage: WeasyPrint's rendering of a report's HTML, in this process or in a
+worker process started ahead of time.
+
+WeasyPrint costs about three quarters of a second to import (most of it loading Pango,
+HarfBuzz and fontconfig) and a few tenths more on a process's first document.  The edit
+loop's one scene therefore hands its PDF to a :class:`PdfWorker` forked when the command
+starts, which pays both while the scene is validated, simulated and drawn.  This module
+imports only the standard library at first, so that fork comes early.
+"""
+
+from __future__ import annotations
+
+import tempfile
+from pathlib import Path
+
+from .errors import ReportError
+from .fsutil import atomic_write
+from .layout import edited_count
+
+__all__ = ["write_pdf", "PdfWorker", "edit_loop_worker"]
+
+
+def prepare_html(html_text: str, folder: Path, slim_cache: Path | None = None,
+                 used: set[Path] | None = None) -> str:
+    """The HTML WeasyPrint gets: each inline ``<svg>`` figure becomes an ``<img>`` of a
+    slimmed copy (still vector, text still text), so the HTML parser and the CSS cascade
+    never walk the figures' nodes and the SVG drawer has fewer of them.  The copies are
+    taken from (or made into) ``slim_cache`` when given, recording the ones used in
+    ``used``, else written into ``folder``.  report.html keeps the SVG as saved."""
+    from .svgslim import inline_svgs_as_images
+
+    return inline_svgs_as_images(html_text, folder=folder, cache=slim_cache, used=used)
+
+
+def render_pdf(html_for_pdf: str, target: Path, base_url: Path) -> None:
+    """WeasyPrint's PDF of prepared HTML, written atomically to ``target``."""
+    import gc
+    import logging
+
+    import weasyprint
+
+    logging.getLogger("weasyprint").setLevel(logging.ERROR)
+    logging.getLogger("fontTools").setLevel(logging.ERROR)
+    # WeasyPrint allocates hundreds of thousands of short-lived objects; at the default
+    # gen-0 threshold (700) the cyclic collector takes a tenth of the PDF time.
+    gc_thresholds = gc.get_threshold()
+    gc.set_threshold(max(10_000, gc_thresholds[0]), *gc_thresholds[1:])
+    try:
+        pdf = weasyprint.HTML(string=html_for_pdf, base_url=str(base_url)).write_pdf()
+    finally:
+        gc.set_threshold(*gc_thresholds)
+    atomic_write(target, pdf)
+
+
+def write_pdf(html_text: str, target: Path, base_url: Path,
+              slim_cache: Path | None = None) -> None:
+    """``target``: the PDF of a report's HTML (figures as vector images).  ``slim_cache``:
+    the folder of the figures' slim copies (kept for the next render, pruned to this one's)."""
+    used: set[Path] = set()
+    with tempfile.TemporaryDirectory(prefix="reportgen-pdf-") as folder:
+        render_pdf(prepare_html(html_text, Path(folder), slim_cache, used), target, base_url)
+    _prune(slim_cache, used)
+
+
+def _prune(slim_cache: Path | None, used: set[Path]) -> None:
+    if slim_cache is not None and Path(slim_cache).is_dir():
+        from .svgslim import prune_cache
+
+        prune_cache(slim_cache, used)
+
+
+class PdfWorker:
+    """A forked process that imports WeasyPrint at once, warms it up on a one-page
+    document unless a job is already waiting, and renders PDFs when asked.
+
+    The figures are slimmed here, in the asking process, while the worker may still be
+    importing; the worker only renders."""
+
+    def __init__(self):
+        from multiprocessing import get_context
+
+        ctx = get_context("fork")
+        job_out, job_in = ctx.Pipe(duplex=False)
+        result_out, result_in = ctx.Pipe(duplex=False)
+        self._proc = ctx.Process(target=_worker_main, args=(job_out, result_in), daemon=True)
+        self._proc.start()
+        job_out.close()
+        result_in.close()
+        self._jobs, self._results = job_in, result_out
+        self._used = self._closed = False
+
+    def write_pdf(self, html_text: str, target: Path, base_url: Path,
+                  slim_cache: Path | None = None) -> None:
+        """Render like :func:`write_pdf`, in the worker; raise what it raised."""
+        if self._closed:
+            raise ReportError(f"{target}: the PDF process was already stopped")
+        self._used = True
+        used: set[Path] = set()
+        with tempfile.TemporaryDirectory(prefix="reportgen-pdf-") as folder:
+            html_for_pdf = prepare_html(html_text, Path(folder), slim_cache, used)
+            try:
+                self._jobs.send((html_for_pdf, str(target), str(base_url)))
+                error = self._results.recv()
+            except (EOFError, OSError):
+                error = f"PDF process ended without a result (exit code {self._proc.exitcode})"
+        if error is not None:
+            raise ReportError(f"{target}: {error}")
+        _prune(slim_cache, used)
+
+    def close(self) -> None:
+        """Stop the worker: at once if it never rendered (it writes nothing before a job),
+        else once it has finished.  Closing twice is harmless."""
+        if self._closed:
+            return
+        self._closed = True
+        if self._used:
+            try:
+                self._jobs.send(None)
+            except OSError:
+                pass
+            self._proc.join(timeout=5)
+        if self._proc.is_alive():
+            self._proc.kill()
+        self._proc.join()
+        self._jobs.close()
+        self._results.close()
+
+
+def edit_loop_worker(configs: list[Path], out_root, formats=None, jobs: int | None = None,
+                     force: bool = False, scheduler: str | None = None) -> PdfWorker | None:
+    """A :class:`PdfWorker` when this run looks like the edit loop's (one scene to render,
+    locally, with a PDF, and a second core to prepare it on), else None.  Only a head start:
+    the worker is stopped unused if the guess was wrong."""
+    if scheduler or (formats is not None and "pdf" not in formats) or jobs == 1:
+        return None
+    one = len(configs) == 1 if force else edited_count(configs, out_root) == 1
+    return PdfWorker() if one else None
+
+
+def _worker_main(jobs, results) -> None:
+    if not jobs.poll():
+        try:
+            _warm_up()
+        except Exception:  # noqa: BLE001 - only a head start; the job reports real problems
+            pass
+    while True:
+        try:
+            job = jobs.recv()
+        except EOFError:
+            return
+        if job is None:
+            return
+        html_for_pdf, target, base_url = job
+        try:
+            render_pdf(html_for_pdf, Path(target), Path(base_url))
+            results.send(None)
+        except Exception as exc:  # noqa: BLE001 - sent to the parent, which raises it
+            results.send(f"{type(exc).__name__}: {exc}")
+
+
+#: a figure-like SVG for the warm-up: clipped path, dashes, text in the figures' font
+_WARM_UP_SVG = (
+    '<svg xmlns="http://www.w3.org/2000/svg" width="120pt" height="60pt" '
+    'viewBox="0 0 120 60"><defs><clipPath id="c"><rect x="0" y="0" width="120" '
+    'height="60"/></clipPath></defs><g clip-path="url(#c)"><path d="M 0 50 L 40 10 '
+    'L 80 30 L 120 5" fill="none" stroke="#1f77b4" stroke-width="1.5" '
+    'stroke-dasharray="5.55,2.4"/></g><text x="4" y="58" font-family="DejaVu Sans" '
+    'font-size="8">−0.5 1e-10 θ ω <tspan font-style="italic">t</tspan></text></svg>')
+
+
+def _warm_up() -> None:
+    """Render a one-page document in the report's stylesheet with one SVG figure: the
+    first document of a process pays for font loading and binding setup, so the real
+    one does not."""
+    import base64
+
+    from .layout import template_dir
+
+    css = (template_dir() / "style.css.j2").read_text(encoding="utf-8")  # no template syntax
+    svg = base64.b64encode(_WARM_UP_SVG.encode("utf-8")).decode("ascii")
+    html_text = (f"<html><head><style>{css}</style></head><body><h1>Warm-up α</h1>"
+                 "<p>Text <b>bold</b> <i>italic</i> <code>code</code> ω₃ θ₁</p>"
+                 "<dl class='facts'><dt>a</dt><dd>1.0</dd></dl>"
+                 "<table><tr><th>x</th><td>1e-10</td></tr></table><pre>t_end = 1</pre>"
+                 f"<figure><img src='data:image/svg+xml;base64,{svg}'>"
+                 "<figcaption>caption</figcaption></figure></body></html>")
+    with tempfile.TemporaryDirectory(prefix="reportgen-pdf-") as folder:
+        render_pdf(html_text, Path(folder) / "warm-up.pdf", Path(folder))
