@@ -56,36 +56,49 @@ def _free_rotation(axis, tau, I, L, q):
 
 @numba.njit(cache=True)
 def _strang(h, I, L, q):
-    _free_rotation(0, 0.5 * h, I, L, q)
-    _free_rotation(1, 0.5 * h, I, L, q)
-    _free_rotation(2, h, I, L, q)
-    _free_rotation(1, 0.5 * h, I, L, q)
-    _free_rotation(0, 0.5 * h, I, L, q)
+    """Axes 0, 1, 2, 1, 0 with time steps h/2, h/2, h, h/2, h/2.  The axis is a computed
+    integer, not a constant: constants would make numba compile one copy of
+    _free_rotation per axis."""
+    for i in range(5):
+        axis = 2 - abs(2 - i)
+        _free_rotation(axis, h if axis == 2 else 0.5 * h, I, L, q)
+
+
+@numba.njit(cache=True)
+def _store(Y, n, I, L, q):
+    """Row n of the output: ω = L / I, then q.  Element by element: a slice assignment
+    would compile numba's shape-mismatch error path, seconds of compiling on a cold cache."""
+    for i in range(3):
+        Y[n, i] = L[i] / I[i]
+    for i in range(4):
+        Y[n, 3 + i] = q[i]
 
 
 @numba.njit(cache=True)
 def _run(I, y0, t_eval, h, order, Y):
-    L = I * y0[:3]
-    q = y0[3:7].copy()
+    L = np.empty(3)
+    q = np.empty(4)
+    for i in range(3):
+        L[i] = I[i] * y0[i]
+    for i in range(4):
+        q[i] = y0[3 + i]
     x1 = 1.0 / (2.0 - 2.0 ** (1.0 / 3.0))  # Yoshida (4.4)
     x0 = 1.0 - 2.0 * x1
-    Y[0, :3] = L / I
-    Y[0, 3:] = q
     nsteps = 0
-    for n in range(1, t_eval.size):
-        span = t_eval[n] - t_eval[n - 1]
-        k = max(1, int(math.ceil(span / h - 1e-12)))
-        dt = span / k
-        for _ in range(k):
-            if order == 2:
-                _strang(dt, I, L, q)
-            else:
-                _strang(x1 * dt, I, L, q)
-                _strang(x0 * dt, I, L, q)
-                _strang(x1 * dt, I, L, q)
-        nsteps += k
-        Y[n, :3] = L / I
-        Y[n, 3:] = q
+    for n in range(t_eval.size):
+        if n > 0:
+            span = t_eval[n] - t_eval[n - 1]
+            k = max(1, int(math.ceil(span / h - 1e-12)))
+            dt = span / k
+            for _ in range(k):
+                if order == 2:
+                    _strang(dt, I, L, q)
+                else:
+                    _strang(x1 * dt, I, L, q)
+                    _strang(x0 * dt, I, L, q)
+                    _strang(x1 * dt, I, L, q)
+            nsteps += k
+        _store(Y, n, I, L, q)
     return nsteps
 
 
