@@ -14,7 +14,7 @@ from pathlib import Path
 from . import __version__
 from .cache import NO_CACHE_ENV, PeerCache
 from .errors import ConfigError, UsageError
-from .layout import FORMATS
+from .layout import FORMATS, collect_configs
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
 
@@ -38,15 +38,20 @@ def _jobs(text: str) -> int:
     return value
 
 
-def _seconds(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        value = -1.0
-    if not value > 0 or value == float("inf"):
-        raise argparse.ArgumentTypeError(f"--time-limit must be a positive number of seconds "
-                                         f"(got {text!r})")
-    return value
+def _seconds(option: str):
+    """An argparse type: a positive, finite number of seconds for ``option``."""
+
+    def parse(text: str) -> float:
+        try:
+            value = float(text)
+        except ValueError:
+            value = -1.0
+        if not value > 0 or value == float("inf"):
+            raise argparse.ArgumentTypeError(f"{option} must be a positive number of seconds "
+                                             f"(got {text!r})")
+        return value
+
+    return parse
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -70,8 +75,21 @@ def build_parser() -> argparse.ArgumentParser:
                      help="measure scipy peers again instead of using the user cache")
     run.add_argument("--scheduler", default=None, metavar="ADDR",
                      help="Dask distributed scheduler address (needs the 'dask' extra)")
-    run.add_argument("--time-limit", type=_seconds, default=None, metavar="SECONDS",
+    run.add_argument("--time-limit", type=_seconds("--time-limit"), default=None, metavar="SECONDS",
                      help="stop a scene that runs longer than this (default: no limit)")
+
+    wat = sub.add_parser("watch", help="run, then run again whenever a config changes "
+                                       "(the edit loop, kept warm)")
+    wat.add_argument("paths", nargs="+", metavar="PATH")
+    wat.add_argument("--out", default="output", metavar="DIR",
+                     help="output folder (default: output)")
+    wat.add_argument("--jobs", type=_jobs, default=None, metavar="N",
+                     help="worker processes (default: CPU count)")
+    wat.add_argument("--format", type=_formats, default=None, metavar="html,pdf",
+                     help="report formats (default: the config's [report] formats)")
+    wat.add_argument("--interval", type=_seconds("--interval"), default=0.25,
+                     metavar="SECONDS",
+                     help="how often the configs are looked at (default: 0.25)")
 
     rep = sub.add_parser("report", help="rebuild reports from archives alone")
     rep.add_argument("archives", nargs="+", metavar="ARCHIVE.h5")
@@ -122,7 +140,6 @@ def _usage(message: str) -> int:
 
 
 def cmd_run(args) -> int:
-    from .layout import collect_configs
     from .pdf import edit_loop_worker
 
     if args.no_cache:
@@ -150,6 +167,17 @@ def cmd_run(args) -> int:
     print(f"{len(outcomes) - len(bad)} of {len(outcomes)} scenes ok; index: "
           f"{Path(args.out) / 'index.html'}", file=sys.stderr)
     return EXIT_OK if status == "ok" else EXIT_FAILED
+
+
+def cmd_watch(args) -> int:
+    from .watch import watch
+
+    try:
+        collect_configs(args.paths)
+    except UsageError as exc:
+        return _usage(str(exc))
+    return watch(args.paths, out_root=args.out, jobs=args.jobs, formats=args.format,
+                 interval=args.interval)
 
 
 def cmd_report(args) -> int:
@@ -250,6 +278,7 @@ COMMANDS = {
     "cache": cmd_cache,
     "audit": cmd_audit,
     "run": cmd_run,
+    "watch": cmd_watch,
     "report": cmd_report,
     "inspect": cmd_inspect,
     "kinds": cmd_kinds,

@@ -88,6 +88,13 @@ class PdfWorker:
         result_in.close()
         self._jobs, self._results = job_in, result_out
         self._used = self._closed = False
+        #: started on a guess (:func:`edit_loop_worker`): the batch stops it when unused
+        self.speculative = False
+
+    @property
+    def alive(self) -> bool:
+        """Whether the worker can still take a job."""
+        return not self._closed and self._proc.is_alive()
 
     def write_pdf(self, html_text: str, target: Path, base_url: Path,
                   slim_cache: Path | None = None) -> None:
@@ -133,8 +140,11 @@ def edit_loop_worker(configs: list[Path], out_root, formats=None, jobs: int | No
     the worker is stopped unused if the guess was wrong."""
     if scheduler or (formats is not None and "pdf" not in formats) or jobs == 1:
         return None
-    one = len(configs) == 1 if force else edited_count(configs, out_root) == 1
-    return PdfWorker() if one else None
+    if not (len(configs) == 1 if force else edited_count(configs, out_root) == 1):
+        return None
+    worker = PdfWorker()
+    worker.speculative = True
+    return worker
 
 
 def _worker_main(jobs, results) -> None:

@@ -289,7 +289,7 @@ def _run_locally(scenes, out_root, force, formats, jobs, progress,
     here (:func:`_preload`), so no scene pays for them.
     """
     outcomes, todo = _split_current(scenes, out_root, force, formats, progress)
-    if pdf_worker is not None and len(todo) != 1:
+    if pdf_worker is not None and pdf_worker.speculative and len(todo) != 1:
         pdf_worker.close()  # started on a hint that did not hold: stop it at once
     if not todo:
         return outcomes
