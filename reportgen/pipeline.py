@@ -331,12 +331,25 @@ def _preload(scenes, formats) -> None:
     """Import, before forking, what every scene process would otherwise import for itself
     (numba and the integrators, scipy, matplotlib with the figure style, WeasyPrint) and
     load the compiled drivers: forked children share these pages instead of spending
-    seconds each on imports, and two children never compile the same driver at once."""
+    seconds each on imports, and two children never compile the same driver at once.
+
+    On a cold numba cache the drivers take seconds to compile: two forked helpers compile
+    them into the disk cache (one the explicit, one the implicit and splitting drivers)
+    while this process imports the rest, then this process loads them from the cache."""
     import importlib
 
-    modules = ["reportgen.core.integrators", "reportgen.core.study", "scipy.integrate",
-               "scipy.special", "scipy.optimize", "reportgen.report",
-               "reportgen.plots.style", "reportgen.plots.common", "matplotlib.backends.backend_svg"]
+    import reportgen.core.integrators  # noqa: F401 - numba, before the helpers fork
+
+    ctx = get_context("fork")
+    groups = (("dop853", "rk4"), ("gauss4", "verlet"))
+    from .core.integrators.driver import warm_up
+
+    helpers = [ctx.Process(target=warm_up, args=(group,), daemon=True) for group in groups]
+    for helper in helpers:
+        helper.start()
+    modules = ["reportgen.core.study", "scipy.integrate", "scipy.special", "scipy.optimize",
+               "reportgen.report", "reportgen.plots.style", "reportgen.plots.common",
+               "matplotlib.backends.backend_svg"]
     if any("pdf" in _formats(scene, formats) for scene in scenes):
         modules.append("weasyprint")
     for name in modules:
@@ -344,21 +357,10 @@ def _preload(scenes, formats) -> None:
             importlib.import_module(name)
         except ImportError:  # a missing optional library fails in the scene, with its message
             pass
-    _warm_up_drivers()
-
-
-def _warm_up_drivers() -> None:
-    """Load the compiled drivers here, once.  On a cold numba cache, compiling them takes
-    seconds: a forked helper compiles the implicit and splitting drivers into the disk
-    cache while this process compiles the explicit ones, then this process loads those."""
-    from .core.integrators.driver import warm_up
-
-    ctx = get_context("fork")
-    helper = ctx.Process(target=warm_up, args=(("gauss4", "verlet"),), daemon=True)
-    helper.start()
-    warm_up(("dop853", "rk4"))
-    helper.join()
-    warm_up(("gauss4", "verlet"))  # from the disk cache now (compiled here if it failed)
+    for helper in helpers:
+        helper.join()
+    for group in groups:
+        warm_up(group)  # from the disk cache now (compiled here if a helper failed)
 
 
 def _scene_process(conn, config_path, out_root, force, formats) -> None:
