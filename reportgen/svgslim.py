@@ -18,9 +18,9 @@ SVG into an equivalent, smaller one:
 * ``<g>`` wrappers that carry nothing but an unreferenced id are dissolved, unreferenced
   ids are dropped;
 * coordinates are rounded to ``decimals`` decimals of a point (0.01 pt = 3.5 µm);
-* a long polyline (a data line, a contour) keeps only the vertices it needs to stay
-  within ``thin`` points of itself (Ramer-Douglas-Peucker; 0.1 pt = 35 µm, under a
-  hairline), which drops half or more of a dense curve's vertices.
+* a long polyline (a data line, a contour) drops every other vertex that lies within
+  ``thin`` points of the chord between its neighbours (0.1 pt = 35 µm, under a
+  hairline): up to half of a dense curve's vertices.
 
 Text stays text (``svg.fonttype = "none"``), so the PDF's figure text stays selectable.
 The result is deterministic (same input, same bytes).  Anything it does not recognise
@@ -141,9 +141,8 @@ _THIN_MIN_POINTS = 32
 
 
 def _thinned(segments, tolerance: float):
-    """``segments`` with each long polyline (an M, then L's, perhaps a Z) keeping only
-    the vertices it needs to stay within ``tolerance`` of itself (Ramer-Douglas-Peucker);
-    None when the path has curves or nothing to thin."""
+    """``segments`` with each long polyline (an M, then L's, perhaps a Z) thinned by
+    :func:`_thin_polyline`; None when the path has curves or nothing to thin."""
     if any(command not in "MLZz" for command, _ in segments):
         return None
     runs: list[list[float]] = []  # the vertices of each subpath
@@ -162,7 +161,7 @@ def _thinned(segments, tolerance: float):
         return None
     out = []
     for run, close in zip(runs, closes, strict=True):
-        kept = _rdp(run, tolerance) if len(run) >= 2 * _THIN_MIN_POINTS else None
+        kept = _thin_polyline(run, tolerance) if len(run) >= 2 * _THIN_MIN_POINTS else None
         points = kept if kept is not None else [run[i:i + 2] for i in range(0, len(run), 2)]
         out.append(("M", points[0]))
         out.extend(("L", point) for point in points[1:])
@@ -171,31 +170,30 @@ def _thinned(segments, tolerance: float):
     return out
 
 
-def _rdp(coordinates: list[float], tolerance: float) -> list[list[float]] | None:
-    """The vertices (x, y) of a polyline that Ramer-Douglas-Peucker keeps, else None when
-    it keeps them all."""
+def _thin_polyline(coordinates: list[float], tolerance: float) -> list[list[float]] | None:
+    """The vertices (x, y) of a polyline with every other vertex that lies within
+    ``tolerance`` of the chord between its neighbours dropped (never two neighbours, so
+    the new line stays within ``tolerance`` of the old), else None when none is dropped.
+    One vectorized pass: it halves a dense curve at most, at a cost that does not grow
+    with the vertices kept (Ramer-Douglas-Peucker's does)."""
     import numpy as np
 
     xy = np.array(coordinates, dtype=float).reshape(-1, 2)
-    keep = np.zeros(len(xy), dtype=bool)
-    keep[0] = keep[-1] = True
-    stack = [(0, len(xy) - 1)]
-    while stack:
-        a, b = stack.pop()
-        if b - a < 2:
-            continue
-        chord = xy[b] - xy[a]
-        rel = xy[a + 1:b] - xy[a]
-        length = math.hypot(chord[0], chord[1])
-        if length > 0:
-            dist = np.abs(rel[:, 0] * chord[1] - rel[:, 1] * chord[0]) / length
-        else:
-            dist = np.hypot(rel[:, 0], rel[:, 1])
-        i = int(np.argmax(dist))
-        if dist[i] > tolerance:
-            keep[a + 1 + i] = True
-            stack.extend(((a, a + 1 + i), (a + 1 + i, b)))
-    return None if keep.all() else xy[keep].tolist()
+    before, point, after = xy[:-2], xy[1:-1], xy[2:]
+    chord, rel = after - before, point - before
+    length = np.hypot(chord[:, 0], chord[:, 1])
+    cross = np.abs(rel[:, 0] * chord[:, 1] - rel[:, 1] * chord[:, 0])
+    dist = np.where(length > 0, cross / np.where(length > 0, length, 1.0),
+                    np.hypot(rel[:, 0], rel[:, 1]))
+    near = dist < tolerance
+    if not near.any():
+        return None
+    index = np.arange(near.size)
+    run_start = np.maximum.accumulate(np.where(near & ~np.r_[False, near[:-1]], index, 0))
+    drop = near & ((index - run_start) % 2 == 0)  # every other one of a run of near ones
+    keep = np.ones(len(xy), dtype=bool)
+    keep[1:-1] = ~drop
+    return xy[keep].tolist()
 
 
 def _path_extent(segments) -> tuple[float, float, float, float] | None:
