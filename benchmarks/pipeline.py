@@ -4,6 +4,7 @@
 Run from the repository root::
 
     .venv/bin/python benchmarks/pipeline.py [--scene pendulum_small] [--configs configs]
+        [--previous DIR]   # DIR: a checkout of an earlier release, e.g. git worktree add
 """
 
 from __future__ import annotations
@@ -22,8 +23,10 @@ def main() -> int:
     parser.add_argument("--configs", default=str(REPO / "configs"))
     parser.add_argument("--scene", default="pendulum_small",
                         help="the scene edited in the title and physics rows")
+    parser.add_argument("--previous", default=None,
+                        help="a source checkout of an earlier release, measured alongside")
     args = parser.parse_args()
-    measure(Path(args.configs), args.scene)
+    measure(Path(args.configs), args.scene, Path(args.previous) if args.previous else None)
     return 0
 
 

@@ -17,6 +17,9 @@ title edit (watch), physics edit (watch)
 --help, validate   the light commands
 stages        the edited scene run alone with ``--force``, per stage (warm caches)
 
+``--previous DIR`` (a source checkout of an earlier release, e.g. ``git worktree add
+DIR <tag>``) measures the same rows with it in the same call and prints the ratio.
+
 Targets are those of the project's edit-loop issue (2 cores).
 """
 
@@ -86,6 +89,9 @@ def _watched_edits(pack: Path, path: Path, out: list[str], env: dict[str, str],
             try:
                 line = lines.get(timeout=1.0)
             except queue.Empty:
+                if proc.poll() is not None:
+                    raise RuntimeError(f"reportgen watch ended (exit status "
+                                       f"{proc.returncode})") from None
                 continue
             if line.startswith("--- done"):
                 return time.perf_counter()
@@ -112,9 +118,10 @@ def _watched_edits(pack: Path, path: Path, out: list[str], env: dict[str, str],
     return rows
 
 
-def measure(configs: Path, scene: str, print=print) -> list[tuple[str, float, str]]:
-    """Measure every row; print the table; return (row, seconds, note) tuples."""
-    rows: list[tuple[str, float, str]] = []
+def _rows(configs: Path, scene: str, repo: Path) -> tuple[list, dict[str, float]]:
+    """Every row measured with the reportgen found at ``repo`` (a source checkout); a row
+    that release cannot give (a command it lacks) is None."""
+    rows: list[tuple[str, float | None, str]] = []
     with tempfile.TemporaryDirectory(prefix="reportgen-pipeline-") as tmp:
         tmp = Path(tmp)
         pack = tmp / "configs"
@@ -122,13 +129,13 @@ def measure(configs: Path, scene: str, print=print) -> list[tuple[str, float, st
         env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp / "numba"),
                "XDG_CACHE_HOME": str(tmp / "xdg")}
         env["PYTHONPATH"] = os.pathsep.join(
-            [str(REPO), *filter(None, [os.environ.get("PYTHONPATH")])])
+            [str(repo), *filter(None, [os.environ.get("PYTHONPATH")])])
         env.pop("REPORTGEN_NO_CACHE", None)
         out = ["--out", str(tmp / "output")]
         n = len(list(pack.glob("*.toml")))
         wall = _timed(["run", str(pack), *out], env, tmp)
         rows.append(("cold", wall, f"{n} scenes, {wall / n:.2f} s per scene"))
-        print(f"cold: {wall:.1f} s", file=sys.stderr)
+        print(f"cold: {wall:.1f} s ({repo})", file=sys.stderr)
         wall = _timed(["run", str(pack), *out], env, tmp)
         rows.append(("warm", wall, "nothing changed"))
         path = pack / f"{scene}.toml"
@@ -141,15 +148,37 @@ def measure(configs: Path, scene: str, print=print) -> list[tuple[str, float, st
               lambda m: f"t_end = {1.1 * float(m.group(1)):g}")
         wall = _timed(["run", str(pack), *out], env, tmp)
         rows.append(("physics edit", wall, f"{scene}, t_end +10 %, pack re-run"))
-        rows.extend(_watched_edits(pack, path, out, env, tmp))
+        try:
+            rows.extend(_watched_edits(pack, path, out, env, tmp))
+        except RuntimeError:
+            rows.extend([("title edit (watch)", None, "no reportgen watch"),
+                         ("physics edit (watch)", None, "no reportgen watch")])
         rows.append(("--help", _timed(["--help"], env, tmp), ""))
         rows.append(("validate", _timed(["validate", str(pack)], env, tmp), f"{n} configs"))
         stages = _stages(path, tmp / "stages", env)
-    print(f"{'what':<20} {'wall [s]':>9} {'target [s]':>11}  {'':<4} note")
-    for name, wall, note in rows:
+    return rows, stages
+
+
+def measure(configs: Path, scene: str, previous: Path | None = None,
+            print=print) -> list[tuple[str, float, str]]:
+    """Measure every row (and, given ``previous``, a source checkout of an earlier
+    release, the same rows with it, in the same call); print the table; return the
+    (row, seconds, note) tuples of this release."""
+    rows, stages = _rows(configs, scene, REPO)
+    before, stages_before = _rows(configs, scene, previous) if previous else (None, None)
+    head = f"{'what':<20} {'wall [s]':>9} {'target [s]':>11}  {'':<4}"
+    if before is not None:
+        head += f" {'previous [s]':>12} {'now/prev':>9}"
+    print(head + " note")
+    for i, (name, wall, note) in enumerate(rows):
         target = TARGETS[name]
-        print(f"{name:<20} {wall:9.2f} {target:11.1f}  {'ok' if wall <= target else 'OVER':<4} "
-              f"{note}")
-    print(f"stages of {scene} (--force, warm caches, in-process): "
-          + ", ".join(f"{k} {v:.2f} s" for k, v in stages.items()))
+        line = f"{name:<20} {wall:9.2f} {target:11.1f}  {'ok' if wall <= target else 'OVER':<4}"
+        if before is not None:
+            old = before[i][1]
+            line += (f" {old:12.2f} {wall / old:9.2f}" if old else f" {'n/a':>12} {'':>9}")
+        print(f"{line} {note}")
+    for label, values in (("", stages), (" previous", stages_before)):
+        if values is not None:
+            print(f"stages of {scene}{label} (--force, warm caches, in-process): "
+                  + ", ".join(f"{k} {v:.2f} s" for k, v in values.items()))
     return rows

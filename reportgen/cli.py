@@ -118,6 +118,9 @@ def build_parser() -> argparse.ArgumentParser:
                             "cold and warm, a title edit, a physics edit, the light commands")
     bench.add_argument("--scene", default="pendulum_small",
                        help="with --pipeline: the scene edited (default pendulum_small)")
+    bench.add_argument("--previous", default=None, metavar="DIR",
+                       help="with --pipeline: a source checkout of an earlier release, "
+                            "measured in the same call for comparison")
     return parser
 
 
@@ -244,7 +247,11 @@ def cmd_bench(args) -> int:
         if not (folder / f"{args.scene}.toml").exists():
             return _usage(f"bench --pipeline: --scene {args.scene}: no {args.scene}.toml in "
                           f"{folder}")
-        measure(folder, args.scene)
+        previous = Path(args.previous) if args.previous else None
+        if previous is not None and not (previous / "reportgen" / "cli.py").exists():
+            return _usage(f"bench --pipeline: --previous {previous}: not a reportgen source "
+                          "checkout (no reportgen/cli.py)")
+        measure(folder, args.scene, previous)
         return 0
 
     os.environ[NO_CACHE_ENV] = "1"  # peers measured in the same run as ours

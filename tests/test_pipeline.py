@@ -261,3 +261,15 @@ def test_kinds_lists_keys_and_sections(cli):
     for word in ("pendulum", "oscillator", "theta_dot", "phase_portrait", "hamilton_jacobi",
                  "dop853"):
         assert word in text
+
+
+def test_bench_pipeline_refuses_bad_folders_before_measuring(tmp_path, cli):
+    """``bench --pipeline`` checks its folders (exit 2, the value named) before the minutes
+    of measuring start."""
+    configs = tmp_path / "configs"
+    configs.mkdir()
+    code, _, err = cli("bench", "--pipeline", configs)
+    assert code == 2 and "pendulum_small" in err
+    (configs / "pendulum_small.toml").write_text("kind = 'pendulum'\n")
+    code, _, err = cli("bench", "--pipeline", configs, "--previous", tmp_path / "nowhere")
+    assert code == 2 and "nowhere" in err and "not a reportgen source checkout" in err
