@@ -149,7 +149,7 @@ def rk_update(b, nst, y, h, K, out):
 
 @numba.njit(cache=True, inline="always")
 def store_row(K, s, f):
-    """``K[s] = f``."""
+    """``K[s] = f`` (a stage row, or an output row ``Y[j] = y``)."""
     for i in range(f.size):
         K[s, i] = f[i]
 
@@ -244,8 +244,7 @@ def erk_adaptive(rhs, A, b, c, E, E3, P, nst, kind, err_exp, order,
         # serve every output inside the last accepted step (t_old, t]
         while j < i1 and t_eval[j] <= t:
             if t_eval[j] == t:
-                for i in range(d):
-                    Y[j, i] = y[i]
+                store_row(Y, j, y)
             else:
                 if kind == 1 and not dense_ready:
                     hd = t - t_old
@@ -376,8 +375,7 @@ def erk_fixed(rhs, A, b, c, nst, t_eval, i0, i1, Y, y, h_max, params, counters, 
             if not all_finite(y):
                 tfail[0] = t + h
                 return NONFINITE
-        for i in range(d):
-            Y[j, i] = y[i]
+        store_row(Y, j, y)
     return OK
 
 
@@ -588,6 +586,5 @@ def collocation_fixed(rhs, jac, use_fd_jac, A, c, dvec, t_eval, i0, i1, Y, y, h_
             if not all_finite(y):
                 tfail[0] = t + h
                 return NONFINITE
-        for i in range(d):
-            Y[j, i] = y[i]
+        store_row(Y, j, y)
     return OK
