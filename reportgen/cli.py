@@ -54,6 +54,19 @@ def _seconds(option: str):
     return parse
 
 
+def _batch_parser(sub, name: str, help_text: str) -> argparse.ArgumentParser:
+    """A subcommand that runs a batch: config paths, --out, --jobs, --format."""
+    parser = sub.add_parser(name, help=help_text)
+    parser.add_argument("paths", nargs="+", metavar="PATH")
+    parser.add_argument("--out", default="output", metavar="DIR",
+                        help="output folder (default: output)")
+    parser.add_argument("--jobs", type=_jobs, default=None, metavar="N",
+                        help="worker processes (default: CPU count)")
+    parser.add_argument("--format", type=_formats, default=None, metavar="html,pdf",
+                        help="report formats (default: the config's [report] formats)")
+    return parser
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="reportgen",
@@ -62,14 +75,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"reportgen {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
-    run = sub.add_parser("run", help="run scenes (config files or folders) and write reports")
-    run.add_argument("paths", nargs="+", metavar="PATH")
-    run.add_argument("--out", default="output", metavar="DIR",
-                     help="output folder (default: output)")
-    run.add_argument("--jobs", type=_jobs, default=None, metavar="N",
-                     help="worker processes (default: CPU count)")
-    run.add_argument("--format", type=_formats, default=None, metavar="html,pdf",
-                     help="report formats (default: the config's [report] formats)")
+    run = _batch_parser(sub, "run", "run scenes (config files or folders) and write reports")
     run.add_argument("--force", action="store_true", help="re-run scenes whose archive is current")
     run.add_argument("--no-cache", action="store_true",
                      help="measure scipy peers again instead of using the user cache")
@@ -78,15 +84,8 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--time-limit", type=_seconds("--time-limit"), default=None, metavar="SECONDS",
                      help="stop a scene that runs longer than this (default: no limit)")
 
-    wat = sub.add_parser("watch", help="run, then run again whenever a config changes "
-                                       "(the edit loop, kept warm)")
-    wat.add_argument("paths", nargs="+", metavar="PATH")
-    wat.add_argument("--out", default="output", metavar="DIR",
-                     help="output folder (default: output)")
-    wat.add_argument("--jobs", type=_jobs, default=None, metavar="N",
-                     help="worker processes (default: CPU count)")
-    wat.add_argument("--format", type=_formats, default=None, metavar="html,pdf",
-                     help="report formats (default: the config's [report] formats)")
+    wat = _batch_parser(sub, "watch", "run, then run again whenever a config changes "
+                                      "(the edit loop, kept warm)")
     wat.add_argument("--interval", type=_seconds("--interval"), default=0.25,
                      metavar="SECONDS",
                      help="how often the configs are looked at (default: 0.25)")
