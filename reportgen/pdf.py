@@ -53,16 +53,13 @@ def render_pdf(html_for_pdf: str, target: Path, base_url: Path) -> None:
 
 
 def write_pdf(html_text: str, target: Path, base_url: Path,
-              slim_cache: Path | None = None) -> None:
+              slim_cache: Path | None = None, render=render_pdf) -> None:
     """``target``: the PDF of a report's HTML (figures as vector images).  ``slim_cache``:
-    the folder of the figures' slim copies (kept for the next render, pruned to this one's)."""
+    the folder of the figures' slim copies (kept for the next render, pruned to this one's).
+    ``render(html_for_pdf, target, base_url)`` does the rendering (a worker's, say)."""
     used: set[Path] = set()
     with tempfile.TemporaryDirectory(prefix="reportgen-pdf-") as folder:
-        render_pdf(prepare_html(html_text, Path(folder), slim_cache, used), target, base_url)
-    _prune(slim_cache, used)
-
-
-def _prune(slim_cache: Path | None, used: set[Path]) -> None:
+        render(prepare_html(html_text, Path(folder), slim_cache, used), target, base_url)
     if slim_cache is not None and Path(slim_cache).is_dir():
         from .svgslim import prune_cache
 
@@ -102,17 +99,16 @@ class PdfWorker:
         if self._closed:
             raise ReportError(f"{target}: the PDF process was already stopped")
         self._used = True
-        used: set[Path] = set()
-        with tempfile.TemporaryDirectory(prefix="reportgen-pdf-") as folder:
-            html_for_pdf = prepare_html(html_text, Path(folder), slim_cache, used)
-            try:
-                self._jobs.send((html_for_pdf, str(target), str(base_url)))
-                error = self._results.recv()
-            except (EOFError, OSError):
-                error = f"PDF process ended without a result (exit code {self._proc.exitcode})"
+        write_pdf(html_text, target, base_url, slim_cache, render=self._render)
+
+    def _render(self, html_for_pdf: str, target: Path, base_url: Path) -> None:
+        try:
+            self._jobs.send((html_for_pdf, str(target), str(base_url)))
+            error = self._results.recv()
+        except (EOFError, OSError):
+            error = f"PDF process ended without a result (exit code {self._proc.exitcode})"
         if error is not None:
             raise ReportError(f"{target}: {error}")
-        _prune(slim_cache, used)
 
     def close(self) -> None:
         """Stop the worker: at once if it never rendered (it writes nothing before a job),

@@ -235,30 +235,20 @@ def run_batch(paths: list[str], out_root: str = "output", jobs: int | None = Non
     """Validate all, run all, write ``index.html``.
 
     Scenes run in-process (``jobs == 1``), in a local pool of ``jobs`` processes,
-    or on the Dask distributed scheduler at ``scheduler``.  When one scene looks edited,
-    a :class:`reportgen.pdf.PdfWorker` prepares WeasyPrint meanwhile (``pdf_worker``:
-    one the caller started and closes).
+    or on the Dask distributed scheduler at ``scheduler``.  ``pdf_worker``: a
+    :class:`reportgen.pdf.PdfWorker` the caller started (``reportgen run`` does, on the
+    hint of :func:`reportgen.pdf.edit_loop_worker`, before its heavy imports) and closes;
+    it renders the PDF of a single scene to do.
     """
-    configs = collect_configs(paths)
-    own_worker = None
-    if pdf_worker is None:
-        from .pdf import edit_loop_worker
-
-        pdf_worker = own_worker = edit_loop_worker(configs, out_root, formats, jobs, force,
-                                                   scheduler)
-    try:
-        scenes = validate_all(configs)
-        progress = Progress(len(scenes), stream)
-        Path(out_root).mkdir(parents=True, exist_ok=True)
-        if scheduler:
-            outcomes = _run_on_dask(scenes, out_root, force, formats, scheduler, progress,
-                                    time_limit)
-        else:
-            outcomes = _run_locally(scenes, out_root, force, formats, jobs, progress,
-                                    time_limit, pdf_worker)
-    finally:
-        if own_worker is not None:
-            own_worker.close()
+    scenes = validate_all(collect_configs(paths))
+    progress = Progress(len(scenes), stream)
+    Path(out_root).mkdir(parents=True, exist_ok=True)
+    if scheduler:
+        outcomes = _run_on_dask(scenes, out_root, force, formats, scheduler, progress,
+                                time_limit)
+    else:
+        outcomes = _run_locally(scenes, out_root, force, formats, jobs, progress, time_limit,
+                                pdf_worker)
     order = {s.source.name: i for i, s in enumerate(scenes)}
     outcomes.sort(key=lambda o: order[o.name])
     write_index(out_root, outcomes)

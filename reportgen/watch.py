@@ -42,7 +42,7 @@ def watch(paths: list[str], out_root: str = "output", jobs: int | None = None,
           stream=None, stop: Callable[[], bool] | None = None) -> int:
     """Run the batch, then again whenever a config under ``paths`` changes, appears or
     goes, until interrupted (Ctrl-C) or ``stop()`` is true.  Returns the exit status."""
-    from .pdf import PdfWorker, edit_loop_worker
+    from .pdf import PdfWorker
     from .pipeline import _preload, run_batch
 
     stream = stream or sys.stderr
@@ -70,8 +70,7 @@ def watch(paths: list[str], out_root: str = "output", jobs: int | None = None,
             if wants_pdf and jobs != 1 and (worker is None or not worker.alive):
                 if worker is not None:
                     worker.close()
-                worker = edit_loop_worker(list(now), out_root, formats, jobs) or PdfWorker()
-                worker.speculative = False  # kept warm for every later edit
+                worker = PdfWorker()  # kept warm for every later edit
             started = time.perf_counter()
             what = ", ".join(changed) if len(changed) <= 3 else f"{len(changed)} configs"
             print(f"--- {what} changed: running" if preloaded else
