@@ -172,7 +172,7 @@ def _thinned(segments, tolerance: float):
 
 def _thin_polyline(coordinates: list[float], tolerance: float) -> list[list[float]] | None:
     """The vertices (x, y) of a polyline with every other vertex that lies within
-    ``tolerance`` of the chord between its neighbours dropped (never two neighbours, so
+    ``tolerance`` of the segment between its neighbours dropped (never two neighbours, so
     the new line stays within ``tolerance`` of the old), else None when none is dropped.
     One vectorized pass: it halves a dense curve at most, at a cost that does not grow
     with the vertices kept (Ramer-Douglas-Peucker's does)."""
@@ -181,10 +181,12 @@ def _thin_polyline(coordinates: list[float], tolerance: float) -> list[list[floa
     xy = np.array(coordinates, dtype=float).reshape(-1, 2)
     before, point, after = xy[:-2], xy[1:-1], xy[2:]
     chord, rel = after - before, point - before
-    length = np.hypot(chord[:, 0], chord[:, 1])
-    cross = np.abs(rel[:, 0] * chord[:, 1] - rel[:, 1] * chord[:, 0])
-    dist = np.where(length > 0, cross / np.where(length > 0, length, 1.0),
-                    np.hypot(rel[:, 0], rel[:, 1]))
+    # distance to the chord as a segment, not as a line: the tip of a cusp or of a
+    # reversal lies on the line through its neighbours but not between them
+    length2 = chord[:, 0] ** 2 + chord[:, 1] ** 2
+    along = np.clip((rel[:, 0] * chord[:, 0] + rel[:, 1] * chord[:, 1])
+                    / np.where(length2 > 0, length2, 1.0), 0.0, 1.0)
+    dist = np.hypot(rel[:, 0] - along * chord[:, 0], rel[:, 1] - along * chord[:, 1])
     near = dist < tolerance
     if not near.any():
         return None
@@ -617,7 +619,7 @@ def slim_svg(svg_text: str, decimals: int = 2, thin: float = 0.1) -> str:
 _INLINE_SVG = re.compile(r"<svg\b.*?</svg>", re.S)
 
 #: a slim copy's file name changes with this module's output
-_SLIM_VERSION = "2"
+_SLIM_VERSION = "3"
 
 
 def slim_cached(svg: str, cache: Path, decimals: int = 2, thin: float = 0.1) -> Path:

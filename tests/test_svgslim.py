@@ -122,6 +122,20 @@ def test_dense_polyline_thinned_within_tolerance():
     assert unthinned.count(" L ") + unthinned.count("L ") >= 1000
 
 
+def test_tips_of_cusps_and_reversals_kept():
+    # a trace that runs out and back along one line (a cusp seen edge-on, a reversal):
+    # each tip lies on the line through its neighbours but 1 pt beyond them
+    out = [(10.0 + i, 100.0) for i in range(40)]  # out to x = 49 in steps of 1 pt
+    back = [(49.0 - 0.7 * (i + 1), 100.0) for i in range(55)]  # back in steps of 0.7 pt
+    points = out + back + out[1:] + back
+    slim = slim_svg(_polyline_svg(points), thin=0.1)
+    d = re.search(r' d="([^"]*)"', slim).group(1)
+    kept = [(float(x), float(y)) for x, y in re.findall(r"([-\d.]+) ([-\d.]+)", d)]
+    assert len(kept) < len(points)  # the straight stretches are thinned ...
+    assert max(x for x, _ in kept) == 49.0 and min(x for x, _ in kept) < 10.6  # ... the tips kept
+    assert max(_distance_to_polyline(p, kept) for p in points) <= 0.1 + 0.01
+
+
 def test_thinning_only_where_a_user_unit_is_a_point():
     points = [(0.04 * i, 0.001 * i * i) for i in range(300)]
     svg = _polyline_svg(points).replace('viewBox="0 0 400 300"', 'viewBox="0 0 40 30"')
