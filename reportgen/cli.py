@@ -38,6 +38,17 @@ def _jobs(text: str) -> int:
     return value
 
 
+def _dpi(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if not 20 <= value <= 1200:
+        raise argparse.ArgumentTypeError(f"--dpi must be a whole number from 20 to 1200 "
+                                         f"(got {text!r})")
+    return value
+
+
 def _seconds(option: str):
     """An argparse type: a positive, finite number of seconds for ``option``."""
 
@@ -93,6 +104,25 @@ def build_parser() -> argparse.ArgumentParser:
     rep = sub.add_parser("report", help="rebuild reports from archives alone")
     rep.add_argument("archives", nargs="+", metavar="ARCHIVE.h5")
     rep.add_argument("--format", type=_formats, default=FORMATS, metavar="html,pdf")
+
+    fig = sub.add_parser("figures", help="a scene's figures as PNG, SVG and PDF files for "
+                                         "slides and print, drawn from its archive")
+    fig.add_argument("path", metavar="PATH", help="a run.h5 archive, or a config (its archive "
+                     "under --root is used; the scene is run first if that is missing or stale)")
+    fig.add_argument("--size", default="report", metavar="SIZE",
+                     help="slide (10x5.625 in, larger text), print (6.5 in wide), WxH in "
+                          "inches, or report (as in the report; the default)")
+    fig.add_argument("--dpi", type=_dpi, default=200, metavar="N",
+                     help="PNG resolution, recorded in the file (default 200)")
+    fig.add_argument("--format", default="png,svg,pdf", metavar="png,svg,pdf",
+                     help="file formats (default: all three)")
+    fig.add_argument("--only", action="append", default=[], metavar="PATTERN",
+                     help="only figures whose id matches this shell pattern (repeatable), "
+                          "e.g. 'nutation*'")
+    fig.add_argument("--out", default=None, metavar="DIR",
+                     help="folder for the files (default: figures-SIZE beside the archive)")
+    fig.add_argument("--root", default="output", metavar="DIR",
+                     help="with a config: the output folder it was run into (default: output)")
 
     ins = sub.add_parser("inspect", help="summary of an archive, checksums verified")
     ins.add_argument("archive", metavar="ARCHIVE.h5")
@@ -198,6 +228,63 @@ def cmd_report(args) -> int:
     return code
 
 
+def cmd_figures(args) -> int:
+    from .archive import ArchiveError
+    from .export import export_figures, parse_formats, parse_size
+    from .report import ReportError
+
+    try:
+        size, formats = parse_size(args.size), parse_formats(args.format)
+        archive = _archive_of(Path(args.path), Path(args.root))
+    except UsageError as exc:
+        return _usage(str(exc))
+    if archive is None:
+        return EXIT_FAILED
+    out = Path(args.out) if args.out else archive.parent / f"figures-{size.label}"
+
+    def report(path: Path) -> None:
+        print(f"wrote {path}", file=sys.stderr)
+
+    try:
+        written = export_figures(archive, out, size=size, dpi=args.dpi, formats=formats,
+                                 only=tuple(args.only), progress=report)
+    except UsageError as exc:
+        return _usage(str(exc))
+    except (ArchiveError, ReportError) as exc:
+        print(str(exc), file=sys.stderr)
+        return EXIT_USAGE
+    print(f"{len(written)} files in {out}", file=sys.stderr)
+    return EXIT_OK
+
+
+def _archive_of(path: Path, root: Path) -> Path | None:
+    """The archive ``reportgen figures PATH`` draws from: PATH itself, or the archive of
+    the config PATH under ``root``, which is brought up to date first (run, as
+    ``reportgen run`` would, only if it is missing or its physics changed).  None when
+    that run failed (said on stderr)."""
+    if not path.exists():
+        raise UsageError(f"{path}: no such file")
+    if path.suffix.lower() != ".toml":
+        return path
+    from .archive import FORMAT_VERSION, stored_identity
+    from .config import read_config
+    from .pipeline import run_scene
+    from .scenes import load_scene
+
+    scene = load_scene(read_config(path))  # a ConfigError is exit 2, via main
+    archive = root / path.stem / "run.h5"
+    stored = stored_identity(archive) if archive.exists() else None
+    if (stored is None or stored.physics_key != scene.physics_key()
+            or stored.format_version < FORMAT_VERSION):
+        why = "missing" if stored is None else "out of date"
+        print(f"{archive}: {why}; running {path} first", file=sys.stderr)
+        outcome = run_scene(str(path), str(root))
+        if outcome.status == "failed":
+            print(f"{path}: {outcome.message}", file=sys.stderr)
+            return None
+    return archive
+
+
 def cmd_inspect(args) -> int:
     from .archive import ArchiveError, summarize, verify_checksums
 
@@ -286,6 +373,7 @@ COMMANDS = {
     "run": cmd_run,
     "watch": cmd_watch,
     "report": cmd_report,
+    "figures": cmd_figures,
     "inspect": cmd_inspect,
     "kinds": cmd_kinds,
     "validate": cmd_validate,

@@ -1,0 +1,172 @@
+"""``reportgen figures``: a scene's figures as standalone files for slides and print.
+
+Each figure of the report is drawn again from the archive alone (the scene's report-side
+section methods, as the report draws them) at a chosen size and saved as PNG, SVG and
+PDF.  Nothing is integrated or evaluated: an archive written today exports next year.
+
+Sizes
+-----
+``report``  the size the report draws (the default)
+``slide``   10 x 5.625 in (a 16:9 slide), text 1.3x larger so that it reads on a projector
+``print``   6.5 in wide (a page's text width), the figure's own aspect ratio
+``WxH``     W x H inches, e.g. ``8x4.5``
+
+PNG files record their resolution (``--dpi``, default 200) in the file's pHYs chunk, so
+a word processor places them at their size; SVG and PDF keep text as text.
+"""
+
+from __future__ import annotations
+
+import fnmatch
+import io
+import re
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+from .errors import UsageError
+from .fsutil import atomic_write
+
+EXPORT_FORMATS = ("png", "svg", "pdf")
+DEFAULT_DPI = 200
+
+@dataclass(frozen=True)
+class Size:
+    """What ``--size`` asked for: a width and height in inches (None: the figure's own,
+    or the own aspect ratio when only the height is None) and a text scale."""
+
+    label: str
+    width: float | None = None
+    height: float | None = None
+    text_scale: float = 1.0
+
+    def inches(self, own: tuple[float, float]) -> tuple[float, float]:
+        if self.width is None:
+            return own
+        if self.height is None:
+            return self.width, self.width * own[1] / own[0]
+        return self.width, self.height
+
+
+SIZES = {
+    "report": Size("report"),
+    "slide": Size("slide", 10.0, 5.625, 1.3),
+    "print": Size("print", 6.5, None),
+}
+_WXH = re.compile(r"^\s*(\d+(?:\.\d*)?|\.\d+)\s*[x×]\s*(\d+(?:\.\d*)?|\.\d+)\s*$")
+
+
+def parse_size(text: str) -> Size:
+    """``slide``, ``print``, ``report`` or ``WxH`` in inches (each between 1 and 40)."""
+    if text in SIZES:
+        return SIZES[text]
+    match = _WXH.match(text)
+    if match:
+        width, height = float(match.group(1)), float(match.group(2))
+        if 1.0 <= width <= 40.0 and 1.0 <= height <= 40.0:
+            return Size(f"{width:g}x{height:g}", width, height)
+    raise UsageError(f"--size: expected slide, print, report or WxH in inches with W and H "
+                     f"between 1 and 40, e.g. 8x4.5 (got {text!r})")
+
+
+def parse_formats(text: str) -> tuple[str, ...]:
+    items = tuple(dict.fromkeys(f.strip().lower() for f in text.split(",") if f.strip()))
+    bad = [f for f in items if f not in EXPORT_FORMATS]
+    if bad or not items:
+        raise UsageError(f"--format: expected a comma-separated subset of "
+                         f"{','.join(EXPORT_FORMATS)} (got {text!r})")
+    return items
+
+
+def _scale_text(fig, scale: float) -> None:
+    """Every text of ``fig`` ``scale`` times larger, the tick labels drawn later too
+    (figures set some sizes explicitly, so the rc defaults alone would miss them)."""
+    from matplotlib.text import Text
+
+    if scale == 1.0:
+        return
+    tick_labels = set()
+    for ax in fig.axes:
+        for axis in (ax.xaxis, ax.yaxis, getattr(ax, "zaxis", None)):
+            if axis is None:
+                continue
+            for which, ticks in (("major", axis.get_major_ticks()),
+                                 ("minor", axis.get_minor_ticks())):
+                if ticks:
+                    size = ticks[0].label1.get_fontsize()
+                    axis.set_tick_params(which=which, labelsize=size * scale)
+                    tick_labels.update(id(t) for tick in ticks for t in (tick.label1, tick.label2))
+    for text in fig.findobj(Text):
+        if id(text) not in tick_labels:
+            text.set_fontsize(text.get_fontsize() * scale)
+
+
+def export_figures(archive: Path, out_dir: Path, *, size: Size = SIZES["report"],
+                   dpi: int = DEFAULT_DPI, formats: tuple[str, ...] = EXPORT_FORMATS,
+                   only: tuple[str, ...] = (),
+                   progress: Callable[[Path], None] | None = None) -> list[Path]:
+    """Write each figure of ``archive``'s report into ``out_dir`` as ``<id>.<format>``.
+
+    ``only``: shell patterns (``nutation*``) a figure id must match, if any are given.
+    Returns the files written, in the report's order.  Each file is written atomically.
+    """
+    from .archive import read_archive
+    from .plots import style  # noqa: F401 - the figure style, before anything draws
+    from .report import kind_of_archive
+
+    data = read_archive(Path(archive))
+    scene = kind_of_archive(data)
+    written: list[Path] = []
+    matched = 0
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    for section in scene.chosen_sections(data):
+        content = getattr(scene, f"section_{section.name}")(data)
+        for spec in content.figures:
+            fig_id = f"{section.name}-{spec.name}"
+            if only and not any(fnmatch.fnmatch(fig_id, p) for p in only):
+                spec.figure.clear()
+                continue
+            matched += 1
+            fig = spec.figure
+            fig.set_size_inches(*size.inches(tuple(fig.get_size_inches())))
+            _scale_text(fig, size.text_scale)
+            for fmt in formats:
+                target = out_dir / f"{fig_id}.{fmt}"
+                atomic_write(target, _save(fig, fig_id, fmt, dpi))
+                written.append(target)
+                if progress is not None:
+                    progress(target)
+            fig.clear()
+    if only and not matched:
+        raise UsageError(f"--only {' '.join(only)}: no figure of {archive} matches; its "
+                         f"figures are: {', '.join(figure_ids(archive)) or 'none'}")
+    return written
+
+
+def figure_ids(archive: Path) -> list[str]:
+    """The ids of the figures a report of ``archive`` draws (drawn, then dropped)."""
+    from .archive import read_archive
+    from .plots import style  # noqa: F401
+    from .report import kind_of_archive
+
+    data = read_archive(Path(archive))
+    scene = kind_of_archive(data)
+    ids = []
+    for section in scene.chosen_sections(data):
+        for spec in getattr(scene, f"section_{section.name}")(data).figures:
+            ids.append(f"{section.name}-{spec.name}")
+            spec.figure.clear()
+    return ids
+
+
+def _save(fig, fig_id: str, fmt: str, dpi: int) -> bytes:
+    """One format's bytes, reproducible (no dates; ids salted with the figure's id)."""
+    import matplotlib
+
+    metadata = {"svg": {"Date": None}, "pdf": {"CreationDate": None},
+                "png": {"Software": None}}[fmt]
+    buf = io.BytesIO()
+    with matplotlib.rc_context({"svg.hashsalt": fig_id, "svg.id": fig_id}):
+        fig.savefig(buf, format=fmt, metadata=metadata, dpi=dpi if fmt == "png" else "figure")
+    return buf.getvalue()
