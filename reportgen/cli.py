@@ -49,6 +49,21 @@ def _dpi(text: str) -> int:
     return value
 
 
+def _positive(option: str):
+    """An argparse type: a positive, finite number for ``option``."""
+
+    def parse(text: str) -> float:
+        try:
+            value = float(text)
+        except ValueError:
+            value = -1.0
+        if not value > 0 or value == float("inf"):
+            raise argparse.ArgumentTypeError(f"{option} must be a positive number (got {text!r})")
+        return value
+
+    return parse
+
+
 def _seconds(option: str):
     """An argparse type: a positive, finite number of seconds for ``option``."""
 
@@ -123,6 +138,20 @@ def build_parser() -> argparse.ArgumentParser:
                      help="folder for the files (default: figures-SIZE beside the archive)")
     fig.add_argument("--root", default="output", metavar="DIR",
                      help="with a config: the output folder it was run into (default: output)")
+
+    ani = sub.add_parser("animate", help="the scene's motion as a GIF (and MP4 with the "
+                                         "'video' extra), drawn from its archive")
+    ani.add_argument("archive", metavar="ARCHIVE.h5")
+    ani.add_argument("--fps", type=_positive("--fps"), default=15.0, metavar="N",
+                     help="frames per second (default 15)")
+    ani.add_argument("--duration", type=_positive("--duration"), default=6.0, metavar="SECONDS",
+                     help="length of the animation; the whole run is spread over it (default 6)")
+    ani.add_argument("--dpi", type=_dpi, default=100, metavar="N",
+                     help="resolution (default 100: about 640 pixels wide)")
+    ani.add_argument("--format", default=None, metavar="gif,mp4",
+                     help="default: gif, and mp4 when ffmpeg is available")
+    ani.add_argument("--out", default=None, metavar="DIR",
+                     help="folder for animation.gif/.mp4 (default: beside the archive)")
 
     ins = sub.add_parser("inspect", help="summary of an archive, checksums verified")
     ins.add_argument("archive", metavar="ARCHIVE.h5")
@@ -285,6 +314,33 @@ def _archive_of(path: Path, root: Path) -> Path | None:
     return archive
 
 
+def cmd_animate(args) -> int:
+    from .animate import animate, parse_formats, plan_frames, terminal_progress
+    from .archive import ArchiveError
+
+    archive = Path(args.archive)
+    try:
+        formats = parse_formats(args.format)
+        frames = plan_frames(args.fps, args.duration)
+        if not archive.exists():
+            raise UsageError(f"{archive}: no such file")
+        out = Path(args.out) if args.out else archive.parent
+        print(f"{archive}: {frames} frames at {args.fps:g} fps -> "
+              f"{', '.join(formats)}", file=sys.stderr)
+        written = animate(archive, out, fps=args.fps, duration=args.duration, dpi=args.dpi,
+                          formats=formats, progress=terminal_progress())
+    except UsageError as exc:
+        return _usage(str(exc))
+    except ArchiveError as exc:
+        print(str(exc), file=sys.stderr)
+        return EXIT_USAGE
+    for path in written:
+        print(f"wrote {path}", file=sys.stderr)
+    if args.format is None and "mp4" not in formats:
+        print("(no MP4: install the 'video' extra for ffmpeg)", file=sys.stderr)
+    return EXIT_OK
+
+
 def cmd_inspect(args) -> int:
     from .archive import ArchiveError, summarize, verify_checksums
 
@@ -374,6 +430,7 @@ COMMANDS = {
     "watch": cmd_watch,
     "report": cmd_report,
     "figures": cmd_figures,
+    "animate": cmd_animate,
     "inspect": cmd_inspect,
     "kinds": cmd_kinds,
     "validate": cmd_validate,
