@@ -274,7 +274,7 @@ def motion_oscillator(data, frames: int) -> Motion:
     mass.set_xlim(-2.2 * amp, 1.6 * amp)
     mass.set_ylim(-1, 1)
     mass.set_yticks([])
-    mass.axvline(-2.0 * amp, color="black", lw=3)
+    mass.plot([-2.0 * amp, -2.0 * amp], [-0.5, 0.5], color="black", lw=3)  # the wall
     spring, = mass.plot([], [], color="#404040", lw=1.2)
     block, = mass.plot([], [], "s", color=HIGHLIGHT, ms=22)
     mass.set_xlabel("q")
