@@ -24,6 +24,7 @@ from markupsafe import Markup
 from . import __version__
 from .archive import ArchiveData, read_archive
 from .audit_archive import read_audit
+from .equations import equation_html
 from .errors import ReportError
 from .fsutil import atomic_write
 from .layout import template_dir
@@ -54,6 +55,7 @@ def environment() -> jinja2.Environment:
         )
         _ENV.filters["num"] = fmt
         _ENV.filters["err"] = fmt_err
+        _ENV.filters["eq"] = equation_html  # {% filter eq %}TeX{% endfilter %}
     return _ENV
 
 

@@ -668,11 +668,16 @@ def inline_svgs_as_images(html_text: str, slim: bool = True, decimals: int = 2,
     def image(match: re.Match) -> str:
         nonlocal count
         svg = match.group(0)
+        head = svg[:svg.find(">")]
+        # an inline equation (reportgen.equations) keeps its baseline: its vertical-align
+        lowered = _VERTICAL_ALIGN.search(head)
+        tag = (f'<img class="svg-eq" alt="" style="{lowered.group(0)}"' if lowered
+               else '<img class="svg-figure" alt=""')
         if slim and cache is not None:
             path = slim_cached(svg, cache, decimals)
             if used is not None:
                 used.add(path)
-            return f'<img class="svg-figure" alt="" src="{path.resolve().as_uri()}">'
+            return f'{tag} src="{path.resolve().as_uri()}">'
         if slim:
             svg = slim_svg(svg, decimals)
         if "xmlns=" not in svg[:svg.find(">")]:
@@ -684,6 +689,9 @@ def inline_svgs_as_images(html_text: str, slim: bool = True, decimals: int = 2,
             src = path.resolve().as_uri()
         else:
             src = "data:image/svg+xml;base64," + base64.b64encode(svg.encode("utf-8")).decode("ascii")
-        return f'<img class="svg-figure" alt="" src="{src}">'
+        return f'{tag} src="{src}">'
 
     return _INLINE_SVG.sub(image, html_text)
+
+
+_VERTICAL_ALIGN = re.compile(r"vertical-align:\s*-?[\d.]+pt")

@@ -25,13 +25,17 @@ FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
 RENDER_CHECK = """
 <script>
 (function () {
-  var svgs = Array.from(document.querySelectorAll("svg"));
+  var svgs = Array.from(document.querySelectorAll("figure svg"));
   var empty = svgs.filter(function (s) {
     var r = s.getBoundingClientRect(); return r.width < 50 || r.height < 50; }).length;
+  var eqs = Array.from(document.querySelectorAll(".eq svg"));
+  empty += eqs.filter(function (s) {  /* a typeset equation: a line's height, some width */
+    var r = s.getBoundingClientRect(); return r.width < 10 || r.height < 8; }).length;
   var imgs = Array.from(document.images);
   var broken = imgs.filter(function (i) { return !i.complete || i.naturalWidth === 0; }).length;
   var d = document.createElement("div"); d.id = "render-check";
-  d.textContent = "svgs=" + svgs.length + " empty=" + empty + " broken=" + broken;
+  d.textContent = "svgs=" + svgs.length + " eqs=" + eqs.length + " empty=" + empty +
+                  " broken=" + broken;
   document.body.appendChild(d);
 })();
 </script>
@@ -59,10 +63,10 @@ def test_html_renders_in_chromium_with_no_broken_figure(report, tmp_path):
     html = (report / "report.html").read_text()
     page.write_text(html.replace("</body>", RENDER_CHECK + "</body>"))
     dom = _chromium(["--virtual-time-budget=5000", "--dump-dom", page.as_uri()], tmp_path).stdout
-    found = re.search(r'id="render-check">svgs=(\d+) empty=(\d+) broken=(\d+)', dom)
+    found = re.search(r'id="render-check">svgs=(\d+) eqs=(\d+) empty=(\d+) broken=(\d+)', dom)
     assert found, dom[-500:]
-    svgs, empty, broken = map(int, found.groups())
-    assert svgs >= 6 and empty == 0 and broken == 0
+    svgs, eqs, empty, broken = map(int, found.groups())
+    assert svgs >= 6 and eqs >= 3 and empty == 0 and broken == 0
 
     shot = tmp_path / "shot.png"
     _chromium(["--window-size=1200,1600", f"--screenshot={shot}", (report / "report.html")
