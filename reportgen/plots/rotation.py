@@ -17,7 +17,7 @@ CONVENTION = {"zxz": "z-x-z", "zyz": "z-y-z"}
 #: the half-width of the ζ-plane window [1]: |Re ζ|, |Im ζ| ≤ this
 PLANE_WINDOW = 3.0
 #: at most this many sample points carry markers (more would hide the circles)
-PLANE_MARKERS = 50
+PLANE_MARKERS = 32
 
 
 def _axes_lines(ax, axes, labels, *, colours, length=1.0, style="-", width=1.0, alpha=1.0):
@@ -113,14 +113,19 @@ def euler_constructions(constructions: dict, order):
         plane = np.cos(t)[:, None] * body[:, 0] + np.sin(t)[:, None] * body[:, 1]
         ax.plot(*plane.T, color=AXIS_COLOURS[2], linewidth=0.6, alpha=0.7)
         node = np.asarray(c["node"])
-        ax.plot(*np.stack([-1.1 * node, 1.1 * node]).T, color=SEPARATRIX, linestyle="--",
+        ax.plot(*np.stack([-1.05 * node, 1.05 * node]).T, color=SEPARATRIX, linestyle="--",
                 linewidth=1.6, label="line of nodes")
-        ax.text(*(1.22 * node), "N", color=SEPARATRIX, fontsize=11)
-        for name, label in (("arc_phi", "φ"), ("arc_theta", "θ"), ("arc_psi", "ψ")):
-            arc = 0.55 * np.asarray(c[name])
+        ax.text(*(1.1 * node), "N", color=SEPARATRIX, fontsize=12)
+        # each arc at its own radius, its label at its own place along it, so that φ and ψ
+        # (both ending or starting at the node) stay apart
+        for name, label, radius, where in (("arc_phi", "φ", 0.62, 0.3),
+                                           ("arc_theta", "θ", 0.5, 0.5),
+                                           ("arc_psi", "ψ", 0.4, 0.8)):
+            arc = radius * np.asarray(c[name])
             ax.plot(*arc.T, color=HIGHLIGHT, linewidth=1.6)
-            mid = arc[len(arc) // 2]
-            ax.text(*(1.25 * mid), label, color=HIGHLIGHT, fontsize=12)
+            ax.text(*(1.25 * arc[int(where * (len(arc) - 1))]), label, color=HIGHLIGHT,
+                    fontsize=12, bbox={"facecolor": "white", "edgecolor": "none", "pad": 0.3,
+                                       "alpha": 0.8})
         ax.set_title(f"{CONVENTION[conv]}" + (" (given)" if i == 0 else " (same rotation)"))
         _frame_3d(ax, 0.85, elev=20, azim=40)
         if i == 0:
@@ -156,8 +161,8 @@ def stereographic(s: dict, *, markers: int = PLANE_MARKERS):
     _globe(ax)
     x, images = np.asarray(s["points"]), np.asarray(s["images"])
     every = max(1, -(-len(x) // markers))
-    ax.scatter(*x[::every].T, s=6, color=REFERENCE, depthshade=False, label="points x")
-    ax.scatter(*images[::every].T, s=6, color=HIGHLIGHT, depthshade=False, label="R(U) x")
+    ax.plot(*x[::every].T, ".", color=REFERENCE, markersize=4, label="points x")
+    ax.plot(*images[::every].T, ".", color=HIGHLIGHT, markersize=4, label="R(U) x")
     ax.plot(*np.asarray(s["circle"]).T, color=REFERENCE, linewidth=2.0)
     ax.plot(*np.asarray(s["circle_image"]).T, color=HIGHLIGHT, linewidth=2.0)
     n = np.asarray(s["su2_axis"])
