@@ -1,5 +1,6 @@
-r"""Rotations: Euler angles (z-x-z), angular velocity from Euler-angle rates, SU(2) -> SO(3),
-unit quaternions, and the conversions between them.
+r"""Rotations: the axis-angle formula, Euler angles (z-x-z and z-y-z), angular velocity from
+Euler-angle rates, SU(2) -> SO(3), stereographic projection and Möbius maps, unit quaternions,
+and the conversions between them.
 
 Conventions
 -----------
@@ -8,17 +9,36 @@ Conventions
   seen from space.  Goldstein's (passive) transformation matrix is ``A = R^T``.
 * Euler angles (φ, θ, ψ) in the z-x-z convention of Goldstein §4.4 and Landau &
   Lifshitz §35 (lecture notes (9.17)–(9.19)): ``R = R_z(φ) R_x(θ) R_z(ψ)``, i.e.
-  ``A = R_z(ψ)^T R_x(θ)^T R_z(φ)^T`` (Goldstein eq. 4.46).
+  ``A = R_z(ψ)^T R_x(θ)^T R_z(φ)^T`` (Goldstein eq. 4.46).  The z-y-z convention
+  (Goldstein's "y-convention") turns about the intermediate y axis instead:
+  ``R = R_z(φ) R_y(θ) R_z(ψ)``.  Since ``R_y(θ) = R_z(π/2) R_x(θ) R_z(−π/2)``,
+  ``R_zyz(φ, θ, ψ) = R_zxz(φ + π/2, θ, ψ − π/2)``.
+* Goldstein's rotation formula (eq. 4.62), ``r' = r cos Φ + n (n·r)(1 − cos Φ) + (r × n) sin Φ``,
+  is passive: r' are the components of r in axes turned by +Φ about n.  Its matrix is
+  ``A(n, Φ) = R(n, Φ)^T = exp(−Φ [n]×)``; the active rotation is ``R(n, Φ) = exp(Φ [n]×)``.
 * Quaternions are ``q = (w, x, y, z)`` with ``w = cos(α/2)``, ``(x, y, z) = sin(α/2) n``
   for a rotation by α about the unit vector n; ``R(q) v = q v q*``.
 * SU(2): ``U(q) = w 1 − i (x σx + y σy + z σz) = exp(−i α n·σ / 2)``, and
   ``R_ij = ½ tr(σ_i U σ_j U†)`` (lecture notes (9.4)–(9.16)); U and −U give the
   same R (the double cover).
+* Stereographic projection from the north pole onto the equatorial plane, with the plane
+  seen from below: ``ζ = (x − i y)/(1 − z)``, the spinor ratio ξ1/ξ2 of a point
+  ``x = ξ†σξ / ξ†ξ``.  With this orientation the Möbius map
+  ``ζ -> (a ζ + b)/(−b̄ ζ + ā)`` of ``U = [[a, b], [−b̄, ā]]`` is the rotation R(U) above
+  (``U† σ_i U = R_ij σ_j``).  With the other orientation ``ζ = (x + i y)/(1 − z)`` the same
+  Möbius map is R(Ū); it is never R(U)^T for every U, because U -> Möbius map keeps the
+  order of products and R -> R^T reverses it.
 
 References
 ----------
 .. [1] Goldstein, Poole & Safko, *Classical Mechanics*, 3rd ed., §4.4 (4.46), §4.9 (4.87).
 .. [2] Landau & Lifshitz, *Mechanics*, 3rd ed., §35, eq. (35.1).
+.. [3] Goldstein, Poole & Safko, 3rd ed., eq. (4.62) (the rotation formula) and the
+       y-convention of the Euler angles; Needham, *Visual Complex Analysis*, ch. 6
+       (rotations of the Riemann sphere as Möbius maps); Penrose & Rindler, *Spinors and
+       Space-Time* vol. 1, ch. 1 (the spinor ratio as a stereographic coordinate).
+.. [4] Squire & Trapp, "Using complex variables to estimate derivatives of real
+       functions", SIAM Review 40 (1998) 110: the complex-step derivative.
 """
 
 from __future__ import annotations
@@ -36,18 +56,89 @@ def rot_x(a: float) -> np.ndarray:
     return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
 
 
+def rot_y(a: float) -> np.ndarray:
+    """Active rotation by ``a`` [rad] about the y axis, shape (3, 3)."""
+    c, s = math.cos(a), math.sin(a)
+    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+
+
 def rot_z(a: float) -> np.ndarray:
     """Active rotation by ``a`` [rad] about the z axis, shape (3, 3)."""
     c, s = math.cos(a), math.sin(a)
     return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
-def euler_matrix(phi: float, theta: float, psi: float) -> np.ndarray:
-    """Body -> space rotation ``R = R_z(φ) R_x(θ) R_z(ψ)`` (z-x-z Euler angles, (9.17)–(9.19)).
+EULER_CONVENTIONS = ("zxz", "zyz")
+
+
+def euler_matrix(phi: float, theta: float, psi: float, convention: str = "zxz") -> np.ndarray:
+    """Body -> space rotation ``R = R_z(φ) R_x(θ) R_z(ψ)`` (z-x-z Euler angles, (9.17)–(9.19)),
+    or ``R_z(φ) R_y(θ) R_z(ψ)`` for ``convention="zyz"``.
 
     Goldstein's matrix A (space -> body components, eq. 4.46) is the transpose.
     """
-    return rot_z(phi) @ rot_x(theta) @ rot_z(psi)
+    middle = {"zxz": rot_x, "zyz": rot_y}[_convention(convention)]
+    return rot_z(phi) @ middle(theta) @ rot_z(psi)
+
+
+def _convention(convention: str) -> str:
+    if convention not in EULER_CONVENTIONS:
+        raise ValueError(f"convention: expected 'zxz' or 'zyz', got {convention!r}")
+    return convention
+
+
+def euler_matrices(angles, convention: str = "zxz") -> np.ndarray:
+    """:func:`euler_matrix` for many angle triples at once, shape (..., 3, 3).
+
+    ``angles``, shape (..., 3): (φ, θ, ψ).  Works on complex angles too (the
+    complex-step derivative in :func:`omega_by_complex_step` relies on it).
+    """
+    a = np.asarray(angles)
+    phi, theta, psi = a[..., 0], a[..., 1], a[..., 2]
+    cf, sf, ct, st, cp, sp = (np.cos(phi), np.sin(phi), np.cos(theta), np.sin(theta),
+                              np.cos(psi), np.sin(psi))
+    zero, one = np.zeros_like(cf), np.ones_like(cf)
+    if _convention(convention) == "zxz":
+        middle = [[one, zero, zero], [zero, ct, -st], [zero, st, ct]]
+    else:
+        middle = [[ct, zero, st], [zero, one, zero], [-st, zero, ct]]
+    first = np.moveaxis(np.array([[cf, -sf, zero], [sf, cf, zero], [zero, zero, one]]), (0, 1),
+                        (-2, -1))
+    second = np.moveaxis(np.array(middle), (0, 1), (-2, -1))
+    third = np.moveaxis(np.array([[cp, -sp, zero], [sp, cp, zero], [zero, zero, one]]), (0, 1),
+                        (-2, -1))
+    return first @ second @ third
+
+
+def euler_matrix_elements(phi: float, theta: float, psi: float,
+                          convention: str = "zxz") -> np.ndarray:
+    """Goldstein's passive matrix A = R^T written out element by element, shape (3, 3).
+
+    z-x-z: Goldstein eq. (4.46); z-y-z: the same with φ -> φ + π/2, ψ -> ψ − π/2 worked
+    out (Goldstein's y-convention).  An independent check on the
+    product of elementary rotations in :func:`euler_matrix`.
+    """
+    cf, sf, ct, st = math.cos(phi), math.sin(phi), math.cos(theta), math.sin(theta)
+    cp, sp = math.cos(psi), math.sin(psi)
+    if _convention(convention) == "zxz":
+        return np.array([
+            [cp * cf - ct * sf * sp, cp * sf + ct * cf * sp, sp * st],
+            [-sp * cf - ct * sf * cp, -sp * sf + ct * cf * cp, cp * st],
+            [st * sf, -st * cf, ct]])
+    return np.array([
+        [-sp * sf + ct * cf * cp, sp * cf + ct * sf * cp, -cp * st],
+        [-cp * sf - ct * cf * sp, cp * cf - ct * sf * sp, sp * st],
+        [st * cf, st * sf, ct]])
+
+
+def zyz_to_zxz(phi, theta, psi) -> tuple:
+    """z-x-z angles of the rotation with z-y-z angles (φ, θ, ψ): (φ + π/2, θ, ψ − π/2)."""
+    return phi + 0.5 * math.pi, theta, psi - 0.5 * math.pi
+
+
+def zxz_to_zyz(phi, theta, psi) -> tuple:
+    """z-y-z angles of the rotation with z-x-z angles (φ, θ, ψ): (φ − π/2, θ, ψ + π/2)."""
+    return phi - 0.5 * math.pi, theta, psi + 0.5 * math.pi
 
 
 def euler_from_matrix(R: np.ndarray) -> tuple[float, float, float]:
@@ -68,33 +159,163 @@ def euler_from_matrix(R: np.ndarray) -> tuple[float, float, float]:
     return phi, theta, psi
 
 
-def omega_from_euler_rates(phi, theta, psi, phi_dot, theta_dot, psi_dot, frame="body"):
+def omega_from_euler_rates(phi, theta, psi, phi_dot, theta_dot, psi_dot, frame="body",
+                           convention="zxz"):
     """Angular velocity from Euler angles and their rates (lecture notes (10.20)).
 
-    Body frame (Landau & Lifshitz (35.1), Goldstein (4.87))::
+    ω = φ̇ e_z + θ̇ e_N + ψ̇ e_3 with e_N the line of nodes (the intermediate x axis for
+    z-x-z, y axis for z-y-z) and e_3 the body z axis.  z-x-z, body frame (Landau &
+    Lifshitz (35.1), Goldstein (4.87))::
 
         ω1 = φ̇ sinθ sinψ + θ̇ cosψ
         ω2 = φ̇ sinθ cosψ − θ̇ sinψ
         ω3 = φ̇ cosθ + ψ̇
 
-    ``frame="space"`` returns ``R ω_body``.  Works elementwise on arrays; returns
-    ndarray of shape (..., 3).
+    z-y-z, body frame (the same with ψ -> ψ − π/2; derived in the module docstring's
+    reference [3])::
+
+        ω1 = −φ̇ sinθ cosψ + θ̇ sinψ
+        ω2 = φ̇ sinθ sinψ + θ̇ cosψ
+        ω3 = φ̇ cosθ + ψ̇
+
+    ``frame="space"`` returns ``R ω_body``, written out.  Works elementwise on arrays;
+    returns ndarray of shape (..., 3).
     """
     phi, theta, psi = (np.asarray(a, dtype=float) for a in (phi, theta, psi))
-    body = np.stack([
-        phi_dot * np.sin(theta) * np.sin(psi) + theta_dot * np.cos(psi),
-        phi_dot * np.sin(theta) * np.cos(psi) - theta_dot * np.sin(psi),
-        phi_dot * np.cos(theta) + psi_dot,
-    ], axis=-1)
+    sf, cf, st, ct, sp, cp = (np.sin(phi), np.cos(phi), np.sin(theta), np.cos(theta),
+                              np.sin(psi), np.cos(psi))
+    zxz = _convention(convention) == "zxz"
     if frame == "body":
-        return body
+        if zxz:
+            return np.stack([phi_dot * st * sp + theta_dot * cp,
+                             phi_dot * st * cp - theta_dot * sp,
+                             phi_dot * ct + psi_dot], axis=-1)
+        return np.stack([-phi_dot * st * cp + theta_dot * sp,
+                         phi_dot * st * sp + theta_dot * cp,
+                         phi_dot * ct + psi_dot], axis=-1)
     if frame == "space":
-        return np.stack([
-            theta_dot * np.cos(phi) + psi_dot * np.sin(theta) * np.sin(phi),
-            theta_dot * np.sin(phi) - psi_dot * np.sin(theta) * np.cos(phi),
-            phi_dot + psi_dot * np.cos(theta),
-        ], axis=-1)
+        if zxz:  # e_N = (cosφ, sinφ, 0), e_3 = (sinθ sinφ, −sinθ cosφ, cosθ)
+            return np.stack([theta_dot * cf + psi_dot * st * sf,
+                             theta_dot * sf - psi_dot * st * cf,
+                             phi_dot + psi_dot * ct], axis=-1)
+        # e_N = (−sinφ, cosφ, 0), e_3 = (sinθ cosφ, sinθ sinφ, cosθ)
+        return np.stack([-theta_dot * sf + psi_dot * st * cf,
+                         theta_dot * cf + psi_dot * st * sf,
+                         phi_dot + psi_dot * ct], axis=-1)
     raise ValueError(f"frame: expected 'body' or 'space', got {frame!r}")
+
+
+def vee(W) -> np.ndarray:
+    """The vector w of the antisymmetric part of W (..., 3, 3): ½(W − Wᵀ) = [w]×."""
+    W = np.asarray(W)
+    return 0.5 * np.stack([W[..., 2, 1] - W[..., 1, 2], W[..., 0, 2] - W[..., 2, 0],
+                           W[..., 1, 0] - W[..., 0, 1]], axis=-1)
+
+
+def omega_by_complex_step(angles, rates, convention: str = "zxz",
+                          step: float = 1e-20) -> dict[str, np.ndarray]:
+    """ω from differentiating the rotation matrix along a path of Euler angles, not from
+    the rate formulas.
+
+    ``angles``, ``rates``: shape (N, 3), the path (φ, θ, ψ)(t) and its derivative.  Ṙ
+    comes from the complex step ``Ṙ = Im R(a + i h ȧ) / h`` (Squire & Trapp 1998), exact
+    to rounding for any small h since no difference is taken.  Returns ``space`` =
+    vee(Ṙ Rᵀ) and ``body`` = vee(Rᵀ Ṙ), shape (N, 3), and ``asymmetry``, shape (N,):
+    max |W + Wᵀ| of W = Ṙ Rᵀ, which vanishes because R Rᵀ = 1.
+    """
+    a = np.asarray(angles, dtype=float)
+    Rc = euler_matrices(a + 1j * step * np.asarray(rates, dtype=float), convention)
+    R, Rdot = Rc.real, Rc.imag / step
+    W = Rdot @ np.swapaxes(R, -1, -2)
+    return {"space": vee(W), "body": vee(np.swapaxes(R, -1, -2) @ Rdot),
+            "asymmetry": np.max(np.abs(W + np.swapaxes(W, -1, -2)), axis=(-2, -1))}
+
+
+def euler_construction(phi: float, theta: float, psi: float, convention: str = "zxz",
+                       n_arc: int = 40) -> dict[str, np.ndarray]:
+    """The picture of Euler angles: space axes, line of nodes, body axes and the three
+    angle arcs, as points in space (for a figure).
+
+    The line of nodes e_N is the intermediate x axis (z-x-z) or y axis (z-y-z) after the
+    turn by φ about z.  Arcs (n_arc, 3): φ in the xy plane from the space axis to e_N;
+    θ from e_z to the body axis e_3 about e_N; ψ in the body plane from e_N to the
+    body axis it becomes (x' or y').
+    """
+    k = 0 if _convention(convention) == "zxz" else 1
+    R = euler_matrix(phi, theta, psi, convention)
+    Rf = rot_z(phi)
+    node = Rf[:, k]
+    s = np.linspace(0.0, 1.0, n_arc)[:, None]
+
+    def arc(start, axis, angle):
+        return rotate_about(start, axis, s * angle)
+
+    ez = np.array([0.0, 0.0, 1.0])
+    return {"space_axes": np.eye(3), "body_axes": R, "node": node,
+            "arc_phi": arc(np.eye(3)[k], ez, phi),
+            "arc_theta": arc(ez, node, theta),
+            "arc_psi": arc(node, R[:, 2], psi)}
+
+
+def rotate_about(r, n, angle) -> np.ndarray:
+    """Active rotation of r about the unit vector n by ``angle`` (broadcasts; angle may
+    be an array of shape (..., 1)): Rodrigues' formula, Goldstein (4.62) with Φ -> −Φ."""
+    r, n = np.asarray(r, dtype=float), np.asarray(n, dtype=float)
+    c, s = np.cos(angle), np.sin(angle)
+    return r * c + n * np.sum(n * r, axis=-1, keepdims=True) * (1 - c) + np.cross(n, r) * s
+
+
+# ---------------------------------------------------------------- axis and angle
+def rotation_formula(r, n, Phi: float) -> np.ndarray:
+    """Goldstein's rotation formula (4.62), passive:
+    ``r' = r cos Φ + n (n·r)(1 − cos Φ) + (r × n) sin Φ``.
+
+    r' are the components of the vector r in axes turned by +Φ about the unit vector n
+    (equivalently, r turned by −Φ).  r: shape (..., 3); n: shape (3,), unit.
+    """
+    r, n = np.asarray(r, dtype=float), np.asarray(n, dtype=float)
+    c, s = math.cos(Phi), math.sin(Phi)
+    return (r * c + np.multiply.outer(r @ n, n) * (1.0 - c) + np.cross(r, n) * s)
+
+
+def rotation_formula_matrix(n, Phi: float) -> np.ndarray:
+    """Goldstein's passive matrix A(n, Φ) built from (4.62): column j is the formula applied
+    to the basis vector e_j.  ``A = R(n, Φ)^T``."""
+    return rotation_formula(np.eye(3), n, Phi).T
+
+
+def expm_by_diagonalization(M) -> np.ndarray:
+    """exp(M) of a real diagonalizable 3×3 matrix as V diag(e^λ) V⁻¹ (numpy ``eig``): a
+    matrix exponential that knows nothing of Rodrigues' formula (the independent check of
+    :func:`rotation_formula_matrix`; ``scipy.linalg.expm`` agrees, see the tests)."""
+    lam, V = np.linalg.eig(np.asarray(M, dtype=float))
+    return (V @ np.diag(np.exp(lam)) @ np.linalg.inv(V)).real
+
+
+def axis_angle_from_matrix(R) -> tuple[np.ndarray, float]:
+    """(n, Φ) with Φ in [0, π] of an active rotation matrix ``R = R(n, Φ)``.
+
+    cos Φ = (tr R − 1)/2 and the antisymmetric part ½(R − Rᵀ) = sin Φ [n]× give Φ by
+    atan2 and, for Φ < 2π/3, n.  Nearer π the antisymmetric part fades and n comes from
+    the symmetric part ½(R + Rᵀ) − cos Φ·1 = (1 − cos Φ) n nᵀ, its sign from sin Φ n.
+    At Φ = π, n and −n are the same rotation; the one with its largest component
+    positive is returned.  Φ = 0 has no axis: n = e_z.
+    """
+    R = np.asarray(R, dtype=float)
+    c = 0.5 * (np.trace(R) - 1.0)
+    v = vee(R)
+    s = float(np.linalg.norm(v))
+    Phi = math.atan2(s, c)
+    if s == 0.0 and c > 0:
+        return np.array([0.0, 0.0, 1.0]), 0.0
+    if c > -0.5:
+        return v / s, Phi
+    B = 0.5 * (R + R.T) - c * np.eye(3)
+    k = int(np.argmax(np.diag(B)))
+    n = B[:, k] / math.sqrt(B[k, k] * (1.0 - c))
+    if float(n @ v) < 0 or (float(n @ v) == 0 and n[np.argmax(np.abs(n))] < 0):
+        n = -n
+    return n / np.linalg.norm(n), Phi
 
 
 # ------------------------------------------------------------------ quaternions
@@ -211,3 +432,95 @@ def skew(v) -> np.ndarray:
     """Cross-product matrix [v]×: skew(v) @ u = v × u."""
     x, y, z = v
     return np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
+
+
+def su2_from_cayley_klein(a: complex, b: complex) -> np.ndarray:
+    """``U = [[a, b], [−b̄, ā]]`` (Cayley–Klein parameters, |a|² + |b|² = 1), shape (2, 2)."""
+    a, b = complex(a), complex(b)
+    return np.array([[a, b], [-b.conjugate(), a.conjugate()]])
+
+
+def su2_from_axis_angle(axis, angle: float) -> np.ndarray:
+    """``U = exp(−i α n·σ/2)``: the SU(2) element whose R(U) turns by α about n."""
+    return su2_from_quat(quat_from_axis_angle(axis, angle))
+
+
+# ------------------------------------------------- stereographic projection, Möbius maps
+NORTH_POLE = np.array([0.0, 0.0, 1.0])
+
+
+def stereographic(x, *, orientation: int = -1) -> np.ndarray:
+    """Projection of unit vectors x (..., 3) from the north pole onto the equatorial plane:
+    ``ζ = (x + orientation·i y)/(1 − z)``, complex, shape (...,); the pole goes to ∞.
+
+    ``orientation = −1`` (the default, the plane seen from below) is the spinor ratio
+    ξ1/ξ2 for which the Möbius map of U is R(U); ``+1`` is the usual Riemann-sphere
+    coordinate, for which it is R(Ū) (module docstring).  On the upper half the equal
+    form ``(1 + z)/(x − orientation·i y)`` is used: 1 − z cancels near the pole.
+    """
+    x = np.asarray(x, dtype=float)
+    plane = x[..., 0] + orientation * 1j * x[..., 1]
+    upper = x[..., 2] > 0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        zeta = np.where(upper, (1.0 + x[..., 2]) / np.conj(plane), plane / (1.0 - x[..., 2]))
+    return np.where(upper & (plane == 0), complex(np.inf, 0.0), zeta)
+
+
+def inverse_stereographic(zeta, *, orientation: int = -1) -> np.ndarray:
+    """The point on the unit sphere projecting to ζ (complex, ∞ allowed), shape (..., 3).
+
+    Written in w = 1/ζ where |ζ| > 1, so large ζ (points near the pole) keep full
+    relative accuracy and ζ = ∞ is the pole itself.
+    """
+    zeta = np.asarray(zeta, dtype=complex)
+    big = ~(np.abs(zeta) <= 1.0)  # also ∞ and nan
+    with np.errstate(divide="ignore", invalid="ignore"):
+        w = np.where(big, 1.0 / np.where(big, zeta, 1.0), 0.0)
+    w = np.where(np.isinf(zeta), 0.0, w)
+    small = np.where(big, 0.0, zeta)
+    w2, z2 = np.abs(w) ** 2, np.abs(small) ** 2
+    # x + orientation·i y = 2 ζ/(1 + |ζ|²) = 2 w̄/(1 + |w|²);  z = (|ζ|² − 1)/(|ζ|² + 1)
+    plane = np.where(big, 2.0 * np.conj(w) / (1.0 + w2), 2.0 * small / (1.0 + z2))
+    z = np.where(big, (1.0 - w2) / (1.0 + w2), (z2 - 1.0) / (z2 + 1.0))
+    return np.stack([plane.real, orientation * plane.imag, z], axis=-1)
+
+
+def mobius(U, zeta) -> np.ndarray:
+    """The Möbius map ``ζ -> (U11 ζ + U12)/(U21 ζ + U22)`` on the extended plane (∞ allowed):
+    ∞ -> U11/U21, −U22/U21 -> ∞."""
+    U = np.asarray(U, dtype=complex)
+    zeta = np.asarray(zeta, dtype=complex)
+    inf = np.isinf(zeta)
+    z = np.where(inf, 0.0, zeta)
+    num = U[0, 0] * z + U[0, 1]
+    den = U[1, 0] * z + U[1, 1]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        image = num / den
+        at_inf = U[0, 0] / U[1, 0] if U[1, 0] != 0 else complex(np.inf, 0.0)
+    image = np.where(den == 0.0, complex(np.inf, 0.0), image)
+    return np.where(inf, at_inf, image)
+
+
+def so3_from_mobius(U, *, orientation: int = -1) -> np.ndarray:
+    """The rotation a Möbius map makes of the sphere, read off the map alone: column j is
+    the image of the axis tip e_j (projected, mapped, projected back).  With the default
+    orientation this is R(U) of :func:`so3_from_su2`."""
+    tips = stereographic(np.eye(3), orientation=orientation)
+    return inverse_stereographic(mobius(U, tips), orientation=orientation).T
+
+
+def fibonacci_sphere(n: int) -> np.ndarray:
+    """n nearly uniform unit vectors, shape (n, 3): the golden-angle spiral with
+    z_k = 1 − (2k + 1)/n, which never lands on either pole."""
+    k = np.arange(n)
+    z = 1.0 - (2.0 * k + 1.0) / n
+    r = np.sqrt(1.0 - z * z)
+    phi = k * math.pi * (3.0 - math.sqrt(5.0))
+    return np.stack([r * np.cos(phi), r * np.sin(phi), z], axis=-1)
+
+
+def latitude_circle(z: float, n: int = 181) -> np.ndarray:
+    """The circle of latitude at height z on the unit sphere, shape (n, 3), closed."""
+    t = np.linspace(0.0, 2.0 * math.pi, n)
+    r = math.sqrt(1.0 - z * z)
+    return np.stack([r * np.cos(t), r * np.sin(t), np.full_like(t, z)], axis=-1)
