@@ -4,10 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .style import new_figure
+from .style import GREEN, ORANGE, PURPLE, VERMILLION, new_figure
 
-VERDICT_COLOURS = {"ok": "#4f8a3c", "inaccurate": "#e69138", "stiff": "#8064a2",
-                   "unstable": "#c0504d"}
+VERDICT_COLOURS = {"ok": GREEN, "inaccurate": ORANGE, "stiff": PURPLE, "unstable": VERMILLION}
 
 
 def case_drift(runs: list[dict], *, ax=None):

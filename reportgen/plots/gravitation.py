@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .style import CONTEXT, HIGHLIGHT, REFERENCE, SEPARATRIX, new_figure
+from .style import BLUE, CONTEXT, GREY, HIGHLIGHT, ORANGE, REFERENCE, SEPARATRIX, new_figure
 
-BODY_COLOURS = ("#e69138", "#1f4e79", "#7f7f7f")
+BODY_COLOURS = (ORANGE, BLUE, GREY)  # Sun, Earth, Moon
 
 
 def _equal_box(ax, length_unit):

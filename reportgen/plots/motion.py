@@ -17,8 +17,20 @@ import numpy as np
 from matplotlib.figure import Figure
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
-from .normal_modes import ATOM_COLOURS, _atom_sizes, _scaled
-from .style import CONTEXT, HIGHLIGHT, REFERENCE, SEPARATRIX, new_figure, new_figure_grid
+from .normal_modes import _atom_sizes, _scaled
+from .style import (
+    ATOM_COLOURS,
+    CONTEXT,
+    GREEN,
+    HIGHLIGHT,
+    INK,
+    OTHER_ATOM,
+    REFERENCE,
+    SEPARATRIX,
+    SKY,
+    new_figure,
+    new_figure_grid,
+)
 
 
 @dataclass
@@ -128,8 +140,8 @@ def motion_rigid_body(data, frames: int) -> Motion:
     fig = Figure(figsize=(9.0, 4.6), layout="constrained")
     left = fig.add_subplot(1, 2, 1, projection="3d")
     right = fig.add_subplot(1, 2, 2, projection="3d")
-    edges = [left.plot([], [], [], color="#404040", lw=1.2)[0] for _ in _BOX_EDGES]
-    faces = Poly3DCollection([corners[list(f)] for f in _BOX_FACES], facecolor="#9dc3e6",
+    edges = [left.plot([], [], [], color=INK, lw=1.2)[0] for _ in _BOX_EDGES]
+    faces = Poly3DCollection([corners[list(f)] for f in _BOX_FACES], facecolor=SKY,
                              edgecolor="none", alpha=0.35)
     left.add_collection3d(faces)
     colours = (REFERENCE, SEPARATRIX, HIGHLIGHT)
@@ -178,7 +190,7 @@ def _trails(data, frames, bodies, names, title, extra=None) -> Motion:
     ax.set_aspect("equal")
     if extra is not None:
         extra(ax)
-    palette = (HIGHLIGHT, REFERENCE, "#4f8a3c")
+    palette = (HIGHLIGHT, REFERENCE, GREEN)
     trails, dots = [], []
     for i, name in enumerate(names):
         colour = palette[i % len(palette)]
@@ -243,7 +255,7 @@ def motion_pendulum(data, frames: int) -> Motion:
     ring = np.linspace(0, 2 * np.pi, 121)
     swing.plot(np.cos(ring), np.sin(ring), color=CONTEXT, lw=0.6, alpha=0.5)
     swing.plot([0], [0], "s", color="black", ms=5)
-    rod, = swing.plot([], [], color="#404040", lw=2)
+    rod, = swing.plot([], [], color=INK, lw=2)
     bob, = swing.plot([], [], "o", color=HIGHLIGHT, ms=14)
     swing.set_title("the pendulum")
     phase.plot(theta, theta_dot, color=CONTEXT, lw=0.8)
@@ -275,7 +287,7 @@ def motion_oscillator(data, frames: int) -> Motion:
     mass.set_ylim(-1, 1)
     mass.set_yticks([])
     mass.plot([-2.0 * amp, -2.0 * amp], [-0.5, 0.5], color="black", lw=3)  # the wall
-    spring, = mass.plot([], [], color="#404040", lw=1.2)
+    spring, = mass.plot([], [], color=INK, lw=1.2)
     block, = mass.plot([], [], "s", color=HIGHLIGHT, ms=22)
     mass.set_xlabel("q")
     mass.set_title("mass on a spring")
@@ -366,7 +378,7 @@ def motion_normal_modes(data, frames: int) -> Motion:
             ax.set_title(f"ω{z + j + 1} = {omega[j]:.4g}{side}", fontsize=10)
             bond_lines = [ax.plot([], [], color=CONTEXT, lw=3, zorder=1)[0] for _ in bonds]
             atoms = ax.scatter(pos[:, 0], pos[:, v[1]], s=sizes, zorder=2, edgecolor="black",
-                               color=[ATOM_COLOURS.get(e, "#8064a2") for e in elements])
+                               color=[ATOM_COLOURS.get(e, OTHER_ATOM) for e in elements])
             movers.append((pos[:, v], ds[j][:, v], bond_lines, atoms))
 
         def update(f):

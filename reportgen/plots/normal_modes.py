@@ -6,18 +6,27 @@ import math
 
 import numpy as np
 
-from .style import CONTEXT, HIGHLIGHT, REFERENCE, new_figure, new_figure_grid
+from .style import (
+    ATOM_COLOURS,
+    BLUE,
+    CONTEXT,
+    GREEN,
+    HIGHLIGHT,
+    OTHER_ATOM,
+    REFERENCE,
+    VERMILLION,
+    new_figure,
+    new_figure_grid,
+)
 
 #: colour per mode type (legend order)
 TYPE_COLOURS = {
-    "longitudinal": "#1f4e79",
-    "transverse": "#c0504d",
-    "symmetric stretch": "#1f4e79",
-    "antisymmetric stretch": "#4f8a3c",
-    "bend": "#c0504d",
+    "longitudinal": BLUE,
+    "transverse": VERMILLION,
+    "symmetric stretch": BLUE,
+    "antisymmetric stretch": GREEN,
+    "bend": VERMILLION,
 }
-ATOM_COLOURS = {"H": "#d9d9d9", "C": "#404040", "O": "#d62728", "N": "#1f77b4",
-                "S": "#e6c229", "Cl": "#2ca02c"}
 
 
 def _type_colour(kind: str) -> str:
@@ -73,7 +82,7 @@ def _draw_molecule(ax, xy, elements, bonds, *, alpha=1.0, size=None):
         ax.plot([xy[i, 0], xy[j, 0]], [xy[i, 1], xy[j, 1]], color=CONTEXT, lw=3, alpha=alpha,
                 zorder=1, solid_capstyle="round")
     for a, (x, y) in enumerate(xy):
-        ax.scatter([x], [y], s=size[a], color=ATOM_COLOURS.get(elements[a], "#8064a2"),
+        ax.scatter([x], [y], s=size[a], color=ATOM_COLOURS.get(elements[a], OTHER_ATOM),
                    edgecolor="black", lw=0.8, alpha=alpha, zorder=2)
 
 

@@ -8,9 +8,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .style import CONTEXT, HIGHLIGHT, REFERENCE, SEPARATRIX, new_figure
+from .style import BLUE, CONTEXT, GREEN, HIGHLIGHT, PURPLE, REFERENCE, SEPARATRIX, new_figure
 
-AXIS_COLOURS = ("#1f4e79", "#4f8a3c", "#8064a2")
+AXIS_COLOURS = (BLUE, GREEN, PURPLE)
 
 
 def polhodes(family, separatrices, track, *, ax=None):
