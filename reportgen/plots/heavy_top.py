@@ -1,5 +1,8 @@
-"""Heavy-top figures: nutation locus (Fig. 4.3 style), f(u), effective potential,
-time series, steady precession rates and the sleeping-top sweep."""
+"""Heavy-top figures: nutation locus, Fig. 4.3 as printed, f(u), the ℘ period rectangle,
+effective potential, time series, steady precession rates and the sleeping-top sweep.
+
+Figure text avoids combining accents (φ̇ is written dφ/dt): the PDF engine draws the
+combining dot of an SVG text as a dotted circle."""
 
 from __future__ import annotations
 
@@ -96,7 +99,7 @@ def cubic(u, f, *, u1, u2, u3, b_over_a, u0, xlabel="u = cos θ", names=("u1", "
         top = max(float(np.max(finite)), 1e-300)
         ax.set_ylim(-1.6 * top, 1.4 * top)
     ax.set_xlabel(xlabel)
-    ax.set_ylabel("f(u) = u̇²  [1/s²]")
+    ax.set_ylabel("f(u) = (du/dt)²  [1/s²]")
     ax.legend(loc="best")
     return fig
 
@@ -136,7 +139,7 @@ def time_series(t, theta, theta_closed, phi_dot, u_error, *, theta1, theta2,
     ax = axes[1, 0]
     ax.plot(t, phi_dot, color=HIGHLIGHT)
     ax.axhline(0.0, color="k", linewidth=0.8)
-    ax.set_ylabel("φ̇ [rad/s]")
+    ax.set_ylabel("dφ/dt [rad/s]")
     ax = axes[2, 0]
     ax.semilogy(t, np.maximum(np.abs(u_error), 1e-30), color=HIGHLIGHT)
     ax.set_ylabel(error_label)
@@ -157,9 +160,9 @@ def steady_rates(omega3, slow, fast, *, omega3_min, omega3_config, rate_config, 
             label="this scene (closed form)")
     if np.isfinite(rate_measured):
         ax.plot([omega3_config], [abs(rate_measured)], "x", color="k", markersize=9,
-                label="mean φ̇ of the integration")
+                label="mean dφ/dt of the integration")
     ax.set_xlabel("spin ω3 [rad/s]")
-    ax.set_ylabel("|φ̇| steady precession [rad/s]")
+    ax.set_ylabel("|dφ/dt| steady precession [rad/s]")
     ax.legend(loc="best")
     return fig
 
@@ -347,8 +350,8 @@ def weierstrass_rectangle(omega, omega_prime, x0, t_end, *, t, difference, figsi
     ax.annotate("", xy=(min(start + step, 2 * w), wp), xytext=(start, wp),
                 arrowprops={"arrowstyle": "-|>", "color": "k", "linewidth": 1.2}, zorder=5)
     ax.plot([start], [wp], "o", color="k", markersize=5, zorder=5)
-    ax.annotate("t = 0", (start, wp), textcoords="offset points", xytext=(-4, 10), fontsize=9,
-                ha="right", va="center")
+    ax.annotate("t = 0", (start, wp), textcoords="offset points", xytext=(3, 10), fontsize=9,
+                ha="left", va="center")
     ax.legend(loc="upper center", fontsize=8.5)
     ax.set_xlim(-0.55 * w, 2.12 * w)
     ax.set_ylim(-0.25 * wp, 2.12 * wp)

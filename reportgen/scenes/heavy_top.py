@@ -50,6 +50,8 @@ class Params(Strict):
 
 
 class Initial(Strict):
+    """The initial state (one of [initial] and [band] is required)."""
+
     theta: Real = Field(description="tilt of the symmetry axis from the upward vertical, "
                                     "0 ≤ θ < π [rad]")
     theta_dot: Real = Field(0.0, description="θ̇0 [rad/s]")
@@ -61,7 +63,7 @@ class Initial(Strict):
 
 
 class Band(Strict):
-    """``[band]`` (instead of ``[initial]``): the nutation band and the Fig. 4.3 case.
+    """Instead of [initial]: a nutation band and a Fig. 4.3 case to solve for.
 
     The scene releases the top on the upper circle θmin (θ̇0 = 0) with the φ̇0 that
     makes θmax the lower turning circle and gives the case asked for."""
@@ -310,6 +312,10 @@ class HeavyTopScene(Scene):
             return "weierstrass" in asked if asked is not None else self.config.sleeping is None
         return super().computes(name)
 
+    #: f(u) is drawn around [u1, u2] alone when u2 − u1 is less than this fraction of the
+    #: range [−1, u3] (else the motion's interval is a sliver)
+    NARROW_BAND = 0.1
+
     #: crossings are located reliably only with this many samples per nutation period
     MIN_SAMPLES_PER_PERIOD = 16
 
@@ -471,7 +477,10 @@ class HeavyTopScene(Scene):
         else:
             hi = min(max(1.05, a["u3"] + 0.1 * (a["u3"] - a["u1"])), 3.0) if math.isfinite(
                 a["u3"]) else 1.5
-            x = np.linspace(-1.0, hi, 1201)
+            lo, width = -1.0, a["u2"] - a["u1"]
+            if 0.0 < width < self.NARROW_BAND * (hi - lo):  # a sliver on [−1, u3]: zoom in
+                lo, hi = max(-1.0, a["u1"] - width), a["u2"] + width
+            x = np.linspace(lo, hi, 1201)
             a["cubic_curve"] = {"variable": "u", "x": x, "f": theory.f_u(x, c),
                                 "root1": a["u1"], "root2": a["u2"], "root3": a["u3"],
                                 "ratio": a["b_over_a"], "start": math.cos(start.theta)}
@@ -738,7 +747,7 @@ class HeavyTopScene(Scene):
             stop = int(summary["locus_stop"])
             loci.append(np.column_stack([run["axis_x"], run["axis_y"], run["axis_z"]])[:stop])
             labels.append((f"({letter}) {summary['case']}",
-                           f"ω3 = {summary['omega3']:.4g} rad/s, φ̇0 = "
+                           f"ω3 = {summary['omega3']:.4g} rad/s, dφ/dt(0) = "
                            f"{summary['phi_dot0']:.3g} rad/s"))
             azimuths.append(summary["view_azimuth"])
         fig = plots.fig43(loci, theta1=band["theta_min"], theta2=band["theta_max"],
@@ -750,20 +759,20 @@ class HeavyTopScene(Scene):
             roots = max(abs(r["theta1"] - band["theta_min"]), abs(r["theta2"] - band["theta_max"]))
             span = max(abs(r["theta_min_measured"] - band["theta_min"]),
                        abs(r["theta_max_measured"] - band["theta_max"]))
-            rows.append([name, r["case"], fmt(r["omega3"], 8), fmt(r["phi_dot0"], 8),
-                         f"{fmt(r['phi_dot_upper'], 4)} / {fmt(r['phi_dot_lower'], 4)}",
-                         fmt_err(roots), fmt_err(span), fmt(r["nutation_period"], 6),
-                         fmt(r["precession_per_period"], 6),
+            rows.append([f"{name} ({r['case']})", fmt(r["omega3"], 5), fmt(r["phi_dot0"], 5),
+                         f"{fmt(r['phi_dot_upper'], 3)} / {fmt(r['phi_dot_lower'], 3)}",
+                         f"{fmt_err(roots)} / {fmt_err(span)}", fmt(r["nutation_period"], 5),
+                         fmt(r["precession_per_period"], 5),
                          fmt_err(r["weierstrass_max_difference"])])
         table = Table(
             caption=f"The three runs on θ ∈ [{fmt(band['theta_min'])}, {fmt(band['theta_max'])}] "
-                    f"rad: the case the solved release gives, φ̇ = (b − a cos θ)/sin²θ on the "
+                    f"rad: the case the solved release gives (classified from b/a and u1, u2), "
+                    f"φ̇ = (b − a cos θ)/sin²θ on the "
                     f"two circles, how far the roots of f(u) and the extremes of the integrated "
                     f"θ(t) are from the band (rad), and the ℘ form against the sn² form. "
                     f"{band['possible_spins'][0].upper()}{band['possible_spins'][1:]}.",
-            header=["run", "case", "ω3 [rad/s]", "φ̇0 [rad/s]", "φ̇ on θ1 / θ2 [rad/s]",
-                    "band error: roots", "band error: run", "T [s]", "Δφ [rad]",
-                    "max |u℘ − u_sn²|"],
+            header=["run (case)", "ω3 [rad/s]", "φ̇0 [rad/s]", "φ̇ on θ1 / θ2 [rad/s]",
+                    "band error: roots / run", "T [s]", "Δφ [rad]", "max |u℘ − u_sn²|"],
             rows=rows)
         periods = ", ".join(f"{band['runs'][n]['locus_periods']}" for n in BAND_CASES)
         return SectionContent(
