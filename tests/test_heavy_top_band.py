@@ -291,3 +291,10 @@ def test_sleeping_scene_shows_weierstrass_only_when_asked():
     a = asked.simulate().analysis
     # the 1e-6 tilt below the threshold falls to θ2 ≈ 1.59 rad and back: ℘ describes it
     assert a["theta2"] > 1.5 and a["weierstrass_max_difference"] <= 1e-10
+
+
+def test_weierstrass_is_in_the_analysis_when_the_report_leaves_it_out():
+    # SPEC: /analysis weierstrass_max_difference for a nutating top, whatever sections show
+    text = band_text(0.6, 1.1, "waves") + '\n[report]\nsections = ["nutation_locus"]\n'
+    a = scene(text).simulate().analysis
+    assert a["weierstrass_max_difference"] <= 1e-10

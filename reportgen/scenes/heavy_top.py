@@ -302,14 +302,15 @@ class HeavyTopScene(Scene):
                  100.0, 5001, "2 % below the threshold: a 1e-6 tilt grows to order one"),
         ]
 
-    #: ℘ (exercise 4.10) is computed only for a report that shows it: not by default in a
-    #: sleeping-top scene (one with a [sleeping] sweep), which is about its threshold
+    #: ℘ (exercise 4.10; /analysis weierstrass_max_difference) is computed for every
+    #: nutating top except in a sleeping-top scene (one with a [sleeping] sweep, which is
+    #: about its threshold), unless its [report] sections name it
     computed_on_request = ("error_vs_runtime", "weierstrass")
 
     def computes(self, name: str) -> bool:
         if name == "weierstrass":
             asked = self.config.report.sections
-            return "weierstrass" in asked if asked is not None else self.config.sleeping is None
+            return self.config.sleeping is None or (asked is not None and name in asked)
         return super().computes(name)
 
     #: f(u) is drawn around [u1, u2] alone when u2 − u1 is less than this fraction of the
