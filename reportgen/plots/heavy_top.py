@@ -315,8 +315,8 @@ def fig43(loci, *, theta1, theta2, labels, azimuths, elevation=FIG43_ELEVATION, 
     return fig
 
 
-def weierstrass_rectangle(omega, omega_prime, x0, t_end, *, t, difference, figsize=(8.6, 3.6)):
-    """The period rectangle of ℘ with the motion's line, and u℘ − u_sn² against time.
+def weierstrass_rectangle(omega, omega_prime, x0, t_end, *, figsize=(5.4, 3.9), ax=None):
+    """The period rectangle of ℘, its half-periods and poles, and the line of the motion.
 
     Parameters
     ----------
@@ -326,11 +326,8 @@ def weierstrass_rectangle(omega, omega_prime, x0, t_end, *, t, difference, figsi
         z(0) = x0 + iω′ [s].
     t_end : float
         Length of the run [s] (how often the line is run through).
-    t, difference : ndarray, shape (N,)
-        Output grid [s] and u℘(t) − u_sn²(t) (signed: rounding noise shows as such).
     """
-    fig = Figure(figsize=figsize, layout="constrained")
-    ax, ax2 = fig.subplots(1, 2, width_ratios=[1.0, 1.1])
+    fig, ax = new_figure(ax, figsize=figsize)
     w, wp = omega, omega_prime
     ax.plot([0, 2 * w, 2 * w, 0, 0], [0, 0, 2 * wp, 2 * wp, 0], color=REFERENCE, linewidth=1.2)
     ax.plot([w, w], [0, 2 * wp], color=CONTEXT, linestyle=":", linewidth=1.0)
@@ -357,12 +354,5 @@ def weierstrass_rectangle(omega, omega_prime, x0, t_end, *, t, difference, figsi
     ax.set_ylim(-0.25 * wp, 2.12 * wp)
     ax.set_xlabel("Re z [s]")
     ax.set_ylabel("Im z [s]")
-    ax.set_title("period rectangle of ℘")
-    size = float(np.max(np.abs(difference)))
-    power = int(np.floor(np.log10(size))) if size > 0 else 0
-    ax2.plot(t, np.asarray(difference) / 10.0**power, color=HIGHLIGHT, linewidth=0.6)
-    ax2.axhline(0.0, color="k", linewidth=0.6)
-    ax2.set_xlabel("time t [s]")
-    ax2.set_ylabel(f"(u℘(t) − u_sn²(t)) / 1e{power}")
-    ax2.set_title(f"℘ against sn² over {t_end / (2 * w):.3g} nutation periods")
+    ax.set_title(f"period rectangle of ℘ (the run: {t_end / (2 * omega):.3g} × 2ω)")
     return fig

@@ -523,7 +523,7 @@ class HeavyTopScene(Scene):
             "scale": form.scale, "shift": form.shift, "t_end": float(main.t[-1]),
             "period": 2.0 * form.omega, "series_terms": form.lattice.terms,
             "nome": math.exp(-math.pi * form.omega_prime / form.omega),
-            "max_difference": difference, "difference": w_sn - w_wp,
+            "max_difference": difference,
         }
 
     def _period_sensitivity(self, start: Start, c, main: RunRecord, period: float,
@@ -879,9 +879,7 @@ class HeavyTopScene(Scene):
         if wp is None:
             return SectionContent(notes=["No nutation (u1 = u2): the cubic has a double root "
                                          "and ℘ degenerates; nothing to show."])
-        fig = plots.weierstrass_rectangle(
-            wp["omega"], wp["omega_prime"], wp["x0"], wp["t_end"], t=data.runs["main"].t,
-            difference=wp["difference"])
+        fig = plots.weierstrass_rectangle(wp["omega"], wp["omega_prime"], wp["x0"], wp["t_end"])
         rows = [
             ["u = λ℘ + μ: λ = 4/β", fmt(wp["scale"], 14), ""],
             ["μ = (u1 + u2 + u3)/3", fmt(wp["shift"], 14), ""],
@@ -903,11 +901,11 @@ class HeavyTopScene(Scene):
                     fmt_err(abs(wp["period"] / a["nutation_period"] - 1.0)))],
             figures=[cls.figure(
                 "weierstrass", fig,
-                "Left: the period rectangle of ℘ with corners 0, 2ω, 2ω + 2ω′, 2ω′ (double "
-                "poles of ℘ at the corners); ℘ is real on its edges and middle lines. The motion "
-                "is the line z = x0 + t + ω′, along which ℘ runs between e3 (u = u1, lower "
-                "circle) and e2 (u = u2, upper circle), one nutation period per 2ω. Right: "
-                "u℘(t) − u_sn²(t), both closed forms on the output grid.")],
+                "The period rectangle of ℘ with corners 0, 2ω, 2ω + 2ω′, 2ω′ (double poles of "
+                "℘ at the corners); ℘ is real on its edges and middle lines. The motion is the "
+                "line z = x0 + t + ω′, along which ℘ runs between e3 (u = u1, lower circle) and "
+                "e2 (u = u2, upper circle), one nutation period per 2ω. u℘(t) is stored on the "
+                "output grid as /runs/main/reference/cos_theta_weierstrass.")],
             tables=[table])
 
     @classmethod
