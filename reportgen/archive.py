@@ -15,6 +15,8 @@ Layout (``format_version`` 2, see SPEC.md "Archive")::
     /runs/<name>/invariants/<q>  (N,) float64, also linked as /runs/<name>/<q> (dim t)
     /runs/<name>/reference/<c>   (N,) float64: exact or reference solution of column c,
                               also linked as /runs/<name>/reference_<c>
+                              (a run the results give under two names is one group with
+                              two hard links, e.g. /runs/main = /runs/loops)
     /analysis                 attrs (scalars, strings) and datasets (arrays); sub-dicts are groups
     /checks                   table: quantity, value, reference, abs_error, rel_error, unit, source
     /study/error_vs_runtime   table (one row per method x tolerance), attrs reference_kind
@@ -170,7 +172,12 @@ def _write_contents(f: h5py.File, *, kind, title, scene, config_text, config_sha
     f.create_dataset("config_resolved", data=_config_json(resolved_config), dtype=STR)
     f.create_group("provenance").attrs.update(provenance())
     runs = f.create_group("runs")
+    first_name: dict[int, str] = {}
     for name, run in results.runs.items():
+        if id(run) in first_name:  # one run under two names: stored once, hard-linked
+            runs[name] = runs[first_name[id(run)]]
+            continue
+        first_name[id(run)] = name
         _write_run(runs.create_group(name), run)
     write_mapping(f.create_group("analysis"), results.analysis)
     table(f, "checks", _checks_records(results.checks))

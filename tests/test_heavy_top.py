@@ -5,7 +5,7 @@ References checked here:
 - f(u) = (1 − u²)(α − βu) − (b − au)² = β(u − u1)(u2 − u)(u3 − u)   (10.31; Goldstein 5.71)
 - T = 4K(k²)/√(β(u3 − u1)), k² = (u2 − u1)/(u3 − u1)                (FIELD-NOTES; Goldstein 5.72)
 - Δφ per period = ∮ (b − au)/(1 − u²) dt                               (10.26)
-- u(t) = u1 + (u2 − u1) sn²(½√(β(u3 − u1)) t + τ0 | k²)               (Goldstein ex. 4.10)
+- u(t) = u1 + (u2 − u1) sn²(½√(β(u3 − u1)) t + τ0 | k²)   (Jacobi form of Goldstein 5.72)
 - steady precession I1 cos θ φ̇² − I3ω3 φ̇ + Mgl = 0 and (10.46)        (10.45-10.46)
 - sleeping top stable iff I3²ω3² > 4 I1 Mgl                            (10.49-10.50)
 """

@@ -6,8 +6,8 @@ The state is the one of :mod:`reportgen.core.models.heavy_top`: a quaternion
 symmetry axis e3 with its velocity and acceleration, θ̇ and φ̇ from the axis (defined on
 the vertical too), and w = 1 − cos θ without cancellation.  The nutation period and the
 precession per period are measured from the samples by Hermite-refined level crossings
-(:mod:`reportgen.core.crossings`), independently of the closed form in
-:mod:`reportgen.core.heavy_top_theory`.
+(:mod:`reportgen.core.crossings`), and the turning values of θ by Hermite-refined extrema,
+independently of the closed form in :mod:`reportgen.core.heavy_top_theory`.
 
 References
 ----------
@@ -22,7 +22,7 @@ import math
 
 import numpy as np
 
-from .crossings import mean_period, upward_crossings
+from .crossings import _quintic_hermite, mean_period, upward_crossings
 from .heavy_top_theory import STEADY_RTOL
 from .models.heavy_top import rhs, rotation_matrices
 
@@ -202,3 +202,41 @@ def measure_nutation(t, motion, *, w1, w2, period, min_samples_per_period=16):
         return T, math.nan
     phis = hermite_cubic(t, motion["phi"], motion["phi_dot"], times)
     return T, float((phis[-1] - phis[0]) / (times.size - 1))
+
+
+def extreme_values(t, x, xdot, xddot) -> tuple[float, float]:
+    """Smallest and largest value of x(t) between and on the samples, to O(h⁶).
+
+    Where ẋ changes sign between two samples, x is replaced by the quintic Hermite
+    interpolant of x, ẋ, ẍ at both ends (as for the level crossings) and its extremum
+    found by Newton's method on its derivative; the turning values of a sampled nutation
+    (θ1, θ2 from w = 1 − cos θ) come out to the integration's accuracy, not the grid's.
+
+    Parameters
+    ----------
+    t, x, xdot, xddot : ndarray, shape (N,)
+        Sample times (increasing), values and their first two exact time derivatives.
+
+    Returns
+    -------
+    (float, float)
+        min and max of x over [t[0], t[-1]].
+    """
+    lo, hi = float(np.min(x)), float(np.max(x))
+    turn = np.nonzero(np.sign(xdot[:-1]) * np.sign(xdot[1:]) < 0)[0]
+    for i in turn:
+        h = t[i + 1] - t[i]
+        c = _quintic_hermite(h, x[i], xdot[i], xddot[i], x[i + 1], xdot[i + 1], xddot[i + 1])
+        s = xdot[i] / (xdot[i] - xdot[i + 1])  # linear guess for ẋ = 0
+        for _ in range(30):
+            d1 = (((5 * c[5] * s + 4 * c[4]) * s + 3 * c[3]) * s + 2 * c[2]) * s + c[1]
+            d2 = ((20 * c[5] * s + 12 * c[4]) * s + 6 * c[3]) * s + 2 * c[2]
+            if d2 == 0.0:
+                break
+            step = d1 / d2
+            s = min(1.0, max(0.0, s - step))
+            if abs(step) < 1e-15:
+                break
+        value = ((((c[5] * s + c[4]) * s + c[3]) * s + c[2]) * s + c[1]) * s + c[0]
+        lo, hi = min(lo, value), max(hi, value)
+    return lo, hi

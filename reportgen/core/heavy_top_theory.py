@@ -7,14 +7,19 @@ on it in :mod:`reportgen.core.heavy_top_kinematics`.  This module holds the theo
 integration is checked against: the roots of f(u), the Fig. 4.3 case, nutation period
 and precession per period (Carlson forms, and quadrature as an independent check),
 u(t) in Jacobi sn², the effective potential, the steady precession rates and the
-sleeping-top threshold.
+sleeping-top threshold; the initial state that puts each Fig. 4.3 case on a given band
+θmin ≤ θ ≤ θmax; and u(t) through Weierstrass's ℘ (exercise 4.10), evaluated with
+:mod:`reportgen.core.weierstrass` independently of the sn² form.
 
 ``a = I3 ω3 / I1``, ``b = p_φ / I1`` (10.25), ``α = 2E'/I1`` with
 ``E' = E - I3 ω3²/2`` and ``β = 2 M g l / I1`` (10.30).  With ``u = cos θ``,
 ``u'^2 = f(u) = (1 - u²)(α - β u) - (b - a u)²``, and since f is a cubic with
 leading coefficient +β, ``f(u) = β (u - u1)(u2 - u)(u3 - u)`` with
 ``u1 ≤ u2 ≤ 1 < u3``; u(t) = u1 + (u2 - u1) sn²(λ t | m), λ = ½ √(β(u3 - u1)),
-m = k² = (u2 - u1)/(u3 - u1), nutation period T = 2K(m)/λ = 4K(m)/√(β(u3 - u1)).
+m = k² = (u2 - u1)/(u3 - u1), nutation period T = 2K(m)/λ = 4K(m)/√(β(u3 - u1)) (the
+Jacobi form of Goldstein's quadrature t = ∫du/√f(u), eq. 5.72, inverted with DLMF §22.15).
+With u = (4/β)℘ + (u1 + u2 + u3)/3 the same equation becomes ℘'² = 4℘³ − g2℘ − g3
+(exercise 4.10): u(t) = (4/β)℘(t + x0 + ω′) + (u1 + u2 + u3)/3.
 
 Numerics: everything is evaluated in ``w = 1 - u = 2 sin²(θ/2)``, with
 ``A = α - β`` and ``B = b - a`` computed from the initial state without
@@ -32,8 +37,10 @@ References
 ----------
 .. [1] Lecture notes §10.1, eqs. (10.21)-(10.50).
 .. [2] Goldstein, Poole, Safko, *Classical Mechanics*, 3rd ed., §5.7, eqs. 5.62-5.73,
-       Fig. 5.9 (2nd ed. §4.4 ... Fig. 4.3 in the notes' numbering), exercise 4.10.
-.. [3] NIST DLMF 19.25.1-2 (complete elliptic integrals in Carlson form), 22.2.
+       Fig. 5.9 (2nd ed. §4.4 ... Fig. 4.3 in the notes' numbering); the notes'
+       exercise 4.10 (u(t) through Weierstrass's ℘).
+.. [3] NIST DLMF 19.25.1-2 (complete elliptic integrals in Carlson form), 22.2, 22.15,
+       §23.6 (℘ and its half-periods).
 """
 
 from __future__ import annotations
@@ -44,6 +51,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy
 
+from . import weierstrass
 from .special import ellipf_carlson, ellipk_carlson, ellippi_carlson, jacobi_sn_agm
 
 
@@ -302,7 +310,8 @@ def precession_quadrature(r: Roots, c: TopConstants) -> float:
 
 
 def u_closed_form(t, r: Roots, c: TopConstants):
-    """cos θ(t) = u1 + (u2 − u1) sn²(λ t + τ0 | k²) (FIELD-NOTES; Goldstein ex. 4.10).
+    """cos θ(t) = u1 + (u2 − u1) sn²(λ t + τ0 | k²): the Jacobi form of the quadrature
+    t = ∫du/√f(u) (Goldstein 5.72; DLMF §22.15; FIELD-NOTES "Heavy top").
 
     τ0 places the initial state: sn²τ0 = (u0 − u1)/(u2 − u1), on the rising branch
     (τ0 ∈ [0, K]) when u̇0 = −sin θ0 θ̇0 > 0, else on the falling one (2K − τ0).
@@ -387,7 +396,7 @@ def theta_of_w(w):
 
 
 def theta_closed_form(t, r: Roots, c: TopConstants) -> np.ndarray:
-    """θ(t) of the closed form u(t) = u1 + (u2 − u1) sn²(λt + τ0 | k²) (Goldstein ex. 4.10).
+    """θ(t) of the Jacobi closed form u(t) = u1 + (u2 − u1) sn²(λt + τ0 | k²).
 
     Parameters
     ----------
@@ -488,3 +497,213 @@ def period_sensitivity(I1, I3, Mgl, theta, theta_dot, phi_dot, omega3, energy_er
     except (ValueError, ArithmeticError):
         return math.nan
     return abs(perturbed / period - 1.0) if math.isfinite(period) else math.nan
+
+
+# ------------------------------------------------------------ a nutation band
+class ImpossibleBand(ValueError):
+    """No top of the given parameters nutates over the band with the asked case and spin."""
+
+
+#: |ω3| within this relative distance of the cusp spin counts as the cusp spin
+CUSP_SPIN_RTOL = 1e-9
+#: the band's turning angles must come back to this accuracy [rad]
+BAND_ATOL = 1e-9
+
+
+@dataclass(frozen=True)
+class BandSpins:
+    """Which spins put each Fig. 4.3 case on the band θmin ≤ θ ≤ θmax (a = I3ω3/I1).
+
+    A top released on the upper circle (θ̇ = 0) with φ̇0 = p has u2 = cos θmin as a root;
+    u1 = cos θmax is the other root iff (10.31) gives, with c1 = sin²θmax, c2 = sin²θmin,
+    d = u2 − u1 and σ = u1 + u2,
+
+        c2 σ p² − 2 a c2 p + (c1 β − a² d) = 0,   p = [a ± √(c1 (a² − βσ)/c2)]/σ.
+
+    p = 0 (released at rest: cusps) needs a² = a_c² = β c1/d; for |a| > a_c the smaller
+    root has p < 0 < φ̇(u1): loops; every other real root has φ̇ of one sign: waves.
+    Real roots need a² ≥ βσ, so waves need |a| ≥ √(βσ) when σ > 0.
+    """
+
+    I1: float
+    I3: float
+    theta_min: float
+    theta_max: float
+    a_cusps: float  # the only |a| with cusps
+    a_waves_min: float  # waves need |a| ≥ this (σ > 0), else any spin
+    sigma: float  # u1 + u2 = cos θmin + cos θmax
+
+    @property
+    def omega3_cusps(self) -> float:
+        return self.I1 * self.a_cusps / self.I3
+
+    @property
+    def omega3_waves_min(self) -> float:
+        return self.I1 * self.a_waves_min / self.I3
+
+    def possible(self) -> str:
+        """Which spins give which case, for error messages."""
+        wc = f"{self.omega3_cusps:.10g}"
+        if self.sigma > 0.0:
+            waves = f"|ω3| ≥ {self.omega3_waves_min:.10g} rad/s"
+        elif self.sigma < 0.0:
+            waves = "any ω3"
+        else:
+            waves = f"0 < |ω3| < {wc} rad/s"
+        return (f"on the band [{self.theta_min:.10g}, {self.theta_max:.10g}] rad cusps need "
+                f"|ω3| = {wc} rad/s, loops |ω3| > {wc} rad/s, waves {waves}")
+
+    def default_omega3(self, case: str) -> float:
+        """The spin used when the config gives none: the cusp spin for cusps, 1.5 times it
+        for loops, and for waves halfway between the smallest wave spin and the cusp spin."""
+        a = {"cusps": self.a_cusps, "loops": 1.5 * self.a_cusps,
+             "waves": 0.5 * (self.a_waves_min + self.a_cusps)}[case]
+        return self.I1 * a / self.I3
+
+
+def band_spins(I1, I3, Mgl, theta_min, theta_max) -> BandSpins:
+    """The spin ranges of :class:`BandSpins` for 0 < θmin < θmax < π."""
+    beta = 2.0 * Mgl / I1
+    c1 = math.sin(theta_max) ** 2
+    d = 2.0 * math.sin(0.5 * (theta_max + theta_min)) * math.sin(0.5 * (theta_max - theta_min))
+    sigma = 2.0 * math.cos(0.5 * (theta_max + theta_min)) * math.cos(0.5 * (theta_max - theta_min))
+    return BandSpins(I1=I1, I3=I3, theta_min=theta_min, theta_max=theta_max,
+                     a_cusps=math.sqrt(beta * c1 / d),
+                     a_waves_min=math.sqrt(beta * sigma) if sigma > 0.0 else 0.0, sigma=sigma)
+
+
+def band_release_rates(I1, I3, Mgl, theta_min, theta_max, omega3) -> list[float]:
+    """Every φ̇0 of a release on the upper circle (θ0 = θmin, θ̇0 = 0) whose motion turns on
+    θmax: the real roots of the quadratic of :class:`BandSpins` (0, 1 or 2 of them)."""
+    beta = 2.0 * Mgl / I1
+    a = abs(I3 * omega3 / I1)
+    sign = -1.0 if omega3 < 0.0 else 1.0  # ω3 → −ω3 mirrors the motion: φ̇ → −φ̇
+    c1, c2 = math.sin(theta_max) ** 2, math.sin(theta_min) ** 2
+    d = 2.0 * math.sin(0.5 * (theta_max + theta_min)) * math.sin(0.5 * (theta_max - theta_min))
+    sigma = 2.0 * math.cos(0.5 * (theta_max + theta_min)) * math.cos(0.5 * (theta_max - theta_min))
+    disc = c1 * (a * a - beta * sigma) / c2
+    if disc < 0.0:
+        return []
+    big = a + math.sqrt(disc)  # a ± √disc without cancellation: the other root from Vieta
+    rates = []
+    if big > 0.0:
+        rates.append((c1 * beta - a * a * d) / (c2 * big))
+    if sigma != 0.0:
+        rates.append(big / sigma)
+    return [sign * p for p in rates if math.isfinite(p)]
+
+
+def band_start(I1, I3, Mgl, theta_min, theta_max, case, omega3=None):
+    """Initial state (θ0, θ̇0, φ̇0, ω3) nutating over [θmin, θmax] with the Fig. 4.3 ``case``.
+
+    The top is released on the upper turning circle, θ0 = θmin, θ̇0 = 0, with φ̇0 from
+    :func:`band_release_rates` (cusps: φ̇0 = 0 exactly).  ``omega3`` None: the spin of
+    :meth:`BandSpins.default_omega3`.  Where two releases give waves, the one with the
+    smaller |φ̇0| (lower energy E′) is taken.  Raises :class:`ImpossibleBand` naming the
+    possible spins when no release gives the case, or when the roots of f(u) do not come
+    back to the band within ``BAND_ATOL``.
+    """
+    spins = band_spins(I1, I3, Mgl, theta_min, theta_max)
+    if omega3 is None:
+        omega3 = spins.default_omega3(case)
+    if case == "cusps":
+        if abs(abs(omega3) / spins.omega3_cusps - 1.0) > CUSP_SPIN_RTOL:
+            raise ImpossibleBand(f"no cusps at ω3 = {omega3:.10g} rad/s: {spins.possible()}")
+        omega3 = math.copysign(spins.omega3_cusps, omega3)
+        candidates = [0.0]
+    else:
+        candidates = band_release_rates(I1, I3, Mgl, theta_min, theta_max, omega3)
+    found = []
+    for phi_dot in candidates:
+        c = constants(I1, I3, Mgl, theta_min, 0.0, phi_dot, omega3)
+        r = roots(c)
+        if classify(r, c) == case:
+            found.append((abs(phi_dot), phi_dot, r))
+    if not found:
+        raise ImpossibleBand(f"no {case} at ω3 = {omega3:.10g} rad/s: {spins.possible()}")
+    _size, phi_dot, r = min(found, key=lambda x: x[0])
+    miss = max(abs(theta_of_w(r.w1) - theta_min), abs(theta_of_w(r.w2) - theta_max))
+    if not miss <= BAND_ATOL:
+        raise ImpossibleBand(f"the turning angles of the solved top miss the band by "
+                             f"{miss:.3g} rad (ill-conditioned so close to the poles)")
+    return theta_min, 0.0, phi_dot, omega3
+
+
+# --------------------------------------------------- u(t) through Weierstrass's ℘
+@dataclass(frozen=True)
+class WeierstrassForm:
+    """u(t) = λ ℘(t + x0 + ω′; g2, g3) + μ with λ = 4/β, μ = (u1 + u2 + u3)/3 (exercise 4.10).
+
+    Substituting u = λ℘ + μ in u̇² = f(u) = β(u − u1)(u − u2)(u − u3) gives
+    ℘'² = 4(℘ − e1)(℘ − e2)(℘ − e3) = 4℘³ − g2℘ − g3 with e_j = β(u_j − μ)/4
+    (e1 ↔ u3, e2 ↔ u2, e3 ↔ u1).  On z = ω′ + x (x real) ℘ is real and runs between
+    ℘(ω′) = e3 (u = u1) and ℘(ω + ω′) = e2 (u = u2): the motion is the horizontal line
+    through ω′ in the period rectangle, one nutation period per real period 2ω.
+    """
+
+    e1: float
+    e2: float
+    e3: float
+    g2: float
+    g3: float
+    omega: float  # real half-period ω1
+    omega_prime: float  # |ω3|, ω3 = iω′
+    x0: float  # z(0) = x0 + iω′
+    scale: float  # λ = 4/β
+    shift: float  # μ = (u1 + u2 + u3)/3
+    lattice: weierstrass.Lattice
+
+
+def weierstrass_form(r: Roots, c: TopConstants) -> WeierstrassForm | None:
+    """The ℘ form of u(t) for a nutating top (None without nutation: steady, sleeping).
+
+    The roots e_j and their differences are formed from w = 1 − u without cancellation;
+    the phase x0 solves λ(℘(ω′ + x0) − e3) = u0 − u1 by bisection on ℘ itself, on the
+    rising half x0 ∈ [0, ω] when u̇0 > 0, else on the falling one (2ω − x0).
+    """
+    if r.sleeping or r.w2 - r.w1 <= STEADY_RTOL * max(r.w2, 1e-300) or r.w3 >= 0.0:
+        return None
+    beta = c.beta
+    mean_w = (r.w1 + r.w2 + r.w3) / 3.0
+    e1, e2, e3 = (0.25 * beta * (mean_w - r.w3), 0.25 * beta * (mean_w - r.w1),
+                  0.25 * beta * (mean_w - r.w2))
+    gaps = (0.25 * beta * (r.w2 - r.w3), 0.25 * beta * (r.w1 - r.w3),
+            0.25 * beta * (r.w2 - r.w1))  # e1 − e3, e1 − e2, e2 − e3
+    omega, omega_prime = weierstrass.half_periods_from_gaps(*gaps)
+    lattice = weierstrass.Lattice.rectangular(omega, omega_prime)
+    g2, g3 = weierstrass.invariants(e1, e2, e3)
+    scale = 4.0 / beta
+    x0 = _weierstrass_phase(lattice, (r.w2 - c.w0) / scale, gaps[2])
+    if -math.sin(c.theta0) * c.theta_dot0 < 0.0:
+        x0 = 2.0 * omega - x0
+    return WeierstrassForm(e1=e1, e2=e2, e3=e3, g2=g2, g3=g3, omega=omega,
+                           omega_prime=omega_prime, x0=x0, scale=scale,
+                           shift=1.0 - mean_w, lattice=lattice)
+
+
+def _weierstrass_phase(lattice: weierstrass.Lattice, target: float, top: float) -> float:
+    """x in [0, ω] with ℘(ω′ + x) − e3 = target (0 ≤ target ≤ e2 − e3 = ``top``)."""
+    omega, omega_prime = lattice.omega1.real, lattice.omega3.imag
+    if target <= 0.0:
+        return 0.0
+    if target >= top:
+        return omega
+
+    def excess(x):
+        z = np.array([complex(x, omega_prime)])
+        return float(weierstrass.wp_minus_e3(z, lattice)[0].real) - target
+
+    return float(_optimize().brentq(excess, 0.0, omega, xtol=1e-16 * omega, rtol=4 * np.finfo(float).eps,
+                                    maxiter=200))
+
+
+def w_weierstrass(t, form: WeierstrassForm, r: Roots) -> np.ndarray:
+    """w = 1 − u(t) of the ℘ form on the times ``t``, shape (N,).
+
+    u − u1 = λ(℘(z) − e3) with z = t + x0 + iω′; ℘ − e3 is one theta quotient squared
+    (:func:`reportgen.core.weierstrass.wp_minus_e3`), so w = w2 − λ(℘ − e3) keeps the
+    digits of the roots in w.
+    """
+    z = np.asarray(t, dtype=np.float64) + complex(form.x0, form.omega_prime)
+    excess = weierstrass.wp_minus_e3(z, form.lattice)
+    return r.w2 - form.scale * excess.real

@@ -1,5 +1,8 @@
-"""Heavy-top figures: nutation locus (Fig. 4.3 style), f(u), effective potential,
-time series, steady precession rates and the sleeping-top sweep."""
+"""Heavy-top figures: nutation locus, Fig. 4.3 as printed, f(u), the ℘ period rectangle,
+effective potential, time series, steady precession rates and the sleeping-top sweep.
+
+Figure text avoids combining accents (φ̇ is written dφ/dt): the PDF engine draws the
+combining dot of an SVG text as a dotted circle."""
 
 from __future__ import annotations
 
@@ -96,7 +99,7 @@ def cubic(u, f, *, u1, u2, u3, b_over_a, u0, xlabel="u = cos θ", names=("u1", "
         top = max(float(np.max(finite)), 1e-300)
         ax.set_ylim(-1.6 * top, 1.4 * top)
     ax.set_xlabel(xlabel)
-    ax.set_ylabel("f(u) = u̇²  [1/s²]")
+    ax.set_ylabel("f(u) = (du/dt)²  [1/s²]")
     ax.legend(loc="best")
     return fig
 
@@ -136,7 +139,7 @@ def time_series(t, theta, theta_closed, phi_dot, u_error, *, theta1, theta2,
     ax = axes[1, 0]
     ax.plot(t, phi_dot, color=HIGHLIGHT)
     ax.axhline(0.0, color="k", linewidth=0.8)
-    ax.set_ylabel("φ̇ [rad/s]")
+    ax.set_ylabel("dφ/dt [rad/s]")
     ax = axes[2, 0]
     ax.semilogy(t, np.maximum(np.abs(u_error), 1e-30), color=HIGHLIGHT)
     ax.set_ylabel(error_label)
@@ -157,9 +160,9 @@ def steady_rates(omega3, slow, fast, *, omega3_min, omega3_config, rate_config, 
             label="this scene (closed form)")
     if np.isfinite(rate_measured):
         ax.plot([omega3_config], [abs(rate_measured)], "x", color="k", markersize=9,
-                label="mean φ̇ of the integration")
+                label="mean dφ/dt of the integration")
     ax.set_xlabel("spin ω3 [rad/s]")
-    ax.set_ylabel("|φ̇| steady precession [rad/s]")
+    ax.set_ylabel("|dφ/dt| steady precession [rad/s]")
     ax.legend(loc="best")
     return fig
 
@@ -193,3 +196,163 @@ def _diverging(n):
 
     cm = colormaps["coolwarm_r"]
     return [cm(x) for x in np.linspace(0.05, 0.95, max(n, 2))][:n]
+
+
+#: Fig. 4.3: the sphere is seen from this height above the horizon [rad], as printed
+FIG43_ELEVATION = np.radians(28.0)
+
+
+def _view_basis(azimuth, elevation):
+    """Unit vectors (towards the viewer, screen right, screen up) of an orthographic view
+    of the sphere from ``azimuth`` and ``elevation`` [rad]."""
+    ca, sa, ce, se = np.cos(azimuth), np.sin(azimuth), np.cos(elevation), np.sin(elevation)
+    return (np.array([ce * ca, ce * sa, se]), np.array([-sa, ca, 0.0]),
+            np.array([-se * ca, -se * sa, ce]))
+
+
+def _front_and_back(points, basis):
+    """Screen coordinates of points (N, 3), split into the parts in front of the sphere
+    and behind it (NaN elsewhere, so each draws as broken lines)."""
+    toward, right, up = basis
+    x, y = points @ right, points @ up
+    front = points @ toward >= 0.0
+    # keep each crossing point in both parts so the two lines meet
+    edge = np.zeros_like(front)
+    edge[:-1] |= front[:-1] != front[1:]
+    edge[1:] |= front[:-1] != front[1:]
+    show_front, show_back = front | edge, ~front | edge
+    return ((np.where(show_front, x, np.nan), np.where(show_front, y, np.nan)),
+            (np.where(show_back, x, np.nan), np.where(show_back, y, np.nan)))
+
+
+def sphere_locus(ax, axis, *, theta1, theta2, azimuth, elevation=FIG43_ELEVATION,
+                 title=("", "")):
+    """One panel of Fig. 4.3: the axis path on the unit sphere seen from outside, with the
+    turning circles θ1, θ2 (orthographic view; dashed: behind the sphere).
+
+    Parameters
+    ----------
+    ax : Axes
+    axis : ndarray, shape (N, 3)
+        Space components of the symmetry axis along the stretch to draw.
+    theta1, theta2 : float
+        Turning circles [rad].
+    azimuth, elevation : float
+        Direction of the viewer [rad]: the azimuth faces the viewer.
+    title : (str, str)
+        Panel label and a second, smaller line.
+    """
+    basis = _view_basis(azimuth, elevation)
+    limb = np.linspace(0.0, 2.0 * np.pi, 361)
+    ax.plot(np.cos(limb), np.sin(limb), color=CONTEXT, linewidth=1.0)
+    pole = basis[2][2]  # screen height of the north pole
+    ax.plot([0.0, 0.0], [0.0, pole], color=CONTEXT, linestyle=":", linewidth=1.0)
+    ax.annotate("z", (0.0, pole), textcoords="offset points", xytext=(4, 2), color="0.35",
+                fontsize=10)
+    psi = np.linspace(0.0, 2.0 * np.pi, 721)
+    for th, name in ((theta1, "θ1"), (theta2, "θ2")):
+        circle = np.column_stack([np.sin(th) * np.cos(psi), np.sin(th) * np.sin(psi),
+                                  np.full_like(psi, np.cos(th))])
+        (fx, fy), (bx, by) = _front_and_back(circle, basis)
+        ax.plot(fx, fy, color=REFERENCE, linewidth=1.0)
+        ax.plot(bx, by, color=REFERENCE, linewidth=0.8, linestyle="--", alpha=0.45)
+        right = np.array([np.sin(th) * basis[1][0], np.sin(th) * basis[1][1], np.cos(th)])
+        ax.annotate(name, (right @ basis[1], right @ basis[2]), textcoords="offset points",
+                    xytext=(3, 0), color=REFERENCE, fontsize=11, va="center",
+                    annotation_clip=False)
+    (fx, fy), (bx, by) = _front_and_back(np.asarray(axis), basis)
+    ax.plot(bx, by, color=HIGHLIGHT, linewidth=1.0, linestyle="--", alpha=0.4)
+    ax.plot(fx, fy, color=HIGHLIGHT, linewidth=1.5)
+    ax.plot([axis[0] @ basis[1]], [axis[0] @ basis[2]], "o", color="k", markersize=3.5)
+    x0, x1, y0, y1 = _cap_limits(theta1, theta2, elevation)
+    ax.set_xlim(x0, x1)
+    ax.set_ylim(y0, y1)
+    ax.set_aspect("equal")
+    ax.axis("off")
+    ax.set_title(f"{title[0]}\n", fontsize=13, loc="center")
+    ax.text(0.5, 1.0, title[1], transform=ax.transAxes, ha="center", va="bottom",
+            fontsize=10, color="0.3")
+
+
+def _cap_limits(theta1, theta2, elevation):
+    """Screen box (x0, x1, y0, y1) of the cap that holds the band, as printed: the band's
+    circles with a margin, the pole above them."""
+    low = min(np.cos(th) * np.cos(elevation) - np.sin(th) * np.sin(elevation)
+              for th in (theta1, theta2))
+    high = max(np.cos(th) * np.cos(elevation) + np.sin(th) * np.sin(elevation)
+               for th in (theta1, theta2))
+    half = max(np.sin(theta1), np.sin(theta2))
+    # room on the right for the circles' labels
+    return (-half - 0.1, half + 0.24, max(low - 0.12, -1.05),
+            min(max(high, np.cos(elevation)) + 0.1, 1.06))
+
+
+def fig43(loci, *, theta1, theta2, labels, azimuths, elevation=FIG43_ELEVATION, width=9.6):
+    """Fig. 4.3 as printed: the loops, waves and cusps loci on one band, side by side.
+
+    Parameters
+    ----------
+    loci : list of ndarray, shape (N_i, 3)
+        Axis paths, one per panel.
+    theta1, theta2 : float
+        The band's turning circles [rad], the same in every panel.
+    labels : list of (str, str)
+        Panel label and subtitle.
+    azimuths : list of float
+        View azimuth of each panel [rad] (facing the middle of its locus).
+    elevation : float
+        Height of the viewer above the horizon [rad].
+    width : float
+        Figure width [in]; the height follows from the cap the band needs.
+    """
+    x0, x1, y0, y1 = _cap_limits(theta1, theta2, elevation)
+    panel = width / len(loci)
+    fig = Figure(figsize=(width, panel * (y1 - y0) / (x1 - x0) + 0.7), layout="constrained")
+    axes = fig.subplots(1, len(loci))
+    for ax, axis, label, azimuth in zip(axes, loci, labels, azimuths, strict=True):
+        sphere_locus(ax, axis, theta1=theta1, theta2=theta2, azimuth=azimuth,
+                     elevation=elevation, title=label)
+    return fig
+
+
+def weierstrass_rectangle(omega, omega_prime, x0, t_end, *, figsize=(5.4, 3.9), ax=None):
+    """The period rectangle of ℘, its half-periods and poles, and the line of the motion.
+
+    Parameters
+    ----------
+    omega, omega_prime : float
+        Half-periods ω (real) and ω′/i [s].
+    x0 : float
+        z(0) = x0 + iω′ [s].
+    t_end : float
+        Length of the run [s] (how often the line is run through).
+    """
+    fig, ax = new_figure(ax, figsize=figsize)
+    w, wp = omega, omega_prime
+    ax.plot([0, 2 * w, 2 * w, 0, 0], [0, 0, 2 * wp, 2 * wp, 0], color=REFERENCE, linewidth=1.2)
+    ax.plot([w, w], [0, 2 * wp], color=CONTEXT, linestyle=":", linewidth=1.0)
+    ax.plot([0, 2 * w], [wp, wp], color=HIGHLIGHT, linewidth=2.4, solid_capstyle="butt",
+            label="motion: z = x0 + t + ω′")
+    ax.plot([0, 2 * w, 0, 2 * w], [0, 0, 2 * wp, 2 * wp], "x", color="k", markersize=7,
+            clip_on=False, label="poles of ℘")
+    # the half-periods and the values of ℘ there; labels off the motion's line
+    for (x, y), name, offset, align in (((w, 0.0), "ω:  ℘ = e1", (0, -12), "center"),
+                                        ((0.0, wp), "ω′:\n℘ = e3", (-7, 0), "right"),
+                                        ((w, wp), "ω + ω′:  ℘ = e2", (6, -12), "left")):
+        ax.plot([x], [y], "o", color=REFERENCE, markersize=5, zorder=4, clip_on=False)
+        ax.annotate(name, (x, y), textcoords="offset points", xytext=offset, fontsize=9,
+                    color=REFERENCE, ha=align, va="center")
+    start = x0 % (2 * w)
+    step = min(0.4 * w, max(t_end, 1e-12))
+    ax.annotate("", xy=(min(start + step, 2 * w), wp), xytext=(start, wp),
+                arrowprops={"arrowstyle": "-|>", "color": "k", "linewidth": 1.2}, zorder=5)
+    ax.plot([start], [wp], "o", color="k", markersize=5, zorder=5)
+    ax.annotate("t = 0", (start, wp), textcoords="offset points", xytext=(3, 10), fontsize=9,
+                ha="left", va="center")
+    ax.legend(loc="upper center", fontsize=8.5)
+    ax.set_xlim(-0.55 * w, 2.12 * w)
+    ax.set_ylim(-0.25 * wp, 2.12 * wp)
+    ax.set_xlabel("Re z [s]")
+    ax.set_ylabel("Im z [s]")
+    ax.set_title(f"period rectangle of ℘ (the run: {t_end / (2 * omega):.3g} × 2ω)")
+    return fig

@@ -4,14 +4,21 @@ Integrated as a quaternion with the body angular velocity (no Euler-angle
 singularity: θ = 0 is an ordinary point); θ, φ, ψ and the symmetry axis are
 derived for output.  Closed form from the cubic f(u) (10.31): its roots, the
 Fig. 4.3 case (loops / waves / cusps), nutation period, precession per period,
-u(t) in Jacobi sn², steady precession rates (10.45-10.46) and the sleeping-top
-threshold (10.49-10.50), each checked against an independent evaluation.
+u(t) in Jacobi sn² and through Weierstrass's ℘ (exercise 4.10), steady precession
+rates (10.45-10.46) and the sleeping-top threshold (10.49-10.50), each checked against
+an independent evaluation.
+
+Instead of ``[initial]`` a ``[band]`` asks for a nutation band θmin ≤ θ ≤ θmax and a
+case; the scene solves for the release on the upper circle that gives it
+(:func:`reportgen.core.heavy_top_theory.band_start`).  ``case = "all"`` integrates the
+three cases on the same band as runs ``loops``, ``waves`` and ``cusps`` (``/runs/main``
+is ``/runs/loops``) and draws them as Fig. 4.3 is printed.
 """
 
 from __future__ import annotations
 
 import math
-from typing import Literal
+from typing import Literal, NamedTuple
 
 import numpy as np
 from pydantic import Field, model_validator
@@ -28,6 +35,8 @@ kinematics = lazy_module("reportgen.core.heavy_top_kinematics")
 integrators = lazy_module("reportgen.core.integrators")
 
 CASES = ("loops", "waves", "cusps", "steady", "sleeping")
+#: the runs of ``[band] case = "all"``, in the order of Fig. 4.3 (a), (b), (c)
+BAND_CASES = ("loops", "waves", "cusps")
 ALL_KEYS = ("params.I1, params.I3, params.Mgl, initial.theta, initial.theta_dot, "
             "initial.phi_dot, initial.omega3")
 
@@ -41,6 +50,8 @@ class Params(Strict):
 
 
 class Initial(Strict):
+    """The initial state (one of [initial] and [band] is required)."""
+
     theta: Real = Field(description="tilt of the symmetry axis from the upward vertical, "
                                     "0 ≤ θ < π [rad]")
     theta_dot: Real = Field(0.0, description="θ̇0 [rad/s]")
@@ -49,6 +60,23 @@ class Initial(Strict):
     omega3: Real = Field(description="spin ω3 = ψ̇ + φ̇ cos θ [rad/s]")
     steady: Literal["slow", "fast"] | None = Field(
         None, description='"slow"/"fast": φ̇0 = that steady precession rate (10.45), θ̇0 = 0')
+
+
+class Band(Strict):
+    """Instead of [initial]: a nutation band and a Fig. 4.3 case to solve for.
+
+    The scene releases the top on the upper circle θmin (θ̇0 = 0) with the φ̇0 that
+    makes θmax the lower turning circle and gives the case asked for."""
+
+    theta_min: Real = Field(description="upper turning circle θ1, 0 < θmin < θmax [rad]")
+    theta_max: Real = Field(description="lower turning circle θ2, θmin < θmax < π [rad]")
+    case: Literal["loops", "waves", "cusps", "all"] = Field(
+        description='"loops", "waves", "cusps", or "all": the three as runs loops, waves, '
+                    'cusps and the Fig. 4.3 figure')
+    omega3: Real | None = Field(
+        None, description="spin ω3 [rad/s] of loops and waves (cusps have one possible spin "
+                          "per band); default: 1.5 × the cusp spin for loops, halfway between "
+                          "the smallest wave spin and the cusp spin for waves")
 
 
 class Sleeping(Strict):
@@ -64,7 +92,8 @@ class Sleeping(Strict):
 
 class HeavyTopConfig(SceneConfig):
     params: Params
-    initial: Initial
+    initial: Initial | None = None
+    band: Band | None = None
     run: RunConfig
     sleeping: Sleeping | None = None
     expect_case: Literal["loops", "waves", "cusps", "steady", "sleeping"] | None = Field(
@@ -72,10 +101,40 @@ class HeavyTopConfig(SceneConfig):
 
     @model_validator(mode="after")
     def _physics(self):
-        p, ini = self.params, self.initial
+        p = self.params
         if p.I3 > 2.0 * p.I1:
             raise ValueError(f"params.I3: a symmetric body needs I3 ≤ I1 + I2 = 2 I1 "
                              f"(got I3 = {p.I3}, I1 = {p.I1})")
+        if self.initial is not None and self.band is not None:
+            raise ValueError("initial / band: give one of [initial] (an initial state) and "
+                             "[band] (a nutation band to solve for), not both")
+        if self.band is not None:
+            self._check_band()
+        elif self.initial is None:
+            raise ValueError("initial: required table is missing (or give [band] with "
+                             "theta_min, theta_max and case)")
+        else:
+            self._check_initial()
+        return self
+
+    def _check_band(self) -> None:
+        p, band = self.params, self.band
+        if not 0.0 < band.theta_min < band.theta_max < math.pi:
+            raise ValueError(f"band.theta_min / band.theta_max: need 0 < θmin < θmax < π "
+                             f"(got θmin = {band.theta_min}, θmax = {band.theta_max})")
+        if self.expect_case is not None:
+            raise ValueError(f"expect_case: not with [band], whose case says it "
+                             f"(got expect_case = {self.expect_case!r})")
+        key = "band.omega3" if band.omega3 is not None else "band.theta_min / band.theta_max"
+        for case in _band_cases(band):
+            try:
+                theory.band_start(p.I1, p.I3, p.Mgl, band.theta_min, band.theta_max, case,
+                                  _band_omega3(band, case))
+            except theory.ImpossibleBand as exc:
+                raise ValueError(f"{key}: {exc}") from None
+
+    def _check_initial(self) -> None:
+        p, ini = self.params, self.initial
         if not 0.0 <= ini.theta < math.pi:
             raise ValueError(f"initial.theta: must satisfy 0 ≤ θ < π (got {ini.theta})")
         if ini.steady is not None:
@@ -126,7 +185,37 @@ class HeavyTopConfig(SceneConfig):
                     f"u2 = {r.u2:.10g}; loops need u1 < b/a < u2, cusps b/a = u2 (released "
                     f"at rest: θ̇0 = φ̇0 = 0), waves b/a outside [u1, u2]); change "
                     f"initial.phi_dot / initial.theta_dot / initial.omega3 or expect_case")
-        return self
+
+
+def _band_cases(band: Band) -> tuple[str, ...]:
+    return BAND_CASES if band.case == "all" else (band.case,)
+
+
+def _band_omega3(band: Band, case: str) -> float | None:
+    """The configured spin of one band run: cusps of ``case = "all"`` take their own."""
+    return None if (band.case == "all" and case == "cusps") else band.omega3
+
+
+class Start(NamedTuple):
+    """The initial state of one run: θ0, θ̇0, φ̇0 [rad, rad/s] and the spin ω3 [rad/s]."""
+
+    theta: float
+    theta_dot: float
+    phi_dot: float
+    omega3: float
+
+
+def _starts(config: HeavyTopConfig) -> dict[str, Start]:
+    """Run name -> initial state: ``main`` from ``[initial]`` or a one-case ``[band]``;
+    ``loops``, ``waves``, ``cusps`` for ``case = "all"``."""
+    if config.band is None:
+        ini = config.initial
+        return {"main": Start(ini.theta, ini.theta_dot, _phi_dot(config), ini.omega3)}
+    p, band = config.params, config.band
+    starts = {case: Start(*theory.band_start(p.I1, p.I3, p.Mgl, band.theta_min, band.theta_max,
+                                             case, _band_omega3(band, case)))
+              for case in _band_cases(band)}
+    return starts if band.case == "all" else {"main": starts[band.case]}
 
 
 def _phi_dot(config: HeavyTopConfig) -> float:
@@ -173,8 +262,10 @@ class HeavyTopScene(Scene):
                                 "omega3": 6.0}, 10.0, 3000, "steady"),
     }
     sections = (
+        Section("fig4_3", "Fig. 4.3: loops, waves and cusps on one band", integrates=True),
         Section("nutation_locus", "Nutation locus of the symmetry axis", integrates=True),
         Section("cubic", "The cubic f(u), its roots, nutation period and precession"),
+        Section("weierstrass", "u(t) through Weierstrass's ℘ (exercise 4.10)"),
         Section("effective_potential", "Effective potential"),
         Section("time_series", "θ(t) and φ̇(t) against the closed form", integrates=True),
         Section("steady_precession", "Steady precession"),
@@ -211,42 +302,47 @@ class HeavyTopScene(Scene):
                  100.0, 5001, "2 % below the threshold: a 1e-6 tilt grows to order one"),
         ]
 
+    #: ℘ (exercise 4.10; /analysis weierstrass_max_difference) is computed for every
+    #: nutating top except in a sleeping-top scene (one with a [sleeping] sweep, which is
+    #: about its threshold), unless its [report] sections name it
+    computed_on_request = ("error_vs_runtime", "weierstrass")
+
+    def computes(self, name: str) -> bool:
+        if name == "weierstrass":
+            asked = self.config.report.sections
+            return self.config.sleeping is None or (asked is not None and name in asked)
+        return super().computes(name)
+
+    #: f(u) is drawn around [u1, u2] alone when u2 − u1 is less than this fraction of the
+    #: range [−1, u3] (else the motion's interval is a sliver)
+    NARROW_BAND = 0.1
+
     #: crossings are located reliably only with this many samples per nutation period
     MIN_SAMPLES_PER_PERIOD = 16
 
     # ----------------------------------------------------------------- helpers
     @property
-    def phi_dot0(self) -> float:
-        return _phi_dot(self.config)
-
-    @property
-    def constants(self) -> theory.TopConstants:
-        p, ini = self.config.params, self.config.initial
-        return theory.constants(p.I1, p.I3, p.Mgl, ini.theta, ini.theta_dot, self.phi_dot0,
-                                ini.omega3)
-
-    @property
-    def roots(self) -> theory.Roots:
-        return theory.roots(self.constants)
-
-    @property
-    def case(self) -> str:
-        return theory.classify(self.roots, self.constants)
+    def starts(self) -> dict[str, Start]:
+        """Run name -> initial state (one run, or the three of ``[band] case = "all"``)."""
+        return _starts(self.config)
 
     @property
     def threshold(self) -> float:
         p = self.config.params
         return theory.sleeping_threshold_omega3(p.I1, p.I3, p.Mgl)
 
+    def _constants(self, start: Start) -> theory.TopConstants:
+        p = self.config.params
+        return theory.constants(p.I1, p.I3, p.Mgl, *start)
+
     def _invariants(self, y):
         p = self.config.params
         return model_core.invariants(y, p.I1, p.I3, p.Mgl)
 
-    @property
-    def scales(self) -> dict[str, float]:
+    def _scales(self, start: Start, c: theory.TopConstants) -> dict[str, float]:
         """Natural sizes of the invariants (drift is relative to them)."""
-        p, ini = self.config.params, self.config.initial
-        return theory.invariant_scales(p.I1, p.I3, p.Mgl, ini.omega3, self.constants)
+        p = self.config.params
+        return theory.invariant_scales(p.I1, p.I3, p.Mgl, start.omega3, c)
 
     # -------------------------------------------------------------- simulation
     def models(self) -> list:
@@ -255,33 +351,68 @@ class HeavyTopScene(Scene):
         return [model_core.model(p.I1, p.I3, p.Mgl)]
 
     def simulate(self, progress=None) -> Results:
-        p, ini, run = self.config.params, self.config.initial, self.config.run
-        c, r = self.constants, self.roots
+        run = self.config.run
+        starts = self.starts
+        results = Results()
+        for k, (name, start) in enumerate(starts.items()):
+            part = None if progress is None else (
+                lambda x, k=k: progress((k + x) / len(starts)))
+            record, analysis, checks = self._simulate_start(start, part)
+            results.runs[name] = record
+            if name in ("main", BAND_CASES[0]):
+                results.analysis.update(analysis)
+                results.checks.extend(checks)
+            else:
+                results.checks.extend(Check(f"[{name}] {c.quantity}", c.value, c.reference,
+                                            c.unit, c.source, c.scale) for c in checks
+                                      if c.quantity in self.BAND_RUN_CHECKS)
+            if self.config.band is not None:
+                results.analysis.setdefault("band", self._band_info())["runs"][name] = (
+                    self._band_run_summary(record, analysis))
+        if "main" not in results.runs:
+            results.runs["main"] = results.runs[BAND_CASES[0]]  # one HDF5 object, two names
+        if self.config.sleeping is not None:
+            # computed whenever [sleeping] is given: [report] edits re-stamp the archive
+            # without simulating again, and the section must then still find it
+            results.analysis["sleeping_sweep"] = self._sleeping_sweep()
+        main = next(iter(starts.values()))
+        y0 = model_core.initial_state(*main)
+        (model,) = self.models()
+        self.study(results, model, y0, np.linspace(0.0, run.t_end, 201), progress=progress)
+        return results
+
+    def _simulate_start(self, start: Start, progress=None):
+        """Integrate one initial state: (run, analysis, checks) for the archive."""
+        p, run = self.config.params, self.config.run
+        c = self._constants(start)
+        r = theory.roots(c)
         case = theory.classify(r, c)
         period = theory.nutation_period(r, c)
         precession = theory.precession_per_period(r, c)
         (model,) = self.models()
-        y0 = model_core.initial_state(ini.theta, ini.theta_dot, self.phi_dot0, ini.omega3)
+        y0 = model_core.initial_state(*start)
         t = np.linspace(0.0, run.t_end, run.samples)
-        results = Results()
+        scales = self._scales(start, c)
         raw = self.integrate(model, y0, t, invariants=lambda _t, y: self._invariants(y),
-                             invariant_scales=self.scales, progress=progress,
+                             invariant_scales=scales, progress=progress,
                              n_periods=run.t_end / period if math.isfinite(period) else None)
         main, motion = self._derived_run(raw)
-        results.runs["main"] = main
 
-        slow, fast = theory.steady_precession_rates(p.I1, p.I3, p.Mgl, ini.theta, ini.omega3)
+        slow, fast = theory.steady_precession_rates(p.I1, p.I3, p.Mgl, start.theta, start.omega3)
         w_cf, _u_cf = theory.u_closed_form(t, r, c)
         u_err = np.abs(motion["w"] - w_cf)
         measured_T, measured_dphi = kinematics.measure_nutation(
             t, motion, w1=r.w1, w2=r.w2, period=period,
             min_samples_per_period=self.MIN_SAMPLES_PER_PERIOD)
+        w_lo, w_hi = kinematics.extreme_values(t, motion["w"], motion["w_dot"], motion["w_ddot"])
         a = {
             "a": c.a, "b": c.b, "alpha": c.alpha, "beta": c.beta,
             "b_over_a": c.b / c.a if c.a != 0 else math.nan,
             "u1": r.u1, "u2": r.u2, "u3": r.u3,
             "one_minus_u1": r.w2, "one_minus_u2": r.w1,
             "theta1": theory.theta_of_w(r.w1), "theta2": theory.theta_of_w(r.w2),
+            "theta_min_measured": theory.theta_of_w(w_lo),
+            "theta_max_measured": theory.theta_of_w(w_hi),
             "k2": r.m if r.w2 > r.w3 else math.nan,
             "case": case,
             "nutation_period": period,
@@ -293,23 +424,20 @@ class HeavyTopScene(Scene):
             "reduced_energy": 0.5 * p.I1 * c.alpha,
             "steady_rate_slow": slow, "steady_rate_fast": fast,
             "steady_exists": bool(math.isfinite(slow)),
-            "phi_dot0": self.phi_dot0,
+            "theta0": start.theta, "theta_dot0": start.theta_dot, "phi_dot0": start.phi_dot,
+            "omega3": start.omega3,
             "sleeping_threshold_omega3": self.threshold,
-            "sleeping_stable": bool(abs(ini.omega3) > self.threshold),
-            "sleeping_growth_rate": theory.sleeping_growth_rate(p.I1, p.I3, p.Mgl, ini.omega3),
+            "sleeping_stable": bool(abs(start.omega3) > self.threshold),
+            "sleeping_growth_rate": theory.sleeping_growth_rate(p.I1, p.I3, p.Mgl, start.omega3),
             "u_max_error": float(np.max(u_err)),
             "mean_phi_dot": float((main["phi"][-1] - main["phi"][0]) / (t[-1] - t[0])),
         }
-        a["period_sensitivity"] = self._period_sensitivity(main, period)
-        results.analysis.update(a)
-        self._store_closed_form(results, main)
-        self._checks(results, main)
-        if self.config.sleeping is not None:
-            # computed whenever [sleeping] is given: [report] edits re-stamp the archive
-            # without simulating again, and the section must then still find it
-            results.analysis["sleeping_sweep"] = self._sleeping_sweep()
-        self.study(results, model, y0, np.linspace(0.0, run.t_end, 201), progress=progress)
-        return results
+        a["period_sensitivity"] = self._period_sensitivity(start, c, main, period, scales)
+        self._store_closed_form(a, main, start, c, r)
+        if self.computes("weierstrass"):
+            self._store_weierstrass(a, main, c, r, w_cf)
+        checks = self._checks(a, main, start, c, r, scales)
+        return main, a, checks
 
     def _derived_run(self, raw: RunRecord) -> tuple[RunRecord, dict]:
         """The archived run: Euler angles, axis, rates and the integrated state."""
@@ -322,18 +450,18 @@ class HeavyTopScene(Scene):
         return RunRecord(t=raw.t, y=data, columns=columns, invariants=raw.invariants,
                          attrs=raw.attrs), m
 
-    def _store_closed_form(self, results: Results, main: RunRecord) -> None:
+    def _store_closed_form(self, a: dict, main: RunRecord, start: Start,
+                           c: theory.TopConstants, r: theory.Roots) -> None:
         """Everything the report draws from the closed form, sampled here: θ(t) of the
         sn² solution on the run's grid, cos θ − closed form, f(u) near its roots, V'(θ)
         and the steady-rate curves against ω3."""
-        p, ini = self.config.params, self.config.initial
-        a = results.analysis
-        c, r = self.constants, self.roots
+        p = self.config.params
         # θ(t) in closed form on the output grid, and the integration's difference in cos θ
         w_cf, _u = theory.u_closed_form(main.t, r, c)
         main.reference = {"theta": theory.theta_of_w(w_cf)}
-        main.attrs["reference_label"] = ("closed form cos θ = u1 + (u2 − u1) sn²(λt + τ0 | k²), "
-                                         "λ = ½√(β(u3 − u1)) (Goldstein ex. 4.10)")
+        main.attrs["reference_label"] = (
+            "closed form cos θ = u1 + (u2 − u1) sn²(λt + τ0 | k²), λ = ½√(β(u3 − u1)): the "
+            "Jacobi form of the quadrature t = ∫du/√f(u) (Goldstein 5.72; DLMF §22.15)")
         q = np.column_stack([main["q_w"], main["q_x"], main["q_y"], main["q_z"]])
         w = kinematics.one_minus_cos_theta(q)
         width = a["one_minus_u1"] - a["one_minus_u2"]
@@ -350,10 +478,13 @@ class HeavyTopScene(Scene):
         else:
             hi = min(max(1.05, a["u3"] + 0.1 * (a["u3"] - a["u1"])), 3.0) if math.isfinite(
                 a["u3"]) else 1.5
-            x = np.linspace(-1.0, hi, 1201)
+            lo, width = -1.0, a["u2"] - a["u1"]
+            if 0.0 < width < self.NARROW_BAND * (hi - lo):  # a sliver on [−1, u3]: zoom in
+                lo, hi = max(-1.0, a["u1"] - width), a["u2"] + width
+            x = np.linspace(lo, hi, 1201)
             a["cubic_curve"] = {"variable": "u", "x": x, "f": theory.f_u(x, c),
                                 "root1": a["u1"], "root2": a["u2"], "root3": a["u3"],
-                                "ratio": a["b_over_a"], "start": math.cos(ini.theta)}
+                                "ratio": a["b_over_a"], "start": math.cos(start.theta)}
         # V'(θ) (10.28); on the vertical (the sleeping top) it is not drawn
         if a["case"] != "sleeping":
             if a["theta2"] < 0.05:
@@ -368,62 +499,150 @@ class HeavyTopScene(Scene):
             a["effective_potential"] = {"theta": theta, "V": V, "energy": energy,
                                         "minus_Mgl": shifted}
         # the two steady precession rates (10.45) against the spin, from the bound (10.46)
-        w_min = theory.steady_precession_min_omega3(p.I1, p.I3, p.Mgl, ini.theta)
+        w_min = theory.steady_precession_min_omega3(p.I1, p.I3, p.Mgl, start.theta)
         lo = w_min * 1.0001 if math.isfinite(w_min) else 0.1
-        om = np.linspace(lo, max(3.0 * abs(ini.omega3), 2 * lo), 400)
-        slow, fast = theory.steady_precession_curve(p.I1, p.I3, p.Mgl, ini.theta, om)
+        om = np.linspace(lo, max(3.0 * abs(start.omega3), 2 * lo), 400)
+        slow, fast = theory.steady_precession_curve(p.I1, p.I3, p.Mgl, start.theta, om)
         a["steady_rates"] = {"omega3": om, "slow": slow, "fast": fast, "omega3_min": w_min}
 
-    def _period_sensitivity(self, main: RunRecord, period: float) -> float:
+    @staticmethod
+    def _store_weierstrass(a: dict, main: RunRecord, c: theory.TopConstants,
+                           r: theory.Roots, w_sn: np.ndarray) -> None:
+        """u(t) through ℘ on the output grid (exercise 4.10), its lattice, and its largest
+        difference from the sn² form; nothing for a top without nutation."""
+        form = theory.weierstrass_form(r, c)
+        if form is None:
+            return
+        w_wp = theory.w_weierstrass(main.t, form, r)
+        main.reference["cos_theta_weierstrass"] = 1.0 - w_wp
+        difference = float(np.max(np.abs(w_wp - w_sn)))
+        a["weierstrass_max_difference"] = difference
+        a["weierstrass"] = {
+            "g2": form.g2, "g3": form.g3, "e1": form.e1, "e2": form.e2, "e3": form.e3,
+            "omega": form.omega, "omega_prime": form.omega_prime, "x0": form.x0,
+            "scale": form.scale, "shift": form.shift, "t_end": float(main.t[-1]),
+            "period": 2.0 * form.omega, "series_terms": form.lattice.terms,
+            "nome": math.exp(-math.pi * form.omega_prime / form.omega),
+            "max_difference": difference,
+        }
+
+    def _period_sensitivity(self, start: Start, c, main: RunRecord, period: float,
+                            scales: dict[str, float]) -> float:
         """|ΔT/T| if E' were off by the run's own energy drift (conditioning of T).
 
         Near the sleeping top the roots close to u = 1 are set by differences of
         order θ² in E' and p_φ: there an energy error of 1e-12 shifts the measured
         period by percents, and only this estimate says how far to trust it.
         """
-        p, ini = self.config.params, self.config.initial
+        p = self.config.params
         e = main.invariants["energy"]
-        drift = max(float(np.max(np.abs(e - e[0]))), np.finfo(float).eps * self.scales["energy"])
-        return theory.period_sensitivity(p.I1, p.I3, p.Mgl, ini.theta, ini.theta_dot,
-                                         self.phi_dot0, ini.omega3, drift, period)
+        drift = max(float(np.max(np.abs(e - e[0]))), np.finfo(float).eps * scales["energy"])
+        return theory.period_sensitivity(p.I1, p.I3, p.Mgl, *start, drift, period)
 
-    def _checks(self, results: Results, main: RunRecord) -> None:
-        a = results.analysis
+    #: the checks repeated for the waves and cusps runs of ``case = "all"``
+    BAND_RUN_CHECKS = ("θ2 = arccos u1 (the band's θmax)", "largest θ of the integrated run",
+                       "max |u℘(t) − u_sn²(t)| on the output grid")
+
+    def _checks(self, a: dict, main: RunRecord, start: Start, c: theory.TopConstants,
+                r: theory.Roots, scales: dict[str, float]) -> list[Check]:
+        checks = []
         src_T = "4K(k²)/√(β(u3−u1)) (notes §10.1; Goldstein 5.72), vs ∮du/√f(u) by quadrature"
+        band = self.config.band
+        if band is not None:
+            solved = "[band] of the config; the release solved for on the upper circle"
+            measured = ("[band] of the config; extremes of the integrated θ(t), "
+                        "Hermite-refined between samples")
+            for name, value, ref, source in (
+                    ("θ1 = arccos u2 (the band's θmin)", a["theta1"], band.theta_min, solved),
+                    ("θ2 = arccos u1 (the band's θmax)", a["theta2"], band.theta_max, solved),
+                    ("smallest θ of the integrated run", a["theta_min_measured"],
+                     band.theta_min, measured),
+                    ("largest θ of the integrated run", a["theta_max_measured"],
+                     band.theta_max, measured)):
+                checks.append(Check(name, value, ref, "rad", source))
         if math.isfinite(a["nutation_period_quadrature"]):
-            results.checks.append(Check("nutation period (quadrature of dt = du/√f)",
-                                        a["nutation_period_quadrature"], a["nutation_period"],
-                                        "s", src_T))
-            results.checks.append(Check(
+            checks.append(Check("nutation period (quadrature of dt = du/√f)",
+                                a["nutation_period_quadrature"], a["nutation_period"], "s", src_T))
+            checks.append(Check(
                 "precession per period (quadrature of φ̇ dt)", a["precession_quadrature"],
                 a["precession_per_period"], "rad",
                 "Π(n|k²) closed form of ∮(b − a u)/(1 − u²) dt (10.26)",
                 scale=max(abs(a["precession_per_period"]), 1e-300)))
+        if "weierstrass" in a:
+            wp = a["weierstrass"]
+            checks.append(Check("nutation period 2ω of the ℘ lattice (AGM)", wp["period"],
+                                a["nutation_period"], "s",
+                                "4K(k²)/√(β(u3−u1)) with K in Carlson's R_F"))
+            checks.append(Check("max |u℘(t) − u_sn²(t)| on the output grid",
+                                a["weierstrass_max_difference"], 0.0, "",
+                                "℘ by theta series (exercise 4.10) against Jacobi sn² by AGM; "
+                                "absolute difference in u = cos θ", scale=1.0))
         if math.isfinite(a["nutation_period_measured"]):
-            results.checks.append(Check("nutation period measured from θ(t)",
-                                        a["nutation_period_measured"], a["nutation_period"],
-                                        "s", "4K(k²)/√(β(u3−u1))" + self._conditioning(a)))
+            checks.append(Check("nutation period measured from θ(t)",
+                                a["nutation_period_measured"], a["nutation_period"],
+                                "s", "4K(k²)/√(β(u3−u1))" + self._conditioning(a)))
         if math.isfinite(a["precession_measured"]):
-            results.checks.append(Check("precession per period measured from φ(t)",
-                                        a["precession_measured"], a["precession_per_period"],
-                                        "rad", "Π(n|k²) closed form (10.26)"
-                                        + self._conditioning(a),
-                                        scale=max(abs(a["precession_per_period"]), 1e-300)))
-        r = self.roots
+            checks.append(Check("precession per period measured from φ(t)",
+                                a["precession_measured"], a["precession_per_period"],
+                                "rad", "Π(n|k²) closed form (10.26)" + self._conditioning(a),
+                                scale=max(abs(a["precession_per_period"]), 1e-300)))
         if r.w2 > r.w1 and not r.sleeping:
             w = 2.0 * (main["q_x"] ** 2 + main["q_y"] ** 2) / (
                 main["q_w"] ** 2 + main["q_x"] ** 2 + main["q_y"] ** 2 + main["q_z"] ** 2)
-            w_cf, _ = theory.u_closed_form(main.t[-1:], r, self.constants)
-            results.checks.append(Check("cos θ(t_end)", 1.0 - float(w[-1]), 1.0 - float(w_cf[0]),
-                                        "", "u1 + (u2−u1) sn²(λt + τ0 | k²) (FIELD-NOTES; "
-                                        "Goldstein ex. 4.10)", scale=r.w2 - r.w1))
-        if self.case == "steady":
-            rate = self.phi_dot0
-            results.checks.append(Check("mean φ̇ (steady precession)", a["mean_phi_dot"], rate,
-                                        "rad/s", f"{self.config.initial.steady} root of (10.45)"))
+            w_cf, _ = theory.u_closed_form(main.t[-1:], r, c)
+            checks.append(Check("cos θ(t_end)", 1.0 - float(w[-1]), 1.0 - float(w_cf[0]),
+                                "", "u1 + (u2−u1) sn²(λt + τ0 | k²) (Jacobi form of "
+                                "Goldstein 5.72; FIELD-NOTES)", scale=r.w2 - r.w1))
+        if a["case"] == "steady":
+            checks.append(Check("mean φ̇ (steady precession)", a["mean_phi_dot"], start.phi_dot,
+                                "rad/s", f"{self.config.initial.steady} root of (10.45)"))
         e = main.invariants["energy"]
-        results.checks.append(Check("energy E(t_end)", float(e[-1]), float(e[0]), "J",
-                                    "E(0), conserved", scale=self.scales["energy"]))
+        checks.append(Check("energy E(t_end)", float(e[-1]), float(e[0]), "J",
+                            "E(0), conserved", scale=scales["energy"]))
+        return checks
+
+    def _band_info(self) -> dict:
+        """The band asked for and which spins it allows (:class:`theory.BandSpins`)."""
+        p, band = self.config.params, self.config.band
+        spins = theory.band_spins(p.I1, p.I3, p.Mgl, band.theta_min, band.theta_max)
+        return {"theta_min": band.theta_min, "theta_max": band.theta_max, "case": band.case,
+                "omega3_cusps": spins.omega3_cusps, "omega3_waves_min": spins.omega3_waves_min,
+                "sigma": spins.sigma, "possible_spins": spins.possible(), "runs": {}}
+
+    @classmethod
+    def _band_run_summary(cls, record: RunRecord, a: dict) -> dict:
+        """One band run in a few numbers, and the stretch of it Fig. 4.3 draws: from the
+        release to at most ``FIG43_PERIODS`` nutation periods, fewer when they would go
+        round the sphere more than ``FIG43_SPAN`` [rad]."""
+        keys = ("case", "theta1", "theta2", "theta_min_measured", "theta_max_measured",
+                "omega3", "phi_dot0", "b_over_a", "u1", "u2", "u3", "nutation_period",
+                "precession_per_period", "u_max_error")
+        out = {k: a[k] for k in keys}
+        out["weierstrass_max_difference"] = a.get("weierstrass_max_difference", math.nan)
+        out["energy_drift"] = float(record.attrs.get("drift_energy", math.nan))
+        # φ̇ = (b − a u)/(1 − u²) (10.26) on the two turning circles
+        out["phi_dot_upper"] = (a["b"] - a["a"] * a["u2"]) / (1.0 - a["u2"] ** 2)
+        out["phi_dot_lower"] = (a["b"] - a["a"] * a["u1"]) / (1.0 - a["u1"] ** 2)
+        dphi, period = abs(a["precession_per_period"]), a["nutation_period"]
+        periods = cls.FIG43_PERIODS
+        if dphi > 0.0:
+            periods = min(periods, max(cls.FIG43_MIN_PERIODS, math.floor(cls.FIG43_SPAN / dphi)))
+        stop = int(np.searchsorted(record.t, periods * period, side="right"))
+        stop = min(max(stop, 2), len(record.t))
+        phi = record["phi"]
+        out["locus_stop"] = stop
+        out["locus_periods"] = periods
+        # the view faces the middle of the stretch: the axis' azimuth is φ − π/2 (4.46)
+        out["view_azimuth"] = float(0.5 * (phi[0] + phi[stop - 1]) - 0.5 * math.pi)
+        return out
+
+    #: Fig. 4.3: nutation periods drawn per locus (at most, at least), and how far round
+    #: the sphere [rad] they may go before fewer are drawn
+    FIG43_PERIODS = 6
+    FIG43_MIN_PERIODS = 2
+    FIG43_SPAN = 1.1 * math.pi
+    #: and the sphere is seen from this height above the horizon [degrees]
+    FIG43_ELEVATION_DEG = 28.0
 
     @staticmethod
     def _conditioning(a) -> str:
@@ -461,26 +680,50 @@ class HeavyTopScene(Scene):
     def default_sections(cls, data):
         names = [s.name for s in cls.sections]
         a = data.analysis
-        if a["case"] != "steady" and data.config.initial.steady is None:
+        band = a.get("band")
+        if band is None or band["case"] != "all":
+            names.remove("fig4_3")
+        else:  # Fig. 4.3 shows the three loci; the sections that follow describe loops
+            for name in ("nutation_locus", "effective_potential", "time_series"):
+                names.remove(name)
+        if "weierstrass" not in a:
+            names.remove("weierstrass")  # no nutation: no ℘ to show
+        initial = data.config.get("initial") or {}
+        if a["case"] != "steady" and initial.get("steady") is None:
             names.remove("steady_precession")
         if "sleeping_sweep" not in a:
             names.remove("sleeping_sweep")
-        if a["case"] == "sleeping":
+        if a["case"] == "sleeping" and "effective_potential" in names:
             names.remove("effective_potential")  # V'(θ) is flat-infinite at θ = 0 with b = a
         return names
 
     @classmethod
     def headline(cls, data):
-        p, ini = data.config.params, data.config.initial
+        p = data.config.params
         a = data.analysis
-        facts = [
-            ("parameters", f"I1 = {fmt(p.I1)} kg m², I3 = {fmt(p.I3)} kg m², "
-                           f"M g l = {fmt(p.Mgl)} J"),
-            ("initial state", f"θ0 = {fmt(ini.theta)} rad, θ̇0 = {fmt(ini.theta_dot)} rad/s, "
-                              f"φ̇0 = {fmt(a['phi_dot0'])} rad/s, ω3 = {fmt(ini.omega3)} rad/s"),
-            ("case", f"{a['case']} (a = {fmt(a['a'])}, b = {fmt(a['b'])}, "
-                     f"b/a = {fmt(a['b_over_a'])}; u1 = {fmt(a['u1'])}, u2 = {fmt(a['u2'])})"),
-        ]
+        band = a.get("band")
+        facts = [("parameters", f"I1 = {fmt(p.I1)} kg m², I3 = {fmt(p.I3)} kg m², "
+                                f"M g l = {fmt(p.Mgl)} J")]
+        if band is not None:
+            facts.append(("band asked for", f"θmin = {fmt(band['theta_min'])} rad, θmax = "
+                          f"{fmt(band['theta_max'])} rad, case = {band['case']}"))
+            for name in [n for n in (*BAND_CASES, "main") if n in band["runs"]]:
+                run = band["runs"][name]
+                label = "released on θmin" if name == "main" else f"{name}: released on θmin"
+                facts.append((label, f"θ̇0 = 0, φ̇0 = {fmt(run['phi_dot0'])} rad/s, ω3 = "
+                                     f"{fmt(run['omega3'])} rad/s → {run['case']}, θ1 − θmin = "
+                              f"{fmt_err(run['theta1'] - band['theta_min'])}, θ2 − θmax = "
+                              f"{fmt_err(run['theta2'] - band['theta_max'])}"))
+            if band["case"] == "all":
+                facts.append(("sections below Fig. 4.3", "the loops run (/runs/main is "
+                                                         "/runs/loops)"))
+        else:
+            facts.append(("initial state", f"θ0 = {fmt(a['theta0'])} rad, θ̇0 = "
+                          f"{fmt(a['theta_dot0'])} rad/s, φ̇0 = {fmt(a['phi_dot0'])} rad/s, "
+                          f"ω3 = {fmt(a['omega3'])} rad/s"))
+        facts.append(("case", f"{a['case']} (a = {fmt(a['a'])}, b = {fmt(a['b'])}, "
+                              f"b/a = {fmt(a['b_over_a'])}; u1 = {fmt(a['u1'])}, "
+                              f"u2 = {fmt(a['u2'])})"))
         if math.isfinite(a["nutation_period"]):
             extra = " (small-oscillation limit, k² = 0)" if a["case"] in ("steady",
                                                                           "sleeping") else ""
@@ -488,9 +731,61 @@ class HeavyTopScene(Scene):
         if math.isfinite(a["precession_per_period"]):
             facts.append(("precession per nutation period",
                           f"{fmt(a['precession_per_period'], 14)} rad"))
+        if "weierstrass_max_difference" in a:
+            facts.append(("℘ form against sn² form", "max |u℘ − u_sn²| = "
+                          f"{fmt_err(a['weierstrass_max_difference'])} on the output grid"))
         facts.append(("sleeping-top threshold", f"ω3 = 2√(I1 M g l)/I3 = "
                       f"{fmt(a['sleeping_threshold_omega3'])} rad/s (10.50)"))
         return facts
+
+    @classmethod
+    def section_fig4_3(cls, data):
+        """The three band runs as Fig. 4.3 is printed, and a table of what each achieved."""
+        band = data.analysis["band"]
+        loci, labels, azimuths = [], [], []
+        for letter, name in zip("abc", BAND_CASES, strict=True):
+            run, summary = data.runs[name], band["runs"][name]
+            stop = int(summary["locus_stop"])
+            loci.append(np.column_stack([run["axis_x"], run["axis_y"], run["axis_z"]])[:stop])
+            labels.append((f"({letter}) {summary['case']}",
+                           f"ω3 = {summary['omega3']:.4g} rad/s, dφ/dt(0) = "
+                           f"{summary['phi_dot0']:.3g} rad/s"))
+            azimuths.append(summary["view_azimuth"])
+        fig = plots.fig43(loci, theta1=band["theta_min"], theta2=band["theta_max"],
+                          labels=labels, azimuths=azimuths,
+                          elevation=math.radians(cls.FIG43_ELEVATION_DEG))
+        rows = []
+        for name in BAND_CASES:
+            r = band["runs"][name]
+            roots = max(abs(r["theta1"] - band["theta_min"]), abs(r["theta2"] - band["theta_max"]))
+            span = max(abs(r["theta_min_measured"] - band["theta_min"]),
+                       abs(r["theta_max_measured"] - band["theta_max"]))
+            rows.append([f"{name} ({r['case']})", fmt(r["omega3"], 5), fmt(r["phi_dot0"], 5),
+                         f"{fmt(r['phi_dot_upper'], 3)} / {fmt(r['phi_dot_lower'], 3)}",
+                         f"{fmt_err(roots)} / {fmt_err(span)}", fmt(r["nutation_period"], 5),
+                         fmt(r["precession_per_period"], 5),
+                         fmt_err(r["weierstrass_max_difference"])])
+        table = Table(
+            caption=f"The three runs on θ ∈ [{fmt(band['theta_min'])}, {fmt(band['theta_max'])}] "
+                    f"rad: the case the solved release gives (classified from b/a and u1, u2), "
+                    f"φ̇ = (b − a cos θ)/sin²θ on the "
+                    f"two circles, how far the roots of f(u) and the extremes of the integrated "
+                    f"θ(t) are from the band (rad), and the ℘ form against the sn² form. "
+                    f"{band['possible_spins'][0].upper()}{band['possible_spins'][1:]}.",
+            header=["run (case)", "ω3 [rad/s]", "φ̇0 [rad/s]", "φ̇ on θ1 / θ2 [rad/s]",
+                    "band error: roots / run", "T [s]", "Δφ [rad]", "max |u℘ − u_sn²|"],
+            rows=rows)
+        periods = ", ".join(f"{band['runs'][n]['locus_periods']}" for n in BAND_CASES)
+        return SectionContent(
+            figures=[cls.figure("fig4_3", fig,
+                                f"The symmetry axis on the unit sphere between the turning "
+                                f"circles θ1 = {fmt(band['theta_min'])} rad and θ2 = "
+                                f"{fmt(band['theta_max'])} rad, seen from "
+                                f"{cls.FIG43_ELEVATION_DEG:g}° above the horizon; dashed: "
+                                f"behind the sphere. Each locus starts on the "
+                                f"upper circle (dot) and runs {periods} nutation periods "
+                                f"(loops, waves, cusps).")],
+            tables=[table])
 
     @classmethod
     def section_nutation_locus(cls, data):
@@ -578,6 +873,42 @@ class HeavyTopScene(Scene):
             tables=[table, table2], notes=notes)
 
     @classmethod
+    def section_weierstrass(cls, data):
+        a = data.analysis
+        wp = a.get("weierstrass")
+        if wp is None:
+            return SectionContent(notes=["No nutation (u1 = u2): the cubic has a double root "
+                                         "and ℘ degenerates; nothing to show."])
+        fig = plots.weierstrass_rectangle(wp["omega"], wp["omega_prime"], wp["x0"], wp["t_end"])
+        rows = [
+            ["u = λ℘ + μ: λ = 4/β", fmt(wp["scale"], 14), ""],
+            ["μ = (u1 + u2 + u3)/3", fmt(wp["shift"], 14), ""],
+            ["g2 = 2(e1² + e2² + e3²)", fmt(wp["g2"], 14), "1/s⁴"],
+            ["g3 = 4 e1 e2 e3", fmt(wp["g3"], 14), "1/s⁶"],
+            ["e1 = ℘(ω) = β(u3 − μ)/4", fmt(wp["e1"], 14), "1/s²"],
+            ["e2 = ℘(ω + ω′) = β(u2 − μ)/4", fmt(wp["e2"], 14), "1/s²"],
+            ["e3 = ℘(ω′) = β(u1 − μ)/4", fmt(wp["e3"], 14), "1/s²"],
+            ["ω (real half-period)", fmt(wp["omega"], 14), "s"],
+            ["ω′/i (imaginary half-period)", fmt(wp["omega_prime"], 14), "s"],
+            ["x0: z(0) = x0 + ω′", fmt(wp["x0"], 14), "s"],
+            ["nome q = exp(iπω′/ω)", fmt(wp["nome"], 6), ""],
+        ]
+        table = Table(caption="Invariants, roots and half-periods of ℘ for this top",
+                      header=["quantity", "value", "unit"], rows=rows)
+        return SectionContent(
+            facts=[("max |u℘(t) − u_sn²(t)| on the output grid", fmt_err(wp["max_difference"])),
+                   ("2ω against 4K(k²)/√(β(u3 − u1))",
+                    fmt_err(abs(wp["period"] / a["nutation_period"] - 1.0)))],
+            figures=[cls.figure(
+                "weierstrass", fig,
+                "The period rectangle of ℘ with corners 0, 2ω, 2ω + 2ω′, 2ω′ (double poles of "
+                "℘ at the corners); ℘ is real on its edges and middle lines. The motion is the "
+                "line z = x0 + t + ω′, along which ℘ runs between e3 (u = u1, lower circle) and "
+                "e2 (u = u2, upper circle), one nutation period per 2ω. u℘(t) is stored on the "
+                "output grid as /runs/main/reference/cos_theta_weierstrass.")],
+            tables=[table])
+
+    @classmethod
     def section_effective_potential(cls, data):
         a = data.analysis
         ep = a.get("effective_potential")
@@ -620,7 +951,7 @@ class HeavyTopScene(Scene):
         sr = a["steady_rates"]
         fig = plots.steady_rates(sr["omega3"], sr["slow"], sr["fast"],
                                  omega3_min=sr["omega3_min"],
-                                 omega3_config=data.config.initial.omega3,
+                                 omega3_config=data.analysis["omega3"],
                                  rate_config=a["phi_dot0"], rate_measured=a["mean_phi_dot"])
         table = Table(caption="Steady precession at θ0 (10.45)",
                       header=["root", "φ̇ [rad/s]"],
