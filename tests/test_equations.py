@@ -23,7 +23,7 @@ def _template_equations() -> list[tuple[str, str]]:
 
 
 #: kinds whose prose is being rewritten elsewhere; typeset once that lands
-PENDING = {"heavy_top", "rigid_body"}
+PENDING = {"rigid_body"}
 
 
 def test_no_equation_left_as_plain_text():
