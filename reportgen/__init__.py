@@ -1,3 +1,3 @@
 """reportgen: config-driven simulator and report generator for classical mechanics."""
 
-__version__ = "0.1.0"
+__version__ = "0.2.0"
