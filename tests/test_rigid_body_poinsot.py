@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 
+import h5py
 import numpy as np
 import pytest
 
@@ -155,3 +156,99 @@ def test_asymmetric_herpolhode_is_not_a_circle():
     her = poinsot.poinsot_construction(y[:, :3], y[:, 3:7], np.array([1.0, 2.0, 3.0]))
     rho = np.hypot(her["herpolhode"][:, 0], her["herpolhode"][:, 1])
     assert np.ptp(rho) > 0.1 * np.max(rho)
+
+
+RIGID = """
+kind = "rigid_body"
+[params]
+I1 = {I1}
+I2 = {I2}
+I3 = {I3}
+[initial]
+omega = {omega}
+attitude = {attitude}
+[run]
+t_end = 20.0
+samples = 801
+study = false
+{report}
+"""
+
+
+def rigid(I=(1.0, 2.0, 3.0), omega="[0.01, 2.0, 0.01]", report=""):
+    attitude = "[" + ", ".join(repr(float(q)) for q in ATTITUDE) + "]"
+    return RIGID.format(I1=I[0], I2=I[1], I3=I[2], omega=omega, attitude=attitude,
+                        report=report)
+
+
+def test_scene_archives_and_shows_the_poinsot_geometry(tmp_path, write_config, cli):
+    """The archive holds every curve the two sections draw, the run's ω stays on the stored
+    ellipsoid and L² surface, the tip of x on the stored plane; the report shows both
+    sections, one titled with the inertia ellipsoid, and keeps the L-sphere view."""
+    code, out, err = cli("run", write_config("dz", rigid()), "--out", tmp_path / "o",
+                         "--jobs", 1, "--format", "html")
+    assert code == 0, out + err
+    with h5py.File(tmp_path / "o" / "dz" / "run.h5") as f:
+        y = f["runs/main/y"][()]
+        rtol = f["runs/main"].attrs["rtol"]
+        a = f["analysis"]
+        I = a["principal_moments"][()]
+        p = a["polhode_ellipsoid"]
+        T2, L2 = p.attrs["twice_energy"], p.attrs["L_squared"]
+        assert math.isclose(T2, a.attrs["twice_energy"], rel_tol=1e-15)
+        omega = y[:, :3]
+        assert np.max(np.abs(np.sum(I * omega**2, axis=1) / T2 - 1.0)) < 20 * rtol
+        assert np.max(np.abs(np.sum((I * omega) ** 2, axis=1) / L2 - 1.0)) < 20 * rtol
+        assert p["family"].shape == (16, 121, 3) and p["separatrices"].shape == (2, 121, 3)
+        assert p.attrs["circled_axis"] == 3 and 0 < p.attrs["separatrix_offset"] < 1e-4
+        c = a["poinsot"]
+        her = c["herpolhode"][()]
+        assert her.shape == (801, 3) and c["polhode"].shape == (801, 3)
+        d = c.attrs["plane_distance"]
+        assert math.isclose(d, math.sqrt(T2 / L2), rel_tol=1e-14)
+        assert np.max(np.abs(her[:, 2] + d)) == c.attrs["plane_distance_max_error"] < 20 * rtol
+        assert "herpolhode" not in a  # the old ω-unit copy is gone: one set of curves
+    html = (tmp_path / "o" / "dz" / "report.html").read_text()
+    assert "Polhodes on the inertia ellipsoid" in html
+    assert "Poinsot&#39;s construction" in html or "Poinsot's construction" in html
+    assert "Polhodes on the angular-momentum sphere" in html
+    figures = {p.name for p in (tmp_path / "o" / "dz" / "figures").glob("*.svg")}
+    assert {"polhode_ellipsoid-polhode_ellipsoid.svg", "herpolhode-poinsot.svg",
+            "polhodes-polhodes.svg"} <= figures
+
+
+def test_symmetric_scene_checks_the_herpolhode_radius(tmp_path, write_config, cli):
+    code, out, err = cli("run", write_config("sym", rigid(I=(1.0, 1.0, 1.5),
+                                                          omega="[0.3, 0.0, 2.0]")),
+                         "--out", tmp_path / "o", "--jobs", 1, "--format", "html")
+    assert code == 0, out + err
+    with h5py.File(tmp_path / "o" / "sym" / "run.h5") as f:
+        c = f["analysis/poinsot"]
+        # Landau & Lifshitz §33: |I3 − I⊥| ω3 ω⊥ / (|L| √(2T)) with ω⊥ = 0.3, ω3 = 2
+        T2, L = 0.09 + 1.5 * 4.0, math.hypot(0.3, 3.0)
+        r = 0.5 * 2.0 * 0.3 / (L * math.sqrt(T2))
+        assert math.isclose(c.attrs["herpolhode_radius"], r, rel_tol=1e-14)
+        her = c["herpolhode"][()]
+        assert np.max(np.abs(np.hypot(her[:, 0], her[:, 1]) - r)) < 1e-10 * r
+        assert f["analysis/polhode_ellipsoid/separatrices"].shape[0] == 0
+    html = (tmp_path / "o" / "sym" / "report.html").read_text()
+    assert "herpolhode radius (symmetric body)" in html
+
+
+def test_poinsot_data_only_when_its_sections_are_shown(tmp_path, write_config, cli):
+    """Promise 3: asked for other sections only, the archive holds no Poinsot curves; a
+    spherical body (constant ω) gets neither section."""
+    text = rigid(report='[report]\nsections = ["omega", "polhodes"]')
+    code, out, err = cli("run", write_config("few", text), "--out", tmp_path / "o",
+                         "--jobs", 1, "--format", "html")
+    assert code == 0, out + err
+    with h5py.File(tmp_path / "o" / "few" / "run.h5") as f:
+        assert "poinsot" not in f["analysis"] and "polhode_ellipsoid" not in f["analysis"]
+    code, out, err = cli("run", write_config("ball", rigid(I=(2.0, 2.0, 2.0))), "--out",
+                         tmp_path / "o", "--jobs", 1, "--format", "html")
+    assert code == 0, out + err
+    with h5py.File(tmp_path / "o" / "ball" / "run.h5") as f:
+        assert "poinsot" not in f["analysis"] and "polhode_ellipsoid" not in f["analysis"]
+    html = (tmp_path / "o" / "ball" / "report.html").read_text()
+    assert "Polhodes on the inertia ellipsoid" not in html
+    assert "Poinsot" not in html and "Polhodes on the angular-momentum sphere" not in html
