@@ -26,12 +26,13 @@ def polhodes(family, separatrices, track, *, ax=None):
     separatrices : ndarray, shape (S, n, 3) — S = 2, or 0 for a symmetric body.
     track : ndarray, shape (N, 3) — the run's body-frame L/|L|.
     """
-    fig, ax = new_figure(ax, figsize=(6.4, 6.0), projection="3d")
+    fig, ax = _figure_3d(ax)
     u, v = np.mgrid[0:2 * np.pi:40j, 0:np.pi:20j]
     ax.plot_wireframe(np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v), color=CONTEXT,
                       linewidth=0.3, alpha=0.35, rasterized=True)
-    for c in family:
-        ax.plot(c[:, 0], c[:, 1], c[:, 2], color=CONTEXT, linewidth=0.9)
+    for k, c in enumerate(family):
+        ax.plot(c[:, 0], c[:, 1], c[:, 2], color=CONTEXT, linewidth=0.9,
+                label="polhodes of other energies (same |L|)" if k == 0 else None)
     for k, c in enumerate(separatrices):
         ax.plot(c[:, 0], c[:, 1], c[:, 2], color=SEPARATRIX, linewidth=1.6,
                 label="separatrices (2E = L²/I2)" if k == 0 else None)
@@ -39,12 +40,7 @@ def polhodes(family, separatrices, track, *, ax=None):
     ax.plot(track[:, 0], track[:, 1], track[:, 2], color=HIGHLIGHT, linewidth=2.4,
             label="this scene's polhode")
     ax.scatter(*track[0], color=HIGHLIGHT, s=30, depthshade=False)
-    for k in range(3):
-        e = np.zeros(3)
-        e[k] = 1.25
-        ax.plot([-e[0], e[0]], [-e[1], e[1]], [-e[2], e[2]], color=AXIS_COLOURS[k],
-                linewidth=1.0, linestyle=":")
-        ax.text(*(1.32 * e / 1.25), f"{k + 1}", color=AXIS_COLOURS[k])
+    _principal_axes_3d(ax, np.diag([1.25, 1.25, 1.25]), ("1", "2", "3"))
     ax.set_xlabel("L₁/|L|")
     ax.set_ylabel("L₂/|L|")
     ax.set_zlabel("L₃/|L|")
@@ -52,6 +48,18 @@ def polhodes(family, separatrices, track, *, ax=None):
     ax.view_init(elev=22, azim=35)
     ax.legend(loc="upper left")
     return fig
+
+
+def _figure_3d(ax=None, figsize=(6.4, 5.6)):
+    """(fig, ax): the given 3-D axes, or a new figure with one 3-D axes in a fixed box (a
+    layout engine would measure every text twice per save) and no grid lines (the curves
+    are the picture; 3-D grid lines cost a quarter of the drawing)."""
+    if ax is None:
+        fig = Figure(figsize=figsize)
+        ax = fig.add_axes((0.04, 0.0, 0.92, 0.92), projection="3d")
+    ax.grid(False)
+    ax.locator_params(nbins=4)
+    return ax.figure, ax
 
 
 def _principal_axes_3d(ax, half_axes, labels):
@@ -70,10 +78,7 @@ def polhodes_on_ellipsoid(surface, semi_axes, family, separatrices, track, *, ax
     family : (K, n, 3) polhodes of a ladder of L² (grey); separatrices : (S, n, 3),
     L² = 2T·I2 (S = 0 for a symmetric body); track : (N, 3) the run's body-frame ω.
     """
-    if ax is None:  # a fixed box: a layout engine would measure every text twice per save
-        fig = Figure(figsize=(6.4, 5.6))
-        ax = fig.add_axes((0.04, 0.0, 0.92, 0.92), projection="3d")
-    fig = ax.figure
+    fig, ax = _figure_3d(ax)
     surface = np.asarray(surface, dtype=float)
     ax.plot_wireframe(surface[..., 0], surface[..., 1], surface[..., 2], color=CONTEXT,
                       linewidth=0.3, alpha=0.45)
@@ -93,7 +98,6 @@ def polhodes_on_ellipsoid(surface, semi_axes, family, separatrices, track, *, ax
     ax.set_xlim(-lim[0], lim[0])
     ax.set_ylim(-lim[1], lim[1])
     ax.set_zlim(-lim[2], lim[2])
-    ax.locator_params(nbins=4)
     # true shape (the same scale on the three axes), shrunk so a tall box keeps its labels
     ax.set_box_aspect(lim, zoom=min(1.0, np.sqrt(max(lim[0], lim[1]) / lim[2])))
     ax.set_xlabel("ω₁ [rad/s]")
