@@ -246,12 +246,14 @@ def test_scene_archive_per_spec(tmp_path, write_config, cli):
         assert a["polhodes/family"].shape == (20, 400, 3)
         assert a["polhodes/separatrices"].shape == (2, 400, 3)
         assert a["polhodes/track"].shape == (801, 3)
-        her = a["herpolhode"]
-        assert her["x"].shape == (801,) and her.attrs["omega_along_L_spread"] < 1e-9
+        poinsot = a["poinsot"]  # tests/test_rigid_body_poinsot.py checks the geometry
+        assert poinsot["herpolhode"].shape == (801, 3)
+        assert poinsot.attrs["plane_distance_max_error"] < 1e-9
+        assert a["polhode_ellipsoid/family"].shape == (16, 121, 3)
         env = a["flip/growth_envelope"][()]
         assert math.isclose(env[0], math.hypot(0.01, 0.01), rel_tol=1e-14)
     html = (tmp_path / "o" / "dz" / "report.html").read_text()
-    assert "Dzhanibekov" in html and "Polhodes" in html
+    assert "Dzhanibekov" in html and "Polhodes on the inertia ellipsoid" in html
     assert "Precession of the symmetric body" not in html  # promise 3
 
 

@@ -1,16 +1,32 @@
-"""Figures of the rigid body: polhodes on the angular-momentum sphere, the herpolhode on the
-invariable plane, the inertia ellipsoid, the intermediate-axis flip.
+"""Figures of the rigid body: polhodes on the angular-momentum sphere and on the inertia
+ellipsoid, Poinsot's construction (the ellipsoid on the invariable plane, the herpolhode),
+the inertia ellipsoid of a body, the intermediate-axis flip.
 
 They draw what they are given: every curve (polhode family, separatrices, ellipsoid
-surface, growth envelope) is computed in :mod:`reportgen.core` and read from the archive."""
+surface, herpolhode, growth envelope) is computed in :mod:`reportgen.core` and read from
+the archive."""
 
 from __future__ import annotations
 
 import numpy as np
+from matplotlib.figure import Figure
 
-from .style import BLUE, CONTEXT, GREEN, HIGHLIGHT, PURPLE, REFERENCE, SEPARATRIX, new_figure
+from .style import (
+    BLUE,
+    CONTEXT,
+    GREEN,
+    HIGHLIGHT,
+    PURPLE,
+    RC,
+    REFERENCE,
+    SEPARATRIX,
+    SKY,
+    new_figure,
+)
 
 AXIS_COLOURS = (BLUE, GREEN, PURPLE)
+#: the herpolhode (the curve in space), apart from the polhode (the curve on the body)
+HERPOLHODE = SKY
 
 
 def polhodes(family, separatrices, track, *, ax=None):
@@ -21,12 +37,13 @@ def polhodes(family, separatrices, track, *, ax=None):
     separatrices : ndarray, shape (S, n, 3) — S = 2, or 0 for a symmetric body.
     track : ndarray, shape (N, 3) — the run's body-frame L/|L|.
     """
-    fig, ax = new_figure(ax, figsize=(6.4, 6.0), projection="3d")
+    fig, ax = _figure_3d(ax)
     u, v = np.mgrid[0:2 * np.pi:40j, 0:np.pi:20j]
     ax.plot_wireframe(np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v), color=CONTEXT,
                       linewidth=0.3, alpha=0.35, rasterized=True)
-    for c in family:
-        ax.plot(c[:, 0], c[:, 1], c[:, 2], color=CONTEXT, linewidth=0.9)
+    for k, c in enumerate(family):
+        ax.plot(c[:, 0], c[:, 1], c[:, 2], color=CONTEXT, linewidth=0.9,
+                label="polhodes of other energies (same |L|)" if k == 0 else None)
     for k, c in enumerate(separatrices):
         ax.plot(c[:, 0], c[:, 1], c[:, 2], color=SEPARATRIX, linewidth=1.6,
                 label="separatrices (2E = L²/I2)" if k == 0 else None)
@@ -34,12 +51,7 @@ def polhodes(family, separatrices, track, *, ax=None):
     ax.plot(track[:, 0], track[:, 1], track[:, 2], color=HIGHLIGHT, linewidth=2.4,
             label="this scene's polhode")
     ax.scatter(*track[0], color=HIGHLIGHT, s=30, depthshade=False)
-    for k in range(3):
-        e = np.zeros(3)
-        e[k] = 1.25
-        ax.plot([-e[0], e[0]], [-e[1], e[1]], [-e[2], e[2]], color=AXIS_COLOURS[k],
-                linewidth=1.0, linestyle=":")
-        ax.text(*(1.32 * e / 1.25), f"{k + 1}", color=AXIS_COLOURS[k])
+    _principal_axes_3d(ax, np.diag([1.25, 1.25, 1.25]), ("1", "2", "3"))
     ax.set_xlabel("L₁/|L|")
     ax.set_ylabel("L₂/|L|")
     ax.set_zlabel("L₃/|L|")
@@ -49,16 +61,128 @@ def polhodes(family, separatrices, track, *, ax=None):
     return fig
 
 
-def herpolhode(x, y, *, ax=None):
-    """The tip of ω in the invariable plane (space frame, perpendicular to L)."""
-    fig, ax = new_figure(ax, figsize=(5.6, 5.2))
-    ax.plot(x, y, color=HIGHLIGHT, linewidth=1.0)
-    ax.plot(x[0], y[0], "o", color=HIGHLIGHT, label="start")
-    ax.plot(0.0, 0.0, "+", color=REFERENCE, markersize=12, label="foot of L")
-    ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel("ω·e₁ in the invariable plane [rad/s]")
-    ax.set_ylabel("ω·e₂ in the invariable plane [rad/s]")
-    ax.legend(loc="upper right")
+def _figure_3d(ax=None, figsize=(6.4, 5.6)):
+    """(fig, ax): the given 3-D axes, or a new figure with one 3-D axes in a fixed box (a
+    layout engine would measure every text twice per save) and no grid lines (the curves
+    are the picture; 3-D grid lines cost a quarter of the drawing)."""
+    if ax is None:
+        fig = Figure(figsize=figsize)
+        ax = fig.add_axes((0.04, 0.0, 0.92, 0.92), projection="3d")
+    ax.grid(False)
+    ax.locator_params(nbins=4)
+    return ax.figure, ax
+
+
+def _principal_axes_3d(ax, half_axes, labels):
+    """Dotted lines along the body axes, ±``half_axes[:, k]``, labelled at the + end."""
+    for k in range(3):
+        d = np.asarray(half_axes)[:, k]
+        ax.plot([-d[0], d[0]], [-d[1], d[1]], [-d[2], d[2]], color=AXIS_COLOURS[k],
+                linewidth=1.0, linestyle=":")
+        ax.text(*(1.08 * d), labels[k], color=AXIS_COLOURS[k])
+
+
+def polhodes_on_ellipsoid(surface, semi_axes, family, separatrices, track, *, ax=None):
+    """Polhodes on the energy ellipsoid ω·Iω = 2T (body frame, [rad/s]).
+
+    surface : (n_u, n_v, 3) the ellipsoid; semi_axes : (3,) √(2T/I_k);
+    family : (K, n, 3) polhodes of a ladder of L² (grey); separatrices : (S, n, 3),
+    L² = 2T·I2 (S = 0 for a symmetric body); track : (N, 3) the run's body-frame ω.
+    """
+    fig, ax = _figure_3d(ax)
+    surface = np.asarray(surface, dtype=float)
+    ax.plot_wireframe(surface[..., 0], surface[..., 1], surface[..., 2], color=CONTEXT,
+                      linewidth=0.3, alpha=0.45)
+    for k, c in enumerate(family):
+        ax.plot(c[:, 0], c[:, 1], c[:, 2], color=CONTEXT, linewidth=0.9,
+                label="polhodes of other L² (same 2T)" if k == 0 else None)
+    for k, c in enumerate(separatrices):
+        ax.plot(c[:, 0], c[:, 1], c[:, 2], color=SEPARATRIX, linewidth=1.6,
+                label="separatrices (L² = 2T·I_mid)" if k == 0 else None)
+    track = np.asarray(track, dtype=float)
+    ax.plot(track[:, 0], track[:, 1], track[:, 2], color=HIGHLIGHT, linewidth=2.4,
+            label="this scene's polhode")
+    ax.scatter(*track[0], color=HIGHLIGHT, s=30, depthshade=False)
+    semi = np.asarray(semi_axes, dtype=float)
+    _principal_axes_3d(ax, np.diag(1.25 * semi), ("1", "2", "3"))
+    lim = 1.15 * semi
+    ax.set_xlim(-lim[0], lim[0])
+    ax.set_ylim(-lim[1], lim[1])
+    ax.set_zlim(-lim[2], lim[2])
+    # true shape (the same scale on the three axes), shrunk so a tall box keeps its labels
+    ax.set_box_aspect(lim, zoom=min(1.0, np.sqrt(max(lim[0], lim[1]) / lim[2])))
+    ax.set_xlabel("ω₁ [rad/s]")
+    ax.set_ylabel("ω₂ [rad/s]")
+    ax.set_zlabel("ω₃ [rad/s]")
+    ax.view_init(elev=22, azim=35)
+    ax.legend(loc="upper left")
+    return fig
+
+
+def poinsot(surface, half_axes, polhode, herpolhode, plane_height, *, circle_radius=None,
+            figsize=(8.4, 4.6)):
+    """Poinsot's construction, in the frame (e1, e2, e3 = −L/|L|) of the invariable plane,
+    units of x = ω/√(2T) [1/√(kg m²)]: left, the inertia ellipsoid resting on the plane
+    z = ``plane_height`` with the polhode on it and the herpolhode on the plane; right,
+    the plane seen along L.
+
+    surface : (n_u, n_v, 3) the ellipsoid at the drawn instant; half_axes : (3, 3) column
+    k the semi-axis vector of body axis k; polhode : (N, 3) the body track carried by the
+    attitude of that instant; herpolhode : (N, 3) the space-frame tip of x, ending at the
+    contact point; circle_radius : closed-form herpolhode radius (symmetric body), drawn
+    dashed on the plane view.
+    """
+    # fixed panel boxes: a layout engine would measure every text twice per save
+    fig = Figure(figsize=figsize)
+    ax3 = fig.add_axes((0.0, 0.13, 0.52, 0.78), projection="3d", computed_zorder=False)
+    ax2 = fig.add_axes((0.635, 0.24, 0.345, 0.64))
+    surface = np.asarray(surface, dtype=float)
+    her = np.asarray(herpolhode, dtype=float)
+    pol = np.asarray(polhode, dtype=float)
+    reach = max(float(np.max(np.hypot(her[:, 0], her[:, 1]))),
+                float(np.max(np.hypot(surface[..., 0], surface[..., 1]))))
+    h = 1.1 * reach
+    ax3.plot_surface(np.array([[-h, h], [-h, h]]), np.array([[-h, -h], [h, h]]),
+                     np.full((2, 2), plane_height), color=REFERENCE, alpha=0.08,
+                     edgecolor=REFERENCE, linewidth=0.6, zorder=0)
+    ax3.plot_wireframe(surface[..., 0], surface[..., 1], surface[..., 2], color=CONTEXT,
+                       linewidth=0.3, alpha=0.6, zorder=1)
+    ax3.plot(her[:, 0], her[:, 1], her[:, 2], color=HERPOLHODE, linewidth=1.2, zorder=2,
+             label="herpolhode (on the plane)")
+    ax3.plot([0.0, 0.0], [0.0, 0.0], [0.0, plane_height], color="k", linewidth=1.0,
+             linestyle="--", zorder=3, label="L (normal to the plane)")
+    for k in range(3):
+        d = np.asarray(half_axes)[:, k]
+        ax3.plot([-d[0], d[0]], [-d[1], d[1]], [-d[2], d[2]], color=AXIS_COLOURS[k],
+                 linewidth=1.0, linestyle=":", zorder=3)
+    ax3.plot(pol[:, 0], pol[:, 1], pol[:, 2], color=HIGHLIGHT, linewidth=1.8, zorder=4,
+             label="polhode (on the body)")
+    ax3.scatter(*her[-1], color="k", s=18, depthshade=False, zorder=5)
+    ax3.set_xlim(-h, h)
+    ax3.set_ylim(-h, h)
+    top = float(np.max(surface[..., 2]))
+    ax3.set_zlim(plane_height, top)
+    ax3.set_box_aspect((2 * h, 2 * h, top - plane_height), zoom=1.15)
+    ax3.set_axis_off()
+    ax3.view_init(elev=16, azim=-55)
+    ax2.plot(her[:, 0], her[:, 1], color=HERPOLHODE, linewidth=1.6)
+    if circle_radius is not None:  # dashed over the herpolhode: it shows where they part
+        phi = np.linspace(0.0, 2 * np.pi, 181)
+        ax2.plot(circle_radius * np.cos(phi), circle_radius * np.sin(phi), color=REFERENCE,
+                 linestyle=(0, (4, 3)), linewidth=1.0, label="closed-form circle")
+    ax2.plot(her[0, 0], her[0, 1], "o", color=HERPOLHODE, markersize=5, label="start")
+    ax2.plot(her[-1, 0], her[-1, 1], "o", color="k", markersize=4, label="contact at t_end")
+    ax2.plot(0.0, 0.0, "+", color="k", markersize=12, label="foot of L")
+    ax2.set_aspect("equal", adjustable="datalim")
+    ax2.set_xlabel("x·e₁ [1/√(kg m²)]")
+    ax2.set_ylabel("x·e₂ [1/√(kg m²)]")
+    for x, title in ((0.26, "inertia ellipsoid on the invariable plane"),
+                     (0.8, "herpolhode: the plane seen along L")):
+        fig.text(x, 0.93, title, ha="center", fontsize=RC["axes.titlesize"])
+    handles, labels = ax3.get_legend_handles_labels()
+    more = ax2.get_legend_handles_labels()
+    fig.legend(handles + more[0], labels + more[1], loc="lower center", ncol=4,
+               fontsize=9, frameon=False)
     return fig
 
 

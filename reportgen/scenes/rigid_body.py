@@ -2,8 +2,9 @@ r"""``rigid_body``: the torque-free rigid body (lecture notes §8–10; textbook
 
 Euler's equations (10.5) with the attitude quaternion, checked against the exact
 solution in Jacobi elliptic functions (both branches L² ≷ 2E·I2) or, for a symmetric
-body, the precession (10.9)–(10.10); polhodes on the angular-momentum sphere with
-the separatrices, the herpolhode on the invariable plane, the stability of rotation
+body, the precession (10.9)–(10.10); polhodes on the angular-momentum sphere and on
+the inertia ellipsoid (10.17) with the separatrices, Poinsot's construction (the
+ellipsoid rolling on the invariable plane, the herpolhode), the stability of rotation
 about each principal axis (10.12)–(10.14) with the Dzhanibekov flip, and a geometric
 splitting integrator next to the general-purpose ones.
 
@@ -35,6 +36,7 @@ inertia_core = lazy_module("reportgen.core.inertia")
 core = lazy_module("reportgen.core.models.rigid_body")
 study_core = lazy_module("reportgen.core.study")
 splitting = lazy_module("reportgen.core.models.rigid_body_splitting")
+poinsot = lazy_module("reportgen.core.models.rigid_body_poinsot")
 common_plots = lazy_module("reportgen.plots.common")
 plots = lazy_module("reportgen.plots.rigid_body")
 
@@ -137,7 +139,8 @@ def body_moments(config: RigidBodyConfig) -> np.ndarray:
 class RigidBodyScene(Scene):
     kind = "rigid_body"
     order = 60
-    computed_on_request = ("error_vs_runtime", "geometric_integrator")
+    computed_on_request = ("error_vs_runtime", "geometric_integrator", "polhode_ellipsoid",
+                           "herpolhode")
     summary = "torque-free rigid body: Euler's equations, attitude, polhodes, axis stability"
     Config = RigidBodyConfig
     presets = {
@@ -164,7 +167,9 @@ class RigidBodyScene(Scene):
     sections = (
         Section("omega", "Angular velocity against the exact solution", integrates=True),
         Section("polhodes", "Polhodes on the angular-momentum sphere", integrates=True),
-        Section("herpolhode", "Herpolhode on the invariable plane", integrates=True),
+        Section("polhode_ellipsoid", "Polhodes on the inertia ellipsoid", integrates=True),
+        Section("herpolhode", "Poinsot's construction: the inertia ellipsoid rolls on the "
+                              "invariable plane", integrates=True),
         Section("stability", "Stability of rotation about the principal axes", integrates=True),
         Section("symmetric_precession", "Precession of the symmetric body", integrates=True),
         Section("geometric_integrator", "Splitting integrator (free rotations about the axes)",
@@ -192,7 +197,9 @@ class RigidBodyScene(Scene):
         if "symmetric" not in data.analysis:
             names.remove("symmetric_precession")
         if data.analysis.get("spherical", False):
-            names.remove("polhodes")  # every direction is a principal axis: no polhodes
+            # every direction is a principal axis: ω is constant, no polhodes to draw
+            for name in ("polhodes", "polhode_ellipsoid", "herpolhode"):
+                names.remove(name)
         if "splitting" not in data.runs:
             names.remove("geometric_integrator")
         return names
@@ -308,14 +315,10 @@ class RigidBodyScene(Scene):
         analysis["reference"] = ref_source
         main.reference = {c: exact[:, k] for k, c in enumerate(core.COLUMNS[:3])}
         main.attrs["reference_label"] = ref_source
-        # Poinsot's geometry: polhodes on the L-sphere, herpolhode on the invariable plane
+        # polhodes on the L-sphere
         analysis["polhodes"] = {"family": core.polhode_family(I),
                                 "separatrices": core.polhode_separatrices(I),
                                 "track": core.polhode_track(main.y[:, :3], I)}
-        her = core.herpolhode(main.y[:, :3], main.y[:, 3:7], I)
-        analysis["herpolhode"] = {"x": her["x"], "y": her["y"],
-                                  "omega_along_L": float(her["along_L"][0]),
-                                  "omega_along_L_spread": float(np.ptp(her["along_L"]))}
         for k in range(3):
             results.checks.append(Check(f"ω{k + 1}(t_end)", float(main.y[-1, k]),
                                         float(exact[-1, k]), "rad/s", ref_source, scale=spin))
@@ -344,6 +347,7 @@ class RigidBodyScene(Scene):
                 results.checks.append(Check("body-frame precession rate Ω",
                                             sym["Omega_measured"], sym["Omega"], "rad/s",
                                             "Ω = (I1 − I3) ω3 / I1, (10.10)"))
+        self._poinsot_geometry(analysis, results, main)
         if self.wants_splitting():
             split = self._splitting_run(y0, t, scales)
             split.reference = dict(main.reference)
@@ -357,6 +361,33 @@ class RigidBodyScene(Scene):
         if results.study is not None and len(results.study):
             results.study = self._splitting_study(results.study, model, y0, t_study)
         return results
+
+    def _poinsot_geometry(self, analysis, results, main) -> None:
+        """Polhodes on the inertia ellipsoid and Poinsot's construction, each only if its
+        section is shown (not for a spherical body, whose ω is constant)."""
+        if self.spherical:
+            return
+        I = self.moments
+        if self.wants_section("polhode_ellipsoid"):
+            analysis["polhode_ellipsoid"] = poinsot.polhodes_on_ellipsoid(I, main.y[0, :3])
+        if not self.wants_section("herpolhode"):
+            return
+        c = poinsot.poinsot_construction(main.y[:, :3], main.y[:, 3:7], I)
+        height = c["herpolhode"][:, 2]
+        c["plane_distance"] = -c["plane_height"]
+        c["plane_distance_max_error"] = float(np.max(np.abs(height - c["plane_height"])))
+        if self.symmetric is not None:
+            axis, _ = self.symmetric
+            r = poinsot.symmetric_herpolhode_radius(main.y[0, :3], I, axis)
+            measured = np.hypot(c["herpolhode"][:, 0], c["herpolhode"][:, 1])
+            worst = float(measured[np.argmax(np.abs(measured - r))])
+            c["herpolhode_radius"] = r
+            c["herpolhode_radius_max_error"] = abs(worst - r)
+            results.checks.append(Check(
+                "herpolhode radius (symmetric body), worst sample", worst, r, "1/√(kg m²)",
+                "|I3 − I⊥| |ω3| ω⊥ / (|L| √(2T)) (Landau & Lifshitz §33)",
+                scale=c["plane_distance"]))
+        analysis["poinsot"] = c
 
     def _splitting_run(self, y0, t, scales) -> RunRecord:
         I = self.moments
@@ -448,14 +479,59 @@ class RigidBodyScene(Scene):
             "separatrices through the intermediate axis; red: this scene.")])
 
     @classmethod
-    def section_herpolhode(cls, data):
-        h = data.analysis["herpolhode"]
-        fig = plots.herpolhode(h["x"], h["y"])
+    def section_polhode_ellipsoid(cls, data):
+        p = data.analysis.get("polhode_ellipsoid")
+        if p is None:
+            return SectionContent(notes=["The polhodes on the inertia ellipsoid were not "
+                                         "computed for this archive (a spherical body, or the "
+                                         "section was not asked for when it was simulated)."])
+        run = data.runs["main"]
+        fig = plots.polhodes_on_ellipsoid(p["surface"], p["semi_axes"], p["family"],
+                                          p["separatrices"], run.y[:, :3])
+        side = int(p["circled_axis"])
+        facts = [("2T, L²", f"{fmt(float(p['twice_energy']))} J, "
+                            f"{fmt(float(p['L_squared']))} (kg m²/s)²"),
+                 ("(L² − 2T·I_mid)/(2T·I_mid)",
+                  f"{fmt(float(p['separatrix_offset']), 4)}: "
+                  + (f"the polhode circles axis {side}" if side else "on the separatrix"))]
         return SectionContent(
-            figures=[cls.figure("herpolhode", fig, "Herpolhode: the tip of ω (space frame) "
-                                "rolling on the invariable plane perpendicular to L.")],
-            facts=[("ω·L/|L| = 2T/|L|", f"{fmt(float(h['omega_along_L']))} rad/s, spread over "
-                                         f"the run {fmt_err(h['omega_along_L_spread'])}")])
+            figures=[cls.figure(
+                "polhode_ellipsoid", fig,
+                "Polhodes on the energy ellipsoid ω·Iω = 2T (the inertia ellipsoid scaled by "
+                "√(2T)), body frame: each is its intersection with ω·I²ω = L². Grey: a ladder "
+                "of L² between 2T·I_min and 2T·I_max; orange: the separatrices L² = 2T·I_mid; "
+                "red: ω of this scene as integrated.")],
+            facts=facts)
+
+    @classmethod
+    def section_herpolhode(cls, data):
+        c = data.analysis.get("poinsot")
+        if c is None:
+            return SectionContent(notes=["Poinsot's construction was not computed for this "
+                                         "archive (a spherical body, or the section was not "
+                                         "asked for when it was simulated)."])
+        radius = c.get("herpolhode_radius")
+        fig = plots.poinsot(c["surface"], c["axes"], c["polhode"], c["herpolhode"],
+                            float(c["plane_height"]),
+                            circle_radius=None if radius is None else float(radius))
+        d = float(c["plane_distance"])
+        facts = [("invariable plane at √(2T)/|L|", f"{fmt(d)} 1/√(kg m²)"),
+                 ("tip of x off the plane", f"{fmt_err(float(c['plane_distance_max_error']))}"
+                                            " 1/√(kg m²) at most over the run")]
+        if radius is not None:
+            facts.append(("herpolhode radius (symmetric body)",
+                          f"{fmt(float(radius))} 1/√(kg m²) closed form; the run deviates by "
+                          f"{fmt_err(float(c['herpolhode_radius_max_error']))} at most"))
+        t = data.runs["main"].t
+        caption = ("Poinsot's construction, x = ω/√(2T) [1/√(kg m²)], seen with L pointing "
+                   "down: the inertia ellipsoid x·Ix = 1 at t = "
+                   f"{fmt(float(t[int(c['contact_index'])]), 4)} s, resting on the invariable "
+                   "plane at the tip of x; red, the polhode on the body; teal, the herpolhode "
+                   "the contact point has traced on the plane since t = 0 (right: the plane "
+                   "seen along L).")
+        if radius is not None:
+            caption += " Dashed: the closed-form circle of the symmetric body."
+        return SectionContent(figures=[cls.figure("poinsot", fig, caption)], facts=facts)
 
     @classmethod
     def section_stability(cls, data):
