@@ -303,15 +303,13 @@ class HeavyTopScene(Scene):
         ]
 
     #: ℘ (exercise 4.10; /analysis weierstrass_max_difference) is computed for every
-    #: nutating top except in a sleeping-top scene (one with a [sleeping] sweep, which is
-    #: about its threshold), unless its [report] sections name it
-    computed_on_request = ("error_vs_runtime", "weierstrass")
+    #: nutating top (3 ms), the tilted sleeping tops included; a sleeping-top scene (one
+    #: with a [sleeping] sweep, which is about its threshold) shows its section only when
+    #: its [report] sections name it
+    computed_on_request = ("error_vs_runtime",)
 
     def computes(self, name: str) -> bool:
-        if name == "weierstrass":
-            asked = self.config.report.sections
-            return self.config.sleeping is None or (asked is not None and name in asked)
-        return super().computes(name)
+        return name == "weierstrass" or super().computes(name)
 
     #: f(u) is drawn around [u1, u2] alone when u2 − u1 is less than this fraction of the
     #: range [−1, u3] (else the motion's interval is a sliver)
@@ -686,8 +684,8 @@ class HeavyTopScene(Scene):
         else:  # Fig. 4.3 shows the three loci; the sections that follow describe loops
             for name in ("nutation_locus", "effective_potential", "time_series"):
                 names.remove(name)
-        if "weierstrass" not in a:
-            names.remove("weierstrass")  # no nutation: no ℘ to show
+        if "weierstrass" not in a or "sleeping_sweep" in a:
+            names.remove("weierstrass")  # no nutation, or a scene about the threshold
         initial = data.config.get("initial") or {}
         if a["case"] != "steady" and initial.get("steady") is None:
             names.remove("steady_precession")
