@@ -56,7 +56,16 @@ def environment() -> jinja2.Environment:
         _ENV.filters["num"] = fmt
         _ENV.filters["err"] = fmt_err
         _ENV.filters["eq"] = equation_html  # {% filter eq %}TeX{% endfilter %}
+        _ENV.filters["cell"] = table_cell
     return _ENV
+
+
+def table_cell(value) -> Markup:
+    """A table cell that may wrap only before a parenthesis: "5.1e-12 (rtol 1e-12)" keeps
+    its number and its note whole (a minus sign or a unit is never a line break), yet a
+    wide table still fits the page."""
+    parts = re.split(r" (?=\()", str(value))
+    return Markup(" ").join(Markup('<span class="nw">{}</span>').format(p) for p in parts)
 
 
 # ------------------------------------------------------------------- figures
