@@ -117,17 +117,17 @@ def export_figures(archive: Path, out_dir: Path, *, size: Size = SIZES["report"]
     data = read_archive(Path(archive))
     scene = kind_of_archive(data)
     written: list[Path] = []
-    matched = 0
+    seen: list[str] = []
     out_dir = Path(out_dir)
-    out_dir.mkdir(parents=True, exist_ok=True)
     for section in scene.chosen_sections(data):
         content = getattr(scene, f"section_{section.name}")(data)
         for spec in content.figures:
             fig_id = f"{section.name}-{spec.name}"
+            seen.append(fig_id)
             if only and not any(fnmatch.fnmatch(fig_id, p) for p in only):
                 spec.figure.clear()
                 continue
-            matched += 1
+            out_dir.mkdir(parents=True, exist_ok=True)
             fig = spec.figure
             fig.set_size_inches(*size.inches(tuple(fig.get_size_inches())))
             _scale_text(fig, size.text_scale)
@@ -138,26 +138,10 @@ def export_figures(archive: Path, out_dir: Path, *, size: Size = SIZES["report"]
                 if progress is not None:
                     progress(target)
             fig.clear()
-    if only and not matched:
+    if only and not written:
         raise UsageError(f"--only {' '.join(only)}: no figure of {archive} matches; its "
-                         f"figures are: {', '.join(figure_ids(archive)) or 'none'}")
+                         f"figures are: {', '.join(seen) or 'none'}")
     return written
-
-
-def figure_ids(archive: Path) -> list[str]:
-    """The ids of the figures a report of ``archive`` draws (drawn, then dropped)."""
-    from .archive import read_archive
-    from .plots import style  # noqa: F401
-    from .report import kind_of_archive
-
-    data = read_archive(Path(archive))
-    scene = kind_of_archive(data)
-    ids = []
-    for section in scene.chosen_sections(data):
-        for spec in getattr(scene, f"section_{section.name}")(data).figures:
-            ids.append(f"{section.name}-{spec.name}")
-            spec.figure.clear()
-    return ids
 
 
 def _save(fig, fig_id: str, fmt: str, dpi: int) -> bytes:
