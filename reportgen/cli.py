@@ -49,7 +49,7 @@ def _dpi(text: str) -> int:
     return value
 
 
-def _positive(option: str):
+def _positive(option: str, what: str = "a positive number"):
     """An argparse type: a positive, finite number for ``option``."""
 
     def parse(text: str) -> float:
@@ -58,7 +58,7 @@ def _positive(option: str):
         except ValueError:
             value = -1.0
         if not value > 0 or value == float("inf"):
-            raise argparse.ArgumentTypeError(f"{option} must be a positive number (got {text!r})")
+            raise argparse.ArgumentTypeError(f"{option} must be {what} (got {text!r})")
         return value
 
     return parse
@@ -66,18 +66,7 @@ def _positive(option: str):
 
 def _seconds(option: str):
     """An argparse type: a positive, finite number of seconds for ``option``."""
-
-    def parse(text: str) -> float:
-        try:
-            value = float(text)
-        except ValueError:
-            value = -1.0
-        if not value > 0 or value == float("inf"):
-            raise argparse.ArgumentTypeError(f"{option} must be a positive number of seconds "
-                                             f"(got {text!r})")
-        return value
-
-    return parse
+    return _positive(option, "a positive number of seconds")
 
 
 def _batch_parser(sub, name: str, help_text: str) -> argparse.ArgumentParser:

@@ -18,7 +18,6 @@ a word processor places them at their size; SVG and PDF keep text as text.
 from __future__ import annotations
 
 import fnmatch
-import io
 import re
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -112,7 +111,7 @@ def export_figures(archive: Path, out_dir: Path, *, size: Size = SIZES["report"]
     """
     from .archive import read_archive
     from .plots import style  # noqa: F401 - the figure style, before anything draws
-    from .report import kind_of_archive
+    from .report import figure_bytes, kind_of_archive
 
     data = read_archive(Path(archive))
     scene = kind_of_archive(data)
@@ -133,7 +132,8 @@ def export_figures(archive: Path, out_dir: Path, *, size: Size = SIZES["report"]
             _scale_text(fig, size.text_scale)
             for fmt in formats:
                 target = out_dir / f"{fig_id}.{fmt}"
-                atomic_write(target, _save(fig, fig_id, fmt, dpi))
+                atomic_write(target, figure_bytes(fig, fig_id, fmt,
+                                                    dpi if fmt == "png" else "figure"))
                 written.append(target)
                 if progress is not None:
                     progress(target)
@@ -142,15 +142,3 @@ def export_figures(archive: Path, out_dir: Path, *, size: Size = SIZES["report"]
         raise UsageError(f"--only {' '.join(only)}: no figure of {archive} matches; its "
                          f"figures are: {', '.join(seen) or 'none'}")
     return written
-
-
-def _save(fig, fig_id: str, fmt: str, dpi: int) -> bytes:
-    """One format's bytes, reproducible (no dates; ids salted with the figure's id)."""
-    import matplotlib
-
-    metadata = {"svg": {"Date": None}, "pdf": {"CreationDate": None},
-                "png": {"Software": None}}[fmt]
-    buf = io.BytesIO()
-    with matplotlib.rc_context({"svg.hashsalt": fig_id, "svg.id": fig_id}):
-        fig.savefig(buf, format=fmt, metadata=metadata, dpi=dpi if fmt == "png" else "figure")
-    return buf.getvalue()

@@ -97,19 +97,26 @@ def save_figure(spec: FigureSpec, fig_id: str, folder: Path,
     files = {}
     svg_text = ""
     wanted = ["svg", *(f for f in FIGURE_FORMATS if f in formats and f != "svg")]
-    with matplotlib.rc_context({"svg.hashsalt": fig_id, "svg.id": fig_id}):
-        for fmt_name in wanted:
-            buf = io.BytesIO()
-            metadata = {"svg": {"Date": None}, "pdf": {"CreationDate": None},
-                        "png": {"Software": None}}[fmt_name]
-            spec.figure.savefig(buf, format=fmt_name, metadata=metadata)
-            data = buf.getvalue()
-            name = f"{fig_id}.{fmt_name}"
-            atomic_write(folder / name, data)
-            files[fmt_name] = f"{folder.name}/{name}"
-            if fmt_name == "svg":
-                svg_text = _SVG_HEAD.sub("", data.decode("utf-8"), count=1)
+    for fmt_name in wanted:
+        data = figure_bytes(spec.figure, fig_id, fmt_name)
+        name = f"{fig_id}.{fmt_name}"
+        atomic_write(folder / name, data)
+        files[fmt_name] = f"{folder.name}/{name}"
+        if fmt_name == "svg":
+            svg_text = _SVG_HEAD.sub("", data.decode("utf-8"), count=1)
     return SavedFigure(id=fig_id, caption=spec.caption, svg=Markup(svg_text), files=files)
+
+
+def figure_bytes(figure, fig_id: str, fmt: str, dpi=None) -> bytes:
+    """One file format of a figure, with reproducible bytes: no dates or software names,
+    SVG ids salted with the figure's id (so figures inlined on one page never clash).
+    ``dpi``: None for the style's savefig.dpi, "figure" for the figure's own."""
+    metadata = {"svg": {"Date": None}, "pdf": {"CreationDate": None},
+                "png": {"Software": None}}[fmt]
+    buf = io.BytesIO()
+    with matplotlib.rc_context({"svg.hashsalt": fig_id, "svg.id": fig_id}):
+        figure.savefig(buf, format=fmt, metadata=metadata, dpi=dpi)
+    return buf.getvalue()
 
 
 def figure_formats(data: ArchiveData) -> tuple[str, ...]:

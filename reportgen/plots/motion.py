@@ -242,6 +242,16 @@ def motion_three_body(data, frames: int) -> Motion:
     return _trails(data, frames, bodies, names, "three bodies (x–y plane)")
 
 
+def _phase_plane(ax, x, y, xlabel: str, ylabel: str):
+    """The whole orbit in the phase plane, faint; returns the point that moves along it."""
+    ax.plot(x, y, color=CONTEXT, lw=0.8)
+    point, = ax.plot([], [], "o", color=HIGHLIGHT, ms=7)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title("phase plane")
+    return point
+
+
 def motion_pendulum(data, frames: int) -> Motion:
     run = data.runs["main"]
     theta, theta_dot = _columns(run, "theta", "theta_dot")
@@ -258,11 +268,7 @@ def motion_pendulum(data, frames: int) -> Motion:
     rod, = swing.plot([], [], color=INK, lw=2)
     bob, = swing.plot([], [], "o", color=HIGHLIGHT, ms=14)
     swing.set_title("the pendulum")
-    phase.plot(theta, theta_dot, color=CONTEXT, lw=0.8)
-    point, = phase.plot([], [], "o", color=HIGHLIGHT, ms=7)
-    phase.set_xlabel("θ [rad]")
-    phase.set_ylabel("dθ/dt [rad/s]")
-    phase.set_title("phase plane")
+    point = _phase_plane(phase, theta, theta_dot, "θ [rad]", "dθ/dt [rad/s]")
     clock = _clock(swing, run.t, idx)
 
     def update(k):
@@ -291,12 +297,8 @@ def motion_oscillator(data, frames: int) -> Motion:
     block, = mass.plot([], [], "s", color=HIGHLIGHT, ms=22)
     mass.set_xlabel("q")
     mass.set_title("mass on a spring")
-    phase.plot(q, p, color=CONTEXT, lw=0.8)
-    point, = phase.plot([], [], "o", color=HIGHLIGHT, ms=7)
-    phase.set_xlabel("q")
-    phase.set_ylabel("p")
+    point = _phase_plane(phase, q, p, "q", "p")
     phase.set_aspect("equal", adjustable="datalim")
-    phase.set_title("phase plane")
     clock = _clock(mass, run.t, idx)
     coils = np.linspace(0, 1, 61)
 
