@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import os
+import subprocess
+import sys
 import tempfile
 import textwrap
 from pathlib import Path
@@ -41,6 +43,31 @@ def cli(capsys):
         return code, out, err
 
     return run
+
+
+def without_study(path: Path, target: Path) -> Path:
+    """``target``: the config ``path`` with its error-against-run-time study off and HTML
+    only (what a test of the report's drawing needs, at a fraction of the cost)."""
+    import tomllib
+
+    from reportgen.config import to_toml
+
+    data = tomllib.loads(path.read_text(encoding="utf-8"))
+    if isinstance(data.get("run"), dict):
+        data["run"]["study"] = False
+    data.setdefault("report", {})["formats"] = ["html"]
+    target.write_text(to_toml(data), encoding="utf-8")
+    return target
+
+
+def cli_without_core(*args) -> subprocess.CompletedProcess:
+    """`reportgen args` in a fresh process in which ``reportgen.core`` cannot be imported:
+    whatever it does, it does from an archive alone."""
+    code = ("import sys; sys.modules['reportgen.core'] = None\n"
+            "from reportgen.cli import main\n"
+            f"raise SystemExit(main({[str(a) for a in args]!r}))")
+    return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          timeout=300)
 
 
 PENDULUM = """

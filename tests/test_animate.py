@@ -2,16 +2,13 @@
 
 from __future__ import annotations
 
-import subprocess
-import sys
-import tomllib
 from pathlib import Path
 
 import numpy as np
 import pytest
 from PIL import Image
 
-from reportgen.config import to_toml
+from conftest import cli_without_core, without_study
 from reportgen.plots.motion import MOTIONS, frame_samples
 
 REPO = Path(__file__).resolve().parent.parent
@@ -27,12 +24,7 @@ ONE_PER_KIND = {
 def _run_without_study(stem: str, root: Path) -> Path:
     from reportgen.pipeline import run_scene
 
-    data = tomllib.loads((REPO / "configs" / f"{stem}.toml").read_text(encoding="utf-8"))
-    if isinstance(data.get("run"), dict):
-        data["run"]["study"] = False
-    data.setdefault("report", {})["formats"] = ["html"]
-    config = root / f"{stem}.toml"
-    config.write_text(to_toml(data), encoding="utf-8")
+    config = without_study(REPO / "configs" / f"{stem}.toml", root / f"{stem}.toml")
     outcome = run_scene(str(config), str(root / "out"))
     assert outcome.status != "failed", outcome.message
     return root / "out" / stem / "run.h5"
@@ -56,12 +48,8 @@ def test_each_kind_animates_from_its_archive_alone(kind, tmp_path):
     archive = _run_without_study(ONE_PER_KIND[kind], tmp_path)
     before = archive.read_bytes()
     out = tmp_path / "anim"
-    code = ("import sys; sys.modules['reportgen.core'] = None\n"
-            "from reportgen.cli import main\n"
-            f"raise SystemExit(main(['animate', {str(archive)!r}, '--fps', '10', "
-            f"'--duration', '3', '--dpi', '40', '--format', 'gif', '--out', {str(out)!r}]))")
-    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                          timeout=300)
+    done = cli_without_core("animate", archive, "--fps", "10", "--duration", "3", "--dpi", "40",
+                            "--format", "gif", "--out", out)
     assert done.returncode == 0, done.stderr
     assert "frame 30/30" in done.stderr  # progress shown
     frames = _gif_frames(out / "animation.gif")

@@ -17,6 +17,7 @@ from pathlib import Path
 
 import pytest
 
+from conftest import without_study
 from reportgen.config import to_toml
 from reportgen.pipeline import run_scene
 
@@ -31,15 +32,6 @@ from reportgen.report import build_report
 build_report(Path(sys.argv[1]), formats=("html",), out_dir=Path(sys.argv[2]))
 assert not [m for m in sys.modules if m.startswith("reportgen.core.")], "core was imported"
 """
-
-
-def _without_study(path: Path, target: Path) -> Path:
-    data = tomllib.loads(path.read_text(encoding="utf-8"))
-    if isinstance(data.get("run"), dict):
-        data["run"]["study"] = False
-    data.setdefault("report", {})["formats"] = ["html"]
-    target.write_text(to_toml(data), encoding="utf-8")
-    return target
 
 
 def _report_from_archive_alone(archive: Path, out_dir: Path) -> subprocess.CompletedProcess:
@@ -58,7 +50,7 @@ def _assert_same_figures(first: Path, second: Path) -> None:
 
 @pytest.mark.parametrize("config", SHIPPED, ids=[p.stem for p in SHIPPED])
 def test_report_from_archive_alone(config, tmp_path):
-    source = _without_study(config, tmp_path / config.name)
+    source = without_study(config, tmp_path / config.name)
     outcome = run_scene(str(source), str(tmp_path / "out"), force=True, formats=("html",))
     assert outcome.status in ("ok", "unstable"), outcome.message
     folder = tmp_path / "out" / config.stem

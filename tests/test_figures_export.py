@@ -5,14 +5,12 @@ from __future__ import annotations
 
 import json
 import re
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 from PIL import Image
 
-from conftest import pendulum_text
+from conftest import cli_without_core, pendulum_text
 from reportgen.export import parse_size
 
 
@@ -44,12 +42,7 @@ def test_slide_size_every_figure_in_three_formats_from_the_archive_alone(archive
     before = archive.read_bytes()
     out = tmp_path / "slides"
     # core made unimportable: the export draws from the archive only
-    code = ("import sys; sys.modules['reportgen.core'] = None\n"
-            "from reportgen.cli import main\n"
-            f"raise SystemExit(main(['figures', {str(archive)!r}, '--size', 'slide', "
-            f"'--dpi', '120', '--out', {str(out)!r}]))")
-    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                          timeout=300)
+    done = cli_without_core("figures", archive, "--size", "slide", "--dpi", "120", "--out", out)
     assert done.returncode == 0, done.stderr
     ids = _report_figure_ids(archive)
     assert ids
