@@ -526,7 +526,7 @@ class RigidBodyScene(Scene):
         caption = ("Poinsot's construction, x = ω/√(2T) [1/√(kg m²)], seen with L pointing "
                    "down: the inertia ellipsoid x·Ix = 1 at t = "
                    f"{fmt(float(t[int(c['contact_index'])]), 4)} s, resting on the invariable "
-                   "plane at the tip of x; red, the polhode on the body; teal, the herpolhode "
+                   "plane at the tip of x; red, the polhode on the body; light blue, the herpolhode "
                    "the contact point has traced on the plane since t = 0 (right: the plane "
                    "seen along L).")
         if radius is not None:
