@@ -77,8 +77,9 @@ def _draw(tex: str, points: float) -> str:
     from matplotlib.mathtext import MathTextParser
 
     math = f"${tex}$"
+    key = _key(tex, points)
     with matplotlib.rc_context({"mathtext.fontset": FONTSET, "svg.fonttype": "path",
-                                "svg.hashsalt": _key(tex, points), "svg.id": "eq"}):
+                                "svg.hashsalt": key, "svg.id": "eq"}):
         prop = FontProperties(size=points)
         try:
             width, height, depth, _, _ = MathTextParser("path").parse(
@@ -97,7 +98,7 @@ def _draw(tex: str, points: float) -> str:
     svg = re.sub(r"\s*<metadata>.*?</metadata>", "", svg, flags=re.S)
     svg = re.sub(r">\s+<", "><", svg).strip()
     # ids (the figure's, the glyphs') made unique to this equation on a page of many
-    prefix = "eq" + _key(tex, points)[:8] + "-"
+    prefix = "eq" + key[:8] + "-"
     svg = re.sub(r'\s+id="eq"', "", svg, count=1)
     svg = re.sub(r'\bid="([^"]+)"', rf'id="{prefix}\1"', svg)
     svg = re.sub(r'href="#([^"]+)"', rf'href="#{prefix}\1"', svg)
