@@ -23,18 +23,20 @@ from __future__ import annotations
 import ast
 import math
 from collections.abc import Mapping
+from typing import TYPE_CHECKING
 
-import sympy
+if TYPE_CHECKING:
+    import sympy
 
-#: allowed functions: name -> (SymPy function, number of arguments)
+#: allowed functions: name -> (name of the SymPy function, number of arguments)
 FUNCTIONS = {
-    "sin": (sympy.sin, 1), "cos": (sympy.cos, 1), "tan": (sympy.tan, 1),
-    "asin": (sympy.asin, 1), "acos": (sympy.acos, 1), "atan": (sympy.atan, 1),
-    "atan2": (sympy.atan2, 2), "sinh": (sympy.sinh, 1), "cosh": (sympy.cosh, 1),
-    "tanh": (sympy.tanh, 1), "exp": (sympy.exp, 1), "log": (sympy.log, 1),
-    "sqrt": (sympy.sqrt, 1), "abs": (sympy.Abs, 1),
+    "sin": ("sin", 1), "cos": ("cos", 1), "tan": ("tan", 1), "asin": ("asin", 1),
+    "acos": ("acos", 1), "atan": ("atan", 1), "atan2": ("atan2", 2), "sinh": ("sinh", 1),
+    "cosh": ("cosh", 1), "tanh": ("tanh", 1), "exp": ("exp", 1), "log": ("log", 1),
+    "sqrt": ("sqrt", 1), "abs": ("Abs", 1),
 }
-CONSTANTS = {"pi": sympy.pi, "E": sympy.E}
+#: allowed constants: name -> name of the SymPy constant
+CONSTANTS = {"pi": "pi", "E": "E"}
 
 MAX_LENGTH = 2000  # characters of one formula
 MAX_DEPTH = 60  # nesting of its tree
@@ -46,8 +48,9 @@ class ExpressionError(ValueError):
     """A formula outside the allow-list; the message names the piece and its column."""
 
 
-_OPERATORS = {ast.Add: sympy.Add, ast.Sub: lambda a, b: a - b, ast.Mult: sympy.Mul,
-              ast.Div: lambda a, b: a / b, ast.Pow: sympy.Pow}
+_OPERATORS = {ast.Add: lambda a, b: a + b, ast.Sub: lambda a, b: a - b,
+              ast.Mult: lambda a, b: a * b, ast.Div: lambda a, b: a / b,
+              ast.Pow: lambda a, b: a**b}
 _WHAT = {
     ast.Attribute: "an attribute", ast.Subscript: "a subscript", ast.Lambda: "a lambda",
     ast.ListComp: "a comprehension", ast.SetComp: "a comprehension",
@@ -58,6 +61,20 @@ _WHAT = {
 }
 
 
+def _tree(text: str) -> ast.AST:
+    if not isinstance(text, str):
+        raise ExpressionError(f"expected a formula as a string, got {type(text).__name__}")
+    if len(text) > MAX_LENGTH:
+        raise ExpressionError(f"formula longer than {MAX_LENGTH} characters ({len(text)})")
+    if not text.strip():
+        raise ExpressionError("empty formula")
+    try:
+        return ast.parse(text.strip(), mode="eval").body
+    except SyntaxError as exc:
+        where = f" at column {exc.offset}" if exc.offset else ""
+        raise ExpressionError(f"not a formula{where}: {exc.msg}") from None
+
+
 def parse_expression(text: str, symbols: Mapping[str, sympy.Symbol],
                      params: Mapping[str, float] | None = None) -> sympy.Expr:
     """The SymPy expression of ``text``.
@@ -66,28 +83,31 @@ def parse_expression(text: str, symbols: Mapping[str, sympy.Symbol],
     ``params``: named constants, substituted by their values (kept exact when they are
     whole numbers).  Raises :class:`ExpressionError` for anything outside the allow-list.
     """
-    if not isinstance(text, str):
-        raise ExpressionError(f"expected a formula as a string, got {type(text).__name__}")
-    if len(text) > MAX_LENGTH:
-        raise ExpressionError(f"formula longer than {MAX_LENGTH} characters ({len(text)})")
-    if not text.strip():
-        raise ExpressionError("empty formula")
-    try:
-        tree = ast.parse(text.strip(), mode="eval")
-    except SyntaxError as exc:
-        where = f" at column {exc.offset}" if exc.offset else ""
-        raise ExpressionError(f"not a formula{where}: {exc.msg}") from None
-    names = {**{k: v for k, v in CONSTANTS.items()}}
+    import sympy
+
+    tree = _tree(text)
+    names = {k: getattr(sympy, v) for k, v in CONSTANTS.items()}
     for name, value in (params or {}).items():
         names[name] = _number(value)
     clash = set(symbols) & set(names)
     if clash:
         raise ExpressionError(f"{', '.join(sorted(clash))}: both a symbol and a constant")
     names.update(symbols)
-    return _Builder(text, names).build(tree.body, 0)
+    return _Builder(text, names).build(tree, 0)
+
+
+def check_expression(text: str, names) -> None:
+    """Raise :class:`ExpressionError` if ``text`` is not a formula over ``names`` (and the
+    constants); the checks of :func:`parse_expression` that need no SymPy (so ``validate``
+    does not import it): syntax, the allow-list, names, arity, size and depth limits."""
+    tree = _tree(text)
+    known = dict.fromkeys(CONSTANTS) | dict.fromkeys(names)
+    _Builder(text, known, build=False).build(tree, 0)
 
 
 def _number(value) -> sympy.Expr:
+    import sympy
+
     if isinstance(value, bool) or not isinstance(value, int | float):
         raise ExpressionError(f"constant {value!r} is not a number")
     if not math.isfinite(value):
@@ -98,9 +118,12 @@ def _number(value) -> sympy.Expr:
 
 
 class _Builder:
-    def __init__(self, text: str, names: Mapping[str, sympy.Expr]):
+    """Walks the tree; builds the SymPy expression, or with ``build=False`` only checks."""
+
+    def __init__(self, text: str, names: Mapping[str, sympy.Expr], build: bool = True):
         self.text = text
         self.names = names
+        self.building = build
 
     def fail(self, node: ast.AST, what: str) -> ExpressionError:
         col = getattr(node, "col_offset", None)
@@ -118,6 +141,10 @@ class _Builder:
                 raise self.fail(node, "a string" if isinstance(value, str) else "a constant")
             if abs(value) > MAX_LITERAL:
                 raise self.fail(node, f"a number above {MAX_LITERAL:g}")
+            if not self.building:
+                return None
+            import sympy
+
             return sympy.Integer(value) if isinstance(value, int) else sympy.Float(value)
         if isinstance(node, ast.Name):
             if node.id.startswith("_"):
@@ -129,10 +156,14 @@ class _Builder:
             return self.names[node.id]
         if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub | ast.UAdd):
             inner = self.build(node.operand, depth + 1)
+            if not self.building:
+                return None
             return -inner if isinstance(node.op, ast.USub) else inner
         if isinstance(node, ast.BinOp) and type(node.op) in _OPERATORS:
             left = self.build(node.left, depth + 1)
             right = self.build(node.right, depth + 1)
+            if not self.building:
+                return None
             if isinstance(node.op, ast.Pow) and left.is_number and right.is_number:
                 if not right.is_real or abs(float(right)) > MAX_CONSTANT_EXPONENT:
                     raise self.fail(node, f"a power of constants with an exponent above "
@@ -155,7 +186,12 @@ class _Builder:
                 raise ExpressionError(f"{name} takes {arity} argument"
                                       f"{'s' if arity > 1 else ''}, got {len(node.args)} at "
                                       f"column {node.col_offset + 1}")
-            return function(*(self.build(arg, depth + 1) for arg in node.args))
+            args = [self.build(arg, depth + 1) for arg in node.args]
+            if not self.building:
+                return None
+            import sympy
+
+            return getattr(sympy, function)(*args)
         what = _WHAT.get(type(node), f"a {type(node).__name__}")
         if isinstance(node, ast.BinOp):
             what = f"the operator {type(node.op).__name__}"

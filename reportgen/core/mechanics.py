@@ -58,9 +58,11 @@ class HamiltonianSystem:
         return self.qdot + self.pdot
 
 
-def hamiltonian_system(space: PhaseSpace, H: sympy.Expr) -> HamiltonianSystem:
-    """Hamilton's equations of ``H(q, p, t)`` (notes (5.x); Goldstein 8.18)."""
-    stray = H.free_symbols - set(space.q + space.p + (space.t,))
+def hamiltonian_system(space: PhaseSpace, H: sympy.Expr,
+                       constants=()) -> HamiltonianSystem:
+    """Hamilton's equations of ``H(q, p, t)`` (notes (5.x); Goldstein 8.18).  ``constants``:
+    further symbols H may hold (named constants that stay symbolic)."""
+    stray = H.free_symbols - set(space.q + space.p + (space.t,)) - set(constants)
     if stray:
         raise ValueError(f"H depends on {', '.join(sorted(map(str, stray)))}, which are "
                          "neither coordinates, momenta nor t")
@@ -78,13 +80,14 @@ class Legendre:
     H: sympy.Expr
 
 
-def legendre(space: PhaseSpace, L: sympy.Expr) -> Legendre:
+def legendre(space: PhaseSpace, L: sympy.Expr, constants=()) -> Legendre:
     """p = ∂L/∂q̇ solved for q̇ and H = p·q̇ − L (Goldstein 8.15).
 
     The velocities must enter L at most quadratically with a nonsingular Hessian
     ∂²L/∂q̇∂q̇ (a regular Lagrangian); otherwise ValueError says which condition fails.
+    ``constants``: further symbols L may hold.
     """
-    stray = L.free_symbols - set(space.q + space.qdot + (space.t,))
+    stray = L.free_symbols - set(space.q + space.qdot + (space.t,)) - set(constants)
     if stray:
         raise ValueError(f"L depends on {', '.join(sorted(map(str, stray)))}, which are "
                          "neither coordinates, velocities nor t")
@@ -93,18 +96,21 @@ def legendre(space: PhaseSpace, L: sympy.Expr) -> Legendre:
     if any(sympy.diff(h, v) != 0 for h in hessian for v in space.qdot):
         raise ValueError("L is not quadratic in the velocities: p = ∂L/∂q̇ cannot be "
                          "solved for q̇ in closed form")
-    det = sympy.simplify(hessian.det())
+    # factor(trigsimp(det)) finds sin² + cos² = 1 at a fraction of simplify's cost
+    det = sympy.factor(sympy.trigsimp(sympy.expand(hessian.det())))
     if det == 0:
         raise ValueError("∂²L/∂q̇∂q̇ is singular: L is not regular, there is no Legendre "
                          "transform")
-    # p = A q̇ + b with A the Hessian (independent of q̇) and b = p at q̇ = 0
+    # L = ½ q̇ᵀA q̇ + bᵀq̇ + L0 with A the Hessian; p = A q̇ + b, so
+    # q̇ = A⁻¹(p − b) and H = p·q̇ − L = ½ (p − b)ᵀ A⁻¹ (p − b) − L0, with A⁻¹ = adj A / det A
     at_rest = {v: 0 for v in space.qdot}
     b = sympy.Matrix([m.subs(at_rest) for m in momenta])
-    velocities = hessian.LUsolve(sympy.Matrix(space.p) - b)
-    velocities = tuple(sympy.simplify(v) for v in velocities)
-    to_p = dict(zip(space.qdot, velocities, strict=True))
-    H = sum(p * v for p, v in zip(space.p, velocities, strict=True)) - L.subs(to_p)
-    return Legendre(momenta, velocities, sympy.simplify(H))
+    excess = sympy.Matrix(space.p) - b
+    adjugate = hessian.adjugate()
+    velocities = tuple(sympy.factor(v / det) for v in adjugate * excess)
+    kinetic = sympy.expand((excess.T * adjugate * excess)[0]) / (2 * det)
+    H = kinetic - L.subs(at_rest)
+    return Legendre(momenta, velocities, H)
 
 
 def poisson_bracket(space: PhaseSpace, f: sympy.Expr, g: sympy.Expr) -> sympy.Expr:
