@@ -42,7 +42,7 @@ def H_of(space, text, params=None):
 
 
 def oscillator_trajectory(t, q0=0.9, p0=-1.7):
-    """q(t) = q0 cos ωt + p0/(mω) sin ωt, p = m q̇ (the closed form, Goldstein §8.x)."""
+    """q(t) = q0 cos ωt + p0/(mω) sin ωt, p = m q̇: the oscillator's closed-form motion."""
     c, s = np.cos(OMEGA * t), np.sin(OMEGA * t)
     return q0 * c + p0 / (M * OMEGA) * s, p0 * c - M * OMEGA * q0 * s
 
@@ -111,7 +111,7 @@ KEPLER = {"m": 1.5, "k": 2.0}
 def kepler_orbit(a=1.3, e=0.6, samples=3001):
     """Exact eccentric orbit of H = p²/2m − k/r from the eccentric anomaly E ∈ [0, 4π]:
     x = a(cos E − e), y = b sin E, Ė = n/(1 − e cos E), t = (E − e sin E)/n (Kepler's
-    equation; Goldstein §3.8)."""
+    equation, Goldstein §3.8)."""
     m, k = KEPLER["m"], KEPLER["k"]
     mu = k / m
     b, n = a * np.sqrt(1 - e**2), np.sqrt(mu / a**3)
@@ -140,7 +140,7 @@ def test_polar_point_transformation_matches_the_hand_formulas():
     np.testing.assert_allclose(P[:, 0], (x * px + y * py) / r, rtol=0, atol=1e-14)
     np.testing.assert_allclose(P[:, 1], x * py - y * px, rtol=1e-14)
 
-    # K for the 2-D Kepler problem is the textbook polar Hamiltonian (Goldstein (8.x), §3.7)
+    # K for the 2-D Kepler problem is the textbook polar H = p_r²/2m + p_φ²/2mr² − k/r
     H = H_of(space, "(p_x**2 + p_y**2)/(2*m) - k/sqrt(x**2 + y**2)", KEPLER)
     K = hamiltonian_along(ct, H, q, p, Q, P, t)
     m, k = KEPLER["m"], KEPLER["k"]
@@ -253,8 +253,8 @@ def test_no_solution_is_reported_with_the_sample():
 
 # ------------------------------------------------------------- time-dependent F2
 def test_moving_frame_K_is_H_plus_dF2_dt():
-    # Galilean boost x = x' + Vt, p = p' + mV: F2 = (mV + P) q − V t P (Goldstein §9.1,
-    # problem on moving frames); K = H + ∂F2/∂t = H − V P
+    # Galilean boost x = x' + Vt, p = p' + mV: F2 = (mV + P) q − V t P (a time-dependent
+    # F2 of Goldstein Table 9.1); K = H + ∂F2/∂t = H − V P
     space = PhaseSpace.of(["q"])
     V = 0.4
     ct = generating_function(space, "(m*V + P)*q - V*t*P", "F2", ["Q"], ["P"],
