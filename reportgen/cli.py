@@ -216,6 +216,8 @@ def cmd_run(args) -> int:
     bad = [o for o in outcomes if not o.ok]
     print(f"{len(outcomes) - len(bad)} of {len(outcomes)} scenes ok; index: "
           f"{Path(args.out) / 'index.html'}", file=sys.stderr)
+    if bad and all(o.config_error for o in bad):
+        return EXIT_USAGE
     return EXIT_OK if status == "ok" else EXIT_FAILED
 
 

@@ -51,6 +51,8 @@ class Outcome:
     stages: list[str] = field(default_factory=list)
     #: seconds per stage that ran (simulate, restamp, figures, html, pdf)
     stage_s: dict[str, float] = field(default_factory=dict)
+    #: the scene failed on bad input found only when it ran: exit status 2, like validate's
+    config_error: bool = False
 
     @property
     def ok(self) -> bool:
@@ -168,8 +170,9 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
         outcome.status, outcome.message = identity.status, identity.message
         outcome.wall_time_s = (identity.wall_time_s if outcome.skipped
                                else time.perf_counter() - start)
-    except ConfigError as exc:
+    except ConfigError as exc:  # found only when simulating (e.g. a singular Lagrangian)
         outcome.status, outcome.message = "failed", str(exc)
+        outcome.config_error = True
     except Exception as exc:  # noqa: BLE001 - one scene's crash must not stop the batch
         outcome.status = "failed"
         log = folder / "error.log"

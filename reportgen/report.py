@@ -57,7 +57,17 @@ def environment() -> jinja2.Environment:
         _ENV.filters["err"] = fmt_err
         _ENV.filters["eq"] = equation_html  # {% filter eq %}TeX{% endfilter %}
         _ENV.filters["cell"] = table_cell
+        _ENV.filters["eq_display"] = display_equation
     return _ENV
+
+
+def display_equation(tex: str) -> Markup:
+    """A displayed equation from the archive (TeX that SymPy printed): typeset, or -- when
+    mathtext cannot parse it -- shown as its TeX source in code type."""
+    try:
+        return equation_html(tex)
+    except ValueError:
+        return Markup("<code>") + str(tex) + Markup("</code>")
 
 
 def table_cell(value) -> Markup:
@@ -144,7 +154,7 @@ def kind_of_archive(data: ArchiveData):
 
 
 #: bump when the figure drawing changes in a way a cached figure set must not survive
-FIGURES_FORMAT = 1
+FIGURES_FORMAT = 2
 
 
 def figures_key(data: ArchiveData, formats: tuple[str, ...]) -> str:
@@ -238,7 +248,8 @@ def _draw_section(scene, section, data: ArchiveData, out_dir: Path,
         "content": {"facts": [list(f) for f in content.facts],
                     "tables": [{"caption": t.caption, "header": list(t.header),
                                 "rows": [list(r) for r in t.rows]} for t in content.tables],
-                    "notes": list(content.notes)},
+                    "notes": list(content.notes),
+                    "equations": [list(e) for e in content.equations]},
     }
 
 

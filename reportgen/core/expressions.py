@@ -68,8 +68,10 @@ def _tree(text: str) -> ast.AST:
         raise ExpressionError(f"formula longer than {MAX_LENGTH} characters ({len(text)})")
     if not text.strip():
         raise ExpressionError("empty formula")
+    # a formula may span lines (a TOML multi-line string): whitespace is only a separator
+    text = " ".join(text.split())
     try:
-        return ast.parse(text.strip(), mode="eval").body
+        return ast.parse(text, mode="eval").body
     except SyntaxError as exc:
         where = f" at column {exc.offset}" if exc.offset else ""
         raise ExpressionError(f"not a formula{where}: {exc.msg}") from None
@@ -96,13 +98,15 @@ def parse_expression(text: str, symbols: Mapping[str, sympy.Symbol],
     return _Builder(text, names).build(tree, 0)
 
 
-def check_expression(text: str, names) -> None:
-    """Raise :class:`ExpressionError` if ``text`` is not a formula over ``names`` (and the
-    constants); the checks of :func:`parse_expression` that need no SymPy (so ``validate``
-    does not import it): syntax, the allow-list, names, arity, size and depth limits."""
+def check_expression(text: str, names) -> set[str]:
+    """The names of ``names`` that ``text`` uses; raises :class:`ExpressionError` if it is
+    not a formula over ``names`` (and the constants).  The checks of
+    :func:`parse_expression` that need no SymPy (so ``validate`` does not import it):
+    syntax, the allow-list, names, arity, size and depth limits."""
     tree = _tree(text)
     known = dict.fromkeys(CONSTANTS) | dict.fromkeys(names)
     _Builder(text, known, build=False).build(tree, 0)
+    return {node.id for node in ast.walk(tree) if isinstance(node, ast.Name)} & set(names)
 
 
 def _number(value) -> sympy.Expr:
@@ -127,7 +131,7 @@ class _Builder:
 
     def fail(self, node: ast.AST, what: str) -> ExpressionError:
         col = getattr(node, "col_offset", None)
-        piece = ast.get_source_segment(self.text.strip(), node) if col is not None else None
+        piece = ast.get_source_segment(" ".join(self.text.split()), node) if col is not None else None
         at = f" at column {col + 1}" if col is not None else ""
         shown = f" {piece!r}" if piece else ""
         return ExpressionError(f"{what}{shown}{at} is not allowed in a formula")

@@ -108,7 +108,10 @@ def legendre(space: PhaseSpace, L: sympy.Expr, constants=()) -> Legendre:
     excess = sympy.Matrix(space.p) - b
     adjugate = hessian.adjugate()
     velocities = tuple(sympy.factor(v / det) for v in adjugate * excess)
-    kinetic = sympy.expand((excess.T * adjugate * excess)[0]) / (2 * det)
+    # term by term, cancelled: p_θ²/(2ml²) + p_φ²/(2ml² sin²θ), not one fraction whose
+    # derivatives cancel numerically
+    kinetic = sympy.Add(*(sympy.cancel(term) for term in sympy.Add.make_args(
+        sympy.expand((excess.T * adjugate * excess)[0] / (2 * det)))))
     H = kinetic - L.subs(at_rest)
     return Legendre(momenta, velocities, H)
 

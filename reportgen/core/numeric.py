@@ -53,12 +53,17 @@ def evaluate(expr: sympy.Expr, values: Mapping[sympy.Symbol, object]) -> np.ndar
         return np.asarray(_walk(expr, arrays, {}), dtype=np.float64)
 
 
-def evaluate_many(exprs, values: Mapping[sympy.Symbol, object]) -> list[np.ndarray]:
-    """Several expressions at the same values, sharing the work of common subtrees."""
+def evaluate_many(exprs, values: Mapping[sympy.Symbol, object],
+                  shape=None) -> list[np.ndarray]:
+    """Several expressions at the same values, sharing the work of common subtrees; with
+    ``shape``, each result broadcast to it (a constant expression gives a full array)."""
     arrays = {s: np.asarray(v, dtype=np.float64) for s, v in values.items()}
     memo: dict = {}
     with np.errstate(all="ignore"):
-        return [np.asarray(_walk(e, arrays, memo), dtype=np.float64) for e in exprs]
+        out = [np.asarray(_walk(e, arrays, memo), dtype=np.float64) for e in exprs]
+    if shape is not None:
+        out = [np.array(np.broadcast_to(r, shape)) for r in out]
+    return out
 
 
 def _walk(node, arrays, memo):

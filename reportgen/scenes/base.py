@@ -124,6 +124,8 @@ class SectionContent:
     tables: list[Table] = field(default_factory=list)
     facts: list[tuple[str, str]] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
+    #: displayed equations: (what it is, TeX), typeset by the report (reportgen.equations)
+    equations: list[tuple[str, str]] = field(default_factory=list)
 
 
 ProgressFn = Callable[[float], None]

@@ -1,0 +1,70 @@
+"""Figures of a formula system: coordinates, configuration path, phase portrait, surface of
+section, observables.  Axis labels are the config's own names (no units: a formula system
+is in whatever units its author chose)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .common import envelope
+from .style import CONTEXT, HIGHLIGHT, PALETTE, new_figure, new_figure_grid
+
+
+def coordinates(t, series: dict[str, np.ndarray]):
+    """Each coordinate against time, one panel per coordinate (shared time axis)."""
+    n = len(series)
+    fig, axes = new_figure_grid(n, 1, figsize=(6.8, 1.2 + 1.5 * n), sharex=True)
+    axes = axes[:, 0]
+    for ax, (name, values), colour in zip(axes, series.items(), PALETTE, strict=False):
+        ax.plot(*envelope(t, values), color=colour)
+        ax.set_ylabel(name)
+    axes[-1].set_xlabel("time t")
+    return fig
+
+
+def configuration(x, y, xname: str, yname: str):
+    """The path in the plane of the first two coordinates."""
+    fig, ax = new_figure(figsize=(5.6, 5.0))
+    ax.plot(x, y, color=HIGHLIGHT, linewidth=0.8)
+    ax.plot([x[0]], [y[0]], "o", color="black", markersize=5, label="start")
+    ax.set_xlabel(xname)
+    ax.set_ylabel(yname)
+    ax.legend(loc="upper right")
+    return fig
+
+
+def phase_portrait(q, p, grid_q, grid_p, H, H0: float, qname: str):
+    """Level curves of H on the grid, the run's level H0 and its orbit."""
+    fig, ax = new_figure(figsize=(6.4, 4.6))
+    Q, P = np.meshgrid(grid_q, grid_p)
+    finite = H[np.isfinite(H)]
+    if finite.size:
+        lo, hi = np.percentile(finite, [2, 90])
+        levels = np.unique(np.concatenate([np.linspace(lo, hi, 14), [H0]]))
+        ax.contour(Q, P, H, levels=levels, colors=CONTEXT, linewidths=0.7)
+    ax.plot(q, p, color=HIGHLIGHT, linewidth=2.0, label=f"this run, H = {H0:.6g}")
+    ax.plot([], [], color=CONTEXT, label="other levels of H")
+    ax.set_xlabel(qname)
+    ax.set_ylabel(f"p_{qname}")
+    ax.legend(loc="upper right")
+    return fig
+
+
+def poincare(u, v, uname: str, vname: str):
+    """The crossings of the surface of section as points."""
+    fig, ax = new_figure(figsize=(5.8, 5.0))
+    ax.plot(u, v, ".", color=HIGHLIGHT, markersize=2.5 if len(u) > 400 else 4.0)
+    ax.set_xlabel(uname)
+    ax.set_ylabel(vname)
+    return fig
+
+
+def observables(t, series: dict[str, np.ndarray]):
+    """Observables that change, against time."""
+    fig, ax = new_figure()
+    for (name, values), colour in zip(series.items(), PALETTE, strict=False):
+        ax.plot(*envelope(t, values), color=colour, label=name)
+    ax.set_xlabel("time t")
+    ax.set_ylabel("value")
+    ax.legend(loc="best")
+    return fig

@@ -1,0 +1,687 @@
+r"""``hamiltonian``: any system written as a formula, H(q, p, t) or L(q, q̇, t) (notes §2–§7).
+
+The config names the coordinates and gives H or L as text; named constants come from
+``[params]``.  The text is parsed against an allow-list (:mod:`reportgen.core.expressions`),
+derived with SymPy (Hamilton's equations; for L the Legendre transform) and compiled with
+numba through the same integrators and study as every kind
+(:mod:`reportgen.core.formula`).  The report shows the equations, the phase portrait
+(one degree of freedom) or a surface of section (two or more), the conserved quantities
+with their drift, the Poisson brackets of the observables with H and with each other (the
+Jacobi identity checked on the trajectory), cyclic coordinates, and error against run
+time.  ``[transform]`` adds a canonical transformation from a generating function and
+``[hamilton_jacobi]`` the separated quadrature solution of the shipped presets.
+"""
+
+from __future__ import annotations
+
+from typing import Literal
+
+import numpy as np
+from pydantic import Field, model_validator
+
+from ..config import Real, RunConfig, Strict
+from ..lazy import lazy_module
+from ..results import Check, Results
+from .base import Scene, SceneConfig, Section, SectionContent, Table, fmt, fmt_err
+
+common_plots = lazy_module("reportgen.plots.common")
+plots = lazy_module("reportgen.plots.hamiltonian")
+expressions = lazy_module("reportgen.core.expressions")  # no SymPy: validation uses it
+formula = lazy_module("reportgen.core.formula")
+numeric = lazy_module("reportgen.core.numeric")
+mechanics = lazy_module("reportgen.core.mechanics")
+
+#: names a coordinate, constant or observable may not take
+_FUNCTIONS = ("sin", "cos", "tan", "asin", "acos", "atan", "atan2", "sinh", "cosh", "tanh",
+              "exp", "log", "sqrt", "abs")
+RESERVED = frozenset({"t", "pi", "E", "H", "energy", *_FUNCTIONS})
+
+
+def _usable(name: str) -> bool:
+    return name.isidentifier() and not name.startswith("_") and name not in RESERVED
+
+
+class System(Strict):
+    """``[system]``: the coordinates and H or L."""
+
+    coordinates: list[str] = Field(min_length=1, max_length=6,
+                                   description="names of the generalized coordinates q")
+    H: str | None = Field(None, description="Hamiltonian in q, p_<q>, t and the constants")
+    L: str | None = Field(None, description="Lagrangian in q, <q>_dot, t and the constants")
+
+
+class SurfaceOfSection(Strict):
+    """``[section]``: the surface of section of a Poincaré map."""
+
+    coordinate: str = Field(description="state column that defines the surface (a "
+                                        "coordinate or a momentum)")
+    value: Real = Field(0.0, description="the surface is coordinate = value")
+    direction: Literal["up", "down", "both"] = Field(
+        "up", description="crossings counted: increasing, decreasing or both")
+    axes: list[str] | None = Field(None, min_length=2, max_length=2,
+                                   description="two state columns plotted (default: the "
+                                               "next coordinate and its momentum)")
+
+
+class Transform(Strict):
+    """``[transform]``: a canonical transformation from a generating function (notes §6)."""
+
+    F1: str | None = Field(None, description="F1(q, Q, t): p = ∂F1/∂q, P = −∂F1/∂Q")
+    F2: str | None = Field(None, description="F2(q, P, t): p = ∂F2/∂q, Q = ∂F2/∂P")
+    coordinates: list[str] = Field(min_length=1, max_length=6,
+                                   description="names of the new coordinates Q")
+    momenta: list[str] | None = Field(None, description="names of the new momenta P "
+                                                        "(default P_<Q>)")
+
+    @property
+    def kind(self) -> str:
+        return "F1" if self.F1 is not None else "F2"
+
+    @property
+    def formula(self) -> str:
+        return self.F1 if self.F1 is not None else self.F2
+
+    def new_momenta(self) -> list[str]:
+        return list(self.momenta) if self.momenta else [f"P_{c}" for c in self.coordinates]
+
+
+def _problem(key: str, rule: str, got=None) -> ValueError:
+    """A config error in the form every kind uses: ``key 'a.b': rule (got value)``."""
+    return ValueError(f"key '{key}': {rule}" + ("" if got is None else f" (got {got!r})"))
+
+
+class HamiltonianConfig(SceneConfig):
+    params: dict[str, Real] = Field(default_factory=dict,
+                                    description="named constants usable in the formulas")
+    system: System
+    observables: dict[str, str] = Field(default_factory=dict,
+                                        description="named functions of q, p (or q̇) and t")
+    initial: dict[str, Real] = Field(description="the coordinates and p_<q> (for H) or "
+                                                 "<q>_dot (for L); with `energy`, one of "
+                                                 "those may be left out and is solved for")
+    run: RunConfig
+    section: SurfaceOfSection | None = None
+    transform: Transform | None = None
+
+    @model_validator(mode="after")
+    def _formulas(self):
+        """Names, formulas (allow-list, without SymPy) and the initial state's keys."""
+        sys_ = self.system
+        if (sys_.H is None) == (sys_.L is None):
+            raise _problem("system", "give exactly one of H and L")
+        coords = sys_.coordinates
+        rule = (f"must be an identifier not starting with _ and not one of "
+                f"{', '.join(sorted(RESERVED))}")
+        for c in coords:
+            if not _usable(c):
+                raise _problem("system.coordinates", rule, c)
+        if len(set(coords)) != len(coords):
+            raise _problem("system.coordinates", "names must not repeat", coords)
+        momenta = [f"p_{c}" for c in coords]
+        velocities = [f"{c}_dot" for c in coords]
+        state = set(coords) | set(momenta) | set(velocities)
+        for name, value in self.params.items():
+            if not _usable(name) or name in state:
+                raise _problem(f"params.{name}", "a constant's name " + rule + " and not a "
+                               "coordinate, momentum or velocity", value)
+        constants = list(self.params)
+        used: set[str] = set()
+
+        def check(key: str, text: str, names: list[str]) -> None:
+            try:
+                used.update(expressions.check_expression(text, names))
+            except expressions.ExpressionError as exc:
+                raise _problem(key, str(exc)) from None
+
+        if sys_.H is not None:
+            check("system.H", sys_.H, coords + momenta + ["t"] + constants)
+        else:
+            check("system.L", sys_.L, coords + velocities + ["t"] + constants)
+        for name, text in self.observables.items():
+            if not _usable(name) or name in state or name in self.params:
+                raise _problem(f"observables.{name}", "an observable's name " + rule + " and "
+                               "not a coordinate, momentum, velocity or constant", text)
+            check(f"observables.{name}", text, coords + momenta + velocities + ["t"]
+                  + constants)
+        speeds = momenta if sys_.H is not None else velocities
+        wanted = coords + speeds
+        for key, value in self.initial.items():
+            if key != "energy" and key not in wanted:
+                raise _problem(f"initial.{key}", f"not a coordinate or "
+                               f"{'momentum' if sys_.H is not None else 'velocity'} of the "
+                               f"system (expected {', '.join(wanted)}, and optionally energy)",
+                               value)
+        missing = [k for k in wanted if k not in self.initial]
+        if "energy" in self.initial:
+            if len(missing) != 1 or missing[0] in coords:
+                raise _problem("initial.energy", f"leave out exactly one of {', '.join(speeds)}"
+                               " (it is solved for so that H = energy)", missing or "none left out")
+        elif missing:
+            raise _problem(f"initial.{missing[0]}", "required key is missing")
+        if self.section is not None:
+            columns = coords + momenta
+            for i, name in enumerate([self.section.coordinate, *(self.section.axes or [])]):
+                key = "section.coordinate" if i == 0 else "section.axes"
+                if name not in columns:
+                    raise _problem(key, f"must be a state column ({', '.join(columns)})", name)
+            if len(coords) < 2:
+                raise _problem("section", "a surface of section needs two or more degrees of "
+                               "freedom (one degree of freedom gets a phase portrait)")
+        tr = self.transform
+        if tr is not None:
+            if (tr.F1 is None) == (tr.F2 is None):
+                raise _problem("transform", "give exactly one of F1 and F2")
+            new = list(tr.coordinates) + tr.new_momenta()
+            if len(tr.coordinates) != len(coords) or len(tr.new_momenta()) != len(coords):
+                raise _problem("transform.coordinates", f"needs {len(coords)} new coordinate "
+                               "(and momentum) names, one per coordinate", tr.coordinates)
+            for name in new:
+                if not _usable(name) or name in state or name in self.params \
+                        or new.count(name) > 1:
+                    raise _problem("transform.coordinates", "new names must be distinct "
+                                   "identifiers, not an old coordinate, momentum, velocity or "
+                                   "constant", name)
+            key = f"transform.{tr.kind}"
+            unknowns = list(tr.coordinates) if tr.kind == "F1" else tr.new_momenta()
+            check(key, tr.formula, coords + unknowns + ["t"] + constants)
+        for name, value in self.params.items():
+            if name not in used:
+                raise _problem(f"params.{name}", "a constant no formula uses (a misspelt "
+                               "name?)", value)
+        return self
+
+
+class HamiltonianScene(Scene):
+    kind = "hamiltonian"
+    order = 95
+    summary = "any system written as H(q, p, t) or L(q, q̇, t): derived, compiled, checked"
+    Config = HamiltonianConfig
+    sections = (
+        Section("equations", "The system and its equations of motion"),
+        Section("trajectory", "Trajectory", integrates=True),
+        Section("phase_portrait", "Phase portrait", integrates=True),
+        Section("poincare", "Surface of section", integrates=True),
+        Section("invariants", "Conserved quantities", integrates=True),
+        Section("brackets", "Poisson brackets and symmetries", integrates=True),
+        Section("error_vs_runtime", "Error against run time", integrates=True),
+    )
+
+    #: phase-portrait grid points per axis (one degree of freedom)
+    PHASE_GRID = 241
+    #: fewest crossings for a surface of section to be shown without being asked for
+    MIN_CROSSINGS = 20
+    #: the error-against-run-time study covers at most this many steps of the main run
+    STUDY_STEPS = 2000
+    #: samples of the configuration-space path drawn
+    CONFIGURATION_SAMPLES = 5000
+    #: samples the Jacobi identity is checked on
+    JACOBI_SAMPLES = 200
+
+    @classmethod
+    def default_sections(cls, data):
+        names = [s.name for s in cls.sections]
+        a = data.analysis
+        if "phase_grid" not in a:
+            names.remove("phase_portrait")
+        # a surface of section says something only with enough crossings (a closed orbit
+        # crosses it at a few fixed points), unless the config asked for one
+        if "poincare" not in a or (len(a["poincare"]["u"]) < cls.MIN_CROSSINGS
+                                   and data.config.section is None):
+            names.remove("poincare")
+        return names
+
+    # ----------------------------------------------------------------- helpers
+    def system(self):
+        """The parsed and derived system (memoized; SymPy work)."""
+        if getattr(self, "_system", None) is None:
+            cfg = self.config
+            try:
+                self._system = formula.build_system(
+                    cfg.system.coordinates, H=cfg.system.H, L=cfg.system.L,
+                    observables=cfg.observables, params=cfg.params)
+            except formula.FormulaError as exc:
+                from ..config import ConfigError
+
+                raise ConfigError([f"{self.source.label}: {exc}"]) from None
+        return self._system
+
+    def models(self) -> list:
+        return [formula.compiled_model(self.system(), name=self.source.name)]
+
+    def initial_state(self) -> np.ndarray:
+        """(q0, p0); for L the momenta p = ∂L/∂q̇ at (q0, q̇0, 0); with ``energy`` the left-out
+        momentum or velocity solved (the root ≥ 0 of H = energy)."""
+        system, ini = self.system(), dict(self.config.initial)
+        space = system.space
+        energy = ini.pop("energy", None)
+        speeds = (space.p if system.L is None else space.qdot)
+        if energy is not None:
+            missing = next(s for s in speeds if s.name not in ini)
+            ini[missing.name] = self._solve_energy(missing, ini, energy)
+        q0 = np.array([ini[n] for n in space.names], dtype=float)
+        if system.L is None:
+            p0 = np.array([ini[p.name] for p in space.p], dtype=float)
+        else:
+            values = {**{q: ini[q.name] for q in space.q}, **{v: ini[v.name] for v in space.qdot},
+                      space.t: 0.0, **{system.param_symbols[k]: v
+                                       for k, v in system.params.items()}}
+            p0 = np.array([float(numeric.evaluate(m, values))
+                           for m in system.legendre.momenta])
+        return np.concatenate([q0, p0])
+
+    def _solve_energy(self, unknown, ini: dict, energy: float) -> float:
+        from scipy.optimize import brentq
+
+        system = self.system()
+        space = system.space
+        target = system.H if system.L is None else self._energy_function()
+
+        def h(value):
+            vals = {s: ini.get(s.name, 0.0) for s in space.q + space.p + space.qdot}
+            vals[unknown] = value
+            vals[space.t] = 0.0
+            vals.update({system.param_symbols[k]: v for k, v in system.params.items()})
+            return float(numeric.evaluate(target, vals)) - energy
+
+        lo, hi = 0.0, 1.0
+        if h(lo) > 0:
+            from ..config import ConfigError
+
+            raise ConfigError([f"{self.source.label}: initial.energy: {energy} is below the "
+                               f"energy with {unknown.name} = 0 ({h(lo) + energy:.10g}); no "
+                               "state on that energy surface"])
+        while h(hi) < 0 and hi < 1e12:
+            hi *= 2
+        return brentq(h, lo, hi, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=500)
+
+    def _energy_function(self):
+        """E(q, q̇) = q̇·∂L/∂q̇ − L (Jacobi's energy function)."""
+        system = self.system()
+        L = system.L
+        return sum(v * system.legendre.momenta[i]
+                   for i, v in enumerate(system.space.qdot)) - L
+
+    # ------------------------------------------------------------------ simulate
+    def simulate(self, progress=None) -> Results:
+        import sympy
+
+        system, run = self.system(), self.config.run
+        space = system.space
+        t = np.linspace(0.0, run.t_end, run.samples)
+        y0 = self.initial_state()
+        model = self.models()[0]
+        results = Results()
+        a = results.analysis
+
+        # brackets first: they decide which observables are conserved
+        H = system.H
+        brackets, conserved = {}, {}
+        for name, f in system.observables.items():
+            bracket = mechanics.poisson_bracket(space, f, H)
+            brackets[name] = bracket
+            total = sympy.simplify(bracket + sympy.diff(f, space.t))
+            conserved[name] = total == 0
+        cyclic = mechanics.cyclic_coordinates(space, H)
+        h_conserved = not system.time_dependent
+
+        def quantities(tt, y):
+            vals = system.values(y, tt)
+            names = (["H"] if h_conserved else []) + [n for n, c in conserved.items() if c]
+            exprs = [H] + [system.observables[n] for n in names if n != "H"]
+            if not h_conserved:
+                exprs = exprs[1:]
+            out = dict(zip(names, numeric.evaluate_many(exprs, vals, shape=np.shape(tt)),
+                           strict=True))
+            for c in cyclic:
+                out[f"p_{c}"] = np.array(y[:, space.names.index(c) + system.n])
+            return out
+
+        scales = {}
+        vals0 = system.values(y0[None, :], np.array([0.0]))
+        h0 = float(numeric.evaluate(H, vals0)[0])
+        if h_conserved:
+            # the energy's scale: the largest of |H0| and its parts at p = 0 and the rest, so
+            # that a zero-energy orbit is measured against its kinetic and potential energy
+            v0 = float(numeric.evaluate(H.subs({p: 0 for p in space.p}), vals0)[0])
+            scales["H"] = max(abs(h0), abs(v0), abs(h0 - v0), 1e-300)
+        main = self.integrate(model, y0, t, invariants=quantities, progress=progress,
+                              invariant_scales=scales or None)
+        results.runs["main"] = main
+        vals = system.values(main.y, main.t)
+        # observables that are not conserved: their time series (not judged as invariants)
+        moving = [n for n, c in conserved.items() if not c]
+        if not h_conserved:
+            moving = ["H", *moving]
+        if moving:
+            exprs = [H if n == "H" else system.observables[n] for n in moving]
+            a["observables"] = dict(zip(moving, numeric.evaluate_many(exprs, vals,
+                                                                      shape=main.t.shape),
+                                        strict=True))
+
+        # what the equations are, for the report
+        latex = {"H": system.latex(H), "qdot": [system.latex(e) for e in system.hamilton.qdot],
+                 "pdot": [system.latex(e) for e in system.hamilton.pdot],
+                 "q": [system.latex(q) for q in space.q], "p": [system.latex(p) for p in space.p]}
+        if system.L is not None:
+            latex["L"] = system.latex(system.L)
+            latex["momenta"] = [system.latex(m) for m in system.legendre.momenta]
+            latex["velocities"] = [system.latex(v) for v in system.legendre.velocities]
+        for name, f in system.observables.items():
+            latex[f"observable_{name}"] = system.latex(f)
+        a["latex"] = latex
+        a["coordinates"] = list(space.names)
+        a["given"] = "L" if system.L is not None else "H"
+        a["separable"] = bool(system.separable)
+        a["time_dependent"] = bool(system.time_dependent)
+        a["cyclic"] = list(cyclic)
+        a["H0"] = h0
+        a["initial_state"] = y0
+        for name, bracket in brackets.items():
+            a[f"poisson_{name}"] = str(bracket)
+            a[f"poisson_{name}_latex"] = system.latex(bracket)
+            a[f"conserved_{name}"] = bool(conserved[name])
+            a[f"poisson_{name}_max"] = float(np.max(np.abs(numeric.evaluate(bracket, vals))))
+        self._pairwise_brackets(a, system, vals)
+        if system.L is not None:
+            self._legendre_checks(a, system, main)
+        if system.n == 1:
+            self._phase_grid(a, system, main)
+        elif self.config.section is not None or system.n == 2:
+            self._poincare(a, system, main)
+
+        results.checks.append(Check("H(t_end)" if h_conserved else "H(0)",
+                                    float(main.invariants["H"][-1]) if h_conserved else h0,
+                                    h0, "", "H(0) of the initial state", scale=scales.get("H",
+                                                                                           1.0)))
+        # the study over at most STUDY_STEPS of the main run's steps: long (and chaotic) runs
+        # would spend seconds on references, and errors that have grown to the orbit's size
+        # compare nothing
+        horizon = run.t_end * min(1.0, self.STUDY_STEPS / max(int(main.attrs["nsteps"]), 1))
+        a["study_t_end"] = float(horizon)
+        self.study(results, model, y0, np.linspace(0.0, horizon, 201))
+        return results
+
+    def _pairwise_brackets(self, a: dict, system, vals) -> None:
+        """{f, g} between observables, and the Jacobi identity on a sample of the run."""
+        space = system.space
+        names = list(system.observables)
+        rows = []
+        for i, f in enumerate(names):
+            for g in names[i + 1:]:
+                bracket = mechanics.poisson_bracket(space, system.observables[f],
+                                                    system.observables[g])
+                rows.append([f, g, str(bracket), system.latex(bracket)])
+        if rows:
+            a["pair_brackets"] = {"f": [r[0] for r in rows], "g": [r[1] for r in rows],
+                                  "bracket": [r[2] for r in rows]}
+        # Jacobi: {f,{g,h}} + {g,{h,f}} + {h,{f,g}} = 0 for f, g from the observables (or q1,
+        # p1) and h = H; evaluated, not simplified
+        pool = [system.observables[n] for n in names] + [space.q[0], space.p[0]]
+        f, g, h = pool[0], pool[1], system.H
+
+        def pb(u, v):
+            return sum(u.diff(q) * v.diff(p) - u.diff(p) * v.diff(q)
+                       for q, p in zip(space.q, space.p, strict=True))
+
+        jacobi = pb(f, pb(g, h)) + pb(g, pb(h, f)) + pb(h, pb(f, g))
+        n = len(vals[space.t])
+        pick = np.unique(np.linspace(0, n - 1, min(n, self.JACOBI_SAMPLES)).astype(int))
+        sample = {s: (v[pick] if np.ndim(v) else v) for s, v in vals.items()}
+        scale = sum(float(np.max(np.abs(numeric.evaluate(term, sample))))
+                    for term in (pb(f, pb(g, h)), pb(g, pb(h, f)), pb(h, pb(f, g))))
+        a["jacobi_max"] = float(np.max(np.abs(numeric.evaluate(jacobi, sample))))
+        a["jacobi_scale"] = scale
+        a["jacobi_triple"] = [str(f), str(g), "H"]
+
+    def _legendre_checks(self, a: dict, system, main) -> None:
+        """Along the run: p = ∂L/∂q̇ at q̇(q, p), and H = q̇·∂L/∂q̇ − L (Jacobi's energy)."""
+        space = system.space
+        vals = system.values(main.y, main.t)
+        qdot = numeric.evaluate_many(system.legendre.velocities, vals, shape=main.t.shape)
+        vals.update(dict(zip(space.qdot, qdot, strict=True)))
+        p_back = numeric.evaluate_many(system.legendre.momenta, vals, shape=main.t.shape)
+        a["legendre_momentum_error"] = float(max(np.max(np.abs(pb - vals[p]))
+                                                 for pb, p in zip(p_back, space.p, strict=True)))
+        energy = numeric.evaluate(self._energy_function(), vals)
+        h = numeric.evaluate(system.H, vals)
+        a["legendre_energy_error"] = float(np.max(np.abs(energy - h)))
+        a["legendre_energy_scale"] = float(np.max(np.abs(h)))
+
+    def _phase_grid(self, a: dict, system, main) -> None:
+        """H on a grid around the orbit (the portrait's level curves)."""
+        q, p = main.y[:, 0], main.y[:, 1]
+        pad_q = max(0.5 * float(np.ptp(q)), 0.5)
+        pad_p = max(0.5 * float(np.ptp(p)), 0.5)
+        gq = np.linspace(float(np.min(q)) - pad_q, float(np.max(q)) + pad_q, self.PHASE_GRID)
+        gp = np.linspace(float(np.min(p)) - pad_p, float(np.max(p)) + pad_p, self.PHASE_GRID)
+        Q, P = np.meshgrid(gq, gp)
+        space = system.space
+        vals = {space.q[0]: Q, space.p[0]: P, space.t: 0.0,
+                **{system.param_symbols[k]: v for k, v in system.params.items()}}
+        a["phase_grid"] = {"q": gq, "p": gp, "H": numeric.evaluate(system.H, vals)}
+
+    def _poincare(self, a: dict, system, main) -> None:
+        """Crossings of the surface of section, located by cubic Hermite interpolation
+        between samples (the derivatives from Hamilton's equations)."""
+        cfg = self.config.section
+        columns = list(system.columns)
+        n = system.n
+        if cfg is None:
+            s_col, value, direction = columns[0], 0.0, "up"
+            axes = [columns[1], columns[n + 1]]
+        else:
+            s_col, value, direction = cfg.coordinate, cfg.value, cfg.direction
+            axes = list(cfg.axes) if cfg.axes else [c for c in columns[:n] if c != s_col][:1]
+            if not cfg.axes:
+                axes.append(f"p_{axes[0]}")
+        vals = system.values(main.y, main.t)
+        ydot = np.column_stack(numeric.evaluate_many(system.hamilton.rhs, vals,
+                                                     shape=main.t.shape))
+        points = section_crossings(main.t, main.y, ydot, columns.index(s_col), value, direction,
+                                   [columns.index(c) for c in axes])
+        a["poincare"] = {"t": points[:, 0], "u": points[:, 1], "v": points[:, 2]}
+        a["poincare_surface"] = [s_col, f"{value!r}", direction]
+        a["poincare_axes"] = axes
+
+    # ------------------------------------------------------------------ report side
+    @classmethod
+    def headline(cls, data):
+        a = data.analysis
+        run = data.runs.get("main")
+        facts = [("system", f"{'L' if a['given'] == 'L' else 'H'} in "
+                            f"{', '.join(a['coordinates'])} ({len(a['coordinates'])} degree"
+                            f"{'s' if len(a['coordinates']) > 1 else ''} of freedom"
+                            f"{', separable' if a['separable'] else ''})"),
+                 ("H(0)", fmt(a["H0"], 14))]
+        if run is not None and "drift_H" in run.attrs:
+            facts.append(("relative drift of H", fmt_err(run.attrs["drift_H"])))
+        conserved = [k[len("conserved_"):] for k, v in a.items()
+                     if k.startswith("conserved_") and v]
+        if conserved:
+            facts.append(("conserved observables", ", ".join(conserved)))
+        return facts
+
+    @classmethod
+    def section_equations(cls, data):
+        a = data.analysis
+        tex = a["latex"]
+        eqs = []
+        if a["given"] == "L":
+            eqs.append(("Lagrangian", f"L = {tex['L']}"))
+            for q, m in zip(tex["q"], tex["momenta"], strict=True):
+                eqs.append((f"momentum conjugate to {q}", rf"p_{{{q}}} = {m}"))
+            for q, v in zip(tex["q"], tex["velocities"], strict=True):
+                eqs.append(("velocity", rf"\dot{{{q}}} = {v}"))
+        eqs.append(("Hamiltonian", f"H = {tex['H']}"))
+        for i, (q, e) in enumerate(zip(tex["q"], tex["qdot"], strict=True)):
+            eqs.append(("Hamilton's equations: q̇ = ∂H/∂p" if i == 0 else "",
+                        rf"\dot{{{q}}} = {e}"))
+        for i, (p, e) in enumerate(zip(tex["p"], tex["pdot"], strict=True)):
+            eqs.append(("ṗ = −∂H/∂q" if i == 0 else "", rf"\dot{{{p}}} = {e}"))
+        for i, name in enumerate(k[len("observable_"):] for k in tex if k.startswith("observable_")):
+            eqs.append(("observables" if i == 0 else "", f"{name} = {tex['observable_' + name]}"))
+        facts = [("H separable (T(p) + V(q))", "yes: symplectic splitting methods apply"
+                  if a["separable"] else "no"),
+                 ("H depends on t", "yes: H is not conserved" if a["time_dependent"] else "no")]
+        if a["given"] == "L":
+            facts.append(("max |p − ∂L/∂q̇| along the run",
+                          fmt_err(a["legendre_momentum_error"])))
+            facts.append(("max |H − (q̇·∂L/∂q̇ − L)| along the run",
+                          f"{fmt_err(a['legendre_energy_error'])} (|H| ≤ "
+                          f"{fmt(a['legendre_energy_scale'], 4)})"))
+        return SectionContent(facts=facts, equations=eqs)
+
+    @classmethod
+    def section_trajectory(cls, data):
+        run = data.runs["main"]
+        names = list(data.analysis["coordinates"])
+        figs = [cls.figure("coordinates", plots.coordinates(run.t, {n: run[n] for n in names}),
+                           "The coordinates against time.")]
+        if len(names) >= 2:
+            # a long path fills its region with ink: the first CONFIGURATION_SAMPLES show it
+            n = min(len(run.t), cls.CONFIGURATION_SAMPLES)
+            part = ("" if n == len(run.t) else
+                    f", for t ≤ {fmt(float(run.t[n - 1]), 4)} (of {fmt(float(run.t[-1]), 6)})")
+            figs.append(cls.figure("configuration", plots.configuration(
+                run[names[0]][:n], run[names[1]][:n], names[0], names[1]),
+                f"The path in the ({names[0]}, {names[1]}) plane of configuration space{part}."))
+        return SectionContent(figures=figs)
+
+    @classmethod
+    def section_phase_portrait(cls, data):
+        run = data.runs["main"]
+        a = data.analysis
+        q = a["coordinates"][0]
+        grid = a["phase_grid"]
+        fig = plots.phase_portrait(run[q], run[f"p_{q}"], grid["q"], grid["p"], grid["H"],
+                                   a["H0"], q)
+        return SectionContent(figures=[cls.figure(
+            "phase_portrait", fig, f"Level curves of H in the ({q}, p_{q}) plane; the run's "
+                                   "orbit on its level H = H(0) (highlighted).")])
+
+    @classmethod
+    def section_poincare(cls, data):
+        a = data.analysis
+        pts = a["poincare"]
+        s_col, value, direction = a["poincare_surface"]
+        u, v = a["poincare_axes"]
+        fig = plots.poincare(pts["u"], pts["v"], u, v)
+        which = {"up": f"with {s_col} increasing", "down": f"with {s_col} decreasing",
+                 "both": "in either direction"}[direction]
+        return SectionContent(
+            figures=[cls.figure("poincare", fig,
+                                f"Surface of section {s_col} = {value} crossed {which}: "
+                                f"({u}, {v}) at each of the {len(pts['u'])} crossings.")],
+            facts=[("crossings", str(len(pts["u"])))],
+            notes=["A regular (quasi-periodic) orbit crosses the surface on a closed curve; a "
+                   "chaotic one scatters over an area. Crossings are located between stored "
+                   "samples by cubic Hermite interpolation with the derivatives from "
+                   "Hamilton's equations."] if len(pts["u"]) else
+                  ["The orbit did not cross the surface of section during the run."])
+
+    @classmethod
+    def section_invariants(cls, data):
+        a = data.analysis
+        content = cls.invariants_section(
+            data, caption="Relative drift of H and of every conserved quantity: observables "
+                          "whose total time derivative {f, H} + ∂f/∂t simplifies to zero, and "
+                          "the momenta of cyclic coordinates.")
+        moving = a.get("observables")
+        if moving:
+            run = data.runs["main"]
+            content.figures.append(cls.figure(
+                "observables", plots.observables(run.t, moving),
+                "Observables that are not conserved ({f, H} + ∂f/∂t ≠ 0), against time."))
+        return content
+
+    @classmethod
+    def section_brackets(cls, data):
+        a = data.analysis
+        rows = []
+        for key, value in a.items():
+            if key.startswith("poisson_") and not key.endswith(("_latex", "_max")):
+                name = key[len("poisson_"):]
+                rows.append([name, value, "yes" if a[f"conserved_{name}"] else "no",
+                             fmt_err(a[f"poisson_{name}_max"])])
+        tables = []
+        if rows:
+            tables.append(Table(
+                caption="{f, H} = Σ ∂f/∂q ∂H/∂p − ∂f/∂p ∂H/∂q, simplified by SymPy (archived as "
+                        "/analysis attrs poisson_<name>); conserved when {f, H} + ∂f/∂t = 0. "
+                        "The last column evaluates {f, H} along the run.",
+                header=["observable f", "{f, H}", "conserved", "max |{f, H}| on the run"],
+                rows=rows))
+        pairs = a.get("pair_brackets")
+        if pairs:
+            tables.append(Table(caption="Brackets between the observables, simplified.",
+                                 header=["f", "g", "{f, g}"],
+                                 rows=[[_text(f), _text(g), _text(b)] for f, g, b in
+                                       zip(pairs["f"], pairs["g"], pairs["bracket"],
+                                           strict=True)]))
+        cyclic = list(a["cyclic"])
+        f, g, h = a["jacobi_triple"]
+        facts = [("cyclic coordinates", ", ".join(cyclic) + " (their momenta "
+                  + ", ".join(f"p_{c}" for c in cyclic) + " are conserved)" if cyclic
+                  else "none"),
+                 ("Jacobi identity {f,{g,h}} + {g,{h,f}} + {h,{f,g}}",
+                  f"max {fmt_err(a['jacobi_max'])} on {cls.JACOBI_SAMPLES} samples of the run "
+                  f"(terms up to {fmt(a['jacobi_scale'], 3)}), f = {f}, g = {g}, h = {h}")]
+        return SectionContent(facts=facts, tables=tables)
+
+
+    @classmethod
+    def section_error_vs_runtime(cls, data):
+        content = super().section_error_vs_runtime(data)
+        horizon = data.analysis.get("study_t_end")
+        t_end = data.config.run.t_end
+        if horizon is not None and horizon < t_end:
+            content.notes.insert(0, f"The study integrates the first {fmt(horizon, 4)} of the "
+                                    f"run's {fmt(t_end, 6)} time units ({cls.STUDY_STEPS} steps "
+                                    "of the main run): long runs would spend most of their "
+                                    "time on references, and in a chaotic system errors that "
+                                    "have grown to the size of the orbit compare nothing.")
+        return content
+
+
+def _text(value) -> str:
+    return value.decode("utf-8") if isinstance(value, bytes) else str(value)
+
+
+def section_crossings(t, y, ydot, column: int, value: float, direction: str,
+                      axes: list[int]) -> np.ndarray:
+    """Rows (t, u, v) where ``y[:, column]`` crosses ``value``, with u, v the ``axes``
+    columns there; each crossing located by Newton on the cubic Hermite interpolant of the
+    interval (derivatives ``ydot``), u and v interpolated the same way."""
+    s = y[:, column] - value
+    if direction == "up":
+        idx = np.nonzero((s[:-1] < 0) & (s[1:] >= 0))[0]
+    elif direction == "down":
+        idx = np.nonzero((s[:-1] > 0) & (s[1:] <= 0))[0]
+    else:
+        idx = np.nonzero(np.sign(s[:-1]) * np.sign(s[1:]) < 0)[0]
+    h = t[idx + 1] - t[idx]
+
+    def hermite(col, x):
+        y0, y1 = y[idx, col], y[idx + 1, col]
+        d0, d1 = ydot[idx, col] * h, ydot[idx + 1, col] * h
+        h00 = 2 * x**3 - 3 * x**2 + 1
+        h10 = x**3 - 2 * x**2 + x
+        h01 = -2 * x**3 + 3 * x**2
+        h11 = x**3 - x**2
+        return h00 * y0 + h10 * d0 + h01 * y1 + h11 * d1
+
+    def slope(col, x):
+        y0, y1 = y[idx, col], y[idx + 1, col]
+        d0, d1 = ydot[idx, col] * h, ydot[idx + 1, col] * h
+        return ((6 * x**2 - 6 * x) * y0 + (3 * x**2 - 4 * x + 1) * d0
+                + (-6 * x**2 + 6 * x) * y1 + (3 * x**2 - 2 * x) * d1)
+
+    # start from the secant, then Newton on the interpolant, kept inside [0, 1]
+    x = np.clip(-s[idx] / np.where(s[idx + 1] != s[idx], s[idx + 1] - s[idx], 1.0), 0.0, 1.0)
+    for _ in range(8):
+        d = slope(column, x)
+        step = np.where(d != 0, (hermite(column, x) - value) / np.where(d != 0, d, 1.0), 0.0)
+        x = np.clip(x - step, 0.0, 1.0)
+    return np.column_stack([t[idx] + x * h, hermite(axes[0], x), hermite(axes[1], x)]) \
+        if len(idx) else np.empty((0, 3))
+
