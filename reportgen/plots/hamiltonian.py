@@ -33,8 +33,9 @@ def configuration(x, y, xname: str, yname: str):
     return fig
 
 
-def phase_portrait(q, p, grid_q, grid_p, H, H0: float, qname: str):
-    """Level curves of H on the grid, the run's level H0 and its orbit."""
+def phase_portrait(q, p, grid_q, grid_p, H, H0: float, qname: str, angle: bool = False):
+    """Level curves of H on the grid, the run's level H0 and its orbit (an angle wrapped
+    to (−π, π], the orbit broken where it wraps)."""
     fig, ax = new_figure(figsize=(6.4, 4.6))
     Q, P = np.meshgrid(grid_q, grid_p)
     finite = H[np.isfinite(H)]
@@ -42,7 +43,16 @@ def phase_portrait(q, p, grid_q, grid_p, H, H0: float, qname: str):
         lo, hi = np.percentile(finite, [2, 90])
         levels = np.unique(np.concatenate([np.linspace(lo, hi, 14), [H0]]))
         ax.contour(Q, P, H, levels=levels, colors=CONTEXT, linewidths=0.7)
-    ax.plot(q, p, color=HIGHLIGHT, linewidth=2.0, label=f"this run, H = {H0:.6g}")
+    q, p = np.asarray(q), np.asarray(p)
+    if angle:
+        q = np.pi - np.mod(np.pi - q, 2 * np.pi)
+        jumps = np.nonzero(np.abs(np.diff(q)) > np.pi)[0] + 1
+        for seg_q, seg_p in zip(np.split(q, jumps), np.split(p, jumps), strict=True):
+            ax.plot(seg_q, seg_p, color=HIGHLIGHT, linewidth=2.0)
+        ax.set_xlim(-np.pi, np.pi)
+    else:
+        ax.plot(q, p, color=HIGHLIGHT, linewidth=2.0)
+    ax.plot([], [], color=HIGHLIGHT, linewidth=2.0, label=f"this run, H = {H0:.6g}")
     ax.plot([], [], color=CONTEXT, label="other levels of H")
     ax.set_xlabel(qname)
     ax.set_ylabel(f"p_{qname}")
@@ -66,5 +76,20 @@ def observables(t, series: dict[str, np.ndarray]):
         ax.plot(*envelope(t, values), color=colour, label=name)
     ax.set_xlabel("time t")
     ax.set_ylabel("value")
+    ax.legend(loc="best")
+    return fig
+
+
+def new_variables(t, series: dict[str, np.ndarray], integrated=None, first: str = ""):
+    """The new canonical variables against time; the first of them also from integrating
+    K (dashed), when given."""
+    fig, ax = new_figure()
+    for (name, values), colour in zip(series.items(), PALETTE, strict=False):
+        ax.plot(*envelope(t, values), color=colour, label=name)
+    if integrated is not None:
+        ax.plot(*envelope(t, integrated), color="black", linestyle=(0, (3, 3)), linewidth=1.0,
+                label=f"{first} from K")
+    ax.set_xlabel("time t")
+    ax.set_ylabel("new variables")
     ax.legend(loc="best")
     return fig

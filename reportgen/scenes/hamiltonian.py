@@ -30,6 +30,20 @@ expressions = lazy_module("reportgen.core.expressions")  # no SymPy: validation 
 formula = lazy_module("reportgen.core.formula")
 numeric = lazy_module("reportgen.core.numeric")
 mechanics = lazy_module("reportgen.core.mechanics")
+canonical = lazy_module("reportgen.core.canonical")
+
+
+class _PresetFormulas:
+    """The separable presets' H, from reportgen.core.hamilton_jacobi without importing it
+    (a module of numerics) when the kind is only listed or validated."""
+
+    CENTRAL_H = "(p_r**2 + p_theta**2/r**2 + p_phi**2/(r**2*sin(theta)**2))/(2*m) - k/r"
+    TWO_CENTRES_H = ("(p_xi**2 + p_eta**2)/(2*m*a**2*(cosh(xi)**2 - cos(eta)**2))"
+                     " - m*mu1/(a*(cosh(xi) - cos(eta))) - m*mu2/(a*(cosh(xi) + cos(eta)))")
+
+
+_hj = _PresetFormulas
+hamilton_jacobi = lazy_module("reportgen.core.hamilton_jacobi")
 
 #: names a coordinate, constant or observable may not take
 _FUNCTIONS = ("sin", "cos", "tan", "asin", "acos", "atan", "atan2", "sinh", "cosh", "tanh",
@@ -85,6 +99,20 @@ class Transform(Strict):
         return list(self.momenta) if self.momenta else [f"P_{c}" for c in self.coordinates]
 
 
+class HamiltonJacobi(Strict):
+    """``[hamilton_jacobi]``: compare with the separated quadrature solution (notes §7)."""
+
+    separation: Literal["central", "two_centres"] = Field(
+        description='"central": V = −k/r in spherical (r, theta, phi), constants m, k; '
+                    '"two_centres": elliptic (xi, eta), constants m, mu1, mu2, a')
+
+
+#: the coordinates and constants each separable preset's H is written in
+SEPARATIONS = {"central": (["r", "theta", "phi"], {"m", "k"}),
+               "two_centres": (["xi", "eta"], {"m", "mu1", "mu2", "a"})}
+PRESET_OF = {"central": "central_potential", "two_centres": "two_centres"}
+
+
 def _problem(key: str, rule: str, got=None) -> ValueError:
     """A config error in the form every kind uses: ``key 'a.b': rule (got value)``."""
     return ValueError(f"key '{key}': {rule}" + ("" if got is None else f" (got {got!r})"))
@@ -102,6 +130,7 @@ class HamiltonianConfig(SceneConfig):
     run: RunConfig
     section: SurfaceOfSection | None = None
     transform: Transform | None = None
+    hamilton_jacobi: HamiltonJacobi | None = None
 
     @model_validator(mode="after")
     def _formulas(self):
@@ -184,6 +213,15 @@ class HamiltonianConfig(SceneConfig):
             key = f"transform.{tr.kind}"
             unknowns = list(tr.coordinates) if tr.kind == "F1" else tr.new_momenta()
             check(key, tr.formula, coords + unknowns + ["t"] + constants)
+        hj = self.hamilton_jacobi
+        if hj is not None:
+            names, constants_needed = SEPARATIONS[hj.separation]
+            if list(coords) != names or sys_.H is None \
+                    or not constants_needed <= set(self.params):
+                raise _problem("hamilton_jacobi.separation", f"{hj.separation!r} solves H "
+                               f"written in coordinates {names} with constants "
+                               f"{', '.join(sorted(constants_needed))} (use preset = "
+                               f"\"{PRESET_OF[hj.separation]}\")", hj.separation)
         for name, value in self.params.items():
             if name not in used:
                 raise _problem(f"params.{name}", "a constant no formula uses (a misspelt "
@@ -196,6 +234,23 @@ class HamiltonianScene(Scene):
     order = 95
     summary = "any system written as H(q, p, t) or L(q, q̇, t): derived, compiled, checked"
     Config = HamiltonianConfig
+    presets = {
+        # V = −k/r in spherical coordinates: H separates as W_r(r) + W_θ(θ) + p_φ φ
+        "central_potential": {
+            "params": {"m": 1.0, "k": 1.0},
+            "system": {"coordinates": ["r", "theta", "phi"], "H": _hj.CENTRAL_H},
+            "observables": {"L2": "p_theta**2 + p_phi**2/sin(theta)**2",
+                            "Lx": "-sin(phi)*p_theta - cos(theta)/sin(theta)*cos(phi)*p_phi",
+                            "Ly": "cos(phi)*p_theta - cos(theta)/sin(theta)*sin(phi)*p_phi"},
+            "hamilton_jacobi": {"separation": "central"},
+            "run": {"t_end": 40.0}},
+        # two fixed centres in elliptic coordinates: separates with a second constant β
+        "two_centres": {
+            "params": {"m": 1.0, "mu1": 1.0, "mu2": 0.5, "a": 1.0},
+            "system": {"coordinates": ["xi", "eta"], "H": _hj.TWO_CENTRES_H},
+            "hamilton_jacobi": {"separation": "two_centres"},
+            "run": {"t_end": 40.0}},
+    }
     sections = (
         Section("equations", "The system and its equations of motion"),
         Section("trajectory", "Trajectory", integrates=True),
@@ -203,6 +258,9 @@ class HamiltonianScene(Scene):
         Section("poincare", "Surface of section", integrates=True),
         Section("invariants", "Conserved quantities", integrates=True),
         Section("brackets", "Poisson brackets and symmetries", integrates=True),
+        Section("transform", "Canonical transformation", integrates=True),
+        Section("hamilton_jacobi", "Hamilton–Jacobi: the separated quadrature solution",
+                integrates=True),
         Section("error_vs_runtime", "Error against run time", integrates=True),
     )
 
@@ -212,6 +270,8 @@ class HamiltonianScene(Scene):
     MIN_CROSSINGS = 20
     #: the error-against-run-time study covers at most this many steps of the main run
     STUDY_STEPS = 2000
+    #: equations whose TeX is longer than this are not typeset (unreadably small)
+    LONGEST_EQUATION = 320
     #: samples of the configuration-space path drawn
     CONFIGURATION_SAMPLES = 5000
     #: samples the Jacobi identity is checked on
@@ -223,6 +283,10 @@ class HamiltonianScene(Scene):
         a = data.analysis
         if "phase_grid" not in a:
             names.remove("phase_portrait")
+        if "transform" not in a:
+            names.remove("transform")
+        if "hamilton_jacobi" not in a:
+            names.remove("hamilton_jacobi")
         # a surface of section says something only with enough crossings (a closed orbit
         # crosses it at a few fixed points), unless the config asked for one
         if "poincare" not in a or (len(a["poincare"]["u"]) < cls.MIN_CROSSINGS
@@ -336,6 +400,8 @@ class HamiltonianScene(Scene):
                 out[f"p_{c}"] = np.array(y[:, space.names.index(c) + system.n])
             return out
 
+        angles = self._angles(system)
+        a["angles"] = angles
         scales = {}
         vals0 = system.values(y0[None, :], np.array([0.0]))
         h0 = float(numeric.evaluate(H, vals0)[0])
@@ -393,6 +459,10 @@ class HamiltonianScene(Scene):
                                     float(main.invariants["H"][-1]) if h_conserved else h0,
                                     h0, "", "H(0) of the initial state", scale=scales.get("H",
                                                                                            1.0)))
+        if self.config.transform is not None:
+            self._transform(results, system, main)
+        if self.config.hamilton_jacobi is not None:
+            self._hamilton_jacobi(a, system, main)
         # the study over at most STUDY_STEPS of the main run's steps: long (and chaotic) runs
         # would spend seconds on references, and errors that have grown to the orbit's size
         # compare nothing
@@ -400,6 +470,115 @@ class HamiltonianScene(Scene):
         a["study_t_end"] = float(horizon)
         self.study(results, model, y0, np.linspace(0.0, horizon, 201))
         return results
+
+    def _transform(self, results, system, main) -> None:
+        """New variables along the run, the symplectic condition MᵀJM = J there, K = H +
+        ∂F/∂t; where K has a closed form, K integrated from (Q0, P0) against the image."""
+        import sympy
+
+        from ..config import ConfigError
+
+        cfg, a, n = self.config.transform, results.analysis, system.n
+        numbers = {system.param_symbols[k]: v for k, v in system.params.items()}
+        H = system.H.xreplace(numbers)
+        try:
+            ct = canonical.generating_function(system.space, cfg.formula, cfg.kind,
+                                               cfg.coordinates, cfg.new_momenta(),
+                                               params=system.params)
+            q, p, t = main.y[:, :n], main.y[:, n:], main.t
+            Q, P = canonical.new_variables(ct, q, p, t)
+        except ValueError as exc:
+            raise ConfigError([f"{self.source.label}: key 'transform.{cfg.kind}': {exc}"]) \
+                from None
+        defect = canonical.symplectic_defect(ct, q, p, Q, P, t)
+        brackets = canonical.poisson_brackets(ct, q, p, Q, P, t)
+        unit = np.zeros((2 * n, 2 * n))
+        unit[:n, n:], unit[n:, :n] = np.eye(n), -np.eye(n)
+        K_along = canonical.hamiltonian_along(ct, H, q, p, Q, P, t)
+        a["transform"] = {"Q": Q, "P": P, "defect": defect, "K": K_along}
+        a["transform_new"] = list(cfg.coordinates) + cfg.new_momenta()
+        a["transform_latex"] = canonical.relations_latex(ct)
+        a["transform_defect_max"] = float(np.max(defect))
+        a["transform_bracket_max"] = float(np.max(np.abs(brackets - unit)))
+        K = canonical.new_hamiltonian(ct, H)
+        a["transform_K_latex"] = "" if K is None else sympy.latex(K)
+        if K is None or K.free_symbols - set(ct.Q + ct.P + (system.space.t,)):
+            return
+        # Hamilton's equations of K, compiled like any formula system, from (Q0, P0)
+        space = mechanics.PhaseSpace(tuple(cfg.coordinates), ct.Q, ct.P, (), system.space.t)
+        new = formula.FormulaSystem(space, {}, {}, K, None, None,
+                                    mechanics.hamiltonian_system(space, K))
+        model = formula.compiled_model(new, name=f"{self.source.name}-K")
+        run = self.integrate(model, np.concatenate([Q[0], P[0]]), t)
+        run.reference = {c: v for c, v in zip(model.columns, np.column_stack([Q, P]).T,
+                                              strict=True)}
+        run.attrs["reference_label"] = "(Q, P) of the integrated H orbit"
+        results.runs["transformed"] = run
+        a["transform_run_difference"] = float(np.max(np.abs(run.y - np.column_stack([Q, P]))))
+
+    def _hamilton_jacobi(self, a: dict, system, main) -> None:
+        """The preset's quadrature solution against the run, and its separated constants
+        along the run."""
+        from ..config import ConfigError
+
+        kind = self.config.hamilton_jacobi.separation
+        prm = system.params
+        # the config's H must be the one the quadrature solves: compared at random states
+        text = _hj.CENTRAL_H if kind == "central" else _hj.TWO_CENTRES_H
+        ref = formula.build_system(system.space.names, H=text, params=prm).H
+        rng = np.random.default_rng(7)
+        states = rng.uniform(0.3, 1.3, size=(5, 2 * system.n))
+        vals = system.values(states, 0.0)
+        ref_vals = {s: vals[system.space.t] if s.name == "t" else
+                    (prm[s.name] if s.name in prm else states[:, system.columns.index(s.name)])
+                    for s in ref.free_symbols}
+        if not np.allclose(numeric.evaluate(system.H, vals), numeric.evaluate(ref, ref_vals),
+                           rtol=1e-12, atol=1e-12):
+            raise ConfigError([f"{self.source.label}: key 'hamilton_jacobi.separation': H is "
+                               f"not the Hamiltonian the {kind!r} quadrature solves "
+                               f"({text})"])
+        y, t = main.y, main.t
+        cols = list(system.columns)
+        try:
+            if kind == "central":
+                sol = hamilton_jacobi.central_quadrature(prm["m"], prm["k"], y[0], t)
+                consts = hamilton_jacobi.central_integrals(*y.T, prm["m"], prm["k"])
+            else:
+                sol = hamilton_jacobi.two_centres_quadrature(prm["m"], prm["mu1"], prm["mu2"],
+                                                             prm["a"], y[0], t)
+                consts = hamilton_jacobi.two_centres_integrals(*y.T, prm["m"], prm["mu1"],
+                                                               prm["mu2"], prm["a"])
+        except ValueError as exc:
+            raise ConfigError([f"{self.source.label}: key 'initial': the {kind!r} quadrature "
+                               f"does not apply: {exc}"]) from None
+        diff = {c: np.abs(np.asarray(sol[c]) - y[:, cols.index(c)]) for c in cols}
+        a["hamilton_jacobi"] = {"solution": {c: np.asarray(sol[c]) for c in cols},
+                                "difference": diff,
+                                "constants": {k: np.asarray(v) for k, v in consts.items()}}
+        a["hj_separation"] = kind
+        a["hj_max_difference"] = float(max(np.max(d) for d in diff.values()))
+        a["hj_constants"] = {k: float(np.asarray(v)[0]) for k, v in consts.items()}
+        a["hj_constant_drift"] = {
+            k: float(np.max(np.abs(np.asarray(v) - np.asarray(v)[0]))
+                     / max(abs(float(np.asarray(v)[0])), 1e-300)) for k, v in consts.items()}
+
+    @staticmethod
+    def _angles(system) -> list[str]:
+        """The coordinates H depends on 2π-periodically (checked at random states): angles,
+        drawn wrapped to (−π, π] in the phase portrait and the surface of section."""
+        rng = np.random.default_rng(11)
+        states = rng.uniform(-1.0, 1.0, size=(6, 2 * system.n))
+        base = numeric.evaluate(system.H, system.values(states, 0.3))
+        found = []
+        for i, (name, q) in enumerate(zip(system.space.names, system.space.q, strict=True)):
+            if q not in system.H.free_symbols:
+                continue
+            shifted = states.copy()
+            shifted[:, i] += 2 * np.pi
+            moved = numeric.evaluate(system.H, system.values(shifted, 0.3))
+            if np.all(np.isfinite(base)) and np.allclose(moved, base, rtol=1e-11, atol=1e-12):
+                found.append(name)
+        return found
 
     def _pairwise_brackets(self, a: dict, system, vals) -> None:
         """{f, g} between observables, and the Jacobi identity on a sample of the run."""
@@ -453,6 +632,8 @@ class HamiltonianScene(Scene):
         pad_q = max(0.5 * float(np.ptp(q)), 0.5)
         pad_p = max(0.5 * float(np.ptp(p)), 0.5)
         gq = np.linspace(float(np.min(q)) - pad_q, float(np.max(q)) + pad_q, self.PHASE_GRID)
+        if system.space.names[0] in a["angles"]:  # an angle: one period, the orbit wrapped
+            gq = np.linspace(-np.pi, np.pi, self.PHASE_GRID)
         gp = np.linspace(float(np.min(p)) - pad_p, float(np.max(p)) + pad_p, self.PHASE_GRID)
         Q, P = np.meshgrid(gq, gp)
         space = system.space
@@ -479,7 +660,13 @@ class HamiltonianScene(Scene):
                                                      shape=main.t.shape))
         points = section_crossings(main.t, main.y, ydot, columns.index(s_col), value, direction,
                                    [columns.index(c) for c in axes])
-        a["poincare"] = {"t": points[:, 0], "u": points[:, 1], "v": points[:, 2]}
+        u, v = points[:, 1], points[:, 2]
+        wrap = [name in a["angles"] for name in axes]
+        if wrap[0]:
+            u = _wrapped(u)
+        if wrap[1]:
+            v = _wrapped(v)
+        a["poincare"] = {"t": points[:, 0], "u": u, "v": v}
         a["poincare_surface"] = [s_col, f"{value!r}", direction]
         a["poincare_axes"] = axes
 
@@ -513,10 +700,17 @@ class HamiltonianScene(Scene):
             for q, v in zip(tex["q"], tex["velocities"], strict=True):
                 eqs.append(("velocity", rf"\dot{{{q}}} = {v}"))
         eqs.append(("Hamiltonian", f"H = {tex['H']}"))
+        long = []
         for i, (q, e) in enumerate(zip(tex["q"], tex["qdot"], strict=True)):
+            if len(e) > cls.LONGEST_EQUATION:
+                long.append(f"q̇ of {q}")
+                continue
             eqs.append(("Hamilton's equations: q̇ = ∂H/∂p" if i == 0 else "",
                         rf"\dot{{{q}}} = {e}"))
         for i, (p, e) in enumerate(zip(tex["p"], tex["pdot"], strict=True)):
+            if len(e) > cls.LONGEST_EQUATION:
+                long.append(f"ṗ of {p}")
+                continue
             eqs.append(("ṗ = −∂H/∂q" if i == 0 else "", rf"\dot{{{p}}} = {e}"))
         for i, name in enumerate(k[len("observable_"):] for k in tex if k.startswith("observable_")):
             eqs.append(("observables" if i == 0 else "", f"{name} = {tex['observable_' + name]}"))
@@ -529,7 +723,10 @@ class HamiltonianScene(Scene):
             facts.append(("max |H − (q̇·∂L/∂q̇ − L)| along the run",
                           f"{fmt_err(a['legendre_energy_error'])} (|H| ≤ "
                           f"{fmt(a['legendre_energy_scale'], 4)})"))
-        return SectionContent(facts=facts, equations=eqs)
+        notes = [f"Too long to read when typeset, and not shown: {', '.join(long)} (the "
+                 "derivatives of H above; their TeX is in the archive, /analysis/latex)."] \
+            if long else []
+        return SectionContent(facts=facts, equations=eqs, notes=notes)
 
     @classmethod
     def section_trajectory(cls, data):
@@ -554,7 +751,7 @@ class HamiltonianScene(Scene):
         q = a["coordinates"][0]
         grid = a["phase_grid"]
         fig = plots.phase_portrait(run[q], run[f"p_{q}"], grid["q"], grid["p"], grid["H"],
-                                   a["H0"], q)
+                                   a["H0"], q, angle=q in list(a.get("angles", [])))
         return SectionContent(figures=[cls.figure(
             "phase_portrait", fig, f"Level curves of H in the ({q}, p_{q}) plane; the run's "
                                    "orbit on its level H = H(0) (highlighted).")])
@@ -630,6 +827,59 @@ class HamiltonianScene(Scene):
 
 
     @classmethod
+    def section_transform(cls, data):
+        a = data.analysis
+        tr = a["transform"]
+        new = list(a["transform_new"])
+        n = len(new) // 2
+        run = data.runs.get("transformed")
+        series = {new[i]: tr["Q"][:, i] for i in range(n)}
+        series.update({new[n + i]: tr["P"][:, i] for i in range(n)})
+        fig = plots.new_variables(data.runs["main"].t, series,
+                                  run[new[0]] if run is not None else None, new[0])
+        eqs = [("generating function and relations" if i == 0 else "", line)
+               for i, line in enumerate(a["transform_latex"])]
+        if a["transform_K_latex"]:
+            eqs.append(("K in the new variables", f"K = {a['transform_K_latex']}"))
+        facts = [("max |MᵀJM − J| along the run (M = ∂(Q, P)/∂(q, p))",
+                  fmt_err(a["transform_defect_max"])),
+                 ("max |{Qᵢ, Pⱼ} − δᵢⱼ|, |{Qᵢ, Qⱼ}|, |{Pᵢ, Pⱼ}|",
+                  fmt_err(a["transform_bracket_max"]))]
+        if run is not None:
+            facts.append(("max |(Q, P) from integrating K − (Q, P) of the H orbit|",
+                          fmt_err(a["transform_run_difference"])))
+        else:
+            facts.append(("K in closed form", "not found (the old variables are not linear "
+                          "in the new ones); K = H + ∂F/∂t is evaluated along the run"))
+        caption = ("The new variables along the integrated orbit" +
+                   (f"; dashed: {new[0]} from integrating K's own Hamilton equations from "
+                    "(Q0, P0)." if run is not None else "."))
+        return SectionContent(figures=[cls.figure("new_variables", fig, caption)],
+                              equations=eqs, facts=facts)
+
+    @classmethod
+    def section_hamilton_jacobi(cls, data):
+        a = data.analysis
+        hj = a["hamilton_jacobi"]
+        run = data.runs["main"]
+        fig = common_plots.error_against_time(
+            run.t, {f"|{c}_HJ − {c}|": d for c, d in hj["difference"].items()},
+            time_unit="time units", ylabel="quadrature − integration")
+        rows = [[k, fmt(v, 14), fmt_err(a["hj_constant_drift"][k])]
+                for k, v in a["hj_constants"].items()]
+        which = ("Kepler's equation for t(r) (∂W/∂E), the argument of latitude (∂W/∂L) and the "
+                 "node (∂W/∂L_z)" if a["hj_separation"] == "central" else
+                 "Charlier's quadratures in the fictitious time dt = m a²(cosh²ξ − cos²η) dτ, "
+                 "each coordinate through its turning points")
+        return SectionContent(
+            figures=[cls.figure("hj_difference", fig,
+                                f"The quadrature solution ({which}) minus the integration.")],
+            tables=[Table(caption="The separated constants at t = 0 and their relative drift "
+                                  "along the integration.",
+                          header=["constant", "value", "max relative drift"], rows=rows)],
+            facts=[("max |quadrature − integration|", fmt_err(a["hj_max_difference"]))])
+
+    @classmethod
     def section_error_vs_runtime(cls, data):
         content = super().section_error_vs_runtime(data)
         horizon = data.analysis.get("study_t_end")
@@ -641,6 +891,11 @@ class HamiltonianScene(Scene):
                                     "time on references, and in a chaotic system errors that "
                                     "have grown to the size of the orbit compare nothing.")
         return content
+
+
+def _wrapped(angle):
+    """Angles to (−π, π]."""
+    return np.pi - np.mod(np.pi - np.asarray(angle), 2 * np.pi)
 
 
 def _text(value) -> str:
