@@ -243,12 +243,15 @@ class HamiltonianScene(Scene):
                             "Lx": "-sin(phi)*p_theta - cos(theta)/sin(theta)*cos(phi)*p_phi",
                             "Ly": "cos(phi)*p_theta - cos(theta)/sin(theta)*sin(phi)*p_phi"},
             "hamilton_jacobi": {"separation": "central"},
+            "initial": {"r": 1.0, "theta": 1.1, "phi": 0.0, "p_r": 0.2, "p_theta": 0.5,
+                        "p_phi": 0.8},
             "run": {"t_end": 40.0}},
         # two fixed centres in elliptic coordinates: separates with a second constant β
         "two_centres": {
             "params": {"m": 1.0, "mu1": 1.0, "mu2": 0.5, "a": 1.0},
             "system": {"coordinates": ["xi", "eta"], "H": _hj.TWO_CENTRES_H},
             "hamilton_jacobi": {"separation": "two_centres"},
+            "initial": {"xi": 0.8, "eta": 1.0, "p_xi": 0.0, "p_eta": 0.6},
             "run": {"t_end": 40.0}},
     }
     sections = (
