@@ -640,9 +640,8 @@ def test_jacobi_identity_holds_on_the_run(which, request):
     assert a["jacobi_max"] <= 1e-14 * a["jacobi_scale"]
 
 
-@pytest.mark.xfail(strict=True, reason="product bug: abs() of a coordinate passes validation, "
-                   "but the Jacobian's d sign(x)/dx = 2 DiracDelta(x) cannot be printed "
-                   "(formula._Printer raises ValueError): `run` exits 1 with a traceback log")
+# abs() of a coordinate: the Jacobian holds d sign(x)/dx = 2 DiracDelta(x), compiled and
+# evaluated as 0 (it is zero but at x = 0)
 def test_abs_of_a_coordinate_runs_or_is_refused_cleanly(write_config, cli, tmp_path):
     path = write_config("vee", """
         kind = "hamiltonian"

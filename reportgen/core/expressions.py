@@ -136,6 +136,22 @@ class _Builder:
         shown = f" {piece!r}" if piece else ""
         return ExpressionError(f"{what}{shown}{at} is not allowed in a formula")
 
+    def _fold(self, node: ast.BinOp, left, right):
+        """Check mode: a binary operation of two constants as a float (None otherwise),
+        with the limits :meth:`build` applies to SymPy constants."""
+        if left is None or right is None:
+            return None
+        if isinstance(node.op, ast.Pow) and abs(right) > MAX_CONSTANT_EXPONENT:
+            raise self.fail(node, f"a power of constants with an exponent above "
+                                  f"{MAX_CONSTANT_EXPONENT}")
+        if isinstance(node.op, ast.Div) and right == 0:
+            raise self.fail(node, "a division by zero")
+        try:
+            value = _OPERATORS[type(node.op)](left, right)
+        except (OverflowError, ZeroDivisionError, ValueError):
+            return None
+        return value if isinstance(value, float) and math.isfinite(value) else None
+
     def build(self, node: ast.AST, depth: int) -> sympy.Expr:
         if depth > MAX_DEPTH:
             raise ExpressionError(f"formula nested deeper than {MAX_DEPTH}")
@@ -146,7 +162,7 @@ class _Builder:
             if abs(value) > MAX_LITERAL:
                 raise self.fail(node, f"a number above {MAX_LITERAL:g}")
             if not self.building:
-                return None
+                return float(value)  # constants are folded, so that the limits apply
             import sympy
 
             return sympy.Integer(value) if isinstance(value, int) else sympy.Float(value)
@@ -161,13 +177,14 @@ class _Builder:
         if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub | ast.UAdd):
             inner = self.build(node.operand, depth + 1)
             if not self.building:
-                return None
+                return None if inner is None else (-inner if isinstance(node.op, ast.USub)
+                                                   else inner)
             return -inner if isinstance(node.op, ast.USub) else inner
         if isinstance(node, ast.BinOp) and type(node.op) in _OPERATORS:
             left = self.build(node.left, depth + 1)
             right = self.build(node.right, depth + 1)
             if not self.building:
-                return None
+                return self._fold(node, left, right)
             if isinstance(node.op, ast.Pow) and left.is_number and right.is_number:
                 if not right.is_real or abs(float(right)) > MAX_CONSTANT_EXPONENT:
                     raise self.fail(node, f"a power of constants with an exponent above "

@@ -246,6 +246,8 @@ class _Printer:
         if node.func == sympy.sign:
             x = self(args[0])
             return f"(0.0 if {x} == 0.0 else math.copysign(1.0, {x}))"
+        if node.func == sympy.DiracDelta:  # d sign(x)/dx: zero but at x = 0
+            return "0.0"
         if node.func == sympy.sec:
             return f"(1.0 / math.cos({self(args[0])}))"
         if node.func == sympy.csc:

@@ -309,7 +309,8 @@ class HamiltonianScene(Scene):
             except formula.FormulaError as exc:
                 from ..config import ConfigError
 
-                raise ConfigError([f"{self.source.label}: {exc}"]) from None
+                raise ConfigError([f"{self.source.label}: key '{exc.key}': {exc.detail}"]) \
+                    from None
         return self._system
 
     def models(self) -> list:
@@ -442,7 +443,7 @@ class HamiltonianScene(Scene):
         a["given"] = "L" if system.L is not None else "H"
         a["separable"] = bool(system.separable)
         a["time_dependent"] = bool(system.time_dependent)
-        a["cyclic"] = list(cyclic)
+        a["cyclic"] = [str(c) for c in cyclic]
         a["H0"] = h0
         a["initial_state"] = y0
         for name, bracket in brackets.items():
@@ -598,20 +599,28 @@ class HamiltonianScene(Scene):
                                   "bracket": [r[2] for r in rows]}
         # Jacobi: {f,{g,h}} + {g,{h,f}} + {h,{f,g}} = 0 for f, g from the observables (or q1,
         # p1) and h = H; evaluated, not simplified
-        pool = [system.observables[n] for n in names] + [space.q[0], space.p[0]]
-        f, g, h = pool[0], pool[1], system.H
+        # the first pair whose terms do not all vanish (two conserved observables, or
+        # {q, p} with a separable H, would check nothing): observables, then cubics
+        q1, p1, qn, pn = space.q[0], space.p[0], space.q[-1], space.p[-1]
+        obs = [system.observables[n] for n in names]
+        cubic_f, cubic_g = q1**2 * pn + p1, p1**2 * qn + q1 * pn
+        candidates = ([(obs[0], obs[1])] if len(obs) > 1 else []) \
+            + ([(obs[0], cubic_g)] if obs else []) + [(cubic_f, cubic_g)]
+        h = system.H
 
         def pb(u, v):
             return sum(u.diff(q) * v.diff(p) - u.diff(p) * v.diff(q)
                        for q, p in zip(space.q, space.p, strict=True))
 
-        jacobi = pb(f, pb(g, h)) + pb(g, pb(h, f)) + pb(h, pb(f, g))
         n = len(vals[space.t])
         pick = np.unique(np.linspace(0, n - 1, min(n, self.JACOBI_SAMPLES)).astype(int))
         sample = {s: (v[pick] if np.ndim(v) else v) for s, v in vals.items()}
-        scale = sum(float(np.max(np.abs(numeric.evaluate(term, sample))))
-                    for term in (pb(f, pb(g, h)), pb(g, pb(h, f)), pb(h, pb(f, g))))
-        a["jacobi_max"] = float(np.max(np.abs(numeric.evaluate(jacobi, sample))))
+        for f, g in candidates:
+            terms = (pb(f, pb(g, h)), pb(g, pb(h, f)), pb(h, pb(f, g)))
+            scale = sum(float(np.max(np.abs(numeric.evaluate(term, sample)))) for term in terms)
+            if scale > 0:
+                break
+        a["jacobi_max"] = float(np.max(np.abs(numeric.evaluate(sum(terms), sample))))
         a["jacobi_scale"] = scale
         a["jacobi_triple"] = [str(f), str(g), "H"]
 
