@@ -794,3 +794,16 @@ def test_poincare_crossings_match_hand_integration_events(henon_heiles):
     assert np.max(np.abs(points["t"] - t_ev)) <= 1e-6
     assert np.max(np.abs(points["u"] - s_ev[:, 1])) <= 1e-6
     assert np.max(np.abs(points["v"] - s_ev[:, 3])) <= 1e-6
+
+
+def test_preset_formulas_are_the_ones_the_quadratures_solve():
+    # the kind keeps the two separable presets' H as text (importing the kind imports no
+    # numerics); they must be core.hamilton_jacobi's, character for character
+    from reportgen.core import hamilton_jacobi
+    from reportgen.scenes.hamiltonian import HamiltonianScene, _PresetFormulas
+
+    assert _PresetFormulas.CENTRAL_H == hamilton_jacobi.CENTRAL_H
+    assert _PresetFormulas.TWO_CENTRES_H == hamilton_jacobi.TWO_CENTRES_H
+    presets = HamiltonianScene.presets
+    assert presets["central_potential"]["system"]["H"] == hamilton_jacobi.CENTRAL_H
+    assert presets["two_centres"]["system"]["H"] == hamilton_jacobi.TWO_CENTRES_H
