@@ -37,6 +37,8 @@ FUNCTIONS = {
 }
 #: allowed constants: name -> name of the SymPy constant
 CONSTANTS = {"pi": "pi", "E": "E"}
+#: names a formula's own symbols (coordinates, constants, observables) may not take
+RESERVED = frozenset({"t", *FUNCTIONS, *CONSTANTS})
 
 MAX_LENGTH = 2000  # characters of one formula
 MAX_DEPTH = 60  # nesting of its tree

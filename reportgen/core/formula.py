@@ -39,13 +39,10 @@ import numpy as np
 import sympy
 
 from . import mechanics
-from .expressions import ExpressionError, parse_expression
+from .expressions import RESERVED, ExpressionError, parse_expression
 
 #: bump when the generated code changes
 CODE_VERSION = "1"
-#: names a constant or observable may not take (the parser's functions and constants, t)
-RESERVED = {"t", "pi", "E", "sin", "cos", "tan", "asin", "acos", "atan", "atan2", "sinh",
-            "cosh", "tanh", "exp", "log", "sqrt", "abs"}
 
 
 class FormulaError(ValueError):

@@ -185,6 +185,9 @@ class Scene:
     #: sections whose data ``simulate`` computes only when the report shows them (costly
     #: work, promise 3); which of them are wanted is part of the simulate key
     computed_on_request: ClassVar[tuple[str, ...]] = ("error_vs_runtime",)
+    #: why the study covers only t ≤ ``/analysis`` ``study_t_end`` of the run, for a kind
+    #: whose simulate stores one (shown in the error-against-run-time section)
+    study_horizon_reason: ClassVar[str] = ""
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
@@ -397,6 +400,10 @@ class Scene:
                          f"{fmt_err(float(best['error_max']))} ({_setting(best)})",
                          str(len(runs)), "ok"])
         notes = []
+        t_study, t_end = data.analysis.get("study_t_end"), data.config.run.t_end
+        if t_study is not None and t_study < t_end:
+            notes.append(f"The study integrates t ∈ [0, {fmt(t_study, 4)}] only (the report's "
+                         f"run goes to {fmt(t_end, 6)}): {cls.study_horizon_reason}")
         if "cached" in study.dtype.names and np.any(study["cached"]):
             cached = study[study["cached"].astype(bool)]
             where = sorted({(str(r["measured_at"]), str(r["machine"])) for r in cached})

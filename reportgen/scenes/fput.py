@@ -63,6 +63,8 @@ class FputScene(Scene):
     summary = ("Fermi–Pasta–Ulam–Tsingou stiff–soft chain: energy exchange between stiff "
                "springs, adiabatic invariant (GNI §I.5.1)")
     Config = FputConfig
+    study_horizon_reason = ("explicit methods must resolve the stiff period 2π/ω, and the "
+                            "full span made the sweep too slow.")
     presets = {
         "gni": {"params": {"m": 3, "omega": 50.0},
                 "run": {"t_end": 200.0, "samples": 4001}},
@@ -186,14 +188,3 @@ class FputScene(Scene):
         return cls.invariants_section(data, labels={"energy": "energy H"},
                                       caption="Relative drift of the total energy H (GNI eq. "
                                               "I.5.1).")
-
-    @classmethod
-    def section_error_vs_runtime(cls, data):
-        content = super().section_error_vs_runtime(data)
-        t_study = data.analysis.get("study_t_end")
-        t_end = data.config.run.t_end
-        if t_study is not None and t_study < t_end:
-            content.notes.append(f"The study integrates t ∈ [0, {fmt(t_study)}] only (the report's "
-                                 f"run goes to {fmt(t_end)}): explicit methods must resolve the "
-                                 "stiff period 2π/ω, and the full span made the sweep too slow.")
-        return content

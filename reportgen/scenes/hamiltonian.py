@@ -45,14 +45,19 @@ class _PresetFormulas:
 _hj = _PresetFormulas
 hamilton_jacobi = lazy_module("reportgen.core.hamilton_jacobi")
 
-#: names a coordinate, constant or observable may not take
-_FUNCTIONS = ("sin", "cos", "tan", "asin", "acos", "atan", "atan2", "sinh", "cosh", "tanh",
-              "exp", "log", "sqrt", "abs")
-RESERVED = frozenset({"t", "pi", "E", "H", "energy", *_FUNCTIONS})
+#: the error-against-run-time study covers at most this many steps of the main run
+STUDY_STEPS = 2000
+
+
+
+def _reserved() -> frozenset[str]:
+    """Names a coordinate, constant or observable may not take: the parser's own, and the
+    keys H and energy."""
+    return expressions.RESERVED | {"H", "energy"}
 
 
 def _usable(name: str) -> bool:
-    return name.isidentifier() and not name.startswith("_") and name not in RESERVED
+    return name.isidentifier() and not name.startswith("_") and name not in _reserved()
 
 
 class System(Strict):
@@ -140,7 +145,7 @@ class HamiltonianConfig(SceneConfig):
             raise _problem("system", "give exactly one of H and L")
         coords = sys_.coordinates
         rule = (f"must be an identifier not starting with _ and not one of "
-                f"{', '.join(sorted(RESERVED))}")
+                f"{', '.join(sorted(_reserved()))}")
         for c in coords:
             if not _usable(c):
                 raise _problem("system.coordinates", rule, c)
@@ -234,6 +239,10 @@ class HamiltonianScene(Scene):
     order = 95
     summary = "any system written as H(q, p, t) or L(q, q̇, t): derived, compiled, checked"
     Config = HamiltonianConfig
+    study_horizon_reason = (f"it covers at most {STUDY_STEPS} steps of the main run, since "
+                            "long runs would spend most of their time on references, and in a "
+                            "chaotic system errors that have grown to the size of the orbit "
+                            "compare nothing.")
     presets = {
         # V = −k/r in spherical coordinates: H separates as W_r(r) + W_θ(θ) + p_φ φ
         "central_potential": {
@@ -271,8 +280,6 @@ class HamiltonianScene(Scene):
     PHASE_GRID = 241
     #: fewest crossings for a surface of section to be shown without being asked for
     MIN_CROSSINGS = 20
-    #: the error-against-run-time study covers at most this many steps of the main run
-    STUDY_STEPS = 2000
     #: equations whose TeX is longer than this are not typeset (unreadably small)
     LONGEST_EQUATION = 320
     #: samples of the configuration-space path drawn
@@ -395,9 +402,7 @@ class HamiltonianScene(Scene):
         def quantities(tt, y):
             vals = system.values(y, tt)
             names = (["H"] if h_conserved else []) + [n for n, c in conserved.items() if c]
-            exprs = [H] + [system.observables[n] for n in names if n != "H"]
-            if not h_conserved:
-                exprs = exprs[1:]
+            exprs = [H if n == "H" else system.observables[n] for n in names]
             out = dict(zip(names, numeric.evaluate_many(exprs, vals, shape=np.shape(tt)),
                            strict=True))
             for c in cyclic:
@@ -470,7 +475,7 @@ class HamiltonianScene(Scene):
         # the study over at most STUDY_STEPS of the main run's steps: long (and chaotic) runs
         # would spend seconds on references, and errors that have grown to the orbit's size
         # compare nothing
-        horizon = run.t_end * min(1.0, self.STUDY_STEPS / max(int(main.attrs["nsteps"]), 1))
+        horizon = run.t_end * min(1.0, STUDY_STEPS / max(int(main.attrs["nsteps"]), 1))
         a["study_t_end"] = float(horizon)
         self.study(results, model, y0, np.linspace(0.0, horizon, 201))
         return results
@@ -529,14 +534,11 @@ class HamiltonianScene(Scene):
         prm = system.params
         # the config's H must be the one the quadrature solves: compared at random states
         text = _hj.CENTRAL_H if kind == "central" else _hj.TWO_CENTRES_H
-        ref = formula.build_system(system.space.names, H=text, params=prm).H
-        rng = np.random.default_rng(7)
-        states = rng.uniform(0.3, 1.3, size=(5, 2 * system.n))
+        ref = expressions.parse_expression(text, {**system.space.symbols_for_h(),
+                                                  **system.param_symbols})
+        states = np.random.default_rng(7).uniform(0.3, 1.3, size=(5, 2 * system.n))
         vals = system.values(states, 0.0)
-        ref_vals = {s: vals[system.space.t] if s.name == "t" else
-                    (prm[s.name] if s.name in prm else states[:, system.columns.index(s.name)])
-                    for s in ref.free_symbols}
-        if not np.allclose(numeric.evaluate(system.H, vals), numeric.evaluate(ref, ref_vals),
+        if not np.allclose(numeric.evaluate(system.H, vals), numeric.evaluate(ref, vals),
                            rtol=1e-12, atol=1e-12):
             raise ConfigError([f"{self.source.label}: key 'hamilton_jacobi.separation': H is "
                                f"not the Hamiltonian the {kind!r} quadrature solves "
@@ -824,9 +826,8 @@ class HamiltonianScene(Scene):
         if pairs:
             tables.append(Table(caption="Brackets between the observables, simplified.",
                                  header=["f", "g", "{f, g}"],
-                                 rows=[[_text(f), _text(g), _text(b)] for f, g, b in
-                                       zip(pairs["f"], pairs["g"], pairs["bracket"],
-                                           strict=True)]))
+                                 rows=[list(r) for r in zip(pairs["f"], pairs["g"],
+                                                            pairs["bracket"], strict=True)]))
         cyclic = list(a["cyclic"])
         f, g, h = a["jacobi_triple"]
         facts = [("cyclic coordinates", ", ".join(cyclic) + " (their momenta "
@@ -891,27 +892,10 @@ class HamiltonianScene(Scene):
                           header=["constant", "value", "max relative drift"], rows=rows)],
             facts=[("max |quadrature − integration|", fmt_err(a["hj_max_difference"]))])
 
-    @classmethod
-    def section_error_vs_runtime(cls, data):
-        content = super().section_error_vs_runtime(data)
-        horizon = data.analysis.get("study_t_end")
-        t_end = data.config.run.t_end
-        if horizon is not None and horizon < t_end:
-            content.notes.insert(0, f"The study integrates the first {fmt(horizon, 4)} of the "
-                                    f"run's {fmt(t_end, 6)} time units ({cls.STUDY_STEPS} steps "
-                                    "of the main run): long runs would spend most of their "
-                                    "time on references, and in a chaotic system errors that "
-                                    "have grown to the size of the orbit compare nothing.")
-        return content
-
 
 def _wrapped(angle):
     """Angles to (−π, π]."""
     return np.pi - np.mod(np.pi - np.asarray(angle), 2 * np.pi)
-
-
-def _text(value) -> str:
-    return value.decode("utf-8") if isinstance(value, bytes) else str(value)
 
 
 def section_crossings(t, y, ydot, column: int, value: float, direction: str,
