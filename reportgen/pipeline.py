@@ -356,63 +356,136 @@ def _preload(scenes, formats) -> None:
         warm_up(group)  # from the disk cache now (compiled here if a helper failed)
 
 
-def _scene_process(conn, config_path, out_root, force, formats) -> None:
-    conn.send(run_scene(config_path, out_root, force, formats))
-    conn.close()
+def _scene_worker(jobs, results, out_root, force, formats, inherited) -> None:
+    """A scene worker's loop: run each config path received, send back its Outcome, stop
+    at None or when the parent's end closes.  ``inherited``: the parent's ends of this
+    and the other workers' pipes, copied by the fork; closed so that a worker sees the
+    parent go (EOF) even when a sibling was forked after it."""
+    for conn in inherited:
+        conn.close()
+    while True:
+        try:
+            path = jobs.recv()
+        except (EOFError, OSError):
+            return
+        if path is None:
+            return
+        results.send(run_scene(path, out_root, force, formats))
+
+
+class _Worker:
+    """A forked scene process that runs scenes one after another.
+
+    What a scene process pays for on first use stays for the next scene: the kind's
+    modules and compiled callbacks, fonts, matplotlib's mathtext parser and font lookups,
+    WeasyPrint's first document, SymPy.  Forking once per scene paid it per scene."""
+
+    def __init__(self, ctx, out_root, force, formats, others: list[_Worker]):
+        jobs_out, self.jobs = ctx.Pipe(duplex=False)
+        self.results, results_in = ctx.Pipe(duplex=False)
+        inherited = [self.jobs, self.results] + [c for w in others for c in (w.jobs, w.results)]
+        self.proc = ctx.Process(target=_scene_worker, daemon=True, args=(
+            jobs_out, results_in, out_root, force, formats, inherited))
+        self.proc.start()
+        jobs_out.close()
+        results_in.close()
+        self.scene: Scene | None = None  # the scene it runs now
+        self.kind = ""  # the kind of the last scene it ran
+        self.started = 0.0
+
+    def submit(self, scene: Scene) -> None:
+        self.jobs.send(str(scene.source.path))
+        self.scene, self.kind, self.started = scene, scene.kind, time.monotonic()
+
+    def stop(self, kill: bool = False) -> None:
+        if not kill:
+            try:
+                self.jobs.send(None)
+            except OSError:
+                kill = True
+            else:
+                self.proc.join(timeout=10)
+        if self.proc.is_alive():
+            self.proc.kill()
+        self.proc.join()
+        self.jobs.close()
+        self.results.close()
+
+
+def _next_scene(pending: list[Scene], worker: _Worker, running_kinds: set[str]) -> Scene:
+    """The scene a free worker takes: one more of its last kind (its code is loaded there),
+    else the first of a kind no other worker is running (on a cold numba cache two
+    workers then never compile the same kind at once), else the first."""
+    for rule in (lambda s: s.kind == worker.kind, lambda s: s.kind not in running_kinds):
+        for i, scene in enumerate(pending):
+            if rule(scene):
+                return pending.pop(i)
+    return pending.pop(0)
 
 
 def _run_in_processes(scenes, out_root, force, formats, jobs, progress, time_limit):
-    """At most ``jobs`` scene processes at once; one over ``time_limit`` seconds is killed.
+    """The scenes on at most ``jobs`` worker processes, each running scene after scene.
 
-    Killing is safe: archives and reports are renamed into place only when complete.
+    A scene over ``time_limit`` seconds is stopped by killing its worker (a fresh one,
+    forked from this process, takes the next scene); so is nothing else.  Killing is
+    safe: archives and reports are renamed into place only when complete.
     """
     from multiprocessing.connection import wait
 
     ctx = get_context("fork")
     pending = list(scenes)
-    running: dict = {}  # process -> (scene, connection, start time)
+    workers: list[_Worker] = []
     outcomes = []
-    while pending or running:
-        while pending and len(running) < jobs:
-            scene = pending.pop(0)
-            receive, send = ctx.Pipe(duplex=False)
-            proc = ctx.Process(target=_scene_process, args=(
-                send, str(scene.source.path), out_root, force, formats), daemon=True)
-            proc.start()
-            send.close()
-            running[proc] = (scene, receive, time.monotonic())
-        # sleep until a result or a process exit (or the next time-limit check)
-        waitables = [r for _s, r, _t in running.values()] + [p.sentinel for p in running]
-        wait(waitables, timeout=1.0 if time_limit is not None else None)
-        for proc, (scene, receive, started) in list(running.items()):
-            outcome = None
-            if receive.poll():
-                try:
-                    outcome = receive.recv()
-                except EOFError:
-                    outcome = None
-                proc.join()
-            elif not proc.is_alive():
-                proc.join()
-                outcome = Outcome(name=scene.source.name, kind=scene.kind, title=scene.title,
-                                  status="failed",
-                                  message=f"worker process died (exit code {proc.exitcode})")
-            elif time_limit is not None and time.monotonic() - started > time_limit:
-                proc.kill()
-                proc.join()
-                outcome = Outcome(name=scene.source.name, kind=scene.kind, title=scene.title,
-                                  status="failed",
-                                  message=f"time limit of {time_limit:g} s exceeded; the scene was "
-                                          "stopped and any earlier archive kept")
-            else:
-                continue
-            if outcome is None:
-                outcome = Outcome(name=scene.source.name, status="failed",
-                                  message="worker process ended without a result")
-            del running[proc]
-            progress.scene_done(outcome)
-            outcomes.append(outcome)
-    return outcomes
+
+    def failed(scene: Scene, message: str) -> Outcome:
+        return Outcome(name=scene.source.name, kind=scene.kind, title=scene.title,
+                       status="failed", message=message)
+
+    try:
+        while True:
+            for worker in [w for w in workers if w.scene is None]:
+                if pending:
+                    running = {w.scene.kind for w in workers if w.scene is not None}
+                    worker.submit(_next_scene(pending, worker, running))
+                else:
+                    worker.stop()
+                    workers.remove(worker)
+            while pending and len(workers) < jobs:
+                worker = _Worker(ctx, out_root, force, formats, workers)
+                workers.append(worker)
+                worker.submit(_next_scene(pending, worker,
+                                          {w.scene.kind for w in workers if w.scene}))
+            if not workers:
+                return outcomes
+            # sleep until a result or a worker's exit (or the next time-limit check)
+            wait([w.results for w in workers] + [w.proc.sentinel for w in workers],
+                 timeout=1.0 if time_limit is not None else None)
+            for worker in list(workers):
+                scene, outcome = worker.scene, None
+                if worker.results.poll():
+                    try:
+                        outcome = worker.results.recv()
+                    except (EOFError, OSError):
+                        outcome = failed(scene, "worker process ended without a result")
+                        worker.stop(kill=True)
+                        workers.remove(worker)
+                    worker.scene = None
+                elif not worker.proc.is_alive():
+                    outcome = failed(scene, f"worker process died (exit code "
+                                            f"{worker.proc.exitcode})")
+                    worker.stop(kill=True)
+                    workers.remove(worker)
+                elif time_limit is not None and time.monotonic() - worker.started > time_limit:
+                    outcome = failed(scene, f"time limit of {time_limit:g} s exceeded; the "
+                                            "scene was stopped and any earlier archive kept")
+                    worker.stop(kill=True)
+                    workers.remove(worker)
+                if outcome is not None:
+                    progress.scene_done(outcome)
+                    outcomes.append(outcome)
+    finally:
+        for worker in workers:  # an interrupt: stop what still runs
+            worker.stop(kill=True)
 
 
 def run_scene_portable(config_text: str, name: str, formats: tuple[str, ...] | None,

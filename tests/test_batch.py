@@ -78,3 +78,25 @@ def test_time_limit_stops_a_scene_and_keeps_the_others(tmp_path, cli):
     assert "time limit of 10 s exceeded" in err
     assert (tmp_path / "o" / "quick" / "report.html").exists()
     assert not (tmp_path / "o" / "slow" / "run.h5").exists()
+
+
+def test_worker_killed_on_time_limit_is_replaced(tmp_path, cli):
+    """One worker runs scene after scene; the one stopped for its time limit is replaced,
+    so the scene after the slow one still runs, and no worker outlives the batch."""
+    import multiprocessing
+
+    cfg = tmp_path / "cfg"
+    cfg.mkdir()
+    (cfg / "a_quick.toml").write_text(pendulum_text(t_end=2.0, samples=101))
+    (cfg / "b_slow.toml").write_text(pendulum_text(t_end=4e5, samples=1000001, study="true"))
+    (cfg / "c_quick.toml").write_text(pendulum_text(t_end=3.0, samples=101))
+    assert cli("run", cfg / "a_quick.toml", "--out", tmp_path / "warm", "--jobs", 1,
+               "--format", "html")[0] == 0  # kernels compiled before the clock runs
+    outcomes = run_batch([str(cfg)], out_root=str(tmp_path / "o"), jobs=1, formats=("html",),
+                         time_limit=10)
+    assert [(o.name, o.status) for o in outcomes] == [
+        ("a_quick", "ok"), ("b_slow", "failed"), ("c_quick", "ok")]
+    assert "time limit of 10 s exceeded" in outcomes[1].message
+    assert (tmp_path / "o" / "c_quick" / "report.html").exists()
+    assert not (tmp_path / "o" / "b_slow" / "run.h5").exists()
+    assert multiprocessing.active_children() == []
