@@ -39,10 +39,17 @@ def _cache_dir() -> Path | None:
     return Path(base) / "reportgen" / "equations"
 
 
-def _key(tex: str, points: float) -> str:
-    import matplotlib
+@functools.cache
+def _matplotlib_version() -> str:
+    """matplotlib's version without importing it (a report of cached equations never
+    needs matplotlib itself; importing it costs a few tenths of a second)."""
+    from importlib.metadata import version
 
-    blob = f"{_VERSION}|{matplotlib.__version__}|{FONTSET}|{points}|{tex}"
+    return version("matplotlib")
+
+
+def _key(tex: str, points: float) -> str:
+    blob = f"{_VERSION}|{_matplotlib_version()}|{FONTSET}|{points}|{tex}"
     return hashlib.sha256(blob.encode("utf-8")).hexdigest()[:32]
 
 

@@ -143,8 +143,18 @@ def edit_loop_worker(configs: list[Path], out_root, formats=None, jobs: int | No
     return worker
 
 
+#: how long an imported worker waits for its job before warming up on a document of its
+#: own (~0.1 s, which the first real document would otherwise pay): a title edit's HTML
+#: arrives about when the import ends, and should not wait for a warm-up
+_JOB_GRACE_S = 0.3
+
+
 def _worker_main(jobs, results) -> None:
-    if not jobs.poll():
+    try:
+        import weasyprint  # noqa: F401 - the import is most of a cold worker's cost
+    except ImportError:
+        pass  # the job reports it
+    if not jobs.poll(_JOB_GRACE_S):
         try:
             _warm_up()
         except Exception:  # noqa: BLE001 - only a head start; the job reports real problems

@@ -123,7 +123,7 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
     folder = Path(out_root) / path.stem
     outcome.folder = str(folder)
     start = time.perf_counter()
-    own_worker = None
+    own_worker = helper = None
     try:
         scene = load_scene(read_config(path))
         outcome.kind, outcome.title = scene.kind, scene.title
@@ -138,6 +138,10 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
         key = scene.physics_key()
         if (force or stored is None or stored.physics_key != key
                 or stored.format_version < FORMAT_VERSION):
+            if draw_jobs > 1:
+                from .report import FigureHelper
+
+                helper = FigureHelper()  # warms up its drawing while this simulates
             t0 = time.perf_counter()
             results = scene.simulate(progress=progress)
             for name, run in results.runs.items():
@@ -161,7 +165,7 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
             from .report import build_report  # matplotlib and jinja2 only when drawing
 
             build_report(archive, formats=wanted, force_figures=force, timings=outcome.stage_s,
-                         jobs=draw_jobs, pdf_worker=pdf_worker)
+                         jobs=draw_jobs, pdf_worker=pdf_worker, figure_helper=helper)
             atomic_write(report_stamp(folder), json.dumps(
                 {"archive": _archive_stamp(identity), "formats": list(wanted)}).encode("utf-8"))
             outcome.stages.append("report")
@@ -184,8 +188,9 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
             where = ""
         outcome.message = f"{type(exc).__name__}: {exc}{where}"
     finally:
-        if own_worker is not None:
-            own_worker.close()
+        for worker in (helper, own_worker):
+            if worker is not None:
+                worker.close()
     return outcome
 
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 import hashlib
 import io
 import json
+import os
 import re
 import time
 from dataclasses import dataclass
@@ -171,57 +172,155 @@ def figures_key(data: ArchiveData, formats: tuple[str, ...]) -> str:
 
 def draw_sections(data: ArchiveData, out_dir: Path,
                   formats: tuple[str, ...] = DEFAULT_FIGURE_FORMATS,
-                  jobs: int = 1, for_pdf: bool = False) -> list[dict[str, Any]]:
+                  jobs: int = 1, for_pdf: bool = False,
+                  helper: FigureHelper | None = None) -> list[dict[str, Any]]:
     """The figures stage: draw every chosen section of the archive into ``out_dir/figures``.
 
     Returns the sections as plain dicts (title, facts, tables, notes, figure files); they
     are kept in ``figures/sections.json`` with the stage's key, so a later report whose
     archive numbers and section list are unchanged reuses them without drawing.
-    ``jobs > 1`` draws the sections in that many forked processes (the edit loop's single
-    scene); each figure's bytes depend only on the archive and its id, not on who drew it.
+    ``jobs > 1`` (the edit loop's single scene) draws with a second process, ``helper``
+    if one was started ahead (:class:`FigureHelper`), else one forked now; this process
+    and the helper take the sections one at a time, so neither waits on the other's
+    share.  Each figure's bytes depend only on the archive and its id, not on who drew it.
     ``for_pdf``: also make the figures' slim copies for the PDF (:func:`slim_cache`).
     """
     scene = kind_of_archive(data)
     chosen = list(scene.chosen_sections(data))
-    jobs = max(1, min(jobs, len(chosen)))
-    if jobs == 1:
+    if helper is None and (jobs <= 1 or len(chosen) <= 1 or not data.path):
         return [_draw_section(scene, section, data, out_dir, formats, for_pdf)
                 for section in chosen]
-    from multiprocessing import get_context
-
-    import reportgen.plots.common  # noqa: F401 - imported once, before forking
-
-    ctx = get_context("fork")
-    children = []
-    for k in range(1, jobs):
-        receive, send = ctx.Pipe(duplex=False)
-        mine = chosen[k::jobs]
-        proc = ctx.Process(target=_draw_in_child, args=(send, scene, mine, data, out_dir,
-                                                        formats, for_pdf), daemon=True)
-        proc.start()
-        send.close()
-        children.append((proc, receive, k))
-    drawn = {i: _draw_section(scene, chosen[i], data, out_dir, formats, for_pdf)
-             for i in range(0, len(chosen), jobs)}
-    for proc, receive, k in children:
-        try:
-            result = receive.recv()
-        except EOFError:
-            result = RuntimeError(f"figure process ended without a result "
-                                  f"(exit code {proc.exitcode})")
-        proc.join()
-        if isinstance(result, BaseException):
-            raise result
-        drawn.update(zip(range(k, len(chosen), jobs), result, strict=True))
+    own = helper is None
+    if own:
+        helper = FigureHelper(warm=False)
+    try:
+        helper.start(data.path, out_dir, formats, for_pdf)
+        drawn = {}
+        while (i := helper.claim()) < len(chosen):
+            drawn[i] = _draw_section(scene, chosen[i], data, out_dir, formats, for_pdf)
+        drawn.update(helper.result())
+    finally:
+        if own:
+            helper.close()
     return [drawn[i] for i in range(len(chosen))]
 
 
-def _draw_in_child(conn, scene, sections, data, out_dir, formats, for_pdf) -> None:
-    try:
-        conn.send([_draw_section(scene, s, data, out_dir, formats, for_pdf) for s in sections])
-    except BaseException as exc:  # noqa: BLE001 - re-raised in the parent
-        conn.send(RuntimeError(f"{type(exc).__name__}: {exc}"))
-    conn.close()
+class FigureHelper:
+    """A forked process that draws sections of a scene's figures next to this one.
+
+    Started before the scene simulates (``warm=True``), it imports matplotlib and draws
+    a throwaway figure with mathtext meanwhile, at low priority (the simulation's timed
+    runs keep their core); by the figures stage it draws at full speed, without the
+    first-figure cost (~0.4 s) a process forked then would pay.  It reads the archive
+    itself: what it draws is a function of the archive alone, as everywhere."""
+
+    def __init__(self, warm: bool = True):
+        from multiprocessing import get_context
+
+        ctx = get_context("fork")
+        self._next = ctx.Value("i", 0)
+        job_out, self._jobs = ctx.Pipe(duplex=False)
+        self._results, result_in = ctx.Pipe(duplex=False)
+        self._proc = ctx.Process(target=_figure_helper_main, daemon=True, args=(
+            job_out, result_in, self._next, warm, [self._jobs, self._results]))
+        self._proc.start()
+        job_out.close()
+        result_in.close()
+        self._closed = False
+        #: how many sections the helper drew, job by job
+        self.result_sizes: list[int] = []
+
+    def start(self, archive: str, out_dir: Path, formats, for_pdf: bool) -> None:
+        """Hand the helper one archive's sections (counted from the first)."""
+        with self._next.get_lock():
+            self._next.value = 0
+        self._jobs.send((str(archive), str(out_dir), tuple(formats), for_pdf))
+
+    def claim(self) -> int:
+        """The index of the next section nobody draws yet."""
+        return _claim(self._next)
+
+    def result(self) -> dict[int, dict[str, Any]]:
+        """The sections the helper drew, by index; raises what it raised."""
+        try:
+            result = self._results.recv()
+        except EOFError:
+            result = RuntimeError(f"figure process ended without a result "
+                                  f"(exit code {self._proc.exitcode})")
+        if isinstance(result, BaseException):
+            raise result
+        self.result_sizes.append(len(result))
+        return result
+
+    def close(self) -> None:
+        """Stop the helper (at once if idle; twice is harmless)."""
+        if self._closed:
+            return
+        self._closed = True
+        try:
+            self._jobs.send(None)
+        except OSError:
+            pass
+        self._proc.join(timeout=5)
+        if self._proc.is_alive():
+            self._proc.kill()
+            self._proc.join()
+        self._jobs.close()
+        self._results.close()
+
+
+def _claim(counter) -> int:
+    with counter.get_lock():
+        i = counter.value
+        counter.value += 1
+    return i
+
+
+def _figure_helper_main(jobs, results, counter, warm: bool, inherited) -> None:
+    for conn in inherited:
+        conn.close()
+    if warm:
+        try:
+            os.nice(10)
+        except OSError:
+            pass
+        try:
+            _warm_up_drawing()
+        except Exception:  # noqa: BLE001 - only a head start; the job reports real problems
+            pass
+    while True:
+        try:
+            job = jobs.recv()
+        except (EOFError, OSError):
+            return
+        if job is None:
+            return
+        archive, out_dir, formats, for_pdf = job
+        try:
+            data = read_archive(Path(archive))
+            scene = kind_of_archive(data)
+            chosen = list(scene.chosen_sections(data))
+            mine = {}
+            while (i := _claim(counter)) < len(chosen):
+                mine[i] = _draw_section(scene, chosen[i], data, Path(out_dir), formats,
+                                        for_pdf)
+            results.send(mine)
+        except BaseException as exc:  # noqa: BLE001 - re-raised in the parent
+            results.send(RuntimeError(f"{type(exc).__name__}: {exc}"))
+
+
+def _warm_up_drawing() -> None:
+    """What a process's first figure pays once: the style, fonts, mathtext's parser and
+    the SVG writer."""
+    from .plots.style import new_figure
+
+    fig, ax = new_figure()
+    ax.plot([0.0, 1.0], [0.0, 1.0], label=r"$\theta_1$")
+    ax.set_xlabel(r"$t$ [s]")
+    ax.set_ylabel(r"$\omega^2 - \dot\phi$ [rad/s]")
+    ax.legend()
+    figure_bytes(fig, "warm-up", "svg")
+    fig.clear()
 
 
 def slim_cache(out_dir: Path) -> Path:
@@ -273,18 +372,19 @@ SECTIONS_FILE = "sections.json"
 
 
 def figures_stage(data: ArchiveData, out_dir: Path, formats: tuple[str, ...] | None = None,
-                  force: bool = False, jobs: int = 1,
-                  for_pdf: bool = False) -> tuple[list[dict[str, Any]], bool]:
+                  force: bool = False, jobs: int = 1, for_pdf: bool = False,
+                  helper: FigureHelper | None = None) -> tuple[list[dict[str, Any]], bool]:
     """(sections, drawn?): reuse the stored figures when current, else draw them.
 
-    ``formats``: the figure files to write; default from the archived config."""
+    ``formats``: the figure files to write; default from the archived config.
+    ``jobs``, ``helper``: see :func:`draw_sections`."""
     formats = figure_formats(data) if formats is None else formats
     key = figures_key(data, formats)
     if not force:
         cached = cached_sections(out_dir, key)
         if cached is not None:
             return cached, False
-    sections = draw_sections(data, out_dir, formats, jobs, for_pdf)
+    sections = draw_sections(data, out_dir, formats, jobs, for_pdf, helper)
     (out_dir / "figures").mkdir(parents=True, exist_ok=True)
     atomic_write(out_dir / "figures" / SECTIONS_FILE, json.dumps(
         {"key": key, "sections": sections}, ensure_ascii=False,
@@ -345,13 +445,15 @@ def build_report(archive_path: Path, formats=("html", "pdf"), out_dir: Path | No
                  figure_files: tuple[str, ...] | None = None,
                  force_figures: bool = False,
                  timings: dict[str, float] | None = None, jobs: int = 1,
-                 pdf_worker: PdfWorker | None = None) -> list[Path]:
+                 pdf_worker: PdfWorker | None = None,
+                 figure_helper: FigureHelper | None = None) -> list[Path]:
     """The figures and report stages of one archive, next to it (or into ``out_dir``).
 
     Figures are redrawn only when their key changed (or ``force_figures``);
     ``figure_files`` overrides the config's ``[report] figure_formats``.  ``timings``,
     if given, receives the seconds spent on figures, html and pdf; ``jobs`` processes
-    draw the figures; ``pdf_worker`` renders the PDF."""
+    draw the figures (with ``figure_helper`` if one was started ahead); ``pdf_worker``
+    renders the PDF."""
     archive_path = Path(archive_path)
     data = read_archive(archive_path)
     out_dir = Path(out_dir) if out_dir is not None else archive_path.parent
@@ -359,7 +461,7 @@ def build_report(archive_path: Path, formats=("html", "pdf"), out_dir: Path | No
     timings = {} if timings is None else timings
     t0 = time.perf_counter()
     sections, _ = figures_stage(data, out_dir, figure_files, force=force_figures, jobs=jobs,
-                                for_pdf="pdf" in formats)
+                                for_pdf="pdf" in formats, helper=figure_helper)
     timings["figures"] = time.perf_counter() - t0
     context = build_context(data, out_dir, sections=sections)
     return write_formats(render_html(context), out_dir, formats, timings, pdf_worker)

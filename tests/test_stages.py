@@ -161,7 +161,7 @@ def test_physics_key_covers_what_simulate_computes_and_nothing_else():
 def test_figures_in_parallel_and_pdf_worker_give_the_same_report(write_config, tmp_path):
     """The edit loop's single scene draws its figures in forked processes and renders its
     PDF in a worker that imported WeasyPrint early: same files as drawing in one process."""
-    from reportgen.report import PdfWorker, build_report
+    from reportgen.report import FigureHelper, PdfWorker, build_report
 
     path = write_config("pend", pendulum_text(t_end=4.0, samples=401))
     out = tmp_path / "out"
@@ -169,18 +169,27 @@ def test_figures_in_parallel_and_pdf_worker_give_the_same_report(write_config, t
     assert outcome.ok and outcome.stages == ["simulate", "report"], outcome
     assert (out / "pend" / "report.pdf").read_bytes().startswith(b"%PDF")
     archive = out / "pend" / "run.h5"
-    one, two = tmp_path / "one", tmp_path / "two"
+    one, two, three = tmp_path / "one", tmp_path / "two", tmp_path / "three"
     build_report(archive, formats=("html",), out_dir=one, jobs=1)
     worker = PdfWorker()
     try:
         build_report(archive, formats=("html", "pdf"), out_dir=two, jobs=3, pdf_worker=worker)
     finally:
         worker.close()
+    helper = FigureHelper()  # started ahead and warmed up, as before a simulation
+    try:
+        build_report(archive, formats=("html",), out_dir=three, jobs=2, figure_helper=helper)
+        jobs_answered = len(helper.result_sizes)
+    finally:
+        helper.close()
     figures = sorted(p.name for p in (one / "figures").glob("*.svg"))
     assert len(figures) >= 3
-    for name in figures:
-        assert (one / "figures" / name).read_bytes() == (two / "figures" / name).read_bytes()
-    assert (one / "report.html").read_bytes() == (two / "report.html").read_bytes()
+    for other in (two, three):
+        assert sorted(p.name for p in (other / "figures").glob("*.svg")) == figures
+        for name in figures:
+            assert (one / "figures" / name).read_bytes() == (other / "figures" / name).read_bytes()
+        assert (one / "report.html").read_bytes() == (other / "report.html").read_bytes()
+    assert jobs_answered == 1  # the helper took the job (its share may be empty)
     assert (two / "report.pdf").read_bytes().startswith(b"%PDF")
 
 

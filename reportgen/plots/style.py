@@ -6,8 +6,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 
-import matplotlib.pyplot as plt  # noqa: E402
-from matplotlib.figure import Figure  # noqa: E402
+from matplotlib.figure import Figure  # noqa: E402 - pyplot is never imported (0.3 s)
 
 RC = {
     "figure.figsize": (6.4, 4.0),
@@ -36,7 +35,7 @@ BLUE, VERMILLION, GREEN, PURPLE = "#0072B2", "#D55E00", "#009E73", "#CC79A7"
 ORANGE, SKY, BLACK = "#E69F00", "#56B4E9", "#000000"
 PALETTE = (BLUE, VERMILLION, GREEN, PURPLE, ORANGE, SKY, BLACK)
 RC["axes.prop_cycle"] = matplotlib.cycler(color=list(PALETTE))
-plt.rcParams.update(RC)
+matplotlib.rcParams.update(RC)
 
 
 def _share_text_to_path() -> None:
