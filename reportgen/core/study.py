@@ -199,7 +199,7 @@ class Budget:
         return max(self.total - self.spent, 0.0) / max(methods_left, 1)
 
 
-def _predicted(costs: list[float]) -> float:
+def predicted_cost(costs: list[float]) -> float:
     """The next rung's cost: the last one's times the growth between the last two
     (between 1.2x and 8x; 4x when only one rung is known)."""
     if not costs:
@@ -327,7 +327,7 @@ def _sweep(model, y0, t_eval, name, grid, y_ref, repeats, stamp, budget: Budget,
     for what, value in grid:
         baseline = name == BASELINE[0] and what == "rtol" and math.isclose(value, BASELINE[1])
         before_baseline = name == BASELINE[0] and what == "rtol" and value > BASELINE[1]
-        over = bool(costs) and spent + _predicted(costs) > allowance
+        over = bool(costs) and spent + predicted_cost(costs) > allowance
         if over and before_baseline:
             continue  # straight on to the baseline rung
         # our compiled adaptive methods always reach the baseline's tolerance (a few ms),
