@@ -42,7 +42,7 @@ from . import mechanics
 from .expressions import RESERVED, ExpressionError, parse_expression
 
 #: bump when the generated code changes
-CODE_VERSION = "1"
+CODE_VERSION = "2"
 
 
 class FormulaError(ValueError):
@@ -264,7 +264,7 @@ def _function_source(name: str, signature: str, outputs: list[tuple[str, sympy.E
     temps = sympy.numbered_symbols("x")
     replacements, reduced = sympy.cse(exprs, symbols=temps, optimizations=optimizations)
     local = dict(names)
-    lines = ["@numba.njit(cache=True)", f"def {name}({signature}):"]
+    lines = ['@numba.njit(cache=True, error_model="numpy")', f"def {name}({signature}):"]
     printer = _Printer(local)
     for sym, expr in replacements:
         text = printer(expr)
@@ -274,6 +274,9 @@ def _function_source(name: str, signature: str, outputs: list[tuple[str, sympy.E
         lines.append(f"    {target} = {printer(expr)}")
     if len(lines) == 2:
         lines.append("    pass")
+    # the C callback's body: only a call, so the callback links the code compiled above
+    # instead of compiling the whole body again (kernels.wrap_for_callback)
+    lines += ["", "", f"def {name}_callback({signature}):", f"    {name}({signature})"]
     return "\n".join(lines) + "\n"
 
 
@@ -343,9 +346,13 @@ def load_module(source: str):
 
 def compiled_model(system: FormulaSystem, name: str = "formula"):
     """The :class:`~reportgen.core.model.OdeModel` of ``system`` (state: q then p)."""
+    from .integrators.kernels import wrap_for_callback
     from .model import OdeModel, Separable
 
     module = load_module(module_source(system))
+    for fname in ("rhs", "jac", "drift", "kick"):
+        if hasattr(module, fname):
+            wrap_for_callback(getattr(module, fname), getattr(module, f"{fname}_callback"))
     separable = (Separable(n=system.n, drift=module.drift, kick=module.kick)
                  if system.separable else None)
     return OdeModel(name=name, columns=system.columns, rhs=module.rhs,
