@@ -20,6 +20,9 @@ Layout (``format_version`` 2, see SPEC.md "Archive")::
     /analysis                 attrs (scalars, strings) and datasets (arrays); sub-dicts are groups
     /checks                   table: quantity, value, reference, abs_error, rel_error, unit, source
     /study/error_vs_runtime   table (one row per method x tolerance), attrs reference_kind
+    /sweep                    a family of runs ([sweep], see reportgen.sweep), on the
+                              dimension scale /sweep/member: status, message (M,) strings,
+                              values/<config path>, analysis/<result> (M,) float64
 
 Every array is stored with the fletcher32 checksum, so a corrupted chunk raises
 on read instead of returning wrong numbers.  Writes go to a temporary file in
@@ -96,6 +99,8 @@ class ArchiveData:
     checks: list[Check] = field(default_factory=list)
     study: np.ndarray | None = None
     study_attrs: dict[str, Any] = field(default_factory=dict)
+    #: a sweep's family (:class:`reportgen.sweep.SweepData`), or None
+    sweep: Any = None
 
     @property
     def kind(self) -> str:
@@ -186,6 +191,27 @@ def _write_contents(f: h5py.File, *, kind, title, scene, config_text, config_sha
         study_table = table(study, "error_vs_runtime", results.study)
         for key, value in results.study_attrs.items():
             study_table.attrs[key] = attr_value(value)
+    if results.sweep is not None:
+        _write_sweep(f.create_group("sweep"), results.sweep)
+
+
+def _write_sweep(g: h5py.Group, sweep) -> None:
+    """A sweep's family on the dimension ``member`` (netCDF-style scale), so that
+    ``xarray.open_dataset(path, group="sweep", engine="h5netcdf")`` (and the groups
+    ``sweep/values``, ``sweep/analysis``) show every array on ``member``."""
+    member = dataset(g, "member", np.arange(sweep.size, dtype=np.int64))
+    member.make_scale("member")
+    for name, values in (("status", sweep.status), ("message", sweep.message)):
+        ds = g.create_dataset(name, data=np.array([str(v) for v in values], dtype=object),
+                              dtype=STR)
+        ds.dims[0].attach_scale(member)
+    for group, arrays in (("values", sweep.values), ("analysis", sweep.analysis)):
+        sub = g.create_group(group)
+        for name, values in arrays.items():
+            ds = dataset(sub, name, np.asarray(values, dtype=np.float64))
+            ds.dims[0].attach_scale(member)
+    for key, value in sweep.attrs.items():
+        g.attrs[key] = attr_value(value)
 
 
 def _write_run(g: h5py.Group, run: RunRecord) -> None:
@@ -297,6 +323,8 @@ def read_archive(path: Path) -> ArchiveData:
                 ds = f["study/error_vs_runtime"]
                 data.study = read_table(ds)
                 data.study_attrs = {k: decode(v) for k, v in ds.attrs.items()}
+            if "sweep" in f:
+                data.sweep = _read_sweep(f["sweep"])
     except ArchiveError:
         raise
     except FileNotFoundError:
@@ -306,6 +334,21 @@ def read_archive(path: Path) -> ArchiveData:
     except KeyError as exc:
         raise ArchiveError(f"{path}: incomplete archive, missing {exc}") from None
     return data
+
+
+def _read_sweep(g: h5py.Group):
+    from .sweep import SweepData
+
+    attrs = {k: decode(v) for k, v in g.attrs.items()}
+    # HDF5 lists a group's members by name; the swept keys keep the config's order
+    order = json.loads(attrs.get("paths", "[]"))
+    names = sorted(g["values"], key=lambda k: order.index(k) if k in order else len(order))
+    return SweepData(
+        values={k: g["values"][k][()] for k in names},
+        analysis={k: ds[()] for k, ds in g["analysis"].items()},
+        status=np.array(decode(g["status"][()]), dtype=object),
+        message=np.array(decode(g["message"][()]), dtype=object),
+        attrs=attrs)
 
 
 @dataclass(frozen=True)

@@ -143,7 +143,8 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
 
                 helper = FigureHelper()  # warms up its drawing while this simulates
             t0 = time.perf_counter()
-            results = scene.simulate(progress=progress)
+            results = (scene.simulate_sweep(folder, progress) if scene.sweep is not None
+                       else scene.simulate(progress=progress))
             for name, run in results.runs.items():
                 if run.status != "ok":
                     results.flag(run.status, f"run '{name}': {run.message}")
@@ -152,6 +153,10 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
                           config_text=scene.source.text, config_sha256=scene.source.sha256,
                           results=results, resolved_config=scene.resolved_config(),
                           physics_key=key)
+            if scene.sweep is not None:  # its finished blocks are in the archive now
+                from .sweep import discard_partial
+
+                discard_partial(folder, key)
             outcome.stages.append("simulate")
             outcome.stage_s["simulate"] = time.perf_counter() - t0
         elif stored.config_sha256 != scene.source.sha256:

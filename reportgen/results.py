@@ -110,6 +110,8 @@ class Results:
     status: str = "ok"
     message: str = ""
     wall_time_s: float = 0.0
+    #: a sweep's family (:class:`reportgen.sweep.SweepData`): ``/sweep``
+    sweep: Any = None
 
     def flag(self, status: str, message: str) -> None:
         """Raise the scene status to ``status`` (never lowers it) and add a message."""

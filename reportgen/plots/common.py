@@ -98,7 +98,7 @@ def timeseries_against_reference(t, numeric: dict[str, np.ndarray],
     """One panel per quantity: the integration (solid) over the reference (dashed)."""
     names = list(numeric)
     fig, axes = new_figure_grid(len(names), 1, figsize=(6.8, 2.2 * len(names) + 0.8), sharex=True)
-    for ax, name in zip(axes[:, 0], names, strict=True):
+    for ax, name in zip(axes[:len(names), 0], names, strict=True):
         ax.plot(t, numeric[name], color=HIGHLIGHT, label="integrated")
         if name in reference:
             ax.plot(t, reference[name], color=REFERENCE, linestyle=(0, (4, 3)),
@@ -108,4 +108,66 @@ def timeseries_against_reference(t, numeric: dict[str, np.ndarray],
         ax.set_ylabel(ylabels[name])
     axes[0, 0].legend(loc="upper right")
     axes[-1, 0].set_xlabel(f"time t [{time_unit}]")
+    return fig
+
+
+#: sweep figures: at most this many panels (results) and lines (other keys' values)
+SWEEP_MAX_PANELS = 6
+SWEEP_MAX_LINES = 6
+
+
+def _label(path: str) -> str:
+    return path.rsplit(".", 1)[-1]
+
+
+def sweep_results(values: dict[str, np.ndarray], analysis: dict[str, np.ndarray], ok):
+    """One panel per scalar result (at most six) against the first swept key; with more
+    keys, one line per combination of the others' values (at most six, else points)."""
+    paths = list(values)
+    x = np.asarray(values[paths[0]])
+    ok = np.asarray(ok, dtype=bool)
+    names = list(analysis)[:SWEEP_MAX_PANELS]
+    cols = 1 if len(names) <= 3 else 2
+    rows = -(-len(names) // cols)
+    fig, grid = new_figure_grid(rows, cols, figsize=(6.4, 1.2 + 1.9 * rows), sharex=True)
+    axes = grid.reshape(-1, 1)
+    for ax in axes[len(names):, 0]:
+        ax.set_visible(False)
+    others = paths[1:]
+    if others:
+        keys = np.stack([np.asarray(values[p]) for p in others], axis=1)
+        groups, inverse = np.unique(keys, axis=0, return_inverse=True)
+        inverse = inverse.ravel()
+    else:
+        groups, inverse = np.zeros((1, 0)), np.zeros(x.size, dtype=int)
+    as_lines = len(groups) <= SWEEP_MAX_LINES
+    for ax, name in zip(axes[:len(names), 0], names, strict=True):
+        y = np.asarray(analysis[name], dtype=float)
+        for g, combo in enumerate(groups if as_lines else groups[:1]):
+            pick = ok & np.isfinite(y) & ((inverse == g) if as_lines else True)
+            order = np.argsort(x[pick])
+            label = ", ".join(f"{_label(p)} = {v:.4g}" for p, v in zip(others, combo,
+                                                                       strict=True))
+            style = dict(marker="o", markersize=2.5) if pick.sum() < 60 else {}
+            if as_lines:
+                ax.plot(x[pick][order], y[pick][order], label=label or None, **style)
+            else:
+                ax.plot(x[pick], y[pick], ".", markersize=2)
+        ax.set_ylabel(name.replace("_", " "))
+        if as_lines and others and name == names[0]:  # one legend serves every panel
+            ax.legend(loc="best", fontsize=8)
+    for ax in grid[-1]:
+        ax.set_xlabel(paths[0])
+    return fig
+
+
+def member_runs(runs: dict, labels: dict[str, str]):
+    """The first coordinate of each kept member of a sweep against time."""
+    fig, ax = new_figure()
+    for name, run in runs.items():
+        ax.plot(*envelope(run.t, run.y[:, 0]), label=labels.get(name, name))
+        ax.set_ylabel(run.columns[0])
+    ax.set_xlabel("time t [s]")
+    if runs:
+        ax.legend(loc="best", fontsize=8)
     return fig

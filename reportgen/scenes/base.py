@@ -54,6 +54,7 @@ import numpy as np
 from pydantic import Field, ValidationError
 
 from .. import __version__
+from .. import sweep as _sweep
 from ..cache import default_cache
 from ..config import (
     ConfigError,
@@ -188,6 +189,17 @@ class Scene:
     #: why the study covers only t ≤ ``/analysis`` ``study_t_end`` of the run, for a kind
     #: whose simulate stores one (shown in the error-against-run-time section)
     study_horizon_reason: ClassVar[str] = ""
+    #: the report's sections for an archive of a sweep (a family of runs, ``[sweep]``):
+    #: the kind's family figures, then the generic ones of every sweep
+    family_sections: ClassVar[tuple[Section, ...]] = ()
+    SWEEP_SECTIONS: ClassVar[tuple[Section, ...]] = (
+        Section("sweep_results", "Results across the family",
+                description="Each result of the kind's analysis against the swept value."),
+        Section("sweep_members", "Members kept whole",
+                description="The members whose whole run the archive keeps ([sweep] store)."),
+    )
+    #: the validated ``[sweep]`` table, if the config has one
+    sweep: _sweep.SweepSpec | None = None
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
@@ -203,6 +215,8 @@ class Scene:
     def __init__(self, config: SceneConfig, source: SourceConfig):
         self.config = config
         self.source = source
+        #: the config data members of a sweep are made from (presets applied, no [sweep])
+        self._template = {k: v for k, v in source.data.items() if k != "sweep"}
 
     # ----------------------------------------------------------------- config
     @classmethod
@@ -218,20 +232,48 @@ class Scene:
                     [f"{source.label}: key 'preset': must be one of {known} (got {preset!r})"]
                 )
             data = deep_merge(cls.presets[preset], data)
+        sweep_table = data.pop("sweep", None)
         problems = [f"{source.label}: {p}" for p in cls._check_report_keys(data)]
         try:
             config = cls.Config.model_validate(data)
         except ValidationError as exc:
             raise ConfigError(format_validation_error(source.label, exc, cls.Config)
                               + problems) from None
+        spec = None
+        if sweep_table is not None:
+            spec, sweep_problems = _sweep.parse_sweep(sweep_table, source.label)
+            problems += sweep_problems
+            if spec is not None:
+                problems += cls._check_members(spec, data, source.label)
         if problems:
             raise ConfigError(problems)
-        return cls(config, source)
+        scene = cls(config, source)
+        scene._template = data
+        scene.sweep = spec
+        return scene
+
+    @classmethod
+    def _check_members(cls, spec: _sweep.SweepSpec, data: dict, label: str) -> list[str]:
+        """Problems of the members at the corners of a sweep's grid (each key at its
+        smallest and largest value), each naming the swept key and the member."""
+        problems = []
+        for assignments in _sweep.corner_members(spec):
+            try:
+                cls.Config.model_validate(_sweep.member_data(data, assignments))
+            except ValidationError as exc:
+                member = ", ".join(f"{p} = {v:g}" for p, v in assignments.items())
+                for line in format_validation_error(label, exc, cls.Config):
+                    rule = line.removeprefix(f"{label}: ")
+                    entry = (f"{label}: key 'sweep': the member with {member} is invalid: "
+                             f"{rule}")
+                    if entry not in problems:
+                        problems.append(entry)
+        return problems
 
     @classmethod
     def _check_report_keys(cls, data: dict) -> list[str]:
         problems = []
-        known = [s.name for s in cls.sections]
+        known = [s.name for s in cls.sections + cls.family_sections + cls.SWEEP_SECTIONS]
         report = data.get("report")
         sections = report.get("sections") if isinstance(report, dict) else None
         for name in sections if isinstance(sections, list) else []:
@@ -252,8 +294,61 @@ class Scene:
         return self.config.title or f"{self.kind.replace('_', ' ')} ({self.source.name})"
 
     def resolved_config(self) -> dict[str, Any]:
-        """The validated config with presets and defaults filled in (JSON types)."""
-        return self.config.model_dump(mode="json")
+        """The validated config with presets and defaults filled in (JSON types), and the
+        ``[sweep]`` table if any (ranges as ranges)."""
+        resolved = self.config.model_dump(mode="json")
+        if self.sweep is not None:
+            resolved["sweep"] = self.sweep.resolved()
+        return resolved
+
+    # ------------------------------------------------------------------ sweeps
+    def member(self, assignments: dict[str, float]) -> Scene:
+        """The scene of one sweep member: this config with the swept keys set, without
+        its study (a family's members are not each timed against scipy)."""
+        data = _sweep.member_data(self._template, assignments)
+        if isinstance(data.get("run"), dict):
+            data["run"] = {**data["run"], "study": False}
+        return type(self).from_source(SourceConfig(path=self.source.path,
+                                                   text=self.source.text, data=data))
+
+    def sweep_block(self, lo: int, hi: int, values: dict[str, np.ndarray]) -> _sweep.SweepBlock:
+        """Members ``lo:hi`` of the sweep (``values``: their swept values).  Default: each
+        member run as a whole scene; kinds with a compiled ensemble override it."""
+        return _sweep.generic_block(self.member, values)
+
+    def sweep_extras(self, sweep: _sweep.SweepData) -> dict[str, Any]:
+        """What the kind's family figures need besides the members' results (an exact
+        curve, say), stored in ``/analysis``.  Default: nothing."""
+        return {}
+
+    def simulate_sweep(self, folder, progress: ProgressFn | None = None) -> Results:
+        """The sweep: every member's scalar results (resumable, block by block, see
+        :mod:`reportgen.sweep`) and the whole run of the ``store`` members."""
+        import time
+
+        spec = self.sweep
+        t0 = time.perf_counter()
+        data, resumed = _sweep.run_sweep(spec, self.sweep_block, folder, self.physics_key(),
+                                         progress)
+        members_s = time.perf_counter() - t0
+        results = Results()
+        for i in spec.stored_members():
+            member = self.member({p: float(v[i]) for p, v in data.values.items()})
+            run = member.simulate().runs.get("main")
+            if run is not None:
+                results.runs[f"member_{i}"] = run
+        counts = data.counts()
+        data.attrs.update({"members_wall_time_s": members_s, "resumed": resumed})
+        results.sweep = data
+        results.analysis = {"sweep_members": spec.size, "sweep_ok": counts.get("ok", 0),
+                            "sweep_members_per_s": (spec.size - resumed) / max(members_s, 1e-9),
+                            **self.sweep_extras(data)}
+        bad = spec.size - counts.get("ok", 0)
+        if bad:
+            results.flag("unstable" if counts.get("ok", 0) else "failed",
+                         f"{bad} of {spec.size} members without a result: " + ", ".join(
+                             f"{n} {k}" for k, n in counts.items() if k != "ok"))
+        return results
 
     def wants_section(self, name: str) -> bool:
         """Whether the report will show section ``name`` (the configured list, else all the
@@ -321,6 +416,11 @@ class Scene:
     def chosen_sections(cls, data: ArchiveData) -> list[Section]:
         """The configured sections, or the defaults, minus what the archive does not hold."""
         asked = data.config.report.sections
+        if data.sweep is not None:
+            family = cls.family_sections + cls.SWEEP_SECTIONS
+            names = [n for n in asked if any(f.name == n for f in family)] if asked else None
+            return [f for f in family if (names is None or f.name in names)
+                    and (f.name != "sweep_members" or data.runs)]
         names = list(asked) if asked else cls.default_sections(data)
         if data.study is None:
             names = [n for n in names if n != "error_vs_runtime"]
@@ -339,6 +439,75 @@ class Scene:
     @staticmethod
     def figure(name: str, figure: Figure, caption: str) -> FigureSpec:
         return FigureSpec(name=name, figure=figure, caption=caption)
+
+    @classmethod
+    def sweep_headline(cls, data: ArchiveData) -> list[tuple[str, str]]:
+        """The summary facts of a sweep's archive."""
+        sweep = data.sweep
+        counts = sweep.counts()
+        axes = ", ".join(f"{p} from {fmt(float(np.min(v)), 6)} to {fmt(float(np.max(v)), 6)}"
+                         for p, v in sweep.values.items())
+        facts = [("members", f"{sweep.size} ({'paired' if sweep.attrs.get('zip') else 'grid'}"
+                             f" of {axes})"),
+                 ("status", ", ".join(f"{n} {k}" for k, n in sorted(counts.items())))]
+        wall = float(sweep.attrs.get("members_wall_time_s", math.nan))
+        resumed = int(sweep.attrs.get("resumed", 0))
+        if math.isfinite(wall):
+            run = sweep.size - resumed
+            facts.append(("run time of the members",
+                          f"{fmt(wall, 4)} s ({fmt(run / max(wall, 1e-12), 4)} members/s"
+                          + (f"; {resumed} resumed from an interrupted run" if resumed else "")
+                          + ")"))
+        return facts
+
+    @classmethod
+    def section_sweep_results(cls, data: ArchiveData) -> SectionContent:
+        """Every scalar result against the first swept key (a line per value of the
+        others, at most six), and the members without a result."""
+        from ..plots import common as common_plots
+
+        sweep = data.sweep
+        swept = list(sweep.values.values())
+
+        def telling(v: np.ndarray) -> bool:  # varies, and is not a swept value itself
+            v = v[sweep.ok & np.isfinite(v)]
+            if v.size == 0 or np.ptp(v) <= 1e-12 * max(np.max(np.abs(v)), 1e-300):
+                return False
+            return not any(np.array_equal(v, np.abs(x[sweep.ok & np.isfinite(x)]))
+                           or np.array_equal(v, x[sweep.ok & np.isfinite(x)]) for x in swept)
+
+        names = [n for n, v in sweep.analysis.items() if telling(np.asarray(v, dtype=float))]
+        figures = []
+        if names:
+            fig = common_plots.sweep_results(sweep.values, {n: sweep.analysis[n] for n in names},
+                                             sweep.ok)
+            figures.append(cls.figure("results", fig, "Each scalar result of the members' "
+                                      "analysis against the swept value; members without a "
+                                      "result are left out."))
+        bad = ~sweep.ok
+        rows = [[str(i), ", ".join(f"{p} = {fmt(float(v[i]), 8)}" for p, v in
+                                   sweep.values.items()),
+                 str(sweep.status[i]), str(sweep.message[i])]
+                for i in np.flatnonzero(bad)[:20]]
+        tables = [Table("Members without a result" + (f" (first 20 of {int(bad.sum())})"
+                                                      if bad.sum() > 20 else ""),
+                        ["member", "values", "status", "why"], rows)] if rows else []
+        return SectionContent(figures=figures, tables=tables)
+
+    @classmethod
+    def section_sweep_members(cls, data: ArchiveData) -> SectionContent:
+        """The kept members' first coordinate against time, one line each."""
+        from ..plots import common as common_plots
+
+        runs = {name: run for name, run in data.runs.items() if name.startswith("member_")}
+        labels = {}
+        for name in runs:
+            i = int(name.split("_", 1)[1])
+            labels[name] = ", ".join(f"{p.rsplit('.', 1)[-1]} = {fmt(float(v[i]), 4)}"
+                                     for p, v in data.sweep.values.items())
+        fig = common_plots.member_runs(runs, labels)
+        return SectionContent(figures=[cls.figure(
+            "members", fig, "The first coordinate of each kept member against time.")])
 
     @classmethod
     def invariants_section(cls, data: ArchiveData, *, labels: dict[str, str] | None = None,

@@ -1,0 +1,383 @@
+"""Sweeps: a family of runs of one scene from one config, in one archive.
+
+A ``[sweep]`` table in any kind's config names config keys by their dotted paths and
+the values each takes, as a list or as a range::
+
+    [sweep]
+    initial.theta = { start = 0.05, stop = 3.1, num = 2000 }   # or "initial.theta" = ...
+    params.l = [0.5, 1.0, 2.0]
+    zip = false      # several keys: their grid (default) or, with zip = true, paired
+    store = 5        # members whose whole trajectory is kept, chosen evenly (default 5)
+
+``{ start, stop, num }`` takes ``spacing = "linear"`` (default) or ``"log"``.  Every
+member is the config with those values put in; the rest of the config is the template.
+
+The archive holds the family (dimension ``member``)::
+
+    /sweep/values/<path>       (M,) the member's value of each swept key
+    /sweep/analysis/<name>     (M,) each scalar result of the kind's analysis per member
+    /sweep/status              (M,) "ok", or why the member has no result
+    /sweep/message             (M,) what went wrong, if anything
+    /runs/member_<i>           the whole run of the ``store`` members kept
+
+Members run in blocks; each finished block is kept on disk next to the archive (in
+``.sweep-<key>/``), so a sweep killed half-way resumes at its first unfinished block.
+Memory stays bounded by the per-member scalars, never by trajectories.
+"""
+
+from __future__ import annotations
+
+import copy
+import itertools
+import json
+import math
+import os
+import shutil
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .config import _short
+from .fsutil import temp_name
+
+__all__ = ["SweepSpec", "SweepData", "parse_sweep", "run_sweep", "member_data"]
+
+#: keys of a range value; the others of [sweep] that are not swept config paths
+RANGE_KEYS = frozenset({"start", "stop", "num", "spacing"})
+OPTIONS = frozenset({"zip", "store", "block"})
+MAX_MEMBERS = 10_000_000
+MAX_STORE = 50
+DEFAULT_STORE = 5
+#: the status of a member whose run gave its results
+OK = "ok"
+
+
+@dataclass(frozen=True)
+class Axis:
+    """One swept key: its dotted path and how its values were given."""
+
+    path: str
+    values: tuple[float, ...] = ()  # a list
+    start: float = math.nan  # or a range
+    stop: float = math.nan
+    num: int = 0
+    spacing: str = "linear"
+
+    @property
+    def size(self) -> int:
+        return len(self.values) if self.values else self.num
+
+    def array(self) -> np.ndarray:
+        if self.values:
+            return np.asarray(self.values, dtype=np.float64)
+        if self.spacing == "log":
+            return np.geomspace(self.start, self.stop, self.num)
+        return np.linspace(self.start, self.stop, self.num)
+
+    def resolved(self) -> Any:
+        if self.values:
+            return list(self.values)
+        return {"start": self.start, "stop": self.stop, "num": self.num,
+                "spacing": self.spacing}
+
+
+@dataclass(frozen=True)
+class SweepSpec:
+    """A validated ``[sweep]`` table."""
+
+    axes: tuple[Axis, ...]
+    zip: bool = False
+    store: int = DEFAULT_STORE
+    block: int = 0  # members per block; 0: chosen by size
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        return (self.axes[0].size,) if self.zip else tuple(a.size for a in self.axes)
+
+    @property
+    def size(self) -> int:
+        return math.prod(self.shape)
+
+    @property
+    def paths(self) -> list[str]:
+        return [a.path for a in self.axes]
+
+    @property
+    def block_size(self) -> int:
+        """Members per block: ~100 blocks, each of 16 to 20000 members."""
+        return self.block or int(min(max(math.ceil(self.size / 100), 16), 20_000))
+
+    def values(self) -> dict[str, np.ndarray]:
+        """Each swept key's value for every member (grid order: the last key fastest)."""
+        arrays = [a.array() for a in self.axes]
+        if self.zip:
+            return {a.path: v for a, v in zip(self.axes, arrays, strict=True)}
+        grids = np.meshgrid(*arrays, indexing="ij")
+        return {a.path: g.ravel() for a, g in zip(self.axes, grids, strict=True)}
+
+    def stored_members(self) -> np.ndarray:
+        """The ``store`` members kept whole: spread evenly from the first to the last."""
+        if self.store == 0:
+            return np.zeros(0, dtype=np.int64)
+        return np.unique(np.round(np.linspace(0, self.size - 1, min(self.store, self.size)))
+                         .astype(np.int64))
+
+    def resolved(self) -> dict[str, Any]:
+        """The table as JSON (ranges stay ranges): part of the physics key."""
+        return {"axes": {a.path: a.resolved() for a in self.axes}, "zip": self.zip,
+                "store": self.store, "block": self.block}
+
+
+def _flatten(table: dict, prefix: str = "") -> list[tuple[str, Any]]:
+    """(dotted path, value) of every swept key: nested tables (TOML's dotted keys) are
+    walked down to a list or a range table."""
+    out = []
+    for key, value in table.items():
+        path = f"{prefix}{key}"
+        if not prefix and key in OPTIONS:
+            continue
+        if isinstance(value, dict) and value and not set(value) <= RANGE_KEYS:
+            out.extend(_flatten(value, path + "."))
+        else:
+            out.append((path, value))
+    return out
+
+
+def _number(x: Any) -> bool:
+    return isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x)
+
+
+def parse_sweep(table: Any, label: str) -> tuple[SweepSpec | None, list[str]]:
+    """The validated ``[sweep]`` table, or None and every problem found (each naming the
+    file, the key, the rule and the value)."""
+    problems: list[str] = []
+
+    def bad(key: str, rule: str, value: Any) -> None:
+        problems.append(f"{label}: key 'sweep{'.' + key if key else ''}': {rule} "
+                        f"(got {_short(value)})")
+
+    if not isinstance(table, dict):
+        bad("", "must be a table of swept keys", table)
+        return None, problems
+    zip_ = table.get("zip", False)
+    if not isinstance(zip_, bool):
+        bad("zip", "must be true or false", zip_)
+    store = table.get("store", DEFAULT_STORE)
+    if not isinstance(store, int) or isinstance(store, bool) or not 0 <= store <= MAX_STORE:
+        bad("store", f"must be a whole number from 0 to {MAX_STORE}", store)
+    block = table.get("block", 0)
+    if not isinstance(block, int) or isinstance(block, bool) or block < 0:
+        bad("block", "must be a whole number of members per block (0: automatic)", block)
+    axes = []
+    for path, value in _flatten(table):
+        if isinstance(value, list):
+            if not value or not all(_number(v) for v in value):
+                bad(path, "a list of values must hold finite numbers, at least one", value)
+            else:
+                axes.append(Axis(path, values=tuple(float(v) for v in value)))
+        elif isinstance(value, dict):
+            unknown = set(value) - RANGE_KEYS
+            start, stop, num = value.get("start"), value.get("stop"), value.get("num")
+            spacing = value.get("spacing", "linear")
+            if unknown or start is None or stop is None or num is None:
+                bad(path, "a range is { start, stop, num } with optional spacing", value)
+            elif not (_number(start) and _number(stop)):
+                bad(path, "start and stop must be finite numbers", value)
+            elif not isinstance(num, int) or isinstance(num, bool) or not 1 <= num <= MAX_MEMBERS:
+                bad(path + ".num", f"must be a whole number from 1 to {MAX_MEMBERS}", num)
+            elif spacing not in ("linear", "log"):
+                bad(path + ".spacing", 'must be "linear" or "log"', spacing)
+            elif spacing == "log" and not (start > 0 and stop > 0):
+                bad(path, "a log range needs start > 0 and stop > 0", value)
+            else:
+                axes.append(Axis(path, start=float(start), stop=float(stop), num=num,
+                                 spacing=spacing))
+        else:
+            bad(path, "must be a list of values or a range { start, stop, num }", value)
+    if not axes and not problems:
+        bad("", "names no swept key (e.g. initial.theta = { start = 0.1, stop = 3, num = 100 })",
+            table)
+    if problems:
+        return None, problems
+    spec = SweepSpec(axes=tuple(axes), zip=zip_, store=store, block=block)
+    if zip_ and len({a.size for a in axes}) > 1:
+        bad("zip", "paired keys need the same number of values",
+            {a.path: a.size for a in axes})
+    elif spec.size > MAX_MEMBERS:
+        bad("", f"the grid has {spec.size} members, more than {MAX_MEMBERS}",
+            {a.path: a.size for a in axes})
+    return (None, problems) if problems else (spec, [])
+
+
+def member_data(template: dict, assignments: dict[str, float]) -> dict:
+    """The config data of one member: ``template`` with each dotted path set."""
+    data = copy.deepcopy(template)
+    for path, value in assignments.items():
+        node = data
+        *parents, last = path.split(".")
+        for key in parents:
+            child = node.get(key)
+            if not isinstance(child, dict):
+                child = node[key] = {}
+            node = child
+        current = node.get(last)
+        node[last] = int(value) if isinstance(current, int) and float(value).is_integer() \
+            else float(value)
+    return data
+
+
+def corner_members(spec: SweepSpec) -> list[dict[str, float]]:
+    """The members validated before anything runs: every combination of each key's
+    smallest and largest value (paired keys: the first and last member)."""
+    values = spec.values()
+    if spec.zip:
+        picks = sorted({0, spec.size - 1})
+        return [{p: float(v[i]) for p, v in values.items()} for i in picks]
+    ends = [sorted({float(a.array().min()), float(a.array().max())}) for a in spec.axes]
+    return [dict(zip(spec.paths, combo, strict=True)) for combo in itertools.product(*ends)]
+
+
+@dataclass
+class SweepBlock:
+    """What a kind's ``sweep_block`` returns for members ``lo:hi``."""
+
+    analysis: dict[str, np.ndarray]
+    status: np.ndarray  # (n,) str
+    message: np.ndarray | None = None  # (n,) str
+
+
+@dataclass
+class SweepData:
+    """A sweep's results: ``/sweep`` of the archive."""
+
+    values: dict[str, np.ndarray]
+    analysis: dict[str, np.ndarray] = field(default_factory=dict)
+    status: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=object))
+    message: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=object))
+    attrs: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def size(self) -> int:
+        return len(self.status)
+
+    @property
+    def ok(self) -> np.ndarray:
+        return np.asarray(self.status) == OK
+
+    def counts(self) -> dict[str, int]:
+        names, counts = np.unique(np.asarray(self.status, dtype=str), return_counts=True)
+        return {str(n): int(c) for n, c in zip(names, counts, strict=True)}
+
+
+def _save_block(path: Path, block: SweepBlock) -> None:
+    """One finished block, written whole under a temporary name, then renamed."""
+    arrays = {f"analysis/{k}": np.asarray(v, dtype=np.float64) for k, v in block.analysis.items()}
+    arrays["status"] = np.asarray(block.status, dtype=str)
+    if block.message is not None:
+        arrays["message"] = np.asarray(block.message, dtype=str)
+    tmp = temp_name(path)
+    with open(tmp, "wb") as fh:
+        np.savez(fh, **arrays)
+        fh.flush()
+        os.fsync(fh.fileno())
+    os.replace(tmp, path)
+
+
+def _load_block(path: Path) -> SweepBlock | None:
+    try:
+        with np.load(path, allow_pickle=False) as z:
+            analysis = {k.split("/", 1)[1]: z[k] for k in z.files if k.startswith("analysis/")}
+            return SweepBlock(analysis=analysis, status=z["status"],
+                              message=z["message"] if "message" in z.files else None)
+    except (OSError, ValueError, KeyError):
+        return None  # unreadable: run the block again
+
+
+def partial_folder(folder: Path, key: str) -> Path:
+    """Where a sweep keeps its finished blocks until the archive is written."""
+    return Path(folder) / f".sweep-{key[:16]}"
+
+
+def run_sweep(spec: SweepSpec, run_block: Callable[[int, int, dict[str, np.ndarray]], SweepBlock],
+              folder: Path, key: str, progress: Callable[[float], None] | None = None
+              ) -> tuple[SweepData, int]:
+    """Every member's results, block by block: ``run_block(lo, hi, values)`` gives members
+    ``lo:hi`` (``values``: the swept keys' values of those members).  Blocks already
+    finished under ``folder`` for this ``key`` (a killed run) are read, not run again.
+    Returns the sweep and the number of members resumed from disk."""
+    values = spec.values()
+    size, block = spec.size, spec.block_size
+    partial = partial_folder(folder, key)
+    partial.mkdir(parents=True, exist_ok=True)
+    (partial / "key").write_text(key, encoding="utf-8")
+    names: dict[str, None] = {}
+    blocks: list[SweepBlock] = []
+    resumed = 0
+    starts = range(0, size, block)
+    for b, lo in enumerate(starts):
+        hi = min(lo + block, size)
+        path = partial / f"block-{b:06d}.npz"
+        done = _load_block(path) if path.exists() else None
+        if done is not None and len(done.status) == hi - lo:
+            resumed += hi - lo
+        else:
+            done = run_block(lo, hi, {p: v[lo:hi] for p, v in values.items()})
+            _save_block(path, done)
+        names.update(dict.fromkeys(done.analysis))
+        blocks.append(done)
+        if progress is not None:
+            progress((b + 1) / len(starts))
+    analysis = {}
+    for name in names:
+        analysis[name] = np.concatenate([
+            np.asarray(blk.analysis[name], dtype=np.float64) if name in blk.analysis
+            else np.full(len(blk.status), np.nan) for blk in blocks])
+    status = np.concatenate([np.asarray(blk.status, dtype=str) for blk in blocks])
+    message = np.concatenate([np.asarray(blk.message, dtype=str) if blk.message is not None
+                              else np.full(len(blk.status), "") for blk in blocks])
+    data = SweepData(values=values, analysis=analysis, status=status.astype(object),
+                     message=message.astype(object),
+                     attrs={"paths": json.dumps(spec.paths), "shape": json.dumps(spec.shape),
+                            "zip": spec.zip, "block": block})
+    return data, resumed
+
+
+def discard_partial(folder: Path, key: str) -> None:
+    """Remove a sweep's finished blocks once its archive holds them."""
+    shutil.rmtree(partial_folder(folder, key), ignore_errors=True)
+
+
+def generic_block(make_member: Callable[[dict[str, float]], Any], values: dict[str, np.ndarray],
+                  ) -> SweepBlock:
+    """Members run one by one as whole scenes (``make_member(assignments)`` builds one;
+    its ``simulate`` is called): every finite scalar of their ``/analysis`` becomes a
+    sweep result.  The fallback of kinds without a compiled ensemble."""
+    n = len(next(iter(values.values())))
+    rows: list[dict[str, float]] = []
+    status = np.full(n, OK, dtype=object)
+    message = np.full(n, "", dtype=object)
+    from .config import ConfigError
+
+    for i in range(n):
+        assignments = {p: float(v[i]) for p, v in values.items()}
+        row: dict[str, float] = {}
+        try:
+            results = make_member(assignments).simulate()
+            for name, value in results.analysis.items():
+                if isinstance(value, (bool, np.bool_)):
+                    row[name] = float(value)
+                elif isinstance(value, (int, float, np.integer, np.floating)):
+                    row[name] = float(value)
+            status[i] = OK if results.status == "ok" else results.status
+            message[i] = results.message
+        except ConfigError as exc:
+            status[i], message[i] = "invalid", "; ".join(exc.problems)[:300]
+        except Exception as exc:  # noqa: BLE001 - one member's failure is its own
+            status[i], message[i] = "failed", f"{type(exc).__name__}: {exc}"[:300]
+        rows.append(row)
+    names = dict.fromkeys(k for row in rows for k in row)
+    analysis = {k: np.array([row.get(k, np.nan) for row in rows]) for k in names}
+    return SweepBlock(analysis=analysis, status=status, message=message)

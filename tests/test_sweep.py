@@ -1,0 +1,189 @@
+"""Sweeps ([sweep]): a family of runs from one config, in one archive; resumable."""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+from conftest import pendulum_text
+from reportgen.archive import read_archive
+from reportgen.config import ConfigError, parse_config_text
+from reportgen.pipeline import run_scene
+from reportgen.scenes import load_scene
+from reportgen.sweep import SweepBlock, parse_sweep, partial_folder
+
+OSCILLATOR = """
+kind = "oscillator"
+title = "oscillator family"
+
+[params]
+m = 2.0
+omega = 1.5
+
+[initial]
+q = 1.0
+p = 0.0
+
+[run]
+t_end = 6.0
+samples = 301
+study = false
+"""
+
+
+def test_parse_lists_ranges_and_dotted_keys():
+    spec, problems = parse_sweep({"initial": {"theta": {"start": 0.1, "stop": 0.5, "num": 5}},
+                                  "params.l": [1.0, 2.0], "store": 3}, "f.toml")
+    assert problems == [] and spec.paths == ["initial.theta", "params.l"]
+    assert spec.shape == (5, 2) and spec.size == 10 and spec.store == 3
+    values = spec.values()
+    assert np.allclose(values["initial.theta"], np.repeat([0.1, 0.2, 0.3, 0.4, 0.5], 2))
+    assert np.allclose(values["params.l"], np.tile([1.0, 2.0], 5))  # grid: last key fastest
+    assert list(spec.stored_members()) == [0, 4, 9]  # spread evenly, first and last kept
+    log, _ = parse_sweep({"params.l": {"start": 1.0, "stop": 100.0, "num": 3,
+                                       "spacing": "log"}}, "f.toml")
+    assert np.allclose(log.values()["params.l"], [1.0, 10.0, 100.0])
+    paired, _ = parse_sweep({"a.x": [1.0, 2.0], "a.y": [3.0, 4.0], "zip": True}, "f.toml")
+    assert paired.size == 2 and list(paired.values()["a.y"]) == [3.0, 4.0]
+
+
+@pytest.mark.parametrize("table, key, words", [
+    ({"initial.theta": {"start": 0.1, "stop": 1.0}}, "sweep.initial.theta", "a range is"),
+    ({"initial.theta": {"start": 0.1, "stop": 1.0, "num": 0}}, "sweep.initial.theta.num",
+     "whole number"),
+    ({"initial.theta": ["a", "b"]}, "sweep.initial.theta", "finite numbers"),
+    ({"initial.theta": 0.5}, "sweep.initial.theta", "a list of values or a range"),
+    ({"params.l": {"start": -1.0, "stop": 1.0, "num": 3, "spacing": "log"}}, "sweep.params.l",
+     "log range"),
+    ({"a.x": [1.0, 2.0], "a.y": [1.0], "zip": True}, "sweep.zip", "same number"),
+    ({"store": 5}, "sweep", "names no swept key"),
+    ({"initial.theta": [1.0], "store": -1}, "sweep.store", "whole number"),
+])
+def test_bad_tables_name_the_key_the_rule_and_the_value(table, key, words):
+    spec, problems = parse_sweep(table, "f.toml")
+    assert spec is None and len(problems) >= 1
+    assert f"f.toml: key '{key}'" in problems[0] and words in problems[0], problems
+    assert "(got " in problems[0]
+
+
+@pytest.mark.parametrize("line, words", [
+    ("params.l = [1.0, -1.0]", ["params.l = -1", "key 'params.l'"]),
+    ("params.q = [1.0, 2.0]", ["params.q", "q"]),
+])
+def test_invalid_members_are_config_errors_naming_the_member(write_config, cli, tmp_path,
+                                                            line, words):
+    path = write_config("bad", pendulum_text(extra=f"[sweep]\n{line}\n"))
+    code, _, err = cli("run", path, "--out", tmp_path / "out")
+    assert code == 2, err
+    assert "key 'sweep': the member with" in err and all(w in err for w in words), err
+    assert not (tmp_path / "out" / "bad" / "run.h5").exists()
+
+
+def test_generic_sweep_archive_and_report(write_config, tmp_path):
+    """A kind without a compiled ensemble: members run as whole scenes; the archive holds
+    the family on the dimension ``member`` (xarray, no phony dimensions), the kept
+    members' runs and a report of the family's sections only."""
+    xr = pytest.importorskip("xarray")
+    path = write_config("osc", OSCILLATOR + "[sweep]\nparams.omega = [1.0, 1.5, 2.0]\n"
+                                            "store = 2\n")
+    outcome = run_scene(str(path), str(tmp_path / "out"), formats=("html",))
+    assert outcome.ok, outcome.message
+    archive = tmp_path / "out" / "osc" / "run.h5"
+    data = read_archive(archive)
+    sweep = data.sweep
+    assert sweep.size == 3 and list(sweep.status) == ["ok"] * 3
+    assert list(sweep.values["params.omega"]) == [1.0, 1.5, 2.0]
+    assert sorted(data.runs) == ["member_0", "member_2"]
+    # each member is the scene with its value: the kept runs oscillate at their omega
+    for name, omega in (("member_0", 1.0), ("member_2", 2.0)):
+        run = data.runs[name]
+        assert np.allclose(run.y[:, 0], np.cos(omega * run.t), atol=1e-9)
+    for group in ("sweep", "sweep/values", "sweep/analysis"):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            with xr.open_dataset(archive, group=group, engine="h5netcdf",
+                                 phony_dims="sort") as ds:
+                assert set(ds.dims) == {"member"}, (group, ds.dims)
+                assert all(ds[v].dims == ("member",) for v in ds.data_vars)
+    html = (tmp_path / "out" / "osc" / "report.html").read_text()
+    assert 'id="sweep_results"' in html and 'id="sweep_members"' in html
+    assert 'id="time_series"' not in html  # single-run sections are not repeated
+    assert not partial_folder(archive.parent, data.attrs["physics_key"]).exists()
+
+
+def test_killed_sweep_resumes_at_its_first_unfinished_block(write_config, tmp_path,
+                                                            monkeypatch):
+    """Finished blocks survive a crash; the next run reads them and runs only the rest,
+    and the result equals an uninterrupted run."""
+    from reportgen.scenes.oscillator import OscillatorScene
+
+    text = OSCILLATOR + "[sweep]\nparams.omega = { start = 1.0, stop = 2.0, num = 5 }\n" \
+                        "store = 0\nblock = 2\n"
+    path = write_config("osc", text)
+    whole = run_scene(str(path), str(tmp_path / "whole"), formats=("html",))
+    assert whole.ok
+    calls = []
+    original = OscillatorScene.sweep_block
+
+    def crash_on_third_block(self, lo, hi, values):
+        calls.append(lo)
+        if lo == 4:
+            raise KeyboardInterrupt  # stands in for kill -9 (nothing after it runs)
+        return original(self, lo, hi, values)
+
+    monkeypatch.setattr(OscillatorScene, "sweep_block", crash_on_third_block)
+    with pytest.raises(KeyboardInterrupt):
+        run_scene(str(path), str(tmp_path / "out"), formats=("html",))
+    folder = tmp_path / "out" / "osc"
+    scene = load_scene(parse_config_text(text, path))
+    partial = partial_folder(folder, scene.physics_key())
+    assert sorted(p.name for p in partial.glob("block-*.npz")) == [
+        "block-000000.npz", "block-000001.npz"]
+    assert not (folder / "run.h5").exists()
+    monkeypatch.setattr(OscillatorScene, "sweep_block", original)
+    calls.clear()
+    monkeypatch.setattr(OscillatorScene, "sweep_block",
+                        lambda self, lo, hi, values: calls.append(lo)
+                        or original(self, lo, hi, values))
+    again = run_scene(str(path), str(tmp_path / "out"), formats=("html",))
+    assert again.ok and calls == [4]  # only the unfinished block ran
+    resumed, reference = read_archive(folder / "run.h5").sweep, \
+        read_archive(tmp_path / "whole" / "osc" / "run.h5").sweep
+    assert int(resumed.attrs["resumed"]) == 4
+    for name, values in reference.analysis.items():
+        assert np.array_equal(values, resumed.analysis[name], equal_nan=True), name
+    assert not partial.exists()
+
+
+def test_sweep_is_part_of_the_physics_key(write_config):
+    base = pendulum_text(extra="[sweep]\ninitial.theta = [0.5, 1.0]\n")
+    other = pendulum_text(extra="[sweep]\ninitial.theta = [0.5, 1.1]\n")
+    key = [load_scene(parse_config_text(t)).physics_key() for t in (base, other)]
+    assert key[0] != key[1]
+    assert load_scene(parse_config_text(base)).resolved_config()["sweep"]["axes"] == {
+        "initial.theta": [0.5, 1.0]}
+
+
+def test_member_block_failures_are_the_members_own():
+    """A member whose config is invalid inside the grid (not at a corner) gets its own
+    status; the others have results."""
+    from reportgen.sweep import generic_block
+
+    def make(assignments):
+        if assignments["x"] == 2.0:
+            raise ConfigError(["f.toml: key 'x': bad (got 2.0)"])
+
+        class Member:
+            def simulate(self):
+                from reportgen.results import Results
+                return Results(analysis={"double": 2 * assignments["x"], "text": "no"})
+        return Member()
+
+    block = generic_block(make, {"x": np.array([1.0, 2.0, 3.0])})
+    assert isinstance(block, SweepBlock)
+    assert list(block.status) == ["ok", "invalid", "ok"]
+    assert list(block.analysis) == ["double"]
+    assert block.analysis["double"][0] == 2.0 and math.isnan(block.analysis["double"][1])
