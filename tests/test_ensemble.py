@@ -151,6 +151,8 @@ def test_terminal_events_stop_members():
     assert np.allclose(periods, [2 * math.pi, math.pi / 2], rtol=1e-9, atol=0.0)
     assert np.all(ens.t_final >= ens.events[:, 1]) and np.all(ens.t_final < 100.0)
     assert np.all(ens.counters[:, 1] < 100)  # a run to t_end would take hundreds of steps
+    whole = run_ensemble(model, Y0, P, t_end=100.0, rtol=1e-10, atol=1e-12, terminal=True)
+    assert np.all(whole.t_final == 100.0)  # nothing to wait for: no early stop
 
 
 def test_failing_members_are_flagged_and_others_unchanged():

@@ -29,7 +29,17 @@ Design
   :func:`dop853_member`'s own body with whole work arrays (a callback inside a helper,
   even an ``inline="always"`` one, measured ~40 ns more per helper call); the error
   norm, the step-size controller, the stage sums and the dense output are compiled.py's
-  helpers, so the step sequence is erk_adaptive's.
+  helpers, so the step sequence is erk_adaptive's.  A pendulum member costs ~31 ns per
+  evaluation of ``rhs``, step arithmetic included.
+* Compile time (empty cache, 2 cores): 9.0 s, of which 4.3 s for :func:`dop853_member`
+  and 4.5 s for the parallel wrapper, nearly all of it LLVM optimising and generating
+  code again for the member linked into numba's gufunc.  Inlining the member into the
+  ``prange`` body instead (``inline="always"``) took 13.2 s.  Loading from the cache:
+  0.2 s.  Like the other drivers, once per numba cache folder for all models.
+* Fork: numba's default threading layer here is GNU OpenMP (``omp``), which is not
+  fork-safe: a process forked after its parent ran an ensemble is killed when it runs
+  one ("fork() called from a process already using GNU OpenMP").  Run ensembles after
+  forking, or set ``NUMBA_THREADING_LAYER=workqueue`` (measured fork-safe here).
 
 References
 ----------
@@ -136,7 +146,7 @@ def interpolant_root(F, y_old, i, g0, g1):
             lo = x
         else:
             hi = x
-        x_new = x - v / dv if dv != 0.0 else -1.0
+        x_new = x - v / dv if dv != 0.0 else -1.0  # -1: outside, bisect
         if not (lo < x_new < hi):
             x_new = 0.5 * (lo + hi)
         if abs(x_new - x) <= 4.0 * EPS or hi - lo <= 4.0 * EPS:
@@ -262,7 +272,7 @@ def dop853_member(rhs, A, b, c, E, E3, P, nst, kind, err_exp, order, y0, p, t0, 
             else:
                 dense_eval(kind, nst, P, t_old, t - t_old, y_old, K, F, t_eval[j], Y[j])
             j += 1
-        if terminal and n_ev == max_events and t < t_end:
+        if terminal and 0 < max_events == n_ev and t < t_end:
             copy_into(y_end, y)
             return OK, n_ev, t
     if status != OK:
@@ -321,7 +331,8 @@ class Ensemble:
     y_store : ndarray, shape (S, N, d)
         Their states at ``t_eval`` (NaN after a member stopped or failed).
     wall_time_s : float
-        Time of the compiled calls (not of compiling them: see :func:`warm_up`).
+        Time of the compiled calls; in a process's first call it includes compiling
+        the driver or loading it from numba's cache (~0.2 s).
     """
 
     y_end: np.ndarray
@@ -334,10 +345,6 @@ class Ensemble:
     store: np.ndarray
     y_store: np.ndarray
     wall_time_s: float
-
-    @property
-    def ok(self) -> np.ndarray:
-        return self.status == OK
 
 
 def _member_params(model: OdeModel, P, M: int) -> np.ndarray:
