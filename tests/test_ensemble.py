@@ -206,6 +206,8 @@ def test_input_validation():
         run_ensemble(model, Y0, t_end=1.0, store=[1])
     with pytest.raises(ValueError, match="event"):
         run_ensemble(model, Y0, t_end=1.0, event="x", max_events=1)
+    with pytest.raises(ValueError, match="atol"):
+        run_ensemble(model, Y0, t_end=1.0, atol=0.0)
     with pytest.raises(ValueError, match="P"):
         run_ensemble(model, Y0, np.ones((2, 1)), t_end=1.0)
 

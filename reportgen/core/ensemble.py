@@ -424,6 +424,8 @@ def run_ensemble(model: OdeModel, Y0, P=None, t_end: float = 1.0, *, t0: float =
     t0, t_end = float(t0), float(t_end)
     if not (math.isfinite(t0) and math.isfinite(t_end) and t_end > t0):
         raise ValueError(f"t_end: expected a finite time after t0 = {t0}, got {t_end}")
+    if not (rtol > 0.0 and atol > 0.0):  # the error scale atol + rtol |y| divides
+        raise ValueError(f"rtol, atol: expected positive tolerances, got {rtol}, {atol}")
     if direction not in (-1, 0, 1):
         raise ValueError(f"direction: expected +1, -1 or 0, got {direction}")
     if max_events < 0 or (max_events > 0 and event is None):
