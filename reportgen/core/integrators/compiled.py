@@ -204,6 +204,77 @@ def dop853_dense_coefficients(nst, P, h, y_old, y_new, K, F):
             F[3 + k, i] = h * acc
 
 
+@numba.njit(cache=True, inline="always")
+def error_norm(kind, E, E3, nst, h, y, y_new, K, f_new, scale, rtol, atol):
+    """Scaled RMS norm of the local error of the step y -> y_new; inf if not finite.
+
+    ``K[:nst]`` are the step's stages and ``f_new`` = f(t + h, y_new) (``K[nst]`` still
+    holds f(t, y), needed if the step is rejected).  kind 0: the embedded estimate
+    ``h sum E_s K_s``; kind 1: DOP853's combined 5th/3rd-order estimate (Hairer's
+    dop853.f, scipy DOP853).  Accepted when < 1.
+    """
+    d = y.size
+    for i in range(d):
+        scale[i] = atol + max(abs(y[i]), abs(y_new[i])) * rtol
+    if kind == 0:
+        acc2 = 0.0
+        for i in range(d):
+            e = E[nst] * f_new[i]
+            for s in range(nst):
+                e += E[s] * K[s, i]
+            e = h * e / scale[i]
+            acc2 += e * e
+        err = math.sqrt(acc2 / d)
+    else:
+        e5n = 0.0
+        e3n = 0.0
+        for i in range(d):
+            e5 = E[nst] * f_new[i]
+            e3 = E3[nst] * f_new[i]
+            for s in range(nst):
+                e5 += E[s] * K[s, i]
+                e3 += E3[s] * K[s, i]
+            e5 /= scale[i]
+            e3 /= scale[i]
+            e5n += e5 * e5
+            e3n += e3 * e3
+        if e5n == 0.0 and e3n == 0.0:
+            err = 0.0
+        else:
+            err = h * e5n / math.sqrt((e5n + 0.01 * e3n) * d)
+    if not (math.isfinite(err) and all_finite(f_new)):
+        err = math.inf
+    return err
+
+
+@numba.njit(cache=True, inline="always")
+def step_factor(err, err_exp, rejected):
+    """Factor of the next step size after an attempt with error norm ``err`` (as scipy's
+    RungeKutta._step_impl): the step is accepted when err < 1, and right after a
+    rejection an accepted step may not grow."""
+    if err < 1.0:
+        if err == 0.0:
+            factor = MAX_FACTOR
+        else:
+            factor = min(MAX_FACTOR, SAFETY * err ** err_exp)
+        if rejected:
+            factor = min(1.0, factor)
+    elif math.isfinite(err):
+        factor = max(MIN_FACTOR, SAFETY * err ** err_exp)
+    else:
+        factor = MIN_FACTOR
+    return factor
+
+
+@numba.njit(cache=True, inline="always")
+def accept_step(nst, y_old, y, y_new, K, f_new):
+    """Accept the step y -> y_new: y_old = y, y = y_new, ``K[nst]`` = f_new (FSAL)."""
+    for i in range(y.size):
+        y_old[i] = y[i]
+        y[i] = y_new[i]
+        K[nst, i] = f_new[i]
+
+
 @numba.njit(cache=True)
 def erk_adaptive(rhs, A, b, c, E, E3, P, nst, kind, err_exp, order,
                  t_eval, i0, i1, Y, y, y_old, K, F, state, counters,
@@ -278,61 +349,19 @@ def erk_adaptive(rhs, A, b, c, E, E3, P, nst, kind, err_exp, order,
         rhs(t_new, y_new, params, f_new)
         counters[0] += nst
         # K[nst] must stay f(t, y) if the step is rejected, so the error uses f_new
-        for i in range(d):
-            scale[i] = atol + max(abs(y[i]), abs(y_new[i])) * rtol
-        if kind == 0:
-            acc2 = 0.0
-            for i in range(d):
-                e = E[nst] * f_new[i]
-                for s in range(nst):
-                    e += E[s] * K[s, i]
-                e = h * e / scale[i]
-                acc2 += e * e
-            err = math.sqrt(acc2 / d)
-        else:
-            # DOP853 combined 5th/3rd-order estimate (Hairer's dop853.f, scipy DOP853)
-            e5n = 0.0
-            e3n = 0.0
-            for i in range(d):
-                e5 = E[nst] * f_new[i]
-                e3 = E3[nst] * f_new[i]
-                for s in range(nst):
-                    e5 += E[s] * K[s, i]
-                    e3 += E3[s] * K[s, i]
-                e5 /= scale[i]
-                e3 /= scale[i]
-                e5n += e5 * e5
-                e3n += e3 * e3
-            if e5n == 0.0 and e3n == 0.0:
-                err = 0.0
-            else:
-                err = h * e5n / math.sqrt((e5n + 0.01 * e3n) * d)
-        if not (math.isfinite(err) and all_finite(f_new)):
-            err = math.inf
+        err = error_norm(kind, E, E3, nst, h, y, y_new, K, f_new, scale, rtol, atol)
+        factor = step_factor(err, err_exp, rejected)
         if err < 1.0:
-            if err == 0.0:
-                factor = MAX_FACTOR
-            else:
-                factor = min(MAX_FACTOR, SAFETY * err ** err_exp)
-            if rejected:
-                factor = min(1.0, factor)
             rejected = False
             counters[1] += 1
             t_old = t
-            for i in range(d):
-                y_old[i] = y[i]
-                y[i] = y_new[i]
-                K[nst, i] = f_new[i]
+            accept_step(nst, y_old, y, y_new, K, f_new)
             t = t_new
-            h *= factor
             dense_ready = False
         else:
             counters[2] += 1
-            if math.isfinite(err):
-                h *= max(MIN_FACTOR, SAFETY * err ** err_exp)
-            else:
-                h *= MIN_FACTOR
             rejected = True
+        h *= factor
     state[0] = t
     state[1] = h
     state[2] = t_old

@@ -93,6 +93,15 @@ class EmbeddedRungeKutta(Method):
     def start(self, kern, model, y0, t_eval, Y, rtol, atol, h, max_steps=10_000_000):
         return EmbeddedRun(self, kern, model, y0, t_eval, Y, rtol, atol, max_steps)
 
+    def driver_args(self) -> tuple:
+        """The method's leading arguments of :func:`.compiled.erk_adaptive`, after ``rhs``:
+        ``(A, b, c, E, E3, P, n_stages, dense_kind, err_exp, order)``."""
+        return (np.ascontiguousarray(self.A, dtype=float), np.asarray(self.b, float),
+                np.asarray(self.c, float), np.asarray(self.E, float),
+                np.asarray(self.E3, float), np.ascontiguousarray(self.P, dtype=float),
+                self.n_stages, self.dense_kind, -1.0 / (self.error_estimator_order + 1),
+                self.order)
+
     def as_fixed_step(self) -> ExplicitRungeKutta:
         """The same tableau without error control (used by the convergence tests)."""
         s = self.n_stages
@@ -108,10 +117,7 @@ class EmbeddedRun(Run):
         d = y0.size
         n_rows = m.A.shape[0] if m.dense_kind == 1 else m.n_stages + 1
         self.kern, self.m, self.t_eval, self.Y = kern, m, t_eval, Y
-        self.args = (np.ascontiguousarray(m.A, dtype=float), np.asarray(m.b, float),
-                     np.asarray(m.c, float), np.asarray(m.E, float), np.asarray(m.E3, float),
-                     np.ascontiguousarray(m.P, dtype=float), m.n_stages, m.dense_kind,
-                     -1.0 / (m.error_estimator_order + 1), m.order)
+        self.args = m.driver_args()
         self.y = np.array(y0, dtype=np.float64)
         self.y_old = self.y.copy()
         self.K = np.zeros((n_rows, d))
