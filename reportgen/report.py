@@ -411,7 +411,7 @@ def build_context(data: ArchiveData, out_dir: Path,
         sections, _ = figures_stage(data, out_dir)
     sections = _with_inline_svg(sections, out_dir)
     runs = []
-    for name, run in data.runs.items():
+    for name, run in data.runs.items() if data.sweep is None else ():  # members: their section
         a = run.attrs
         runs.append({"name": name, "method": a.get("method"), "reason": a.get("method_reason", ""),
                      "nfev": a.get("nfev"), "nsteps": a.get("nsteps"),

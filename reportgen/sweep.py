@@ -105,10 +105,11 @@ class SweepSpec:
     def paths(self) -> list[str]:
         return [a.path for a in self.axes]
 
-    @property
-    def block_size(self) -> int:
-        """Members per block: ~100 blocks, each of 16 to 20000 members."""
-        return self.block or int(min(max(math.ceil(self.size / 100), 16), 20_000))
+    def block_size(self, minimum: int = 1) -> int:
+        """Members per block (``block``, else about 100 blocks of ``minimum`` to 20000
+        members: a kind whose members are cheap asks for large blocks, so that writing a
+        finished block does not cost more than running it)."""
+        return self.block or int(min(max(math.ceil(self.size / 100), minimum), 20_000))
 
     def values(self) -> dict[str, np.ndarray]:
         """Each swept key's value for every member (grid order: the last key fastest)."""
@@ -302,14 +303,15 @@ def partial_folder(folder: Path, key: str) -> Path:
 
 
 def run_sweep(spec: SweepSpec, run_block: Callable[[int, int, dict[str, np.ndarray]], SweepBlock],
-              folder: Path, key: str, progress: Callable[[float], None] | None = None
-              ) -> tuple[SweepData, int]:
+              folder: Path, key: str, progress: Callable[[float], None] | None = None,
+              min_block: int = 1) -> tuple[SweepData, int]:
     """Every member's results, block by block: ``run_block(lo, hi, values)`` gives members
-    ``lo:hi`` (``values``: the swept keys' values of those members).  Blocks already
-    finished under ``folder`` for this ``key`` (a killed run) are read, not run again.
-    Returns the sweep and the number of members resumed from disk."""
+    ``lo:hi`` (``values``: the swept keys' values of those members; blocks of at least
+    ``min_block`` members unless the table sets ``block``).  Blocks already finished
+    under ``folder`` for this ``key`` (a killed run) are read, not run again.  Returns the
+    sweep and the number of members resumed from disk."""
     values = spec.values()
-    size, block = spec.size, spec.block_size
+    size, block = spec.size, spec.block_size(min_block)
     partial = partial_folder(folder, key)
     partial.mkdir(parents=True, exist_ok=True)
     (partial / "key").write_text(key, encoding="utf-8")

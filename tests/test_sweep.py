@@ -187,3 +187,30 @@ def test_member_block_failures_are_the_members_own():
     assert list(block.status) == ["ok", "invalid", "ok"]
     assert list(block.analysis) == ["double"]
     assert block.analysis["double"][0] == 2.0 and math.isnan(block.analysis["double"][1])
+
+
+def test_pendulum_period_sweep_of_2000_members(write_config, tmp_path):
+    """The issue's family: 2000 amplitudes from rest in one config, one compiled ensemble;
+    every member's period within 1e-9 of 4K(k)√(l/g), k = sin(θ0/2) (DLMF 19.2.8,
+    22.19.4; scipy's ellipk takes m = k²), through the archive and the report."""
+    from scipy.special import ellipk
+
+    path = write_config("family", pendulum_text(t_end=12.0, samples=601, extra="""
+        [sweep]
+        initial.theta = { start = 0.01, stop = 3.1, num = 2000 }
+        store = 2
+        """))
+    outcome = run_scene(str(path), str(tmp_path / "out"), formats=("html",))
+    assert outcome.ok, outcome.message
+    data = read_archive(tmp_path / "out" / "family" / "run.h5")
+    sweep = data.sweep
+    theta = sweep.values["initial.theta"]
+    assert sweep.size == 2000 and np.all(sweep.ok)
+    exact = 4.0 * ellipk(np.sin(theta / 2) ** 2) * math.sqrt(1.0 / 9.81)
+    rel = np.abs(sweep.analysis["period_measured"] / exact - 1)
+    assert rel.max() < 1e-9, (rel.max(), theta[np.argmax(rel)])
+    assert np.allclose(sweep.analysis["period"], exact, rtol=1e-12)  # the stored reference
+    assert sorted(data.runs) == ["member_0", "member_1999"]
+    assert data.checks and data.checks[0].rel_error == pytest.approx(rel.max(), rel=1e-6)
+    html = (tmp_path / "out" / "family" / "report.html").read_text()
+    assert 'id="period_family"' in html and "2000 of 2000" in html

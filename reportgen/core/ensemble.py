@@ -38,8 +38,9 @@ Design
   0.2 s.  Like the other drivers, once per numba cache folder for all models.
 * Fork: numba's default threading layer here is GNU OpenMP (``omp``), which is not
   fork-safe: a process forked after its parent ran an ensemble is killed when it runs
-  one ("fork() called from a process already using GNU OpenMP").  Run ensembles after
-  forking, or set ``NUMBA_THREADING_LAYER=workqueue`` (measured fork-safe here).
+  one ("fork() called from a process already using GNU OpenMP").  reportgen forks
+  (scene workers, figure and PDF helpers, ``watch``), so this module selects numba's own
+  ``workqueue`` layer (fork-safe) unless ``NUMBA_THREADING_LAYER`` says otherwise.
 
 References
 ----------
@@ -52,12 +53,16 @@ References
 from __future__ import annotations
 
 import math
+import os
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numba
 import numpy as np
+
+if "NUMBA_THREADING_LAYER" not in os.environ:
+    numba.config.THREADING_LAYER = "workqueue"  # fork-safe (module docstring, Fork)
 
 from .integrators.compiled import (
     EPS,

@@ -149,10 +149,12 @@ def sweep_results(values: dict[str, np.ndarray], analysis: dict[str, np.ndarray]
             label = ", ".join(f"{_label(p)} = {v:.4g}" for p, v in zip(others, combo,
                                                                        strict=True))
             style = dict(marker="o", markersize=2.5) if pick.sum() < 60 else {}
-            if as_lines:
-                ax.plot(x[pick][order], y[pick][order], label=label or None, **style)
+            if as_lines:  # a dense family as per-bin extremes: same pixels, bounded size
+                ax.plot(*envelope(x[pick][order], y[pick][order]), label=label or None,
+                        **style)
             else:
-                ax.plot(x[pick], y[pick], ".", markersize=2)
+                ax.plot(*envelope(x[pick][np.argsort(x[pick])], y[pick][np.argsort(x[pick])]),
+                        ".", markersize=2)
         ax.set_ylabel(name.replace("_", " "))
         if as_lines and others and name == names[0]:  # one legend serves every panel
             ax.legend(loc="best", fontsize=8)

@@ -6,7 +6,8 @@ import math
 
 import numpy as np
 
-from .style import CONTEXT, HIGHLIGHT, REFERENCE, SEPARATRIX, new_figure
+from .common import envelope
+from .style import CONTEXT, HIGHLIGHT, REFERENCE, SEPARATRIX, new_figure, new_figure_grid
 
 
 def phase_portrait(theta, theta_dot, *, grid_theta, grid_theta_dot, energy, levels,
@@ -71,4 +72,32 @@ def boundary_value(t, theta_exact, theta_numeric, theta_nonlinear, *, ax=None):
     ax.set_xlabel("time t [s]")
     ax.set_ylabel("θ [rad]")
     ax.legend(loc="best")
+    return fig
+
+
+def period_family(amplitude, measured, exact, *, curve=None, small_angle=None):
+    """A sweep's periods against amplitude: members (markers, or a line when dense), the
+    exact curve and the small-angle period; below, the relative error of each member."""
+    fig, (ax, ax_err) = new_figure_grid(2, 1, figsize=(6.4, 5.6), sharex=True)
+    ax, ax_err = ax[0], ax_err[0]
+    order = np.argsort(amplitude)
+    x, y = np.asarray(amplitude)[order], np.asarray(measured)[order]
+    if curve is not None:
+        ax.plot(curve["amplitude"], curve["period"], color=REFERENCE, lw=2.5,
+                label="exact 4K(k)√(l/g)")
+    else:
+        ax.plot(x, np.asarray(exact)[order], color=REFERENCE, lw=2.5, label="exact 4K(k)√(l/g)")
+    dense = x.size > 80
+    # a dense family is drawn as per-bin extremes (envelope): the same pixels, bounded size
+    ax.plot(*envelope(x, y), "-" if dense else "o", color=HIGHLIGHT, ms=3.5, lw=1.2,
+            label=f"integrated ({x.size} members)")
+    if small_angle is not None and np.size(small_angle):
+        sa = np.asarray(small_angle)[order]
+        ax.plot(*envelope(x, sa), "--", color=CONTEXT, label="small-angle 2π√(l/g)")
+    ax.set_ylabel("period T [s]")
+    ax.legend(loc="upper left")
+    rel = np.maximum(np.abs(y / np.asarray(exact)[order] - 1), 1e-17)
+    ax_err.semilogy(*envelope(x, rel), "o", color=HIGHLIGHT, ms=1.5 if dense else 3.5)
+    ax_err.set_ylabel("|T − T_exact| / T_exact")
+    ax_err.set_xlabel("amplitude θ0 [rad]")
     return fig

@@ -66,7 +66,7 @@ from ..config import (
     format_validation_error,
 )
 from ..lazy import lazy_module
-from ..results import AuditCase, Results, RunRecord
+from ..results import AuditCase, Check, Results, RunRecord
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -316,10 +316,20 @@ class Scene:
         member run as a whole scene; kinds with a compiled ensemble override it."""
         return _sweep.generic_block(self.member, values)
 
+    def sweep_min_block(self) -> int:
+        """The fewest members per block of this sweep (see :meth:`SweepSpec.block_size`):
+        1 for members run as whole scenes; a compiled ensemble asks for more."""
+        return 1
+
     def sweep_extras(self, sweep: _sweep.SweepData) -> dict[str, Any]:
         """What the kind's family figures need besides the members' results (an exact
         curve, say), stored in ``/analysis``.  Default: nothing."""
         return {}
+
+    def sweep_checks(self, sweep: _sweep.SweepData) -> list[Check]:
+        """The family's headline numbers against their references (the worst member's,
+        say).  Default: none."""
+        return []
 
     def simulate_sweep(self, folder, progress: ProgressFn | None = None) -> Results:
         """The sweep: every member's scalar results (resumable, block by block, see
@@ -329,7 +339,7 @@ class Scene:
         spec = self.sweep
         t0 = time.perf_counter()
         data, resumed = _sweep.run_sweep(spec, self.sweep_block, folder, self.physics_key(),
-                                         progress)
+                                         progress, min_block=self.sweep_min_block())
         members_s = time.perf_counter() - t0
         results = Results()
         for i in spec.stored_members():
@@ -343,6 +353,7 @@ class Scene:
         results.analysis = {"sweep_members": spec.size, "sweep_ok": counts.get("ok", 0),
                             "sweep_members_per_s": (spec.size - resumed) / max(members_s, 1e-9),
                             **self.sweep_extras(data)}
+        results.checks = self.sweep_checks(data)
         bad = spec.size - counts.get("ok", 0)
         if bad:
             results.flag("unstable" if counts.get("ok", 0) else "failed",
@@ -499,15 +510,23 @@ class Scene:
         """The kept members' first coordinate against time, one line each."""
         from ..plots import common as common_plots
 
-        runs = {name: run for name, run in data.runs.items() if name.startswith("member_")}
-        labels = {}
-        for name in runs:
-            i = int(name.split("_", 1)[1])
+        members = sorted((int(name.split("_", 1)[1]), name) for name in data.runs
+                         if name.startswith("member_"))
+        runs = {name: data.runs[name] for _, name in members}
+        labels, rows = {}, []
+        for i, name in members:
             labels[name] = ", ".join(f"{p.rsplit('.', 1)[-1]} = {fmt(float(v[i]), 4)}"
                                      for p, v in data.sweep.values.items())
+            a = runs[name].attrs
+            rows.append([str(i), labels[name], str(a.get("method", "")), str(a.get("nfev", "")),
+                         f"{a.get('nsteps', '')} ({a.get('nreject', '')})",
+                         str(a.get("status", ""))])
         fig = common_plots.member_runs(runs, labels)
+        table = Table("The kept members' runs", ["member", "values", "method", "f evals",
+                                                 "steps (rejected)", "status"], rows)
         return SectionContent(figures=[cls.figure(
-            "members", fig, "The first coordinate of each kept member against time.")])
+            "members", fig, "The first coordinate of each kept member against time.")],
+            tables=[table])
 
     @classmethod
     def invariants_section(cls, data: ArchiveData, *, labels: dict[str, str] | None = None,

@@ -93,6 +93,13 @@ class PendulumScene(Scene):
         Section("error_vs_runtime", "Error against run time", integrates=True),
     )
 
+    family_sections = (
+        Section("period_family", "Period against amplitude across the family",
+                description="Each member's period, integrated, against the exact period."),
+    )
+    #: swept keys the compiled ensemble covers (members released from rest)
+    ENSEMBLE_KEYS = frozenset({"initial.theta", "params.g", "params.l", "params.m"})
+
     #: crossings are located reliably only with this many samples per period
     MIN_SAMPLES_PER_PERIOD = 16
     #: phase-portrait grid: points per axis
@@ -253,6 +260,69 @@ class PendulumScene(Scene):
                    if self.has_exact_solution else None)
         return results
 
+    # ------------------------------------------------------------------ sweeps
+    def sweep_block(self, lo, hi, values):
+        """Members released from rest run as one compiled ensemble
+        (:func:`reportgen.core.ensemble.pendulum_periods`): each member's period is the
+        time between its first two upward crossings of θ = 0, against the exact
+        4K(k)√(l/g).  Other sweeps run member by member."""
+        p, ini, run = self.config.params, self.config.initial, self.config.run
+        if not self._ensemble_sweep():
+            return super().sweep_block(lo, hi, values)
+        from ..core import ensemble
+        from ..sweep import SweepBlock
+
+        n = hi - lo
+        theta = values.get("initial.theta", np.full(n, ini.theta))
+        g = values.get("params.g", np.full(n, p.g))
+        l = values.get("params.l", np.full(n, p.l))
+        amplitude = np.abs(theta)
+        measured, codes = ensemble.pendulum_periods(amplitude, g, l, rtol=run.rtol,
+                                                    atol=run.atol)
+        omega0 = np.sqrt(g / l)
+        with np.errstate(invalid="ignore"):
+            exact = np.where(amplitude < math.pi, core.libration_period(
+                np.minimum(amplitude, math.pi - 1e-300), omega0), np.nan)
+        status = np.array([ensemble.STATUS_NAMES.get(int(c), f"status {int(c)}")
+                           for c in codes], dtype=object)
+        return SweepBlock(analysis={
+            "period_measured": measured, "period": exact,
+            "period_relative_error": np.abs(measured - exact) / exact,
+            "period_small_angle": 2 * math.pi / omega0}, status=status)
+
+    def _ensemble_sweep(self) -> bool:
+        """Whether this sweep's members run as one compiled ensemble."""
+        return (self.sweep is not None and set(self.sweep.paths) <= self.ENSEMBLE_KEYS
+                and self.config.initial.theta_dot == 0.0)
+
+    def sweep_min_block(self) -> int:
+        return 1024 if self._ensemble_sweep() else 1
+
+    def sweep_extras(self, sweep) -> dict:
+        """The exact period curve over the swept amplitudes (g and l not swept)."""
+        theta = sweep.values.get("initial.theta")
+        if theta is None or {"params.g", "params.l"} & set(sweep.values):
+            return {}
+        amp = np.abs(theta[np.abs(theta) < math.pi])
+        if amp.size == 0:
+            return {}
+        grid = np.linspace(amp.min(), amp.max(), self.PERIOD_CURVE_POINTS)
+        return {"period_curve": {"amplitude": grid,
+                                 "period": core.libration_period(grid, self.omega0)}}
+
+    def sweep_checks(self, sweep) -> list[Check]:
+        """The member whose integrated period is furthest from 4K(k)√(l/g)."""
+        a = sweep.analysis
+        if "period_measured" not in a:
+            return []
+        rel = np.where(sweep.ok, np.abs(a["period_measured"] / a["period"] - 1), np.nan)
+        if not np.any(np.isfinite(rel)):
+            return []
+        i = int(np.nanargmax(rel))
+        where = ", ".join(f"{p} = {fmt(float(v[i]), 8)}" for p, v in sweep.values.items())
+        return [Check(f"period of the worst member ({where})", float(a["period_measured"][i]),
+                      float(a["period"][i]), "s", "4K(k)·√(l/g), DLMF 22.19.4")]
+
     def _phase_portrait(self, theta_dot) -> dict:
         """Level sets of E/(m l²) over θ ∈ [−π, π] and |θ̇| ≤ vmax (wide enough for the orbit):
         librations below the separatrix, rotations above it."""
@@ -336,6 +406,28 @@ class PendulumScene(Scene):
         return SectionContent(figures=[cls.figure(
             "period", fig, "Period against amplitude: exact 4K(k)√(l/g), k = sin(θ0/2), "
             "against the small-angle period 2π√(l/g).")], facts=facts, notes=notes)
+
+    @classmethod
+    def section_period_family(cls, data):
+        sweep = data.sweep
+        a = sweep.analysis
+        theta = sweep.values.get("initial.theta")
+        x = np.abs(theta) if theta is not None else np.full(sweep.size, data.config.initial.theta)
+        ok = sweep.ok & np.isfinite(a.get("period_measured", np.full(sweep.size, np.nan)))
+        curve = data.analysis.get("period_curve")
+        fig = plots.period_family(x[ok], a["period_measured"][ok], a["period"][ok],
+                                  curve=curve, small_angle=a["period_small_angle"][ok])
+        rel = np.abs(a["period_measured"][ok] / a["period"][ok] - 1)
+        facts = [("members with a period", f"{int(ok.sum())} of {sweep.size}"),
+                 ("max relative error of the period", fmt_err(float(np.max(rel)))
+                  if rel.size else "—"),
+                 ("tolerance of the runs", f"rtol {data.config.run.rtol:g}, "
+                                           f"atol {data.config.run.atol:g}")]
+        return SectionContent(figures=[cls.figure(
+            "period_family", fig, "Each member's period, the time between its first two upward "
+            "crossings of θ = 0 on the integrator's dense output, against the exact "
+            "4K(k)√(l/g), k = sin(θ0/2) (DLMF 19.2.8, 22.19.4), and the small-angle period "
+            "2π√(l/g); below, the relative error.")], facts=facts)
 
     @classmethod
     def section_boundary_value(cls, data):

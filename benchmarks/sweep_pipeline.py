@@ -1,0 +1,124 @@
+"""A 2000-member pendulum sweep end to end: ``reportgen run`` of one config (CLI, archive,
+figures, HTML and PDF report) against Python loops of scipy DOP853 runs of the same
+members, measured in one call.
+
+Run ``python benchmarks/sweep_pipeline.py [repeats]`` (default 3 for ours; each scipy
+loop runs once: it takes tens of seconds).
+
+The sweep: theta0 in [0.01, 3.1] from rest, g = 9.81, l = 1 (``CONFIG`` below).  Each
+member's period is compared with T = 4 K(k) sqrt(l/g), k = sin(theta0 / 2) (DLMF 19.2.8,
+22.19(i)).  The loops are the scripts a user would write, a plain Python right-hand side
+and ``solve_ivp(..., method="DOP853", events=upward)`` per member:
+
+* *at the config's settings*: over the config's ``t_end`` at its rtol 1e-12, atol 1e-14,
+  the period from the first two upward crossings of theta (what one run per member of
+  this scene would compute);
+* *least work*: rtol 1e-10, atol 1e-12, stopped at the second crossing (``terminal = 2``),
+  horizon 2.2 T: scipy's cheapest way to a period, with a larger error than ours.
+
+``reportgen run`` is timed as a whole process (``--force``: every stage runs) after one
+untimed run that fills numba's cache; the median of ``repeats`` is quoted.
+"""
+
+from __future__ import annotations
+
+import math
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+from scipy.integrate import solve_ivp
+from scipy.special import ellipk
+
+G, L, T_END = 9.81, 1.0, 12.0
+THETA0 = np.linspace(0.01, 3.1, 2000)
+EXACT = 4.0 * ellipk(np.sin(0.5 * THETA0) ** 2) * math.sqrt(L / G)
+CONFIG = f"""kind = "pendulum"
+title = "Period against amplitude: 2000 members"
+
+[params]
+g = {G}
+l = {L}
+
+[initial]
+theta = 1.0
+
+[run]
+t_end = {T_END}
+samples = 1201
+
+[sweep]
+initial.theta = {{ start = 0.01, stop = 3.1, num = 2000 }}
+store = 5
+"""
+
+
+def scipy_loop(rtol: float, atol: float, least_work: bool) -> np.ndarray:
+    def f(t, y):
+        return [y[1], -G / L * np.sin(y[0])]
+
+    def upward(t, y):
+        return y[0]
+
+    upward.direction = 1
+    if least_work:
+        upward.terminal = 2
+    periods = np.full(THETA0.size, np.nan)
+    for i, th in enumerate(THETA0):
+        t_end = 2.2 * EXACT[i] if least_work else T_END
+        sol = solve_ivp(f, (0.0, t_end), [th, 0.0], method="DOP853", rtol=rtol, atol=atol,
+                        events=upward)
+        crossings = sol.t_events[0]
+        if crossings.size >= 2:
+            periods[i] = crossings[1] - crossings[0]
+    return periods
+
+
+def max_error(periods: np.ndarray) -> float:
+    return float(np.max(np.abs(periods / EXACT - 1.0)))
+
+
+def ours(repeats: int) -> tuple[float, float]:
+    """(median wall time of ``reportgen run``, max period error read from the archive)."""
+    from reportgen.archive import read_archive
+
+    with tempfile.TemporaryDirectory(prefix="reportgen-sweep-") as tmp:
+        config = Path(tmp) / "pendulum_period_sweep.toml"
+        config.write_text(CONFIG, encoding="utf-8")
+        command = [sys.executable, "-m", "reportgen", "run", str(config), "--out",
+                   str(Path(tmp) / "out"), "--force"]
+        subprocess.run(command, check=True, capture_output=True)  # fills numba's cache
+        times = []
+        for _ in range(repeats):
+            t = time.perf_counter()
+            subprocess.run(command, check=True, capture_output=True)
+            times.append(time.perf_counter() - t)
+        data = read_archive(Path(tmp) / "out" / config.stem / "run.h5")
+        sweep = data.sweep
+        assert np.allclose(sweep.values["initial.theta"], THETA0)
+        return float(np.median(times)), max_error(sweep.analysis["period_measured"])
+
+
+def main(repeats: int = 3) -> None:
+    t_ours, err_ours = ours(repeats)
+    rows = []
+    for label, rtol, atol, least in (("scipy loop at the config's settings (rtol 1e-12)",
+                                      1e-12, 1e-14, False),
+                                     ("scipy loop, least work (rtol 1e-10, terminal)",
+                                      1e-10, 1e-12, True)):
+        t = time.perf_counter()
+        periods = scipy_loop(rtol, atol, least)
+        rows.append((label, time.perf_counter() - t, max_error(periods)))
+    print(f"pendulum period sweep, {THETA0.size} members, error = max |T / (4K(k)sqrt(l/g)) - 1|")
+    print(f"  {'run':52s} {'wall time':>10s} {'max error':>10s} {'ratio':>8s}")
+    print(f"  {'reportgen run (CLI, archive, figures, HTML, PDF)':52s} {t_ours:8.2f} s "
+          f"{err_ours:10.2e} {'1':>8s}")
+    for label, t, err in rows:
+        print(f"  {label:52s} {t:8.2f} s {err:10.2e} {t / t_ours:7.1f}x")
+
+
+if __name__ == "__main__":
+    main(int(sys.argv[1]) if len(sys.argv) > 1 else 3)
