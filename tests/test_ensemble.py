@@ -216,3 +216,25 @@ def test_status_names_cover_codes():
     codes = {v for k, v in vars(ensemble).items() if k.isupper() and isinstance(v, int)
              and k not in ("EPS",)}
     assert codes <= set(ensemble.STATUS_NAMES)
+
+
+def _child_periods(queue):
+    from reportgen.core.ensemble import pendulum_periods as periods
+
+    queue.put(periods(np.array([0.5, 1.0]), 9.81, 1.0)[0].tolist())
+
+
+def test_ensemble_runs_in_a_process_forked_after_one_ran():
+    """reportgen forks (scene workers, figure and PDF helpers, watch): under GNU OpenMP a
+    child forked after its parent ran a parallel loop is killed when it runs one; the
+    module's workqueue layer is fork-safe."""
+    import multiprocessing
+
+    parent = pendulum_periods(np.array([0.5, 1.0]), 9.81, 1.0)[0]
+    ctx = multiprocessing.get_context("fork")
+    queue = ctx.Queue()
+    child = ctx.Process(target=_child_periods, args=(queue,))
+    child.start()
+    child.join(120)
+    assert child.exitcode == 0
+    assert queue.get(timeout=5) == parent.tolist()
