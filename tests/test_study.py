@@ -148,3 +148,14 @@ def test_peer_time_limit():
         ScipyRK45().solve(pendulum.model(G, L), Y0, t_eval, 1e-10, 1e-12, time_limit=0.0)
     sol = ScipyRK45().solve(pendulum.model(G, L), Y0, t_eval, 1e-6, 1e-8, time_limit=60.0)
     assert sol.status == "ok"
+
+
+def test_matched_error_speedup_counts_a_kinds_own_method(study):
+    """A kind's own rows (the rigid body's axis splitting, not in the registry) are ours:
+    counted, not a KeyError (``reportgen bench`` failed on the rigid-body scenes)."""
+    base = matched_error_speedup(study)["baseline"]
+    own = {**base, "method": "splitting2", "label": "axis splitting, order 2",
+           "error_max": base["error_max"] / 2, "wall_time_s": base["wall_time_s"] / 100}
+    out = matched_error_speedup([*study.rows, own])
+    best = {m["method"]: m for m in out["matches"]}
+    assert best["splitting2"]["speedup"] == pytest.approx(100.0)
