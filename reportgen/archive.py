@@ -22,7 +22,8 @@ Layout (``format_version`` 2, see SPEC.md "Archive")::
     /study/error_vs_runtime   table (one row per method x tolerance), attrs reference_kind
     /sweep                    a family of runs ([sweep], see reportgen.sweep), on the
                               dimension scale /sweep/member: status, message (M,) strings,
-                              values/<config path>, analysis/<result> (M,) float64
+                              values/<config path>, analysis/<result> (M,) float64,
+                              labels/<result> (M,) strings
 
 Every array is stored with the fletcher32 checksum, so a corrupted chunk raises
 on read instead of returning wrong numbers.  Writes go to a temporary file in
@@ -205,6 +206,11 @@ def _write_sweep(g: h5py.Group, sweep) -> None:
         ds = g.create_dataset(name, data=np.array([str(v) for v in values], dtype=object),
                               dtype=STR)
         ds.dims[0].attach_scale(member)
+    labels = g.create_group("labels")
+    for name, values in sweep.labels.items():
+        ds = labels.create_dataset(name, data=np.array([str(v) for v in values],
+                                                       dtype=object), dtype=STR)
+        ds.dims[0].attach_scale(member)
     for group, arrays in (("values", sweep.values), ("analysis", sweep.analysis)):
         sub = g.create_group(group)
         for name, values in arrays.items():
@@ -346,6 +352,8 @@ def _read_sweep(g: h5py.Group):
     return SweepData(
         values={k: g["values"][k][()] for k in names},
         analysis={k: ds[()] for k, ds in g["analysis"].items()},
+        labels={k: np.array(decode(ds[()]), dtype=object)
+                for k, ds in g.get("labels", {}).items()},
         status=np.array(decode(g["status"][()]), dtype=object),
         message=np.array(decode(g["message"][()]), dtype=object),
         attrs=attrs)

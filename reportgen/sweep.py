@@ -15,7 +15,8 @@ member is the config with those values put in; the rest of the config is the tem
 The archive holds the family (dimension ``member``)::
 
     /sweep/values/<path>       (M,) the member's value of each swept key
-    /sweep/analysis/<name>     (M,) each scalar result of the kind's analysis per member
+    /sweep/analysis/<name>     (M,) each numeric result of the kind's analysis per member
+    /sweep/labels/<name>       (M,) each text result (the heavy top's case, say)
     /sweep/status              (M,) "ok", or why the member has no result
     /sweep/message             (M,) what went wrong, if anything
     /runs/member_<i>           the whole run of the ``store`` members kept
@@ -51,6 +52,8 @@ OPTIONS = frozenset({"zip", "store", "block"})
 MAX_MEMBERS = 10_000_000
 MAX_STORE = 50
 DEFAULT_STORE = 5
+#: longer text results of a member (a reference's description, say) are not kept
+MAX_LABEL = 40
 #: the status of a member whose run gave its results
 OK = "ok"
 
@@ -248,6 +251,7 @@ class SweepBlock:
     analysis: dict[str, np.ndarray]
     status: np.ndarray  # (n,) str
     message: np.ndarray | None = None  # (n,) str
+    labels: dict[str, np.ndarray] = field(default_factory=dict)  # text results, (n,) str
 
 
 @dataclass
@@ -256,6 +260,7 @@ class SweepData:
 
     values: dict[str, np.ndarray]
     analysis: dict[str, np.ndarray] = field(default_factory=dict)
+    labels: dict[str, np.ndarray] = field(default_factory=dict)
     status: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=object))
     message: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=object))
     attrs: dict[str, Any] = field(default_factory=dict)
@@ -276,6 +281,7 @@ class SweepData:
 def _save_block(path: Path, block: SweepBlock) -> None:
     """One finished block, written whole under a temporary name, then renamed."""
     arrays = {f"analysis/{k}": np.asarray(v, dtype=np.float64) for k, v in block.analysis.items()}
+    arrays.update({f"labels/{k}": np.asarray(v, dtype=str) for k, v in block.labels.items()})
     arrays["status"] = np.asarray(block.status, dtype=str)
     if block.message is not None:
         arrays["message"] = np.asarray(block.message, dtype=str)
@@ -291,7 +297,8 @@ def _load_block(path: Path) -> SweepBlock | None:
     try:
         with np.load(path, allow_pickle=False) as z:
             analysis = {k.split("/", 1)[1]: z[k] for k in z.files if k.startswith("analysis/")}
-            return SweepBlock(analysis=analysis, status=z["status"],
+            labels = {k.split("/", 1)[1]: z[k] for k in z.files if k.startswith("labels/")}
+            return SweepBlock(analysis=analysis, status=z["status"], labels=labels,
                               message=z["message"] if "message" in z.files else None)
     except (OSError, ValueError, KeyError):
         return None  # unreadable: run the block again
@@ -316,6 +323,7 @@ def run_sweep(spec: SweepSpec, run_block: Callable[[int, int, dict[str, np.ndarr
     partial.mkdir(parents=True, exist_ok=True)
     (partial / "key").write_text(key, encoding="utf-8")
     names: dict[str, None] = {}
+    label_names: dict[str, None] = {}
     blocks: list[SweepBlock] = []
     resumed = 0
     starts = range(0, size, block)
@@ -329,6 +337,7 @@ def run_sweep(spec: SweepSpec, run_block: Callable[[int, int, dict[str, np.ndarr
             done = run_block(lo, hi, {p: v[lo:hi] for p, v in values.items()})
             _save_block(path, done)
         names.update(dict.fromkeys(done.analysis))
+        label_names.update(dict.fromkeys(done.labels))
         blocks.append(done)
         if progress is not None:
             progress((b + 1) / len(starts))
@@ -337,10 +346,15 @@ def run_sweep(spec: SweepSpec, run_block: Callable[[int, int, dict[str, np.ndarr
         analysis[name] = np.concatenate([
             np.asarray(blk.analysis[name], dtype=np.float64) if name in blk.analysis
             else np.full(len(blk.status), np.nan) for blk in blocks])
+    labels = {name: np.concatenate([
+        np.asarray(blk.labels[name], dtype=str) if name in blk.labels
+        else np.full(len(blk.status), "") for blk in blocks]).astype(object)
+        for name in label_names}
     status = np.concatenate([np.asarray(blk.status, dtype=str) for blk in blocks])
     message = np.concatenate([np.asarray(blk.message, dtype=str) if blk.message is not None
                               else np.full(len(blk.status), "") for blk in blocks])
-    data = SweepData(values=values, analysis=analysis, status=status.astype(object),
+    data = SweepData(values=values, analysis=analysis, labels=labels,
+                     status=status.astype(object),
                      message=message.astype(object),
                      attrs={"paths": json.dumps(spec.paths), "shape": json.dumps(spec.shape),
                             "zip": spec.zip, "block": block})
@@ -355,10 +369,12 @@ def discard_partial(folder: Path, key: str) -> None:
 def generic_block(make_member: Callable[[dict[str, float]], Any], values: dict[str, np.ndarray],
                   ) -> SweepBlock:
     """Members run one by one as whole scenes (``make_member(assignments)`` builds one;
-    its ``simulate`` is called): every finite scalar of their ``/analysis`` becomes a
-    sweep result.  The fallback of kinds without a compiled ensemble."""
+    its ``simulate`` is called): every number of their ``/analysis`` becomes a sweep
+    result, every short text a label.  The fallback of kinds without a compiled
+    ensemble."""
     n = len(next(iter(values.values())))
     rows: list[dict[str, float]] = []
+    texts: list[dict[str, str]] = []
     status = np.full(n, OK, dtype=object)
     message = np.full(n, "", dtype=object)
     from .config import ConfigError
@@ -366,6 +382,7 @@ def generic_block(make_member: Callable[[dict[str, float]], Any], values: dict[s
     for i in range(n):
         assignments = {p: float(v[i]) for p, v in values.items()}
         row: dict[str, float] = {}
+        text: dict[str, str] = {}
         try:
             results = make_member(assignments).simulate()
             for name, value in results.analysis.items():
@@ -373,6 +390,8 @@ def generic_block(make_member: Callable[[dict[str, float]], Any], values: dict[s
                     row[name] = float(value)
                 elif isinstance(value, (int, float, np.integer, np.floating)):
                     row[name] = float(value)
+                elif isinstance(value, str) and len(value) <= MAX_LABEL:
+                    text[name] = value
             status[i] = OK if results.status == "ok" else results.status
             message[i] = results.message
         except ConfigError as exc:
@@ -380,6 +399,10 @@ def generic_block(make_member: Callable[[dict[str, float]], Any], values: dict[s
         except Exception as exc:  # noqa: BLE001 - one member's failure is its own
             status[i], message[i] = "failed", f"{type(exc).__name__}: {exc}"[:300]
         rows.append(row)
+        texts.append(text)
     names = dict.fromkeys(k for row in rows for k in row)
     analysis = {k: np.array([row.get(k, np.nan) for row in rows]) for k in names}
-    return SweepBlock(analysis=analysis, status=status, message=message)
+    label_names = dict.fromkeys(k for text in texts for k in text)
+    labels = {k: np.array([text.get(k, "") for text in texts], dtype=object)
+              for k in label_names}
+    return SweepBlock(analysis=analysis, status=status, message=message, labels=labels)

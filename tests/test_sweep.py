@@ -186,6 +186,7 @@ def test_member_block_failures_are_the_members_own():
     assert isinstance(block, SweepBlock)
     assert list(block.status) == ["ok", "invalid", "ok"]
     assert list(block.analysis) == ["double"]
+    assert list(block.labels["text"]) == ["no", "", "no"]  # text results are labels
     assert block.analysis["double"][0] == 2.0 and math.isnan(block.analysis["double"][1])
 
 
@@ -214,3 +215,39 @@ def test_pendulum_period_sweep_of_2000_members(write_config, tmp_path):
     assert data.checks and data.checks[0].rel_error == pytest.approx(rel.max(), rel=1e-6)
     html = (tmp_path / "out" / "family" / "report.html").read_text()
     assert 'id="period_family"' in html and "2000 of 2000" in html
+
+
+def test_heavy_top_spin_family_keeps_each_members_case(write_config, tmp_path):
+    """A kind without an ensemble, swept through its cases: the text result ``case`` is
+    kept per member (/sweep/labels/case), released from rest (φ̇0 = 0) the top draws cusps
+    (Goldstein §5.7: the upper circle is reached with φ̇ = 0), and the family sections and
+    the kept members' loci are in the report."""
+    path = write_config("tops", """
+        kind = "heavy_top"
+        title = "tops"
+        [params]
+        I1 = 1.0
+        I3 = 0.5
+        Mgl = 1.0
+        [initial]
+        theta = 1.0
+        theta_dot = 0.0
+        phi_dot = 0.0
+        omega3 = 6.0
+        [run]
+        t_end = 10.0
+        samples = 1000
+        study = false
+        [sweep]
+        initial.phi_dot = [-1.0, 0.0, 0.3]
+        store = 3
+        """)
+    outcome = run_scene(str(path), str(tmp_path / "out"), formats=("html",))
+    assert outcome.ok, outcome.message
+    data = read_archive(tmp_path / "out" / "tops" / "run.h5")
+    case = list(data.sweep.labels["case"])
+    assert case[1] == "cusps" and case[0] == "loops" and case[2] == "waves", case
+    assert np.all(data.sweep.analysis["theta1"] <= data.sweep.analysis["theta2"])
+    html = (tmp_path / "out" / "tops" / "report.html").read_text()
+    assert 'id="nutation_family"' in html and 'id="loci_family"' in html
+    assert "loops → cusps" in html and "cusps → waves" in html

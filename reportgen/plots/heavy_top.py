@@ -356,3 +356,77 @@ def weierstrass_rectangle(omega, omega_prime, x0, t_end, *, figsize=(5.4, 3.9), 
     ax.set_ylabel("Im z [s]")
     ax.set_title(f"period rectangle of ℘ (the run: {t_end / (2 * omega):.3g} × 2ω)")
     return fig
+
+
+def _case_boundaries(x, case):
+    """(position, left case, right case) wherever the case changes between neighbouring
+    members in ``x`` order: the midpoint between them."""
+    order = np.argsort(x)
+    xs, cs = np.asarray(x)[order], np.asarray(case)[order]
+    return [(0.5 * (xs[i] + xs[i + 1]), cs[i], cs[i + 1]) for i in range(len(xs) - 1)
+            if cs[i] != cs[i + 1]]
+
+
+def nutation_family(x, *, theta1, theta2, case, xlabel, precession=None, threshold=None,
+                    growth=None):
+    """A sweep of tops: the nutation band [θ1, θ2] of each member against the swept value,
+    coloured by its case, with the case boundaries marked; below, the precession per
+    nutation period, or the sleeping top's growth rate with its threshold ω3 when the
+    family crosses it."""
+    lower = growth if growth is not None and np.any(np.asarray(growth) > 0) else precession
+    rows = 2 if lower is not None else 1
+    fig, axes = new_figure_grid(rows, 1, figsize=(6.4, 2.4 + 2.2 * rows), sharex=True)
+    ax = axes[0, 0]
+    x = np.asarray(x)
+    order = np.argsort(x)
+    ax.fill_between(x[order], np.degrees(theta1[order]), np.degrees(theta2[order]),
+                    color=CONTEXT, alpha=0.18, linewidth=0)
+    colours = {"loops": HIGHLIGHT, "waves": REFERENCE, "cusps": SEPARATRIX,
+               "steady": "0.35", "sleeping": "0.55"}
+    for name in dict.fromkeys(case):
+        pick = np.asarray(case) == name
+        colour = colours.get(name, "0.2")
+        ax.plot(x[pick], np.degrees(theta1[pick]), "v", color=colour, ms=4, label=name)
+        ax.plot(x[pick], np.degrees(theta2[pick]), "^", color=colour, ms=4)
+    for k, (at, left, right) in enumerate(_case_boundaries(x, case)):
+        for a in axes[:, 0]:
+            a.axvline(at, color="0.3", linestyle="--", linewidth=0.9)
+        # neighbouring boundaries' labels on alternate heights, so close ones stay apart
+        ax.annotate(f"{left} | {right}", (at, 1.0), xycoords=("data", "axes fraction"),
+                    xytext=(0, 2 + 10 * (k % 2)), textcoords="offset points", ha="center",
+                    va="bottom", fontsize=8, color="0.3")
+    ax.set_ylabel("θ1 (▼), θ2 (▲) [deg]")
+    ax.legend(loc="best", fontsize=8, title="case", title_fontsize=8)
+    if lower is not None:
+        ax2 = axes[1, 0]
+        if lower is growth:
+            ax2.plot(x[order], np.asarray(growth)[order], "o-", color=HIGHLIGHT, ms=3)
+            ax2.set_ylabel("growth rate of a tilt [1/s]")
+            if threshold is not None and np.isfinite(threshold):
+                ax2.axvline(threshold, color=SEPARATRIX, linewidth=1.5,
+                            label=f"sleeping threshold ω3 = {threshold:.4g} rad/s")
+                ax2.legend(loc="best", fontsize=8)
+        else:
+            ax2.plot(x[order], np.asarray(precession)[order], "o-", color=HIGHLIGHT, ms=3)
+            ax2.set_ylabel("Δφ per nutation period [rad]")
+    axes[-1, 0].set_xlabel(xlabel)
+    return fig
+
+
+def loci_family(loci, *, theta1, theta2, labels, azimuths, elevation=FIG43_ELEVATION,
+                width=9.6):
+    """Small multiples of nutation loci, three to a row, each with its own turning
+    circles (a sweep's kept members)."""
+    n = len(loci)
+    cols = min(3, n)
+    rows = -(-n // cols)
+    panel = width / cols
+    fig = Figure(figsize=(width, rows * panel * 0.95 + 0.4), layout="constrained")
+    axes = np.atleast_1d(fig.subplots(rows, cols)).ravel()
+    for ax, axis, t1, t2, label, azimuth in zip(axes, loci, theta1, theta2, labels, azimuths,
+                                               strict=False):
+        sphere_locus(ax, axis, theta1=t1, theta2=t2, azimuth=azimuth, elevation=elevation,
+                     title=label)
+    for ax in axes[n:]:
+        ax.set_visible(False)
+    return fig

@@ -261,6 +261,13 @@ class HeavyTopScene(Scene):
         "steady_fast": _preset({"theta": 1.0, "theta_dot": 0.0, "steady": "fast",
                                 "omega3": 6.0}, 10.0, 3000, "steady"),
     }
+    family_sections = (
+        Section("nutation_family", "Nutation band and case across the family",
+                description="Each member's turning circles and case against the swept "
+                            "value; dashed: where the case changes between neighbours."),
+        Section("loci_family", "Nutation loci of the kept members",
+                description="The path of the symmetry axis of each kept member."),
+    )
     sections = (
         Section("fig4_3", "Fig. 4.3: loops, waves and cusps on one band", integrates=True),
         Section("nutation_locus", "Nutation locus of the symmetry axis", integrates=True),
@@ -784,6 +791,65 @@ class HeavyTopScene(Scene):
                                 f"upper circle (dot) and runs {periods} nutation periods "
                                 f"(loops, waves, cusps).")],
             tables=[table])
+
+    @classmethod
+    def section_nutation_family(cls, data):
+        sweep = data.sweep
+        a, ok = sweep.analysis, sweep.ok
+        path, x = next(iter(sweep.values.items()))
+        case = np.asarray(sweep.labels.get("case", np.full(sweep.size, "")), dtype=str)
+        threshold = a.get("sleeping_threshold_omega3")
+        swept_omega3 = path == "initial.omega3"
+        fig = plots.nutation_family(
+            x[ok], theta1=a["theta1"][ok], theta2=a["theta2"][ok], case=case[ok], xlabel=path,
+            precession=a["precession_per_period"][ok] if "precession_per_period" in a else None,
+            growth=a["sleeping_growth_rate"][ok] if "sleeping_growth_rate" in a else None,
+            threshold=float(np.nanmedian(threshold[ok])) if threshold is not None
+            and swept_omega3 else None)
+        names, counts = np.unique(case[ok], return_counts=True)
+        boundaries = plots._case_boundaries(x[ok], case[ok])
+        facts = [("cases", ", ".join(f"{n} {c}" for n, c in zip(names, counts, strict=True)))]
+        if boundaries:
+            facts.append(("case changes", "; ".join(f"{left} → {right} near {path} = "
+                                                   f"{fmt(at, 5)}" for at, left, right
+                                                   in boundaries)))
+        return SectionContent(figures=[cls.figure(
+            "nutation_family", fig, f"Turning circles θ1 (▼) and θ2 (▲) of each member against "
+            f"{path}, by case; the band between them shaded.")], facts=facts)
+
+    @classmethod
+    def section_loci_family(cls, data):
+        sweep = data.sweep
+        members = sorted((int(name.split("_", 1)[1]), name) for name in data.runs
+                         if name.startswith("member_"))
+        loci, theta1, theta2, labels, azimuths = [], [], [], [], []
+        a = sweep.analysis
+        case = sweep.labels.get("case", np.full(sweep.size, ""))
+        for i, name in members:
+            run = data.runs[name]
+            period, dphi = a["nutation_period"][i], abs(a["precession_per_period"][i])
+            periods = cls.FIG43_PERIODS
+            if dphi > 0.0:
+                periods = min(periods, max(cls.FIG43_MIN_PERIODS,
+                                           math.floor(cls.FIG43_SPAN / dphi)))
+            stop = (int(np.searchsorted(run.t, periods * period, side="right"))
+                    if np.isfinite(period) and period > 0 else len(run.t))
+            stop = min(max(stop, 2), len(run.t))
+            phi = run["phi"]
+            loci.append(np.column_stack([run["axis_x"], run["axis_y"], run["axis_z"]])[:stop])
+            theta1.append(a["theta1"][i])
+            theta2.append(a["theta2"][i])
+            azimuths.append(float(0.5 * (phi[0] + phi[stop - 1]) - 0.5 * math.pi))
+            values = ", ".join(f"{p.rsplit('.', 1)[-1]} = {fmt(float(v[i]), 4)}"
+                               for p, v in sweep.values.items())
+            labels.append((str(case[i]) or f"member {i}", values))
+        fig = plots.loci_family(loci, theta1=theta1, theta2=theta2, labels=labels,
+                                azimuths=azimuths,
+                                elevation=math.radians(cls.FIG43_ELEVATION_DEG))
+        return SectionContent(figures=[cls.figure(
+            "loci_family", fig, "The symmetry axis of each kept member on the unit sphere, "
+            "with its own turning circles θ1, θ2 (a few nutation periods from the release; "
+            "dashed: behind the sphere).")])
 
     @classmethod
     def section_nutation_locus(cls, data):
