@@ -130,8 +130,9 @@ class SweepSpec:
                          .astype(np.int64))
 
     def resolved(self) -> dict[str, Any]:
-        """The table as JSON (ranges stay ranges): part of the physics key."""
-        return {"axes": {a.path: a.resolved() for a in self.axes}, "zip": self.zip,
+        """The table as JSON, itself a valid ``[sweep]`` table (paths as dotted keys,
+        ranges stay ranges, options filled in): part of the physics key."""
+        return {**{a.path: a.resolved() for a in self.axes}, "zip": self.zip,
                 "store": self.store, "block": self.block}
 
 

@@ -163,8 +163,10 @@ def test_sweep_is_part_of_the_physics_key(write_config):
     other = pendulum_text(extra="[sweep]\ninitial.theta = [0.5, 1.1]\n")
     key = [load_scene(parse_config_text(t)).physics_key() for t in (base, other)]
     assert key[0] != key[1]
-    assert load_scene(parse_config_text(base)).resolved_config()["sweep"]["axes"] == {
-        "initial.theta": [0.5, 1.0]}
+    resolved = load_scene(parse_config_text(base)).resolved_config()["sweep"]
+    assert resolved == {"initial.theta": [0.5, 1.0], "zip": False, "store": 5, "block": 0}
+    spec, problems = parse_sweep(resolved, "f.toml")  # itself a valid table
+    assert problems == [] and spec.resolved() == resolved
 
 
 def test_member_block_failures_are_the_members_own():
