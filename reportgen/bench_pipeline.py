@@ -40,6 +40,17 @@ REPO = Path(__file__).resolve().parent.parent
 TARGETS = {"cold": 60.0, "warm": 2.0, "title edit": 2.0, "physics edit": 5.0,
            "title edit (watch)": 2.0, "physics edit (watch)": 5.0,
            "--help": 0.5, "validate": 1.0}
+#: the cold pack's target: 60 s for the 28-scene pack the issue measured, and 2.2 s per
+#: scene as the pack grows
+COLD_PACK_SCENES, COLD_PER_SCENE = 28, 2.2
+
+
+def _target(name: str, note: str) -> float:
+    if name == "cold":
+        scenes = int(note.split(" scenes", 1)[0])
+        return max(TARGETS["cold"], COLD_PER_SCENE * scenes) if scenes > COLD_PACK_SCENES \
+            else TARGETS["cold"]
+    return TARGETS[name]
 
 
 #: edits of each kind measured in a row (the median is the row's figure): one run on a
@@ -187,7 +198,7 @@ def measure(configs: Path, scene: str, previous: Path | None = None,
         head += f" {'previous [s]':>12} {'now/prev':>9}"
     print(head + " note")
     for i, (name, wall, note) in enumerate(rows):
-        target = TARGETS[name]
+        target = _target(name, note)
         line = f"{name:<20} {wall:9.2f} {target:11.1f}  {'ok' if wall <= target else 'OVER':<4}"
         if before is not None:
             old = before[i][1]
