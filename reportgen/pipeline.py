@@ -105,7 +105,7 @@ def _archive_stamp(identity: Identity) -> str:
 def run_scene(config_path: str, out_root: str, force: bool = False,
               formats: tuple[str, ...] | None = None,
               progress: Callable[[float], None] | None = None, draw_jobs: int = 1,
-              pdf_worker=None) -> Outcome:
+              pdf_worker=None, sweep_submit=None) -> Outcome:
     """Run one scene's stages, each only if its inputs changed.  Never raises: failures
     come back in the Outcome.
 
@@ -117,6 +117,8 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
 
     ``pdf_worker`` (a :class:`reportgen.pdf.PdfWorker`, owned by the caller) renders
     the PDF; without one, a scene drawing with ``draw_jobs > 1`` starts its own.
+    ``sweep_submit``: where a sweep's member blocks run (:data:`reportgen.sweep.Submit`;
+    default: here).
     """
     path = Path(config_path)
     outcome = Outcome(name=path.stem)
@@ -143,8 +145,8 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
 
                 helper = FigureHelper()  # warms up its drawing while this simulates
             t0 = time.perf_counter()
-            results = (scene.simulate_sweep(folder, progress) if scene.sweep is not None
-                       else scene.simulate(progress=progress))
+            results = (scene.simulate_sweep(folder, progress, submit=sweep_submit)
+                       if scene.sweep is not None else scene.simulate(progress=progress))
             for name, run in results.runs.items():
                 if run.status != "ok":
                     results.flag(run.status, f"run '{name}': {run.message}")
@@ -566,10 +568,17 @@ def _run_on_dask(scenes, out_root, force, formats, scheduler, progress,
     except OSError as exc:
         raise UsageError(f"--scheduler {scheduler}: cannot connect ({exc})") from None
     with client:
+        sweeps = [s for s in todo if s.sweep is not None]
+        todo = [s for s in todo if s.sweep is None]
         futures = [client.submit(run_scene_portable, s.source.text, s.source.name, formats,
                                  str(s.source.path), pure=False, key=f"reportgen-{s.source.name}-"
                                  f"{s.source.sha256[:12]}-{os.getpid()}")
                    for s in todo]
+        for scene in sweeps:  # here, its member blocks spread over the cluster
+            outcome = run_scene(str(scene.source.path), out_root, force, formats,
+                                sweep_submit=_dask_blocks(client, scene))
+            progress.scene_done(outcome)
+            outcomes.append(outcome)
         deadline = None if time_limit is None else time.monotonic() + time_limit * len(todo)
         try:
             for future in dask_completed(futures, timeout=None if deadline is None
@@ -593,6 +602,23 @@ def _run_on_dask(scenes, out_root, force, formats, scheduler, progress,
                     progress.scene_done(outcome)
                     outcomes.append(outcome)
     return outcomes
+
+
+def sweep_block_portable(config_text: str, lo: int, hi: int, values: dict) -> object:
+    """Members ``lo:hi`` of the sweep of the config ``config_text``: the task a Dask
+    worker runs for one block (:meth:`reportgen.scenes.base.Scene.sweep_block`)."""
+    from .config import parse_config_text
+
+    return load_scene(parse_config_text(config_text)).sweep_block(lo, hi, values)
+
+
+def _dask_blocks(client, scene: Scene):
+    """A sweep's ``submit``: each block of members a task on the cluster."""
+    def submit(lo: int, hi: int, values: dict):
+        return client.submit(sweep_block_portable, scene.source.text, lo, hi, values,
+                             pure=False, key=f"reportgen-{scene.source.name}-{lo}-{hi}-"
+                                             f"{scene.source.sha256[:12]}-{os.getpid()}")
+    return submit
 
 
 def write_index(out_root: str, outcomes: list[Outcome] = ()) -> Path:

@@ -310,38 +310,57 @@ def partial_folder(folder: Path, key: str) -> Path:
     return Path(folder) / f".sweep-{key[:16]}"
 
 
+#: ``submit(lo, hi, values)``: start members ``lo:hi`` elsewhere (a Dask cluster), giving
+#: something whose ``result()`` is their SweepBlock
+Submit = Callable[[int, int, dict[str, np.ndarray]], Any]
+
+
 def run_sweep(spec: SweepSpec, run_block: Callable[[int, int, dict[str, np.ndarray]], SweepBlock],
               folder: Path, key: str, progress: Callable[[float], None] | None = None,
-              min_block: int = 1) -> tuple[SweepData, int]:
+              min_block: int = 1, submit: Submit | None = None) -> tuple[SweepData, int]:
     """Every member's results, block by block: ``run_block(lo, hi, values)`` gives members
     ``lo:hi`` (``values``: the swept keys' values of those members; blocks of at least
-    ``min_block`` members unless the table sets ``block``).  Blocks already finished
-    under ``folder`` for this ``key`` (a killed run) are read, not run again.  Returns the
-    sweep and the number of members resumed from disk."""
+    ``min_block`` members unless the table sets ``block``).  With ``submit``, every
+    unfinished block is submitted at once and collected as it finishes instead.  Blocks
+    already finished under ``folder`` for this ``key`` (a killed run) are read, not run
+    again.  Returns the sweep and the number of members resumed from disk."""
     values = spec.values()
     size, block = spec.size, spec.block_size(min_block)
     partial = partial_folder(folder, key)
     partial.mkdir(parents=True, exist_ok=True)
     (partial / "key").write_text(key, encoding="utf-8")
-    names: dict[str, None] = {}
-    label_names: dict[str, None] = {}
-    blocks: list[SweepBlock] = []
+    starts = list(range(0, size, block))
+    found: dict[int, SweepBlock] = {}
     resumed = 0
-    starts = range(0, size, block)
     for b, lo in enumerate(starts):
         hi = min(lo + block, size)
         path = partial / f"block-{b:06d}.npz"
         done = _load_block(path) if path.exists() else None
         if done is not None and len(done.status) == hi - lo:
+            found[b] = done
             resumed += hi - lo
-        else:
-            done = run_block(lo, hi, {p: v[lo:hi] for p, v in values.items()})
-            _save_block(path, done)
-        names.update(dict.fromkeys(done.analysis))
-        label_names.update(dict.fromkeys(done.labels))
-        blocks.append(done)
+    todo = [b for b in range(len(starts)) if b not in found]
+
+    def finished(b: int, done: SweepBlock) -> None:
+        _save_block(partial / f"block-{b:06d}.npz", done)
+        found[b] = done
         if progress is not None:
-            progress((b + 1) / len(starts))
+            progress(len(found) / len(starts))
+
+    def chunk(b: int) -> tuple[int, int, dict[str, np.ndarray]]:
+        lo, hi = starts[b], min(starts[b] + block, size)
+        return lo, hi, {p: v[lo:hi] for p, v in values.items()}
+
+    if submit is None:
+        for b in todo:
+            finished(b, run_block(*chunk(b)))
+    else:
+        pending = {b: submit(*chunk(b)) for b in todo}
+        for b, future in pending.items():  # each saved as soon as it and those before it end
+            finished(b, future.result())
+    blocks = [found[b] for b in range(len(starts))]
+    names = dict.fromkeys(k for blk in blocks for k in blk.analysis)
+    label_names = dict.fromkeys(k for blk in blocks for k in blk.labels)
     analysis = {}
     for name in names:
         analysis[name] = np.concatenate([

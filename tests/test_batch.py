@@ -100,3 +100,42 @@ def test_worker_killed_on_time_limit_is_replaced(tmp_path, cli):
     assert (tmp_path / "o" / "c_quick" / "report.html").exists()
     assert not (tmp_path / "o" / "b_slow" / "run.h5").exists()
     assert multiprocessing.active_children() == []
+
+
+def test_sweep_blocks_run_on_a_dask_cluster(tmp_path):
+    """With --scheduler, a sweep's member blocks are tasks on the cluster (the kept
+    members, archive and report are made where the batch runs): the same family as a
+    local run, bit for bit, for a compiled ensemble (pendulum) and for members run as
+    whole scenes (oscillator)."""
+    from test_sweep import OSCILLATOR
+
+    cfg = tmp_path / "cfg"
+    cfg.mkdir()
+    (cfg / "pend.toml").write_text(pendulum_text(t_end=12.0, samples=301, extra="""
+        [sweep]
+        initial.theta = { start = 0.1, stop = 3.0, num = 400 }
+        store = 1
+        block = 100
+        """))
+    (cfg / "osc.toml").write_text(OSCILLATOR + "[sweep]\nparams.omega = [1.0, 1.5, 2.0]\n"
+                                               "store = 0\nblock = 1\n")
+    local = run_batch([str(cfg)], out_root=str(tmp_path / "local"), jobs=1, formats=("html",))
+    assert all(o.ok for o in local), [o.message for o in local]
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None, host="127.0.0.1") as cluster:
+        with distributed.Client(cluster.scheduler_address) as client, \
+                distributed.get_task_stream(client=client) as stream:
+            remote = run_batch([str(cfg)], out_root=str(tmp_path / "dask"), formats=("html",),
+                               scheduler=cluster.scheduler_address)
+        keys = [str(task["key"]) for task in stream.data]
+    assert all(o.ok for o in remote), [o.message for o in remote]
+    # one task per block: 4 blocks of 100 pendulums, 3 blocks of one oscillator
+    assert sum(k.startswith("reportgen-pend-") for k in keys) == 4, keys
+    assert sum(k.startswith("reportgen-osc-") for k in keys) == 3, keys
+    for name in ("pend", "osc"):
+        a = read_archive(tmp_path / "local" / name / "run.h5").sweep
+        b = read_archive(tmp_path / "dask" / name / "run.h5").sweep
+        assert list(a.analysis) == list(b.analysis) and list(b.status) == list(a.status)
+        for key in a.analysis:
+            assert np.array_equal(a.analysis[key], b.analysis[key], equal_nan=True), key
+        assert (tmp_path / "dask" / name / "report.html").exists()

@@ -331,15 +331,18 @@ class Scene:
         say).  Default: none."""
         return []
 
-    def simulate_sweep(self, folder, progress: ProgressFn | None = None) -> Results:
+    def simulate_sweep(self, folder, progress: ProgressFn | None = None,
+                       submit: _sweep.Submit | None = None) -> Results:
         """The sweep: every member's scalar results (resumable, block by block, see
-        :mod:`reportgen.sweep`) and the whole run of the ``store`` members."""
+        :mod:`reportgen.sweep`; with ``submit``, the blocks run on a Dask cluster) and the
+        whole run of the ``store`` members."""
         import time
 
         spec = self.sweep
         t0 = time.perf_counter()
         data, resumed = _sweep.run_sweep(spec, self.sweep_block, folder, self.physics_key(),
-                                         progress, min_block=self.sweep_min_block())
+                                         progress, min_block=self.sweep_min_block(),
+                                         submit=submit)
         members_s = time.perf_counter() - t0
         results = Results()
         for i in spec.stored_members():
