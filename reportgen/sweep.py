@@ -54,6 +54,8 @@ MAX_STORE = 50
 DEFAULT_STORE = 5
 #: longer text results of a member (a reference's description, say) are not kept
 MAX_LABEL = 40
+#: a member's short numeric arrays (a spectrum) become one result per element
+MAX_SPREAD = 12
 #: the status of a member whose run gave its results
 OK = "ok"
 
@@ -390,7 +392,8 @@ def generic_block(make_member: Callable[[dict[str, float]], Any], values: dict[s
                   ) -> SweepBlock:
     """Members run one by one as whole scenes (``make_member(assignments)`` builds one;
     its ``simulate`` is called): every number of their ``/analysis`` becomes a sweep
-    result, every short text a label.  The fallback of kinds without a compiled
+    result (a short array, such as a spectrum, one per element: ``name_1``, ``name_2``
+    ...), every short text a label.  The fallback of kinds without a compiled
     ensemble."""
     n = len(next(iter(values.values())))
     rows: list[dict[str, float]] = []
@@ -412,6 +415,10 @@ def generic_block(make_member: Callable[[dict[str, float]], Any], values: dict[s
                     row[name] = float(value)
                 elif isinstance(value, str) and len(value) <= MAX_LABEL:
                     text[name] = value
+                elif (isinstance(value, np.ndarray) and value.ndim == 1
+                      and value.size <= MAX_SPREAD and value.dtype.kind in "fiub"):
+                    for j, x in enumerate(value):  # frequencies -> frequencies_1, _2, ...
+                        row[f"{name}_{j + 1}"] = float(x)
             status[i] = OK if results.status == "ok" else results.status
             message[i] = results.message
         except ConfigError as exc:

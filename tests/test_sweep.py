@@ -253,3 +253,30 @@ def test_heavy_top_spin_family_keeps_each_members_case(write_config, tmp_path):
     html = (tmp_path / "out" / "tops" / "report.html").read_text()
     assert 'id="nutation_family"' in html and 'id="loci_family"' in html
     assert "loops → cusps" in html and "cusps → waves" in html
+
+
+def test_normal_modes_spectrum_across_a_family(write_config, tmp_path):
+    """A member's short arrays (its spectrum) become one result per element; coupled
+    pendula: ω1² = g/l, ω2² = g/l + 2k/m (Goldstein §6.3) at every swept k."""
+    path = write_config("pair", """
+        kind = "normal_modes"
+        preset = "coupled_pendula"
+        title = "pair"
+        [pendula]
+        n = 2
+        m = 1.0
+        l = 1.0
+        g = 9.81
+        k = 0.5
+        [sweep]
+        pendula.k = [0.5, 1.0, 2.0]
+        store = 0
+        """)
+    outcome = run_scene(str(path), str(tmp_path / "out"), formats=("html",))
+    assert outcome.ok, outcome.message
+    sweep = read_archive(tmp_path / "out" / "pair" / "run.h5").sweep
+    k = sweep.values["pendula.k"]
+    assert np.allclose(sweep.analysis["frequencies_1"], math.sqrt(9.81), rtol=1e-12)
+    assert np.allclose(sweep.analysis["frequencies_2"], np.sqrt(9.81 + 2 * k), rtol=1e-12)
+    html = (tmp_path / "out" / "pair" / "report.html").read_text()
+    assert 'id="frequencies_family"' in html and 'id="sweep_members"' not in html

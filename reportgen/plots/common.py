@@ -173,3 +173,23 @@ def member_runs(runs: dict, labels: dict[str, str]):
     if runs:
         ax.legend(loc="best", fontsize=8)
     return fig
+
+
+def family_lines(x, lines, *, reference=None, xlabel, ylabel, label="", reference_label=""):
+    """Several results of every member against the swept value (a spectrum, say): one
+    line each, in the palette's order; ``reference`` (same shapes) dashed on top."""
+    fig, ax = new_figure()
+    x = np.asarray(x)
+    order = np.argsort(x)
+    for j, y in enumerate(lines):
+        line, = ax.plot(*envelope(x[order], np.asarray(y)[order]), "o-" if x.size < 40 else "-",
+                        ms=3, label=f"{label}{j + 1}" if label else None)
+        if reference is not None:
+            ax.plot(*envelope(x[order], np.asarray(reference[j])[order]), "--",
+                    color=REFERENCE, lw=1.0,
+                    label=reference_label if j == 0 and reference_label else None)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    if label or reference_label:
+        ax.legend(loc="best", fontsize=8, ncol=2 if len(lines) > 4 else 1)
+    return fig

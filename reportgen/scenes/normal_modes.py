@@ -25,6 +25,7 @@ from ..results import AuditCase, Check, Results
 from .base import Scene, SceneConfig, Section, SectionContent, Table, fmt, fmt_err
 
 plots = lazy_module("reportgen.plots.normal_modes")
+common_plots = lazy_module("reportgen.plots.common")
 core = lazy_module("reportgen.core.normal_modes")
 geometry = lazy_module("reportgen.core.molecule_geometry")  # no scipy: validation uses it
 linear_chain = lazy_module("reportgen.core.models.linear_chain")
@@ -274,6 +275,11 @@ class NormalModesScene(Scene):
         "coupled_pendula": {"title": "Two pendula coupled by a spring",
                             "pendula": {"n": 2, "m": 1.0, "l": 1.0, "g": 9.81, "k": 0.5}},
     }
+    family_sections = (
+        Section("frequencies_family", "Eigenfrequencies across the family",
+                description="Each member's eigenfrequencies against the swept value, with "
+                            "the closed form where the system has one."),
+    )
     sections = (
         Section("spectrum", "Frequency spectrum",
                 description="eigenfrequencies ω of A η = ω² M η, ascending, with their types"),
@@ -285,6 +291,30 @@ class NormalModesScene(Scene):
                 integrates=True),
         Section("error_vs_runtime", "Error against run time", integrates=True),
     )
+
+    @classmethod
+    def section_frequencies_family(cls, data):
+        sweep = data.sweep
+        path, x = next(iter(sweep.values.items()))
+        a, ok = sweep.analysis, sweep.ok
+
+        def spectrum(name):
+            cols = sorted((int(k.rsplit("_", 1)[1]), k) for k in a
+                          if k.rsplit("_", 1)[0] == name and k.rsplit("_", 1)[1].isdigit())
+            return [a[k][ok] for _, k in cols]
+
+        numeric, exact = spectrum("frequencies"), spectrum("frequencies_exact")
+        fig = common_plots.family_lines(x[ok], numeric, reference=exact or None,
+                                        xlabel=path, ylabel="ω [rad/s]",
+                                        label="ω", reference_label="closed form")
+        facts = [("modes", str(len(numeric)))]
+        if exact:
+            worst = max(float(np.max(np.abs(n / e - 1))) for n, e in zip(numeric, exact,
+                                                                         strict=True))
+            facts.append(("max relative difference to the closed form", fmt_err(worst)))
+        return SectionContent(figures=[cls.figure(
+            "frequencies_family", fig, f"Eigenfrequencies ω_j of every member against {path}"
+            + ("; dashed: the closed form." if exact else "."))], facts=facts)
 
     @classmethod
     def audit_cases(cls):
