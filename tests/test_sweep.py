@@ -280,3 +280,43 @@ def test_normal_modes_spectrum_across_a_family(write_config, tmp_path):
     assert np.allclose(sweep.analysis["frequencies_2"], np.sqrt(9.81 + 2 * k), rtol=1e-12)
     html = (tmp_path / "out" / "pair" / "report.html").read_text()
     assert 'id="frequencies_family"' in html and 'id="sweep_members"' not in html
+
+
+def test_kepler_family_period_against_eccentricity(write_config, tmp_path):
+    """Paired keys (zip): pericentre distance and speed of orbits with one semi-major axis
+    (a = 1, k/μ = 1: T = 2π for every e, Kepler's third law, Goldstein eq. 3.31).  The
+    circle has no pericentre to time: no measured period (it was 0.51 from round-off)."""
+    es = [0.0, 0.3, 0.6]
+    xs = [1.0 - e for e in es]
+    vys = [math.sqrt((1 + e) / (1 - e)) for e in es]
+    path = write_config("kep", f"""
+        kind = "central_force"
+        title = "kep"
+        [params]
+        m1 = 1.0
+        m2 = 1.0
+        k = 0.5
+        [initial]
+        x = 1.0
+        y = 0.0
+        vx = 0.0
+        vy = 1.0
+        [run]
+        t_end = {6 * math.pi}
+        samples = 6001
+        study = false
+        [sweep]
+        zip = true
+        initial.x = {xs}
+        initial.vy = {vys}
+        store = 0
+        """)
+    outcome = run_scene(str(path), str(tmp_path / "out"), formats=("html",))
+    assert outcome.ok, outcome.message
+    a = read_archive(tmp_path / "out" / "kep" / "run.h5").sweep.analysis
+    assert np.allclose(a["eccentricity"], es, atol=1e-12)
+    assert np.allclose(a["period"], 2 * math.pi, rtol=1e-12)
+    assert math.isnan(a["period_measured"][0])
+    assert np.allclose(a["period_measured"][1:], 2 * math.pi, rtol=1e-9)
+    html = (tmp_path / "out" / "kep" / "report.html").read_text()
+    assert 'id="kepler_family"' in html and "2 of 3" in html

@@ -120,9 +120,11 @@ def _label(path: str) -> str:
     return path.rsplit(".", 1)[-1]
 
 
-def sweep_results(values: dict[str, np.ndarray], analysis: dict[str, np.ndarray], ok):
+def sweep_results(values: dict[str, np.ndarray], analysis: dict[str, np.ndarray], ok,
+                  paired: bool = False):
     """One panel per scalar result (at most six) against the first swept key; with more
-    keys, one line per combination of the others' values (at most six, else points)."""
+    keys on a grid, one line per combination of the others' values (at most six, else
+    points); ``paired`` keys (zip) vary together: one line."""
     paths = list(values)
     x = np.asarray(values[paths[0]])
     ok = np.asarray(ok, dtype=bool)
@@ -133,7 +135,7 @@ def sweep_results(values: dict[str, np.ndarray], analysis: dict[str, np.ndarray]
     axes = grid.reshape(-1, 1)
     for ax in axes[len(names):, 0]:
         ax.set_visible(False)
-    others = paths[1:]
+    others = [] if paired else paths[1:]
     if others:
         keys = np.stack([np.asarray(values[p]) for p in others], axis=1)
         groups, inverse = np.unique(keys, axis=0, return_inverse=True)
@@ -192,4 +194,28 @@ def family_lines(x, lines, *, reference=None, xlabel, ylabel, label="", referenc
     ax.set_ylabel(ylabel)
     if label or reference_label:
         ax.legend(loc="best", fontsize=8, ncol=2 if len(lines) > 4 else 1)
+    return fig
+
+
+def family_against_reference(x, measured, exact, *, xlabel, ylabel, measured_label,
+                             exact_label):
+    """A result of every member against a swept (or derived) value, with its closed form
+    (per member: open circles, since a derived ``x`` need not order the members into a
+    curve), and below the relative difference of each member."""
+    fig, (ax, ax_err) = new_figure_grid(2, 1, figsize=(6.4, 5.2), sharex=True)
+    ax, ax_err = ax[0], ax_err[0]
+    order = np.argsort(x)
+    x = np.asarray(x)[order]
+    y, ref = np.asarray(measured)[order], np.asarray(exact)[order]
+    dense = x.size > 80
+    ax.plot(*envelope(x, ref), "o", mfc="none", color=REFERENCE, ms=7, mew=1.5,
+            label=exact_label)
+    ax.plot(*envelope(x, y), "o", color=HIGHLIGHT, ms=1.5 if dense else 3.5,
+            label=f"{measured_label} ({x.size} members)")
+    ax.set_ylabel(ylabel)
+    ax.legend(loc="best")
+    rel = np.maximum(np.abs(y / ref - 1), 1e-17)
+    ax_err.semilogy(*envelope(x, rel), "o", color=HIGHLIGHT, ms=1.5 if dense else 3.5)
+    ax_err.set_ylabel("relative difference")
+    ax_err.set_xlabel(xlabel)
     return fig

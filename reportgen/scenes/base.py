@@ -494,7 +494,7 @@ class Scene:
         figures = []
         if names:
             fig = common_plots.sweep_results(sweep.values, {n: sweep.analysis[n] for n in names},
-                                             sweep.ok)
+                                             sweep.ok, paired=bool(sweep.attrs.get("zip")))
             figures.append(cls.figure("results", fig, "Each scalar result of the members' "
                                       "analysis against the swept value; members without a "
                                       "result are left out."))
