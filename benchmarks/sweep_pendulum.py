@@ -9,7 +9,7 @@ T = 4 K(k) sqrt(l / g), k = sin(theta0 / 2) (DLMF 19.2.8, 22.19(i); scipy's elli
 takes m = k^2).
 
 * ours: ``reportgen.core.ensemble.pendulum_periods`` (one compiled call per block of
-  members, numba ``prange`` over the threads), after a warm-up call that compiles it or
+  members, a compiled loop on each of numba's threads), after a warm-up call that compiles it or
   loads it from numba's cache;
 * scipy: the loop a user would write, ``solve_ivp(f, ..., method="DOP853", rtol=1e-10,
   atol=1e-12, events=upward)`` per member with a plain Python ``f``, the event

@@ -2,7 +2,8 @@ r"""Ensembles: many members of one model integrated in one compiled, multi-threa
 
 Lecture figures are often about families of runs (the pendulum's period against its
 amplitude, say).  Run one by one, each member pays Python's overhead; here a compiled
-driver loops over the members with ``numba.prange`` and integrates each with our DOP853
+driver loops over the members, on as many threads as numba is set to use (each a
+compiled loop over its share without the GIL), and integrates each with our DOP853
 -- the steps of :func:`reportgen.core.integrators.compiled.erk_adaptive`, bit for bit --
 recording per member only what a sweep needs: the final state, a status, the counters,
 the first zero crossings of one component (located on the step's 7th-order dense
@@ -19,10 +20,9 @@ Public API::
 Design
 ------
 * The model's ``rhs`` reaches the driver as a numba C callback (:mod:`.integrators.kernels`),
-  typed by its signature, so the parallel driver compiles once for every model and
-  numba's on-disk cache serves later processes (measured with numba 0.68.1: a cfunc
-  argument called inside a ``prange`` body compiles and caches like any other).
-* The ``prange`` body only calls :func:`dop853_member`, a serial driver of one member
+  typed by its signature, so the driver compiles once for every model and numba's
+  on-disk cache serves later processes.
+* The driver's loop only calls :func:`dop853_member`, a serial driver of one member
   whose work arrays it allocates itself; members share nothing but read-only inputs, so
   results do not depend on the number of threads, on their schedule or on the blocks.
 * Callback rules of :mod:`.integrators.compiled` hold: ``rhs`` is called from
@@ -31,16 +31,13 @@ Design
   norm, the step-size controller, the stage sums and the dense output are compiled.py's
   helpers, so the step sequence is erk_adaptive's.  A pendulum member costs ~31 ns per
   evaluation of ``rhs``, step arithmetic included.
-* Compile time (empty cache, 2 cores): 9.0 s, of which 4.3 s for :func:`dop853_member`
-  and 4.5 s for the parallel wrapper, nearly all of it LLVM optimising and generating
-  code again for the member linked into numba's gufunc.  Inlining the member into the
-  ``prange`` body instead (``inline="always"``) took 13.2 s.  Loading from the cache:
-  0.2 s.  Like the other drivers, once per numba cache folder for all models.
-* Fork: numba's default threading layer here is GNU OpenMP (``omp``), which is not
-  fork-safe: a process forked after its parent ran an ensemble is killed when it runs
-  one ("fork() called from a process already using GNU OpenMP").  reportgen forks
-  (scene workers, figure and PDF helpers, ``watch``), so this module selects numba's own
-  ``workqueue`` layer (fork-safe) unless ``NUMBA_THREADING_LAYER`` says otherwise.
+* Threads, not ``prange``: a ``parallel=True`` wrapper compiled in 4.5 s on an empty
+  cache (LLVM optimising the member's code again inside numba's gufunc) besides the
+  member's 4.3 s; the ``nogil`` loop adds ~1 s (measured, first call with an empty
+  cache 9.4 -> 5.6 s), runs as fast on two threads, and leaves numba's threading layers
+  alone: GNU OpenMP (``omp``, the default here) is not fork-safe, and reportgen forks
+  (scene workers, figure and PDF helpers, ``watch``).  Loading from the cache: 0.2 s.
+  Like the other drivers, once per numba cache folder for all models.
 
 References
 ----------
@@ -53,16 +50,13 @@ References
 from __future__ import annotations
 
 import math
-import os
 import time
 from collections.abc import Callable, Sequence
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numba
 import numpy as np
-
-if "NUMBA_THREADING_LAYER" not in os.environ:
-    numba.config.THREADING_LAYER = "workqueue"  # fork-safe (module docstring, Fork)
 
 from .integrators.compiled import (
     EPS,
@@ -290,11 +284,13 @@ def dop853_member(rhs, A, b, c, E, E3, P, nst, kind, err_exp, order, y0, p, t0, 
     return OK, n_ev, t_end
 
 
-@numba.njit(cache=True, parallel=True)
-def dop853_ensemble(rhs, A, b, c, E, E3, P, nst, kind, err_exp, order, m0, m1, Y0, Pm,
-                    t0, t_end, rtol, atol, max_steps, comp, direction, terminal, t_eval,
-                    slot, Ystore, y_end, t_final, status, counters, events, n_events):
-    """Members ``m0 <= m < m1`` of an ensemble, one :func:`dop853_member` each, in parallel.
+@numba.njit(cache=True, nogil=True)
+def dop853_ensemble(rhs, A, b, c, E, E3, P, nst, kind, err_exp, order, m0, m1, stride,
+                    Y0, Pm, t0, t_end, rtol, atol, max_steps, comp, direction, terminal,
+                    t_eval, slot, Ystore, y_end, t_final, status, counters, events,
+                    n_events):
+    """Members ``m0, m0 + stride, ... < m1`` of an ensemble, one :func:`dop853_member`
+    each, without the GIL (:func:`run_ensemble` gives each thread its own ``m0``).
 
     ``Y0`` (M, d) and ``Pm`` (M, k): initial states and parameters; ``slot`` (M,): the
     member's row of ``Ystore`` (S, N, d), or -1 if its trajectory is not kept.  Results
@@ -302,7 +298,7 @@ def dop853_ensemble(rhs, A, b, c, E, E3, P, nst, kind, err_exp, order, m0, m1, Y
     (M, 3), ``events`` (M, max_events), ``n_events`` (M,).  The other arguments are
     :func:`dop853_member`'s.
     """
-    for m in numba.prange(m0, m1):
+    for m in range(m0, m1, stride):
         s = slot[m]
         st, ne, tf = dop853_member(
             rhs, A, b, c, E, E3, P, nst, kind, err_exp, order, Y0[m], Pm[m], t0, t_end,
@@ -456,16 +452,26 @@ def run_ensemble(model: OdeModel, Y0, P=None, t_end: float = 1.0, *, t0: float =
     n_events = np.zeros(M, dtype=np.int64)
     rhs = kernels_for(model).rhs
     tableau = DOP853().driver_args()
+
+    threads = max(1, numba.get_num_threads())
+
+    def members(first: int, m1: int) -> None:
+        dop853_ensemble(rhs, *tableau, first, m1, threads, Y0, Pm, t0, t_end, float(rtol),
+                        float(atol), int(max_steps), comp, int(direction), bool(terminal),
+                        t_eval, slot, Ystore, y_end, t_final, status, counters, events,
+                        n_events)
+
     wall = 0.0
-    for m0 in range(0, M, block):
-        m1 = min(m0 + block, M)
-        start = time.perf_counter()
-        dop853_ensemble(rhs, *tableau, m0, m1, Y0, Pm, t0, t_end, float(rtol), float(atol),
-                        int(max_steps), comp, int(direction), bool(terminal), t_eval, slot,
-                        Ystore, y_end, t_final, status, counters, events, n_events)
-        wall += time.perf_counter() - start
-        if progress is not None:
-            progress(m1 / M)
+    with ThreadPoolExecutor(max_workers=threads) as pool:
+        for m0 in range(0, M, block):
+            m1 = min(m0 + block, M)
+            start = time.perf_counter()
+            # thread k takes members m0 + k, m0 + k + threads, ...: neighbouring members
+            # cost alike, so the threads share the block evenly; each writes its own rows
+            list(pool.map(members, range(m0, min(m0 + threads, m1)), [m1] * threads))
+            wall += time.perf_counter() - start
+            if progress is not None:
+                progress(m1 / M)
     return Ensemble(y_end=y_end, t_final=t_final, status=status, counters=counters,
                     events=events, n_events=n_events, t_eval=t_eval, store=store,
                     y_store=Ystore[:store.size], wall_time_s=wall)
