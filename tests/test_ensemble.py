@@ -225,9 +225,9 @@ def _child_periods(queue):
 
 
 def test_ensemble_runs_in_a_process_forked_after_one_ran():
-    """reportgen forks (scene workers, figure and PDF helpers, watch): under GNU OpenMP a
-    child forked after its parent ran a parallel loop is killed when it runs one; the
-    module's workqueue layer is fork-safe."""
+    """reportgen forks (scene workers, figure and PDF helpers, watch): a child forked after
+    its parent ran an ensemble must run one too (under GNU OpenMP, which a ``prange``
+    driver used, it was killed)."""
     import multiprocessing
 
     parent = pendulum_periods(np.array([0.5, 1.0]), 9.81, 1.0)[0]
