@@ -35,8 +35,9 @@ _SUPERSAMPLE = 8  # layout measured at 8 x 72 dpi: sizes to 1/8 pt
 def _cache_dir() -> Path | None:
     if os.environ.get("REPORTGEN_NO_EQUATION_CACHE"):
         return None
-    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-    return Path(base) / "reportgen" / "equations"
+    from .cache import cache_root
+
+    return cache_root() / "equations"
 
 
 @functools.cache

@@ -628,10 +628,7 @@ def write_index(out_root: str, outcomes: list[Outcome] = ()) -> Path:
 
     root = Path(out_root)
     entries = []
-    for archive in sorted(root.glob("*/run.h5")):
-        entry = gallery_entry(archive)
-        if entry is None:
-            continue
+    for archive, entry in _gallery_entries(root).items():
         folder = archive.parent
         name = folder.name
         links = [(fmt.upper(), f"{name}/report.{fmt}") for fmt in ("html", "pdf")
@@ -646,6 +643,42 @@ def write_index(out_root: str, outcomes: list[Outcome] = ()) -> Path:
                             "status": o.status, "message": o.message, "wall_time_s": None,
                             "headline": "", "links": [], "thumbnail": None})
     return build_index(root, entries)
+
+
+#: the gallery's entry of each archive, kept with the archive's size and time of change:
+#: an edit loop's run re-reads only the archive it changed (each read opens the HDF5 file)
+GALLERY_CACHE = ".gallery.json"
+
+
+def _gallery_entries(root: Path) -> dict[Path, dict]:
+    """:func:`reportgen.archive.gallery_entry` of every ``*/run.h5`` under ``root``,
+    from ``root/.gallery.json`` where an archive is unchanged since it was read."""
+    cache = root / GALLERY_CACHE
+    try:
+        stored = json.loads(cache.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        stored = {}
+    fresh, entries = {}, {}
+    for archive in sorted(root.glob("*/run.h5")):
+        try:
+            st = archive.stat()
+        except OSError:
+            continue
+        stamp = [st.st_mtime_ns, st.st_size, st.st_ino]
+        name = archive.parent.name
+        hit = stored.get(name) if isinstance(stored, dict) else None
+        entry = (hit["entry"] if isinstance(hit, dict) and hit.get("stamp") == stamp
+                 else gallery_entry(archive))
+        if entry is None:
+            continue
+        fresh[name] = {"stamp": stamp, "entry": entry}
+        entries[archive] = entry
+    if fresh != stored:
+        try:
+            atomic_write(cache, json.dumps(fresh, sort_keys=True).encode("utf-8"))
+        except OSError:
+            pass  # a cache that cannot be written costs time, not correctness
+    return entries
 
 
 def _first_figure(folder: Path) -> str | None:

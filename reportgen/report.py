@@ -53,6 +53,7 @@ def environment() -> jinja2.Environment:
             undefined=jinja2.StrictUndefined,
             trim_blocks=True,
             lstrip_blocks=True,
+            bytecode_cache=_template_cache(),
         )
         _ENV.filters["num"] = fmt
         _ENV.filters["err"] = fmt_err
@@ -60,6 +61,20 @@ def environment() -> jinja2.Environment:
         _ENV.filters["cell"] = table_cell
         _ENV.filters["eq_display"] = display_equation
     return _ENV
+
+
+def _template_cache() -> jinja2.BytecodeCache | None:
+    """The templates compiled once per machine (``$XDG_CACHE_HOME/reportgen/jinja``; jinja2
+    keys each by its source's checksum): compiling the report's templates again cost every
+    report ~0.1 s.  None where the folder cannot be made (a read-only home, say)."""
+    from .cache import cache_root
+
+    folder = cache_root() / "jinja"
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError:
+        return None
+    return jinja2.FileSystemBytecodeCache(str(folder))
 
 
 def display_equation(tex: str) -> Markup:

@@ -230,3 +230,20 @@ def test_edit_loop_worker_started_only_for_one_edited_scene(write_config, tmp_pa
     assert [o.stages for o in outcomes] == [["restamp", "report"], []]
     assert (out / "a" / "report.pdf").read_bytes().startswith(b"%PDF")
     assert sorted((out / "a" / ".pdf-figures").glob("*.svg")) == slim
+
+
+def test_gallery_follows_an_edited_archive(write_config, tmp_path):
+    """The index's entries are kept in out/.gallery.json; an archive that changed (a title
+    edit re-stamps it) is read again, the others are not."""
+    from reportgen.pipeline import run_batch
+
+    a = write_config("a", pendulum_text(title="First title", t_end=2.0, samples=201))
+    write_config("b", pendulum_text(title="Other", t_end=2.0, samples=201))
+    out = tmp_path / "out"
+    run_batch([str(a.parent)], out_root=str(out), jobs=1, formats=("html",))
+    assert "First title" in (out / "index.html").read_text()
+    assert (out / ".gallery.json").exists()
+    a.write_text(a.read_text().replace("First title", "Second title"))
+    run_batch([str(a.parent)], out_root=str(out), jobs=1, formats=("html",))
+    index = (out / "index.html").read_text()
+    assert "Second title" in index and "First title" not in index and "Other" in index

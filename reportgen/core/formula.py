@@ -308,8 +308,9 @@ def module_source(system: FormulaSystem) -> str:
 
 
 def code_folder() -> Path:
-    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-    return Path(base) / "reportgen" / "formula"
+    from ..cache import cache_root
+
+    return cache_root() / "formula"
 
 
 _LOCK = threading.Lock()
