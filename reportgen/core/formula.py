@@ -308,9 +308,10 @@ def module_source(system: FormulaSystem) -> str:
 
 
 def code_folder() -> Path:
-    from ..cache import cache_root
-
-    return cache_root() / "formula"
+    """``$XDG_CACHE_HOME/reportgen/formula`` (as :func:`reportgen.cache.cache_root`, which
+    core may not import: it sits below the rest of the package)."""
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return Path(base) / "reportgen" / "formula"
 
 
 _LOCK = threading.Lock()
