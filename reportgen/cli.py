@@ -379,7 +379,12 @@ def cmd_validate(args) -> int:
         return _usage(str(exc))
     for scene in scenes:
         asked = scene.config.report.sections
-        sections = ", ".join(asked) if asked else "the kind's default sections"
+        if scene.sweep is not None:
+            family = f"a sweep of {scene.sweep.size} members"
+            sections = f"{family}: " + (", ".join(asked) if asked
+                                        else "the kind's family sections")
+        else:
+            sections = ", ".join(asked) if asked else "the kind's default sections"
         print(f"{scene.source.path}: ok ({scene.kind}: {sections})")
     return EXIT_OK
 
