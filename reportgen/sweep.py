@@ -146,8 +146,8 @@ def _flatten(table: dict, prefix: str = "") -> list[tuple[str, Any]]:
         path = f"{prefix}{key}"
         if not prefix and key in OPTIONS:
             continue
-        if isinstance(value, dict) and value and not set(value) <= RANGE_KEYS:
-            out.extend(_flatten(value, path + "."))
+        if isinstance(value, dict) and value and not set(value) & RANGE_KEYS:
+            out.extend(_flatten(value, path + "."))  # a table of paths, not a range
         else:
             out.append((path, value))
     return out
@@ -181,18 +181,26 @@ def parse_sweep(table: Any, label: str) -> tuple[SweepSpec | None, list[str]]:
     axes = []
     for path, value in _flatten(table):
         if isinstance(value, list):
-            if not value or not all(_number(v) for v in value):
-                bad(path, "a list of values must hold finite numbers, at least one", value)
+            wrong = [i for i, v in enumerate(value) if not _number(v)]
+            if not value:
+                bad(path, "a list of values must hold at least one", value)
+            elif wrong:
+                bad(f"{path}.{wrong[0]}", "a value must be a finite number", value[wrong[0]])
             else:
                 axes.append(Axis(path, values=tuple(float(v) for v in value)))
         elif isinstance(value, dict):
-            unknown = set(value) - RANGE_KEYS
+            unknown = sorted(set(value) - RANGE_KEYS)
             start, stop, num = value.get("start"), value.get("stop"), value.get("num")
             spacing = value.get("spacing", "linear")
-            if unknown or start is None or stop is None or num is None:
+            if unknown:
+                bad(f"{path}.{unknown[0]}", "unknown key of a range (start, stop, num, "
+                                            "spacing)", value[unknown[0]])
+            elif start is None or stop is None or num is None:
                 bad(path, "a range is { start, stop, num } with optional spacing", value)
-            elif not (_number(start) and _number(stop)):
-                bad(path, "start and stop must be finite numbers", value)
+            elif not _number(start):
+                bad(path + ".start", "must be a finite number", start)
+            elif not _number(stop):
+                bad(path + ".stop", "must be a finite number", stop)
             elif not isinstance(num, int) or isinstance(num, bool) or not 1 <= num <= MAX_MEMBERS:
                 bad(path + ".num", f"must be a whole number from 1 to {MAX_MEMBERS}", num)
             elif spacing not in ("linear", "log"):

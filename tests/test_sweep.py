@@ -54,7 +54,16 @@ def test_parse_lists_ranges_and_dotted_keys():
     ({"initial.theta": {"start": 0.1, "stop": 1.0}}, "sweep.initial.theta", "a range is"),
     ({"initial.theta": {"start": 0.1, "stop": 1.0, "num": 0}}, "sweep.initial.theta.num",
      "whole number"),
-    ({"initial.theta": ["a", "b"]}, "sweep.initial.theta", "finite numbers"),
+    ({"initial.theta": [1.0, "b"]}, "sweep.initial.theta.1", "finite number"),
+    ({"initial.theta": [1.0, math.nan]}, "sweep.initial.theta.1", "finite number"),
+    ({"initial.theta": {"start": math.nan, "stop": 1.0, "num": 3}},
+     "sweep.initial.theta.start", "finite number"),
+    ({"initial.theta": {"start": 0.1, "stop": math.inf, "num": 3}},
+     "sweep.initial.theta.stop", "finite number"),
+    ({"initial.theta": {"start": 0.1, "stop": 1.0, "num": 3, "colour": 1.5}},
+     "sweep.initial.theta.colour", "unknown key of a range"),
+    ({"initial": {"theta": {"start": 0.1, "stop": 1.0, "num": 3, "colour": 1.5}}},
+     "sweep.initial.theta.colour", "unknown key of a range"),
     ({"initial.theta": 0.5}, "sweep.initial.theta", "a list of values or a range"),
     ({"params.l": {"start": -1.0, "stop": 1.0, "num": 3, "spacing": "log"}}, "sweep.params.l",
      "log range"),
@@ -320,3 +329,38 @@ def test_kepler_family_period_against_eccentricity(write_config, tmp_path):
     assert np.allclose(a["period_measured"][1:], 2 * math.pi, rtol=1e-9)
     html = (tmp_path / "out" / "kep" / "report.html").read_text()
     assert 'id="kepler_family"' in html and "2 of 3" in html
+
+
+@pytest.mark.parametrize("name", ["pendulum_period_sweep", "heavy_top_spin_family"])
+def test_every_broken_key_of_a_shipped_sweep_is_named(name, tmp_path, cli):
+    """Each value of the resolved [sweep] table broken in turn (NaN for a number, 7 for a
+    string or boolean), and an unknown key added to each of its tables: validate exits 2
+    naming that very key (as tests/test_fuzz_config.py does at random for every table)."""
+    from pathlib import Path
+
+    from test_fuzz_config import _without_none
+
+    from reportgen.config import read_config, to_toml
+
+    path = Path(__file__).resolve().parent.parent / "configs" / f"{name}.toml"
+    doc = _without_none(load_scene(read_config(path)).resolved_config())
+    sweep = doc["sweep"]
+    cases = []
+    for key, value in sweep.items():
+        if isinstance(value, dict):
+            for sub, item in value.items():
+                broken = math.nan if isinstance(item, (int, float)) and not isinstance(
+                    item, bool) else 7
+                cases.append(({key: {**value, sub: broken}}, f"sweep.{key}.{sub}"))
+            cases.append(({key: {**value, "colour": 1.5}}, f"sweep.{key}.colour"))
+        else:
+            broken = math.nan if isinstance(value, (int, float)) and not isinstance(
+                value, bool) else 7
+            cases.append(({key: broken}, f"sweep.{key}"))
+    cases.append(({"colour": 1.5}, "sweep.colour"))
+    for i, (change, key) in enumerate(cases):
+        target = tmp_path / f"case{i}.toml"
+        target.write_text(to_toml({**doc, "sweep": {**sweep, **change}}))
+        code, out, err = cli("validate", target)
+        assert code == 2, (key, out, err)
+        assert f"{target}: key '{key}'" in err, (key, err)
