@@ -14,6 +14,7 @@ import tempfile
 from pathlib import Path
 
 from .errors import ReportError
+from .forked import JobProcess, serve
 from .fsutil import atomic_write
 from .layout import edited_count
 
@@ -66,7 +67,7 @@ def write_pdf(html_text: str, target: Path, base_url: Path,
         prune_cache(slim_cache, used)
 
 
-class PdfWorker:
+class PdfWorker(JobProcess):
     """A forked process that imports WeasyPrint at once, warms it up on a one-page
     document unless a job is already waiting, and renders PDFs when asked.
 
@@ -74,16 +75,7 @@ class PdfWorker:
     importing; the worker only renders."""
 
     def __init__(self):
-        from multiprocessing import get_context
-
-        ctx = get_context("fork")
-        job_out, job_in = ctx.Pipe(duplex=False)
-        result_out, result_in = ctx.Pipe(duplex=False)
-        self._proc = ctx.Process(target=_worker_main, args=(job_out, result_in), daemon=True)
-        self._proc.start()
-        job_out.close()
-        result_in.close()
-        self._jobs, self._results = job_in, result_out
+        super().__init__(_worker_main)
         self._used = self._closed = False
         #: started on a guess (:func:`edit_loop_worker`): the batch stops it when unused
         self.speculative = False
@@ -91,7 +83,7 @@ class PdfWorker:
     @property
     def alive(self) -> bool:
         """Whether the worker can still take a job."""
-        return not self._closed and self._proc.is_alive()
+        return not self._closed and self.proc.is_alive()
 
     def write_pdf(self, html_text: str, target: Path, base_url: Path,
                   slim_cache: Path | None = None) -> None:
@@ -103,10 +95,10 @@ class PdfWorker:
 
     def _render(self, html_for_pdf: str, target: Path, base_url: Path) -> None:
         try:
-            self._jobs.send((html_for_pdf, str(target), str(base_url)))
-            error = self._results.recv()
+            self.jobs.send((html_for_pdf, str(target), str(base_url)))
+            error = self.results.recv()
         except (EOFError, OSError):
-            error = f"PDF process ended without a result (exit code {self._proc.exitcode})"
+            error = f"PDF process ended without a result (exit code {self.proc.exitcode})"
         if error is not None:
             raise ReportError(f"{target}: {error}")
 
@@ -116,17 +108,7 @@ class PdfWorker:
         if self._closed:
             return
         self._closed = True
-        if self._used:
-            try:
-                self._jobs.send(None)
-            except OSError:
-                pass
-            self._proc.join(timeout=5)
-        if self._proc.is_alive():
-            self._proc.kill()
-        self._proc.join()
-        self._jobs.close()
-        self._results.close()
+        self.stop(graceful=self._used)
 
 
 def edit_loop_worker(configs: list[Path], out_root, formats=None, jobs: int | None = None,
@@ -159,19 +141,17 @@ def _worker_main(jobs, results) -> None:
             _warm_up()
         except Exception:  # noqa: BLE001 - only a head start; the job reports real problems
             pass
-    while True:
-        try:
-            job = jobs.recv()
-        except EOFError:
-            return
-        if job is None:
-            return
-        html_for_pdf, target, base_url = job
-        try:
-            render_pdf(html_for_pdf, Path(target), Path(base_url))
-            results.send(None)
-        except Exception as exc:  # noqa: BLE001 - sent to the parent, which raises it
-            results.send(f"{type(exc).__name__}: {exc}")
+    serve(jobs, results, _render_job)
+
+
+def _render_job(job) -> str | None:
+    """A job of the worker: None once rendered, else what went wrong (the parent raises)."""
+    html_for_pdf, target, base_url = job
+    try:
+        render_pdf(html_for_pdf, Path(target), Path(base_url))
+    except Exception as exc:  # noqa: BLE001 - sent to the parent, which raises it
+        return f"{type(exc).__name__}: {exc}"
+    return None
 
 
 #: a figure-like SVG for the warm-up: clipped path, dashes, text in the figures' font

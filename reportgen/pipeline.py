@@ -27,6 +27,7 @@ from .archive import (
 )
 from .config import ConfigError, read_config
 from .errors import UsageError  # noqa: F401 - part of this module's interface
+from .forked import JobProcess, serve
 from .fsutil import atomic_write, install, remove_stale_temps, temp_name
 from .layout import collect_configs, report_stamp
 from .results import worst_status
@@ -368,39 +369,21 @@ def _preload(scenes, formats) -> None:
         warm_up(group)  # from the disk cache now (compiled here if a helper failed)
 
 
-def _scene_worker(jobs, results, out_root, force, formats, inherited) -> None:
-    """A scene worker's loop: run each config path received, send back its Outcome, stop
-    at None or when the parent's end closes.  ``inherited``: the parent's ends of this
-    and the other workers' pipes, copied by the fork; closed so that a worker sees the
-    parent go (EOF) even when a sibling was forked after it."""
-    for conn in inherited:
-        conn.close()
-    while True:
-        try:
-            path = jobs.recv()
-        except (EOFError, OSError):
-            return
-        if path is None:
-            return
-        results.send(run_scene(path, out_root, force, formats))
+def _scene_worker(jobs, results, out_root, force, formats) -> None:
+    """A scene worker's loop: each config path received, run; its Outcome sent back."""
+    serve(jobs, results, lambda path: run_scene(path, out_root, force, formats))
 
 
-class _Worker:
+class _Worker(JobProcess):
     """A forked scene process that runs scenes one after another.
 
     What a scene process pays for on first use stays for the next scene: the kind's
     modules and compiled callbacks, fonts, matplotlib's mathtext parser and font lookups,
     WeasyPrint's first document, SymPy.  Forking once per scene paid it per scene."""
 
-    def __init__(self, ctx, out_root, force, formats, others: list[_Worker]):
-        jobs_out, self.jobs = ctx.Pipe(duplex=False)
-        self.results, results_in = ctx.Pipe(duplex=False)
-        inherited = [self.jobs, self.results] + [c for w in others for c in (w.jobs, w.results)]
-        self.proc = ctx.Process(target=_scene_worker, daemon=True, args=(
-            jobs_out, results_in, out_root, force, formats, inherited))
-        self.proc.start()
-        jobs_out.close()
-        results_in.close()
+    def __init__(self, out_root, force, formats, others: list[_Worker]):
+        super().__init__(_scene_worker, out_root, force, formats,
+                         siblings=[c for w in others for c in (w.jobs, w.results)])
         self.scene: Scene | None = None  # the scene it runs now
         self.kind = ""  # the kind of the last scene it ran
         self.started = 0.0
@@ -408,20 +391,6 @@ class _Worker:
     def submit(self, scene: Scene) -> None:
         self.jobs.send(str(scene.source.path))
         self.scene, self.kind, self.started = scene, scene.kind, time.monotonic()
-
-    def stop(self, kill: bool = False) -> None:
-        if not kill:
-            try:
-                self.jobs.send(None)
-            except OSError:
-                kill = True
-            else:
-                self.proc.join(timeout=10)
-        if self.proc.is_alive():
-            self.proc.kill()
-        self.proc.join()
-        self.jobs.close()
-        self.results.close()
 
 
 def _next_scene(pending: list[Scene], worker: _Worker, running_kinds: set[str]) -> Scene:
@@ -444,7 +413,6 @@ def _run_in_processes(scenes, out_root, force, formats, jobs, progress, time_lim
     """
     from multiprocessing.connection import wait
 
-    ctx = get_context("fork")
     pending = list(scenes)
     workers: list[_Worker] = []
     outcomes = []
@@ -460,10 +428,10 @@ def _run_in_processes(scenes, out_root, force, formats, jobs, progress, time_lim
                     running = {w.scene.kind for w in workers if w.scene is not None}
                     worker.submit(_next_scene(pending, worker, running))
                 else:
-                    worker.stop()
+                    worker.stop(timeout=10)
                     workers.remove(worker)
             while pending and len(workers) < jobs:
-                worker = _Worker(ctx, out_root, force, formats, workers)
+                worker = _Worker(out_root, force, formats, workers)
                 workers.append(worker)
                 worker.submit(_next_scene(pending, worker,
                                           {w.scene.kind for w in workers if w.scene}))
@@ -479,25 +447,25 @@ def _run_in_processes(scenes, out_root, force, formats, jobs, progress, time_lim
                         outcome = worker.results.recv()
                     except (EOFError, OSError):
                         outcome = failed(scene, "worker process ended without a result")
-                        worker.stop(kill=True)
+                        worker.stop(graceful=False)
                         workers.remove(worker)
                     worker.scene = None
                 elif not worker.proc.is_alive():
                     outcome = failed(scene, f"worker process died (exit code "
                                             f"{worker.proc.exitcode})")
-                    worker.stop(kill=True)
+                    worker.stop(graceful=False)
                     workers.remove(worker)
                 elif time_limit is not None and time.monotonic() - worker.started > time_limit:
                     outcome = failed(scene, f"time limit of {time_limit:g} s exceeded; the "
                                             "scene was stopped and any earlier archive kept")
-                    worker.stop(kill=True)
+                    worker.stop(graceful=False)
                     workers.remove(worker)
                 if outcome is not None:
                     progress.scene_done(outcome)
                     outcomes.append(outcome)
     finally:
         for worker in workers:  # an interrupt: stop what still runs
-            worker.stop(kill=True)
+            worker.stop(graceful=False)
 
 
 def run_scene_portable(config_text: str, name: str, formats: tuple[str, ...] | None,

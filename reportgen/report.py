@@ -27,6 +27,7 @@ from .archive import ArchiveData, read_archive
 from .audit_archive import read_audit
 from .equations import equation_html
 from .errors import ReportError
+from .forked import JobProcess, serve
 from .fsutil import atomic_write
 from .layout import template_dir
 from .lazy import lazy_module
@@ -220,7 +221,7 @@ def draw_sections(data: ArchiveData, out_dir: Path,
     return [drawn[i] for i in range(len(chosen))]
 
 
-class FigureHelper:
+class FigureHelper(JobProcess):
     """A forked process that draws sections of a scene's figures next to this one.
 
     Started before the scene simulates (``warm=True``), it imports matplotlib and draws
@@ -232,15 +233,8 @@ class FigureHelper:
     def __init__(self, warm: bool = True):
         from multiprocessing import get_context
 
-        ctx = get_context("fork")
-        self._next = ctx.Value("i", 0)
-        job_out, self._jobs = ctx.Pipe(duplex=False)
-        self._results, result_in = ctx.Pipe(duplex=False)
-        self._proc = ctx.Process(target=_figure_helper_main, daemon=True, args=(
-            job_out, result_in, self._next, warm, [self._jobs, self._results]))
-        self._proc.start()
-        job_out.close()
-        result_in.close()
+        self._next = get_context("fork").Value("i", 0)  # shared: the next section to draw
+        super().__init__(_figure_helper_main, self._next, warm)
         self._closed = False
         #: how many sections the helper drew, job by job
         self.result_sizes: list[int] = []
@@ -249,7 +243,7 @@ class FigureHelper:
         """Hand the helper one archive's sections (counted from the first)."""
         with self._next.get_lock():
             self._next.value = 0
-        self._jobs.send((str(archive), str(out_dir), tuple(formats), for_pdf))
+        self.jobs.send((str(archive), str(out_dir), tuple(formats), for_pdf))
 
     def claim(self) -> int:
         """The index of the next section nobody draws yet."""
@@ -258,10 +252,10 @@ class FigureHelper:
     def result(self) -> dict[int, dict[str, Any]]:
         """The sections the helper drew, by index; raises what it raised."""
         try:
-            result = self._results.recv()
+            result = self.results.recv()
         except EOFError:
             result = RuntimeError(f"figure process ended without a result "
-                                  f"(exit code {self._proc.exitcode})")
+                                  f"(exit code {self.proc.exitcode})")
         if isinstance(result, BaseException):
             raise result
         self.result_sizes.append(len(result))
@@ -272,16 +266,7 @@ class FigureHelper:
         if self._closed:
             return
         self._closed = True
-        try:
-            self._jobs.send(None)
-        except OSError:
-            pass
-        self._proc.join(timeout=5)
-        if self._proc.is_alive():
-            self._proc.kill()
-            self._proc.join()
-        self._jobs.close()
-        self._results.close()
+        self.stop()
 
 
 def _claim(counter) -> int:
@@ -291,9 +276,7 @@ def _claim(counter) -> int:
     return i
 
 
-def _figure_helper_main(jobs, results, counter, warm: bool, inherited) -> None:
-    for conn in inherited:
-        conn.close()
+def _figure_helper_main(jobs, results, counter, warm: bool) -> None:
     if warm:
         try:
             os.nice(10)
@@ -303,13 +286,8 @@ def _figure_helper_main(jobs, results, counter, warm: bool, inherited) -> None:
             _warm_up_drawing()
         except Exception:  # noqa: BLE001 - only a head start; the job reports real problems
             pass
-    while True:
-        try:
-            job = jobs.recv()
-        except (EOFError, OSError):
-            return
-        if job is None:
-            return
+
+    def draw(job):
         archive, out_dir, formats, for_pdf = job
         try:
             data = read_archive(Path(archive))
@@ -319,9 +297,11 @@ def _figure_helper_main(jobs, results, counter, warm: bool, inherited) -> None:
             while (i := _claim(counter)) < len(chosen):
                 mine[i] = _draw_section(scene, chosen[i], data, Path(out_dir), formats,
                                         for_pdf)
-            results.send(mine)
+            return mine
         except BaseException as exc:  # noqa: BLE001 - re-raised in the parent
-            results.send(RuntimeError(f"{type(exc).__name__}: {exc}"))
+            return RuntimeError(f"{type(exc).__name__}: {exc}")
+
+    serve(jobs, results, draw)
 
 
 def _warm_up_drawing() -> None:

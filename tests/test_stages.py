@@ -219,7 +219,7 @@ def test_edit_loop_worker_started_only_for_one_edited_scene(write_config, tmp_pa
     unused = edit_loop_worker([a, b], out)
     assert isinstance(unused, PdfWorker)
     unused.close()
-    assert not unused._proc.is_alive()
+    assert not unused.proc.is_alive()
     unused.close()  # twice is harmless
 
     worker = edit_loop_worker([a, b], out)
