@@ -628,18 +628,25 @@ class HeavyTopScene(Scene):
         # φ̇ = (b − a u)/(1 − u²) (10.26) on the two turning circles
         out["phi_dot_upper"] = (a["b"] - a["a"] * a["u2"]) / (1.0 - a["u2"] ** 2)
         out["phi_dot_lower"] = (a["b"] - a["a"] * a["u1"]) / (1.0 - a["u1"] ** 2)
-        dphi, period = abs(a["precession_per_period"]), a["nutation_period"]
+        out["locus_stop"], out["locus_periods"], out["view_azimuth"] = cls._locus_stretch(
+            record, a["nutation_period"], a["precession_per_period"])
+        return out
+
+    @classmethod
+    def _locus_stretch(cls, record: RunRecord, period: float,
+                       precession: float) -> tuple[int, int, float]:
+        """(samples, nutation periods, view azimuth) of the stretch of a locus Fig. 4.3
+        draws: from the release to at most ``FIG43_PERIODS`` nutation periods, fewer when
+        they would go round the sphere more than ``FIG43_SPAN`` [rad]; the view faces
+        the middle of the stretch (the axis' azimuth is φ − π/2, (4.46))."""
+        dphi = abs(precession)
         periods = cls.FIG43_PERIODS
         if dphi > 0.0:
             periods = min(periods, max(cls.FIG43_MIN_PERIODS, math.floor(cls.FIG43_SPAN / dphi)))
         stop = int(np.searchsorted(record.t, periods * period, side="right"))
         stop = min(max(stop, 2), len(record.t))
         phi = record["phi"]
-        out["locus_stop"] = stop
-        out["locus_periods"] = periods
-        # the view faces the middle of the stretch: the axis' azimuth is φ − π/2 (4.46)
-        out["view_azimuth"] = float(0.5 * (phi[0] + phi[stop - 1]) - 0.5 * math.pi)
-        return out
+        return stop, periods, float(0.5 * (phi[0] + phi[stop - 1]) - 0.5 * math.pi)
 
     #: Fig. 4.3: nutation periods drawn per locus (at most, at least), and how far round
     #: the sphere [rad] they may go before fewer are drawn
@@ -827,19 +834,14 @@ class HeavyTopScene(Scene):
         case = sweep.labels.get("case", np.full(sweep.size, ""))
         for i, name in members:
             run = data.runs[name]
-            period, dphi = a["nutation_period"][i], abs(a["precession_per_period"][i])
-            periods = cls.FIG43_PERIODS
-            if dphi > 0.0:
-                periods = min(periods, max(cls.FIG43_MIN_PERIODS,
-                                           math.floor(cls.FIG43_SPAN / dphi)))
-            stop = (int(np.searchsorted(run.t, periods * period, side="right"))
-                    if np.isfinite(period) and period > 0 else len(run.t))
-            stop = min(max(stop, 2), len(run.t))
-            phi = run["phi"]
+            period = a["nutation_period"][i]
+            if not (np.isfinite(period) and period > 0):  # no nutation: the whole run
+                period = math.inf
+            stop, _, azimuth = cls._locus_stretch(run, period, a["precession_per_period"][i])
             loci.append(np.column_stack([run["axis_x"], run["axis_y"], run["axis_z"]])[:stop])
             theta1.append(a["theta1"][i])
             theta2.append(a["theta2"][i])
-            azimuths.append(float(0.5 * (phi[0] + phi[stop - 1]) - 0.5 * math.pi))
+            azimuths.append(azimuth)
             values = ", ".join(f"{p.rsplit('.', 1)[-1]} = {fmt(float(v[i]), 4)}"
                                for p, v in sweep.values.items())
             labels.append((str(case[i]) or f"member {i}", values))
