@@ -155,8 +155,7 @@ def sweep_results(values: dict[str, np.ndarray], analysis: dict[str, np.ndarray]
                 ax.plot(*envelope(x[pick][order], y[pick][order]), label=label or None,
                         **style)
             else:
-                ax.plot(*envelope(x[pick][np.argsort(x[pick])], y[pick][np.argsort(x[pick])]),
-                        ".", markersize=2)
+                ax.plot(*envelope(x[pick][order], y[pick][order]), ".", markersize=2)
         ax.set_ylabel(name.replace("_", " "))
         if as_lines and others and name == names[0]:  # one legend serves every panel
             ax.legend(loc="best", fontsize=8)

@@ -280,9 +280,9 @@ class PendulumScene(Scene):
         measured, codes = ensemble.pendulum_periods(amplitude, g, l, rtol=run.rtol,
                                                     atol=run.atol)
         omega0 = np.sqrt(g / l)
-        with np.errstate(invalid="ignore"):
+        with np.errstate(invalid="ignore"):  # amplitudes >= π (no libration): NaN
             exact = np.where(amplitude < math.pi, core.libration_period(
-                np.minimum(amplitude, math.pi - 1e-300), omega0), np.nan)
+                np.minimum(amplitude, math.pi), omega0), np.nan)
         status = np.array([ensemble.STATUS_NAMES.get(int(c), f"status {int(c)}")
                            for c in codes], dtype=object)
         return SweepBlock(analysis={
