@@ -5,7 +5,8 @@ members, measured in one call.
 Run ``python benchmarks/sweep_pipeline.py [repeats]`` (default 3 for ours; each scipy
 loop runs once: it takes tens of seconds).
 
-The sweep: theta0 in [0.01, 3.1] from rest, g = 9.81, l = 1 (``CONFIG`` below).  Each
+The sweep: theta0 in [0.01, 3.1] from rest, g = 9.81, l = 1 (``CONFIG`` below; the
+members, their exact periods and the scipy loop are ``sweep_pendulum.py``'s).  Each
 member's period is compared with T = 4 K(k) sqrt(l/g), k = sin(theta0 / 2) (DLMF 19.2.8,
 22.19(i)).  The loops are the scripts a user would write, a plain Python right-hand side
 and ``solve_ivp(..., method="DOP853", events=upward)`` per member:
@@ -22,7 +23,6 @@ untimed run that fills numba's cache; the median of ``repeats`` is quoted.
 
 from __future__ import annotations
 
-import math
 import subprocess
 import sys
 import tempfile
@@ -30,12 +30,9 @@ import time
 from pathlib import Path
 
 import numpy as np
-from scipy.integrate import solve_ivp
-from scipy.special import ellipk
+from sweep_pendulum import THETA0, G, L, max_error, scipy_periods
 
-G, L, T_END = 9.81, 1.0, 12.0
-THETA0 = np.linspace(0.01, 3.1, 2000)
-EXACT = 4.0 * ellipk(np.sin(0.5 * THETA0) ** 2) * math.sqrt(L / G)
+T_END = 12.0
 CONFIG = f"""kind = "pendulum"
 title = "Period against amplitude: 2000 members"
 
@@ -54,31 +51,6 @@ samples = 1201
 initial.theta = {{ start = 0.01, stop = 3.1, num = 2000 }}
 store = 5
 """
-
-
-def scipy_loop(rtol: float, atol: float, least_work: bool) -> np.ndarray:
-    def f(t, y):
-        return [y[1], -G / L * np.sin(y[0])]
-
-    def upward(t, y):
-        return y[0]
-
-    upward.direction = 1
-    if least_work:
-        upward.terminal = 2
-    periods = np.full(THETA0.size, np.nan)
-    for i, th in enumerate(THETA0):
-        t_end = 2.2 * EXACT[i] if least_work else T_END
-        sol = solve_ivp(f, (0.0, t_end), [th, 0.0], method="DOP853", rtol=rtol, atol=atol,
-                        events=upward)
-        crossings = sol.t_events[0]
-        if crossings.size >= 2:
-            periods[i] = crossings[1] - crossings[0]
-    return periods
-
-
-def max_error(periods: np.ndarray) -> float:
-    return float(np.max(np.abs(periods / EXACT - 1.0)))
 
 
 def ours(repeats: int) -> tuple[float, float]:
@@ -110,7 +82,7 @@ def main(repeats: int = 3) -> None:
                                      ("scipy loop, least work (rtol 1e-10, terminal)",
                                       1e-10, 1e-12, True)):
         t = time.perf_counter()
-        periods = scipy_loop(rtol, atol, least)
+        periods = scipy_periods(THETA0, rtol, atol, t_end=None if least else T_END)
         rows.append((label, time.perf_counter() - t, max_error(periods)))
     print(f"pendulum period sweep, {THETA0.size} members, error = max |T / (4K(k)sqrt(l/g)) - 1|")
     print(f"  {'run':52s} {'wall time':>10s} {'max error':>10s} {'ratio':>8s}")
