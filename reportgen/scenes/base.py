@@ -499,9 +499,7 @@ class Scene:
                                       "analysis against the swept value; members without a "
                                       "result are left out."))
         bad = ~sweep.ok
-        rows = [[str(i), ", ".join(f"{p} = {fmt(float(v[i]), 8)}" for p, v in
-                                   sweep.values.items()),
-                 str(sweep.status[i]), str(sweep.message[i])]
+        rows = [[str(i), member_text(sweep, i), str(sweep.status[i]), str(sweep.message[i])]
                 for i in np.flatnonzero(bad)[:20]]
         tables = [Table("Members without a result" + (f" (first 20 of {int(bad.sum())})"
                                                       if bad.sum() > 20 else ""),
@@ -513,13 +511,11 @@ class Scene:
         """The kept members' first coordinate against time, one line each."""
         from ..plots import common as common_plots
 
-        members = sorted((int(name.split("_", 1)[1]), name) for name in data.runs
-                         if name.startswith("member_"))
+        members = kept_members(data)
         runs = {name: data.runs[name] for _, name in members}
         labels, rows = {}, []
         for i, name in members:
-            labels[name] = ", ".join(f"{p.rsplit('.', 1)[-1]} = {fmt(float(v[i]), 4)}"
-                                     for p, v in data.sweep.values.items())
+            labels[name] = member_text(data.sweep, i, short=True)
             a = runs[name].attrs
             rows.append([str(i), labels[name], str(a.get("method", "")), str(a.get("nfev", "")),
                          f"{a.get('nsteps', '')} ({a.get('nreject', '')})",
@@ -700,6 +696,19 @@ class Scene:
         results.study_attrs = {"reference_kind": result.reference_kind,
                                "budget_s": float(self.config.run.study_budget),
                                "over_budget": ",".join(result.over_budget)}
+
+
+def member_text(sweep, i: int, short: bool = False) -> str:
+    """A sweep member's swept values as text: ``initial.theta = 0.5`` (``short``: the
+    last part of each key at 4 digits, ``theta = 0.5``, for figure labels)."""
+    return ", ".join(f"{p.rsplit('.', 1)[-1] if short else p} = "
+                     f"{fmt(float(v[i]), 4 if short else 8)}" for p, v in sweep.values.items())
+
+
+def kept_members(data: ArchiveData) -> list[tuple[int, str]]:
+    """(member index, run name) of a sweep's members kept whole, in member order."""
+    return sorted((int(name.split("_", 1)[1]), name) for name in data.runs
+                  if name.startswith("member_"))
 
 
 def _setting(row) -> str:

@@ -26,7 +26,17 @@ from pydantic import Field, model_validator
 from ..config import Positive, Real, RunConfig, Strict
 from ..lazy import lazy_module
 from ..results import AuditCase, Check, Results, RunRecord
-from .base import Scene, SceneConfig, Section, SectionContent, Table, fmt, fmt_err
+from .base import (
+    Scene,
+    SceneConfig,
+    Section,
+    SectionContent,
+    Table,
+    fmt,
+    fmt_err,
+    kept_members,
+    member_text,
+)
 
 plots = lazy_module("reportgen.plots.heavy_top")
 model_core = lazy_module("reportgen.core.models.heavy_top")
@@ -827,8 +837,7 @@ class HeavyTopScene(Scene):
     @classmethod
     def section_loci_family(cls, data):
         sweep = data.sweep
-        members = sorted((int(name.split("_", 1)[1]), name) for name in data.runs
-                         if name.startswith("member_"))
+        members = kept_members(data)
         loci, theta1, theta2, labels, azimuths = [], [], [], [], []
         a = sweep.analysis
         case = sweep.labels.get("case", np.full(sweep.size, ""))
@@ -842,9 +851,7 @@ class HeavyTopScene(Scene):
             theta1.append(a["theta1"][i])
             theta2.append(a["theta2"][i])
             azimuths.append(azimuth)
-            values = ", ".join(f"{p.rsplit('.', 1)[-1]} = {fmt(float(v[i]), 4)}"
-                               for p, v in sweep.values.items())
-            labels.append((str(case[i]) or f"member {i}", values))
+            labels.append((str(case[i]) or f"member {i}", member_text(sweep, i, short=True)))
         fig = plots.loci_family(loci, theta1=theta1, theta2=theta2, labels=labels,
                                 azimuths=azimuths,
                                 elevation=math.radians(cls.FIG43_ELEVATION_DEG))

@@ -16,7 +16,16 @@ from pydantic import Field, model_validator
 from ..config import Positive, Real, RunConfig, Strict
 from ..lazy import lazy_module
 from ..results import AuditCase, Check, Results
-from .base import Scene, SceneConfig, Section, SectionContent, Table, fmt, fmt_err
+from .base import (
+    Scene,
+    SceneConfig,
+    Section,
+    SectionContent,
+    Table,
+    fmt,
+    fmt_err,
+    member_text,
+)
 
 common_plots = lazy_module("reportgen.plots.common")
 plots = lazy_module("reportgen.plots.pendulum")
@@ -319,8 +328,8 @@ class PendulumScene(Scene):
         if not np.any(np.isfinite(rel)):
             return []
         i = int(np.nanargmax(rel))
-        where = ", ".join(f"{p} = {fmt(float(v[i]), 8)}" for p, v in sweep.values.items())
-        return [Check(f"period of the worst member ({where})", float(a["period_measured"][i]),
+        return [Check(f"period of the worst member ({member_text(sweep, i)})",
+                      float(a["period_measured"][i]),
                       float(a["period"][i]), "s", "4K(k)·√(l/g), DLMF 22.19.4")]
 
     def _phase_portrait(self, theta_dot) -> dict:
