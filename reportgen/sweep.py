@@ -41,7 +41,7 @@ from typing import Any
 
 import numpy as np
 
-from .config import _short
+from .config import ConfigError, _short
 from .fsutil import temp_name
 
 __all__ = ["SweepSpec", "SweepData", "parse_sweep", "run_sweep", "member_data"]
@@ -408,8 +408,6 @@ def generic_block(make_member: Callable[[dict[str, float]], Any], values: dict[s
     texts: list[dict[str, str]] = []
     status = np.full(n, OK, dtype=object)
     message = np.full(n, "", dtype=object)
-    from .config import ConfigError
-
     for i in range(n):
         assignments = {p: float(v[i]) for p, v in values.items()}
         row: dict[str, float] = {}

@@ -198,8 +198,8 @@ class Scene:
         Section("sweep_members", "Members kept whole",
                 description="The members whose whole run the archive keeps ([sweep] store)."),
     )
-    #: the validated ``[sweep]`` table, if the config has one
-    sweep: _sweep.SweepSpec | None = None
+    #: the validated ``[sweep]`` table, if the config has one (set by ``__init__``)
+    sweep: _sweep.SweepSpec | None
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
@@ -212,11 +212,14 @@ class Scene:
                             f"{cls.__module__}")
         REGISTRY[kind] = cls
 
-    def __init__(self, config: SceneConfig, source: SourceConfig):
+    def __init__(self, config: SceneConfig, source: SourceConfig,
+                 sweep: _sweep.SweepSpec | None = None, template: dict | None = None):
         self.config = config
         self.source = source
+        self.sweep = sweep
         #: the config data members of a sweep are made from (presets applied, no [sweep])
-        self._template = {k: v for k, v in source.data.items() if k != "sweep"}
+        self._template = template if template is not None else {
+            k: v for k, v in source.data.items() if k != "sweep"}
 
     # ----------------------------------------------------------------- config
     @classmethod
@@ -247,10 +250,7 @@ class Scene:
                 problems += cls._check_members(spec, data, source.label)
         if problems:
             raise ConfigError(problems)
-        scene = cls(config, source)
-        scene._template = data
-        scene.sweep = spec
-        return scene
+        return cls(config, source, sweep=spec, template=data)
 
     @classmethod
     def _check_members(cls, spec: _sweep.SweepSpec, data: dict, label: str) -> list[str]:
