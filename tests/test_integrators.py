@@ -259,12 +259,12 @@ def test_default_step_meets_rtol_roughly():
 
 _TWO_MODELS = """
 import numpy as np
-from reportgen.core.integrators import compiled, integrate, kernels
+from reportgen.core.integrators import _dop853_unrolled, compiled, integrate, kernels
 from reportgen.core.models import oscillator, pendulum
 for model in (pendulum.model(9.81, 1.0), oscillator.model(1.0, 2.0)):
-    for method in ("dop853", "verlet"):
+    for method in ("dop853", "rk45", "verlet"):
         integrate(model, np.array([1.0, 0.0]), np.linspace(0, 1, 3), method=method, h=0.1)
-drivers = (compiled.erk_adaptive, compiled.splitting_fixed)
+drivers = (_dop853_unrolled.dop853_adaptive, compiled.erk_adaptive, compiled.splitting_fixed)
 print(max(len(d.signatures) for d in drivers),
       sum(sum(d.stats.cache_misses.values()) for d in drivers),
       min(cf.cache_hits for _f, cf in kernels._CFUNCS.values()))
@@ -311,3 +311,41 @@ def test_division_by_zero_in_a_model_is_nonfinite_not_an_exception():
         # the adaptive start sees f(t0, y0) = inf as a collapsing step size
         assert sol.code is (SolveCode.STEP_UNDERFLOW if method == "dop853"
                             else SolveCode.NONFINITE), sol.message
+
+
+def test_generated_dop853_driver_is_current():
+    # _dop853_unrolled.py is written by _gen_dop853 from the tableau; an edit to either
+    # without regenerating would make DOP853 and its documented tableau disagree.
+    from reportgen.core.integrators import _gen_dop853
+
+    assert _gen_dop853.TARGET.read_text() == _gen_dop853.source()
+
+
+@pytest.mark.parametrize("case", ["pendulum", "stiff_start", "chunked"])
+def test_unrolled_dop853_takes_erk_adaptives_steps_bit_for_bit(case):
+    # The written-out driver must be the generic driver with DOP853's tableau, not an
+    # approximation of it: same outputs, counters and step state, to the last bit.
+    from reportgen.core.integrators import compiled
+    from reportgen.core.integrators.kernels import kernels_for
+
+    model = pendulum.model(9.81, 1.0)
+    y0 = np.array([3.1, 0.0] if case == "stiff_start" else [1.0, 0.5])
+    t = np.linspace(0.0, 7.3, 57)
+    dop = METHODS["dop853"]
+    kern = kernels_for(model)
+    integrate(model, y0, t[:2])  # compile / load the callbacks
+    bounds = [0, 9, 10, 40, 57] if case == "chunked" else [0, 57]
+    runs = []
+    for unrolled in (True, False):
+        Y = np.full((t.size, 2), np.nan)
+        run = dop.start(kern, model, y0, t, Y, 1e-9, 1e-11, None, 10**6)
+        for i0, i1 in zip(bounds[:-1], bounds[1:], strict=True):
+            tail = (t, i0, i1, Y, run.y, run.y_old, run.K, run.F, run.state, run.counters,
+                    run.params, 1e-9, 1e-11, 10**6)
+            status = (kern.dop853_adaptive(*tail) if unrolled
+                      else compiled.erk_adaptive(kern.rhs, *run.args, *tail))
+            assert status == compiled.OK
+        runs.append((Y, run.counters.copy(), run.state.copy()))
+    (Ya, ca, sa), (Yb, cb, sb) = runs
+    assert ca[1] > 10 and np.all(np.isfinite(Ya))
+    assert np.array_equal(Ya, Yb) and np.array_equal(ca, cb) and np.array_equal(sa, sb)

@@ -80,6 +80,8 @@ class EmbeddedRungeKutta(Method):
     """
 
     adaptive = True
+    #: stepped by the driver with this tableau written out (:mod:`._dop853_unrolled`)
+    unrolled = False
     error_estimator_order: int
     n_stages: int
     dense_kind: int
@@ -128,10 +130,13 @@ class EmbeddedRun(Run):
         self.rtol, self.atol, self.max_steps = rtol, atol, max_steps
 
     def advance(self, i0, i1):
-        status = self.kern.erk_adaptive(
-            *self.args, self.t_eval, i0, i1, self.Y, self.y, self.y_old, self.K, self.F,
-            self.state, self.counters, self.params, float(self.rtol), float(self.atol),
-            int(self.max_steps))
+        tail = (self.t_eval, i0, i1, self.Y, self.y, self.y_old, self.K, self.F, self.state,
+                self.counters, self.params, float(self.rtol), float(self.atol),
+                int(self.max_steps))
+        if self.m.unrolled:
+            status = self.kern.dop853_adaptive(*tail)
+        else:
+            status = self.kern.erk_adaptive(*self.args, *tail)
         self.t_fail = float(self.state[0])
         return int(status)
 
@@ -177,6 +182,7 @@ class DOP853(EmbeddedRungeKutta):
     """Dormand-Prince 8(5,3) with the 7th-order dense output of Hairer's dop853.f."""
 
     name, label, order = "dop853", "DOP853 (numba)", 8
+    unrolled = True
     error_estimator_order, n_stages, dense_kind = 7, dop853c.N_STAGES, 1
     A = dop853c.A
     b = dop853c.B

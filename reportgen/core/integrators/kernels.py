@@ -37,7 +37,7 @@ import numba
 from numba import types
 from numba.core.caching import NullCache
 
-from . import compiled
+from . import _dop853_unrolled, compiled
 
 _VEC = types.float64[::1]
 #: rhs(t, y, params, out) and jac(t, y, params, out): see reportgen.core.model
@@ -129,6 +129,10 @@ class ModelKernels:
 
     def erk_adaptive(self, *args):
         return compiled.erk_adaptive(self.rhs, *args)
+
+    def dop853_adaptive(self, *args):
+        """DOP853 with its tableau written out (:mod:`._dop853_unrolled`): erk_adaptive's steps."""
+        return _dop853_unrolled.dop853_adaptive(self.rhs, *args)
 
     def erk_fixed(self, *args):
         return compiled.erk_fixed(self.rhs, *args)
