@@ -71,8 +71,78 @@ def scene_bench(scene, print=builtins.print) -> dict | None:
         line += " | none of our runs reached that error"
     print(line + f" | compile {compile_s:.2f} s | study {elapsed:.1f} s "
                  f"({results.study_attrs.get('reference_kind', '')})")
-    return {"scene": scene.source.name, "baseline": base, "matches": matched["matches"],
-            "compile_time_s": compile_s}
+    out = {"scene": scene.source.name, "baseline": base, "matches": matched["matches"],
+           "compile_time_s": compile_s}
+    if scene.kind == "heavy_top" and scene.config.band is None:
+        out["textbook"] = heavy_top_textbook(scene, print=print)
+    return out
+
+
+def _best_time(fn, repeats: int) -> tuple[float, object]:
+    best, result = math.inf, None
+    for _ in range(repeats):
+        start = time.perf_counter()
+        result = fn()
+        best = min(best, time.perf_counter() - start)
+    return best, result
+
+
+def heavy_top_textbook(scene, print=builtins.print, samples: int = 201) -> dict:
+    """The heavy top against the script a user would write: scipy DOP853 (rtol 1e-10,
+    atol 1e-12) on the Euler-angle Lagrange equations
+    (:func:`~reportgen.core.models.heavy_top.euler_angle_rhs`), and our run (compiled
+    DOP853 on the spin-free form the scene integrates) at the loosest rtol that reaches
+    the same max error of θ(t) at ``samples`` times, both against the elliptic-function
+    θ(t) (:func:`~reportgen.core.heavy_top_theory.theta_closed_form`).  Both timed as
+    whole calls (ours includes the Python around the compiled driver): min of repeats
+    after a warm-up."""
+    from scipy.integrate import solve_ivp
+
+    from .core import heavy_top_kinematics as kinematics
+    from .core import heavy_top_theory as theory
+    from .core.integrators import integrate
+    from .core.models import heavy_top as model_core
+
+    p, t_end = scene.config.params, scene.config.run.t_end
+    start = next(iter(scene.starts.values()))
+    theta0, theta_dot0, phi_dot0, omega3 = start
+    t = np.linspace(0.0, t_end, samples)
+    c = theory.constants(p.I1, p.I3, p.Mgl, *start)
+    exact = theory.theta_closed_form(t, theory.roots(c), c)
+    name = scene.source.name
+    if math.sin(theta0) == 0.0:
+        print(f"  {name}: textbook peer skipped (the Euler-angle equations are singular at "
+              "θ0 = 0)")
+        return {}
+    f = model_core.euler_angle_rhs(p.I1, p.I3, p.Mgl)
+    y0 = [theta0, 0.0, 0.0, theta_dot0, phi_dot0, omega3 - phi_dot0 * math.cos(theta0)]
+    peer_s, sol = _best_time(lambda: solve_ivp(f, (0.0, t_end), y0, method="DOP853",
+                                               rtol=1e-10, atol=1e-12, t_eval=t), 3)
+    peer_err = (float(np.max(np.abs(sol.y[0] - exact))) if sol.success else math.inf)
+    model = model_core.spin_free_model(p.I1, p.I3, p.Mgl, omega3)
+    s0 = model_core.spin_free_initial_state(theta0, theta_dot0, phi_dot0)
+    ours = None
+    for rtol in 10.0 ** -np.arange(6.0, 14.5, 0.5):
+        integrate(model, s0, t, rtol=rtol, atol=rtol * 1e-2)  # warm-up (and compile)
+        wall, run = _best_time(lambda rtol=rtol: integrate(model, s0, t, rtol=rtol,
+                                                           atol=rtol * 1e-2), 20)
+        err = float(np.max(np.abs(kinematics.tilt_angle(run.y[:, :4]) - exact)))
+        if err <= peer_err:
+            ours = {"rtol": float(rtol), "error": err, "wall_time_s": wall,
+                    "steps": run.nsteps, "nfev": run.nfev}
+            break
+    line = (f"  {name:<28} textbook: scipy DOP853 on Euler angles, rtol 1e-10: θ error "
+            f"{peer_err:.1e} in {peer_s * 1e3:7.2f} ms ({sol.nfev} evaluations)")
+    if ours is None:
+        print(line + " | none of our runs reached that θ error")
+    else:
+        ratio = peer_s / ours["wall_time_s"]
+        print(line + f" | ours: spin-free dop853 rtol {ours['rtol']:.0e}: {ours['error']:.1e} "
+                     f"in {ours['wall_time_s'] * 1e3:6.3f} ms ({ours['steps']} steps) → "
+                     f"{ratio:5.0f}×")
+        ours["speedup"] = ratio
+    return {"peer_error": peer_err, "peer_wall_time_s": peer_s, "peer_nfev": int(sol.nfev),
+            "ours": ours}
 
 
 def long_time_energy(n_periods=1_000_000, steps_per_period=100, n_out=2000, method="yoshida4",

@@ -330,6 +330,59 @@ def test_quaternion_euler_angles_round_trip():
                                 math.cos(theta)], atol=1e-14)
 
 
+@pytest.mark.parametrize("start, step_ratio", [
+    ((0.7, -0.9, 0.4, 5.0), 0.7), ((0.9, 0.0, 0.3, 6.0), 0.5),
+    ((0.05, 0.3, 0.0, 2.0), 0.8), ((0.0, 0.2, 0.0, 8.0), 0.8)])
+def test_spin_free_form_is_the_body_motion_in_fewer_steps(start, step_ratio):
+    # The scene integrates the frame F' that follows the axis without spinning and turns
+    # it by ω3 t afterwards (models.heavy_top.body_state); it must be the body model's
+    # motion, through the vertical too (θ0 = 0), and cheaper wherever the top spins.
+    t = np.linspace(0.0, 20.0, 301)
+    body = integrate(model_core.model(I1, I3, MGL), model_core.initial_state(*start), t,
+                     rtol=1e-13, atol=1e-15)
+    free = integrate(model_core.spin_free_model(I1, I3, MGL, start[3]),
+                     model_core.spin_free_initial_state(*start[:3]), t, rtol=1e-13, atol=1e-15)
+    assert body.ok and free.ok
+    assert np.max(np.abs(model_core.body_state(t, free.y, start[3]) - body.y)) < 1e-10
+    assert free.nsteps < step_ratio * body.nsteps
+
+
+def test_spin_free_theta_matches_the_elliptic_closed_form():
+    # θ(t) of the spin-free run against cos θ = u1 + (u2 − u1) sn²(λt + τ0 | k²)
+    # (Goldstein 5.72), the top of issue 15 over 60 s: the error follows the tolerance.
+    start = (0.9, 0.0, 0.3, 6.0)
+    i1, i3, mgl = 1.3, 0.45, 0.9
+    t = np.linspace(0.0, 60.0, 201)
+    c = theory.constants(i1, i3, mgl, *start)
+    exact = theory.theta_closed_form(t, theory.roots(c), c)
+    model = model_core.spin_free_model(i1, i3, mgl, start[3])
+    y0 = model_core.spin_free_initial_state(*start[:3])
+    errors = [float(np.max(np.abs(kinematics.tilt_angle(
+        integrate(model, y0, t, rtol=rtol, atol=rtol * 1e-2).y[:, :4]) - exact)))
+        for rtol in (1e-8, 1e-10, 1e-12)]
+    assert errors[0] < 1e-6 and errors[1] < 1e-8 and errors[2] < 1e-10
+    assert errors[0] > 10 * errors[1] > 100 * errors[2]
+
+
+def test_bench_textbook_row_reaches_the_euler_angle_scripts_theta_error():
+    # reportgen bench: scipy DOP853 on the Euler-angle equations against our spin-free run
+    # at the loosest rtol reaching its θ error (both against the closed form).
+    from reportgen.bench import heavy_top_textbook
+    from reportgen.config import parse_config_text
+    from reportgen.scenes.heavy_top import HeavyTopScene
+
+    scene = HeavyTopScene.from_source(parse_config_text(
+        'kind = "heavy_top"\ntitle = "t"\n[params]\nI1 = 1.3\nI3 = 0.45\nMgl = 0.9\n'
+        "[initial]\ntheta = 0.9\ntheta_dot = 0.0\nphi_dot = 0.3\nomega3 = 6.0\n"
+        "[run]\nt_end = 10.0\n"))
+    lines = []
+    row = heavy_top_textbook(scene, print=lines.append)
+    assert 0 < row["peer_error"] < 1e-8 and row["peer_nfev"] > 100
+    ours = row["ours"]
+    assert ours["error"] <= row["peer_error"] and ours["speedup"] > 1
+    assert "textbook" in lines[0]
+
+
 def test_integration_conserves_energy_and_momenta():
     y0 = model_core.initial_state(0.7, -0.9, 0.4, 5.0)
     t = np.linspace(0.0, 20.0, 401)

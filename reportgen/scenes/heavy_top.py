@@ -361,9 +361,15 @@ class HeavyTopScene(Scene):
 
     # -------------------------------------------------------------- simulation
     def models(self) -> list:
-        """The top's model (the sleeping sweep integrates it with DOP853, its own choice)."""
+        """The top's spin-free model for the first start (the sleeping sweep integrates
+        it with DOP853, its own choice)."""
+        return [self._model(next(iter(self.starts.values())))]
+
+    def _model(self, start: Start):
+        """The spin-free top (:func:`~reportgen.core.models.heavy_top.spin_free_model`) of
+        one start: the body's spin ω3 is a parameter, not a state."""
         p = self.config.params
-        return [model_core.model(p.I1, p.I3, p.Mgl)]
+        return model_core.spin_free_model(p.I1, p.I3, p.Mgl, start.omega3)
 
     def simulate(self, progress=None) -> Results:
         run = self.config.run
@@ -391,9 +397,9 @@ class HeavyTopScene(Scene):
             # without simulating again, and the section must then still find it
             results.analysis["sleeping_sweep"] = self._sleeping_sweep()
         main = next(iter(starts.values()))
-        y0 = model_core.initial_state(*main)
-        (model,) = self.models()
-        self.study(results, model, y0, np.linspace(0.0, run.t_end, 201), progress=progress)
+        y0 = model_core.spin_free_initial_state(*main[:3])
+        self.study(results, self._model(main), y0, np.linspace(0.0, run.t_end, 201),
+                   progress=progress)
         return results
 
     def _simulate_start(self, start: Start, progress=None):
@@ -404,13 +410,18 @@ class HeavyTopScene(Scene):
         case = theory.classify(r, c)
         period = theory.nutation_period(r, c)
         precession = theory.precession_per_period(r, c)
-        (model,) = self.models()
-        y0 = model_core.initial_state(*start)
+        y0 = model_core.spin_free_initial_state(*start[:3])
         t = np.linspace(0.0, run.t_end, run.samples)
         scales = self._scales(start, c)
-        raw = self.integrate(model, y0, t, invariants=lambda _t, y: self._invariants(y),
+
+        def body(t_, y):
+            return model_core.body_state(t_, y, start.omega3)
+
+        raw = self.integrate(self._model(start), y0, t,
+                             invariants=lambda t_, y: self._invariants(body(t_, y)),
                              invariant_scales=scales, progress=progress,
                              n_periods=run.t_end / period if math.isfinite(period) else None)
+        raw.y = body(raw.t, raw.y)  # the archived state: body quaternion and ω
         main, motion = self._derived_run(raw)
 
         slow, fast = theory.steady_precession_rates(p.I1, p.I3, p.Mgl, start.theta, start.omega3)
@@ -680,12 +691,12 @@ class HeavyTopScene(Scene):
         t_end = sl.t_end or run.t_end
         t = np.linspace(0.0, t_end, 1001)
         ratios = np.array(sorted(sl.omega3_over_threshold), dtype=float)
-        model = model_core.model(p.I1, p.I3, p.Mgl)
         thetas, status = [], []
+        y0 = model_core.spin_free_initial_state(sl.tilt, 0.0, 0.0)
         for ratio in ratios:
-            y0 = model_core.initial_state(sl.tilt, 0.0, 0.0, ratio * self.threshold)
+            model = model_core.spin_free_model(p.I1, p.I3, p.Mgl, ratio * self.threshold)
             sol = integrators.integrate(model, y0, t, method="dop853", rtol=run.rtol, atol=run.atol)
-            thetas.append(kinematics.tilt_angle(sol.y[:, :4]))
+            thetas.append(kinematics.tilt_angle(sol.y[:, :4]))  # F' and the body share θ
             status.append(sol.status)
         thetas = np.array(thetas)
         return {

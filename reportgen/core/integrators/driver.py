@@ -118,7 +118,8 @@ def run_compiled(method: Method, model, y0, t_eval, rtol, atol, h, progress, max
         if over.size:
             i_end = int(over[0])
     n_chunks = _N_CHUNKS if (progress is not None and i_end > _N_CHUNKS) else 1
-    bounds = np.linspace(0, i_end, n_chunks + 1).round().astype(int)
+    bounds = ((0, i_end) if n_chunks == 1
+              else np.linspace(0, i_end, n_chunks + 1).round().astype(int))
     status = codes.OK
     for k in range(n_chunks):
         status = run.advance(int(bounds[k]), int(bounds[k + 1]))
