@@ -307,4 +307,6 @@ def run_bench(paths: list[str], out_dir: str = "output/bench", long_run: bool = 
     if long_run:
         long_time_energy(out_dir=Path(out_dir), print=print)
         kepler_against_rebound(print=print)
+        from .bench_nbody import pythagorean_against_rebound
+        pythagorean_against_rebound(print=print)
     return 0
