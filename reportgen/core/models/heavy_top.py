@@ -66,7 +66,7 @@ def model(I1: float, I3: float, Mgl: float) -> OdeModel:
 
 SPIN_FREE_COLUMNS = ("p_w", "p_x", "p_y", "p_z", "Omega_1", "Omega_2")
 
-# params = (I1, I3, Mgl, omega3)
+# params = (I1, I3, Mgl, omega3, Mgl / I1, I3 omega3 / I1)
 
 
 @numba.njit(cache=True)
@@ -75,25 +75,26 @@ def spin_free_rhs(t, y, params, out):
     in F' axes.  Euler's equations in the frame F' (which turns at Ω, not at ω):
     I1 Ω̇ = τ' − Ω × L' with L' = I1 Ω + I3 ω3 e3, so I1 Ω̇1 = M g l g2 − I3 ω3 Ω2 and
     I1 Ω̇2 = −M g l g1 + I3 ω3 Ω1 (g: the space vertical in F' axes)."""
-    i1, i3, mgl, w3 = params[0], params[1], params[2], params[3]
+    torque, spin = params[4], params[5]  # M g l / I1 and I3 ω3 / I1: one division per call
     pw, px, py, pz = y[0], y[1], y[2], y[3]
     o1, o2 = y[4], y[5]
-    n2 = pw * pw + px * px + py * py + pz * pz
-    g1 = 2.0 * (px * pz - pw * py) / n2
-    g2 = 2.0 * (py * pz + pw * px) / n2
+    two_over_n2 = 2.0 / (pw * pw + px * px + py * py + pz * pz)
+    g1 = (px * pz - pw * py) * two_over_n2
+    g2 = (py * pz + pw * px) * two_over_n2
     out[0] = -0.5 * (px * o1 + py * o2)
     out[1] = 0.5 * (pw * o1 - pz * o2)
     out[2] = 0.5 * (pw * o2 + pz * o1)
     out[3] = 0.5 * (px * o2 - py * o1)
-    spin = i3 * w3
-    out[4] = (mgl * g2 - spin * o2) / i1
-    out[5] = (spin * o1 - mgl * g1) / i1
+    out[4] = torque * g2 - spin * o2
+    out[5] = spin * o1 - torque * g1
 
 
 def spin_free_model(I1: float, I3: float, Mgl: float, omega3: float) -> OdeModel:
-    """The top in the non-spinning frame F', state ``(p_w, p_x, p_y, p_z, Ω1, Ω2)``."""
+    """The top in the non-spinning frame F', state ``(p_w, p_x, p_y, p_z, Ω1, Ω2)``;
+    params ``(I1, I3, Mgl, ω3, Mgl/I1, I3 ω3/I1)`` (the last two are what the equations use)."""
     return OdeModel(name="heavy_top_spin_free", columns=SPIN_FREE_COLUMNS, rhs=spin_free_rhs,
-                    params=np.array([I1, I3, Mgl, omega3], dtype=np.float64))
+                    params=np.array([I1, I3, Mgl, omega3, Mgl / I1, I3 * omega3 / I1],
+                                    dtype=np.float64))
 
 
 def spin_free_initial_state(theta, theta_dot, phi_dot):
