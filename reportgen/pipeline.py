@@ -340,14 +340,15 @@ def _preload(scenes, formats) -> None:
     seconds each on imports, and two children never compile the same driver at once.
 
     On a cold numba cache the drivers take seconds to compile: two forked helpers compile
-    them into the disk cache (one the explicit, one the implicit and splitting drivers)
-    while this process imports the rest, then this process loads them from the cache."""
+    them into the disk cache (one the written-out DOP853 and the splitting driver, the other
+    the generic explicit, fixed-step and implicit ones: about equal compile times) while
+    this process imports the rest, then this process loads them from the cache."""
     import importlib
 
     import reportgen.core.integrators  # noqa: F401 - numba, before the helpers fork
 
     ctx = get_context("fork")
-    groups = (("dop853", "rk4"), ("gauss4", "verlet"))
+    groups = (("dop853", "verlet"), ("rk45", "rk4", "gauss4"))
     from .core.integrators.driver import warm_up
 
     helpers = [ctx.Process(target=warm_up, args=(group,), daemon=True) for group in groups]

@@ -228,7 +228,8 @@ def _unit_kick(q, params, out):
 
 
 #: one method per compiled driver (the rest share these drivers)
-WARM_UP_METHODS = {"dop853": {"rtol": 1e-6, "atol": 1e-8}, "rk4": {"h": 0.05},
+WARM_UP_METHODS = {"dop853": {"rtol": 1e-6, "atol": 1e-8}, "rk45": {"rtol": 1e-6, "atol": 1e-8},
+                   "rk4": {"h": 0.05},
                    "verlet": {"h": 0.05}, "gauss4": {"h": 0.05}}
 
 
