@@ -110,7 +110,7 @@ class Method:
     symmetric: bool = False
     #: a scipy solver run for comparison in the study (not offered by ``auto``)
     peer: bool = False
-    #: a numba kernel driven by :func:`~.driver.run_compiled` (else the method's ``solve``)
+    #: a numba kernel driven by :func:`~.compiled_run.run_compiled` (else the method's ``solve``)
     compiled: bool = True
 
     def check(self, model) -> None:

@@ -60,7 +60,7 @@ class SolverSpec:
         ``"auto"`` or a key of ``METHODS``.
     rtol, atol : float
         Tolerances of adaptive methods (and the target of a fixed step left to
-        :func:`~.driver.default_step`).
+        :func:`~.compiled_run.default_step`).
     h : float or None
         Step of fixed-step methods; None lets the driver choose.
     max_steps : int

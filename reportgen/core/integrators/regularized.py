@@ -52,12 +52,24 @@ STEP_CONSTANT = 0.36
 MIN_STEPS_PER_ORBIT = 16
 #: fictitious-time steps of the first pass kept at once (bounds the memory of long runs)
 CHUNK_STEPS = 100_000
+#: gauss6's step budget per run (as the policy's default)
+DEFAULT_MAX_STEPS = 10_000_000
 
 
 def steps_per_orbit(rtol: float, eccentricity: float) -> int:
     """N steps per orbit for a position error per orbit of ≈ ``rtol`` · a."""
     speed = math.sqrt((1.0 + eccentricity) / (1.0 - eccentricity))
     return max(MIN_STEPS_PER_ORBIT, math.ceil((STEP_CONSTANT * speed / rtol) ** (1.0 / 6.0)))
+
+
+def _gauss6(reg, state, s, ds, progress=None) -> Solution:
+    """(LC) from ``state`` at s[0] to the fictitious times ``s`` with gauss6, steps ≤ ``ds``."""
+    from .compiled_run import run_compiled
+    from .symplectic import Gauss6
+
+    return run_compiled(Gauss6(), reg, np.ascontiguousarray(state, dtype=np.float64),
+                        np.ascontiguousarray(s, dtype=np.float64), 0.0, 0.0, ds, progress,
+                        DEFAULT_MAX_STEPS)
 
 
 class LeviCivita(Method):
@@ -77,7 +89,6 @@ class LeviCivita(Method):
         # imported here: listing the methods imports no numba (see integrators/__init__)
         from ..models import kepler
         from ..models import kepler_regularized as lc
-        from .driver import integrate
 
         gm = float(model.extra["kepler_gm"])
         energy = lc.specific_energy(*y0, gm)
@@ -97,9 +108,8 @@ class LeviCivita(Method):
                                   time.perf_counter() - t0, rtol, atol)
         # second pass: gauss6 straight to each output's s (steps ≤ ds), so every output is
         # a state of the method itself, invariant at round-off; then the tiny shift to t
-        second = integrate(reg, state0, s_out, method="gauss6", h=ds,
-                           progress=None if progress is None else
-                           (lambda f: progress(0.5 + 0.5 * f)))
+        second = _gauss6(reg, state0, s_out, ds, progress=None if progress is None else
+                         (lambda f: progress(0.5 + 0.5 * f)))
         x, y, vx, vy, _ = lc.from_regularized(lc.shift_to_times(second.y, t_eval, energy))
         Y = np.column_stack([x, y, vx, vy])
         Y[0] = y0  # t_eval[0] is the start: y0 exactly, as every method returns it
@@ -112,7 +122,6 @@ class LeviCivita(Method):
         chunks; the s of each output (:func:`~.kepler_regularized.fictitious_times`) and
         the last chunk's run (with every chunk's counters added)."""
         from ..models import kepler_regularized as lc
-        from .driver import integrate
 
         # t(s) − t0 ≥ T (s/s_orbit − e/π) (Kepler's equation, E ∝ s): steps to t_end
         span = float(t_eval[-1] - t_eval[0])
@@ -123,7 +132,7 @@ class LeviCivita(Method):
         s_out = np.empty(t_eval.size)
         done, s0, state, counts = 0, 0.0, state0, np.zeros(3)
         while done < t_eval.size:
-            sol = integrate(reg, state, np.arange(chunk + 1) * ds, method="gauss6", h=ds)
+            sol = _gauss6(reg, state, np.arange(chunk + 1) * ds, ds)
             counts += (sol.nfev, sol.nsteps, sol.compile_time_s)
             if not sol.ok:
                 break
