@@ -35,7 +35,8 @@ ADAPTIVE_COMPILED = [n for n, m in METHODS.items() if m.compiled and m.adaptive]
 EXPLICIT_COMPILED = [n for n, m in METHODS.items() if m.compiled and not m.implicit]
 SYMMETRIC = [n for n, m in METHODS.items() if m.symmetric]
 GAUSS = [n for n, m in METHODS.items() if m.implicit and m.symplectic]
-GENERAL = [n for n, m in METHODS.items() if not m.needs_separable]  # fit any model
+GENERAL = [n for n, m in METHODS.items()
+           if not m.needs_separable and not m.needs_kepler]  # fit any model
 
 
 @numba.njit(cache=True)

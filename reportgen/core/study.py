@@ -265,10 +265,11 @@ def work_precision(model, y0, t_eval, reference=None, methods=None, tolerances=N
     y0 = np.asarray(y0, dtype=np.float64)
     t_eval = np.asarray(t_eval, dtype=np.float64)
     tolerances = sorted(DEFAULT_TOLERANCES if tolerances is None else tolerances, reverse=True)
-    if methods is None:
+    if methods is None:  # a method for one force law only (levi_civita) is not "skipped"
         methods = [n for n, m in METHODS.items()
-                   if n != "radau" and not (m.needs_separable and model.separable is None)]
-    skipped = [n for n in methods if METHODS[n].needs_separable and model.separable is None]
+                   if n != "radau" and not (m.needs_separable and model.separable is None)
+                   and (not m.needs_kepler or m.fits(model))]
+    skipped = [n for n in methods if not METHODS[n].fits(model)]
     methods = [n for n in methods if n not in skipped]
     if steps is None and any(not METHODS[n].adaptive for n in methods):
         steps = default_steps(model, y0, t_eval)

@@ -78,6 +78,17 @@ class CentralForceConfig(SceneConfig):
         if L == 0.0:
             raise ValueError("initial.x, initial.y, initial.vx, initial.vy: zero angular "
                              "momentum (r ∥ v): a radial orbit that ends in a collision")
+        if self.run.method == "levi_civita":
+            # the regularization is of the 1/r potential's bound orbits (core/integrators/
+            # regularized.py): refused here, before anything runs, for any other
+            if p.potential != "kepler":
+                raise ValueError(f"run.method: \"levi_civita\" integrates only the "
+                                 f"inverse-square force, params.potential = \"kepler\" "
+                                 f"(got potential {p.potential!r})")
+            energy = 0.5 * mu * (ini.vx**2 + ini.vy**2) - p.k / math.hypot(ini.x, ini.y)
+            if energy >= 0.0:
+                raise ValueError(f"run.method: \"levi_civita\" needs a bound orbit, E < 0 "
+                                 f"(got E = {energy:.6g} J)")
         if p.potential == "kepler_inverse_cube" and L**2 <= 2.0 * mu * p.epsilon:
             raise ValueError(f"params.epsilon: L² ≤ 2 μ ε (L² = {L**2:.6g}, 2με = "
                              f"{2 * mu * p.epsilon:.6g}): the orbit spirals into the centre")

@@ -3,8 +3,8 @@
 Subclass contract
 -----------------
 1. Set the class attributes ``name``, ``label``, ``order`` and the capability flags
-   (``adaptive``, ``symplectic``, ``implicit``, ``needs_separable``, ``symmetric``,
-   ``peer``, ``compiled``).  Flags are data: tests and the study select methods by them.
+   (``adaptive``, ``symplectic``, ``implicit``, ``needs_separable``, ``needs_kepler``,
+   ``symmetric``, ``peer``, ``compiled``).  Flags are data: tests and the study select methods by them.
 2. Compiled methods implement ``start(kern, model, y0, t_eval, Y, rtol, atol, h)``
    (``kern``: the drivers bound to the model, :func:`.kernels.kernels_for`) returning a
    :class:`Run` whose ``advance(i0, i1)`` fills ``Y[i0:i1]`` and returns a status code
@@ -104,10 +104,13 @@ class Method:
     symplectic: bool = False
     implicit: bool = False
     needs_separable: bool = False
+    #: integrates only the pure inverse-square force: the model declares
+    #: ``extra["kepler_gm"]`` = GM (:func:`reportgen.core.models.kepler.model`)
+    needs_kepler: bool = False
     symmetric: bool = False
     #: a scipy solver run for comparison in the study (not offered by ``auto``)
     peer: bool = False
-    #: a numba kernel driven by :func:`~.driver.run_compiled` (else the method's ``solve``)
+    #: a numba kernel driven by :func:`~.compiled_run.run_compiled` (else the method's ``solve``)
     compiled: bool = True
 
     def check(self, model) -> None:
@@ -116,6 +119,19 @@ class Method:
                 f"method '{self.name}' needs a separable Hamiltonian H = T(p) + V(q); "
                 f"model '{model.name}' has none"
             )
+        if self.needs_kepler and "kepler_gm" not in model.extra:
+            raise MethodMismatch(
+                f"method '{self.name}' needs the pure inverse-square force V = −k/r (its "
+                f"regularization holds for no other); model '{model.name}' is not one"
+            )
+
+    def fits(self, model) -> bool:
+        """Whether :meth:`check` accepts ``model``."""
+        try:
+            self.check(model)
+        except MethodMismatch:
+            return False
+        return True
 
     def __repr__(self) -> str:
         return f"<{type(self).__name__} {self.name!r} order={self.order}>"

@@ -1,154 +1,15 @@
-"""``integrate``: validation, compilation, chunking, progress, failures -> Solution."""
+"""``integrate``: look the method up, validate, and run it (compiled runs:
+:mod:`.compiled_run`)."""
 
 from __future__ import annotations
-
-import time
 
 import numba
 import numpy as np
 
 from ..model import OdeModel, Separable
-from . import compiled as codes
-from .base import Method, MethodMismatch, Solution, SolveCode
-from .explicit_rk import DOP853
-from .kernels import kernels_for
+from .base import MethodMismatch, Solution, SolveCode
+from .compiled_run import _validate, run_compiled
 from .registry import METHODS
-
-#: driver status codes (:mod:`.compiled`) -> how the run ended
-_CODE = {
-    codes.OK: SolveCode.OK,
-    codes.NONFINITE: SolveCode.NONFINITE,
-    codes.UNDERFLOW: SolveCode.STEP_UNDERFLOW,
-    codes.MAXSTEPS: SolveCode.MAX_STEPS,
-    codes.NEWTON: SolveCode.NEWTON,
-}
-_FAIL_REASON = {
-    SolveCode.NONFINITE: "the state or the right-hand side became non-finite (NaN or inf)",
-    SolveCode.STEP_UNDERFLOW: "step size underflow (h < 10 eps |t|)",
-    SolveCode.NEWTON: "the Newton iteration for the implicit stages did not converge "
-                      "(try a smaller h)",
-}
-_N_CHUNKS = 20
-_WARMED: set = set()
-
-
-def _validate(model, y0, t_eval):
-    y0 = np.ascontiguousarray(y0, dtype=np.float64)
-    t_eval = np.ascontiguousarray(t_eval, dtype=np.float64)
-    if y0.shape != (model.dim,):
-        raise ValueError(f"y0: expected shape ({model.dim},) for model '{model.name}', "
-                         f"got {y0.shape}")
-    if t_eval.ndim != 1 or t_eval.size < 1:
-        raise ValueError(f"t_eval: expected a 1-D array of output times, got shape "
-                         f"{t_eval.shape}")
-    if t_eval.size > 1 and not np.all(np.diff(t_eval) > 0):
-        raise ValueError("t_eval: expected strictly increasing times")
-    if not np.all(np.isfinite(y0)):
-        raise ValueError(f"y0: expected finite values, got {y0}")
-    return y0, t_eval
-
-
-def _compile(method: Method, kern, model, y0, t_eval) -> float:
-    """Compile (or load from the on-disk cache) the method's driver and the model's
-    callbacks it calls, by running it on a tiny problem; the seconds it took."""
-    key = (id(kern), type(method).__name__)
-    if key in _WARMED:
-        return 0.0
-    tiny = np.array([t_eval[0], t_eval[0] + 1e-9 * max(1.0, abs(t_eval[0]))])
-    Y = np.full((2, y0.size), np.nan)
-    t0 = time.perf_counter()
-    method.start(kern, model, y0, tiny, Y, 1e-3, 1e-6, tiny[1] - tiny[0], 100).advance(0, 2)
-    _WARMED.add(key)
-    return time.perf_counter() - t0
-
-
-def default_step(method: Method, kern, model, y0, t_eval, rtol) -> float:
-    """Fixed step for ``h=None``, from two short probes (a heuristic: pass ``h`` when it matters).
-
-    1. Time scale: the span Tp covered by 200 steps of DOP853 at rtol 1e-6 (or the
-       whole span if shorter).
-    2. Richardson: run the method over Tp with h1 = Tp/64 and h1/2; the error of the
-       h1 run is about |y_h1 - y_h1/2| / (1 - 2^-p).  Choose h so that this error over
-       Tp would be ``rtol * max(1, |y0|)``: like an adaptive method's rtol it bounds the
-       error per stretch of ~200 natural steps, not over arbitrarily long runs.
-    """
-
-    span = t_eval[-1] - t_eval[0]
-    whole = np.array([t_eval[0], t_eval[-1]])
-    scout = DOP853().start(kern, model, y0, whole, np.full((2, y0.size), np.nan), 1e-6, 1e-8,
-                           None, 200)
-    scout.advance(0, 2)
-    reached = float(scout.state[0]) - t_eval[0]
-    tp = span if not (0.0 < reached < span) else reached
-    h1 = tp / 64.0
-    probe = np.array([t_eval[0], t_eval[0] + tp])
-    ends = []
-    for h in (h1, h1 / 2):
-        Y = np.full((2, y0.size), np.nan)
-        # a failed probe (e.g. a non-finite Newton matrix) leaves Y[1] NaN
-        method.start(kern, model, y0, probe, Y, rtol, rtol, h).advance(0, 2)
-        ends.append(Y[1])
-    err = float(np.max(np.abs(ends[0] - ends[1]))) / (1.0 - 2.0 ** -method.order)
-    target = rtol * max(1.0, float(np.max(np.abs(y0))))
-    if not np.isfinite(err):
-        return h1 / 64.0
-    if err == 0.0:
-        return h1
-    h = h1 * (target / err) ** (1.0 / method.order)
-    return float(min(max(h, tp * 1e-9), tp / 4.0))
-
-
-def run_compiled(method: Method, model, y0, t_eval, rtol, atol, h, progress, max_steps):
-    kern = kernels_for(model)
-    compile_s = _compile(method, kern, model, y0, t_eval)
-    N, d = t_eval.size, y0.size
-    if not method.adaptive and h is None and N > 1:
-
-        compile_s += _compile(DOP853(), kern, model, y0, t_eval)  # the probe's scout
-        h = default_step(method, kern, model, y0, t_eval, rtol)  # not in wall_time_s
-    Y = np.full((N, d), np.nan)
-    t0 = time.perf_counter()
-    run = method.start(kern, model, y0, t_eval, Y, rtol, atol,
-                       None if method.adaptive else float(h if h is not None else 1.0),
-                       max_steps)
-    # fixed-step: stop at the output interval where the step budget runs out
-    i_end = N
-    if not method.adaptive:
-        over = np.nonzero(run.steps_before > max_steps)[0]
-        if over.size:
-            i_end = int(over[0])
-    n_chunks = _N_CHUNKS if (progress is not None and i_end > _N_CHUNKS) else 1
-    bounds = ((0, i_end) if n_chunks == 1
-              else np.linspace(0, i_end, n_chunks + 1).round().astype(int))
-    status = codes.OK
-    for k in range(n_chunks):
-        status = run.advance(int(bounds[k]), int(bounds[k + 1]))
-        if progress is not None:
-            progress(float(bounds[k + 1]) / N)
-        if status != codes.OK:
-            break
-    wall = time.perf_counter() - t0
-    if status == codes.OK and i_end < N:
-        status = codes.MAXSTEPS
-        run.t_fail = float(t_eval[i_end - 1])
-    counters = run.counters
-    code = _CODE[status]
-    if code is SolveCode.STEP_UNDERFLOW and not run.last_trial_finite():
-        code = SolveCode.NONFINITE  # the step collapsed because every trial gave NaN/inf
-    message = "ok"
-    if code is not SolveCode.OK:
-        reason = _FAIL_REASON.get(code, f"max_steps = {max_steps} exceeded")
-        bad = ~np.all(np.isfinite(Y), axis=1)
-        last = int(np.argmax(bad)) - 1 if bad.any() else N - 1
-        message = (f"{method.name} failed at t = {run.t_fail:.6g}: {reason}; "
-                   f"outputs valid up to t = {t_eval[max(last, 0)]:.6g}")
-        if code is SolveCode.STEP_UNDERFLOW and run.__dict__.get("y") is not None:
-            message += f" (|y| = {np.max(np.abs(run.y)):.3g}; the solution may blow up)"
-    return Solution(
-        t=t_eval.copy(), y=Y, method=method.name, rtol=float(rtol), atol=float(atol),
-        h=None if method.adaptive else run.h_used, nfev=int(counters[0]),
-        nsteps=int(counters[1]), nreject=int(counters[2]), code=code, message=message,
-        wall_time_s=wall, compile_time_s=compile_s)
 
 
 def integrate(model, y0, t_eval, method: str = "dop853", rtol: float = 1e-10,

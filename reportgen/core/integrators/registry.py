@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from .base import Method
 from .explicit_rk import DOP853, RK4, RK45
+from .regularized import LeviCivita
 from .scipy_peer import RadauFallback, ScipyDOP853, ScipyLSODA, ScipyRadau, ScipyRK45
 from .symplectic import Gauss4, Gauss6, Verlet, Yoshida4, Yoshida6, Yoshida8
 
@@ -13,6 +14,7 @@ METHODS: dict[str, Method] = {
         DOP853(), RK45(), RK4(),
         Verlet(), Yoshida4(), Yoshida6(), Yoshida8(),
         Gauss4(), Gauss6(),
+        LeviCivita(),
         RadauFallback(),
         ScipyRK45(), ScipyDOP853(), ScipyLSODA(), ScipyRadau(),
     )

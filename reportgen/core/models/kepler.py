@@ -71,9 +71,11 @@ def kick(q, params, out):
 
 def model(k: float, mu: float, n: float = 1.0, epsilon: float = 0.0) -> OdeModel:
     """Relative motion r̈ = −∇V(r)/μ for V = −k/rⁿ − ε/r², state (x, y, vx, vy)."""
+    # the inverse-square force offers GM = k/μ to the Levi-Civita method (levi_civita)
+    extra = {"kepler_gm": k / mu} if n == 1.0 and epsilon == 0.0 else {}
     return OdeModel(name="central force", columns=("x", "y", "vx", "vy"), rhs=rhs,
                     params=np.array([k * n / mu, float(n), 2.0 * epsilon / mu]),
-                    separable=Separable(n=2, drift=drift, kick=kick))
+                    separable=Separable(n=2, drift=drift, kick=kick), extra=extra)
 
 
 # --------------------------------------------------------------------- potentials
