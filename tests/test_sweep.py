@@ -173,7 +173,8 @@ def test_sweep_is_part_of_the_physics_key(write_config):
     key = [load_scene(parse_config_text(t)).physics_key() for t in (base, other)]
     assert key[0] != key[1]
     resolved = load_scene(parse_config_text(base)).resolved_config()["sweep"]
-    assert resolved == {"initial.theta": [0.5, 1.0], "zip": False, "store": 5, "block": 0}
+    assert resolved == {"initial.theta": [0.5, 1.0], "zip": False, "store": 5, "block": 0,
+                        "max_points": 2000}
     spec, problems = parse_sweep(resolved, "f.toml")  # itself a valid table
     assert problems == [] and spec.resolved() == resolved
 
