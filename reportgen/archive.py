@@ -23,7 +23,11 @@ Layout (``format_version`` 2, see SPEC.md "Archive")::
     /sweep                    a family of runs ([sweep], see reportgen.sweep), on the
                               dimension scale /sweep/member: status, message (M,) strings,
                               values/<config path>, analysis/<result> (M,) float64,
-                              labels/<result> (M,) strings
+                              labels/<result> (M,) strings; points/<set>/ (only for a
+                              kind giving per-member point sets): its own dimension scale
+                              ``point`` (P,), member (P,) int64, one (P,) float64 per
+                              column (a (P, d) column also on the scale ``component``),
+                              attrs what the points are and ``max_points``
 
 Every array is stored with the fletcher32 checksum, so a corrupted chunk raises
 on read instead of returning wrong numbers.  Writes go to a temporary file in
@@ -218,6 +222,32 @@ def _write_sweep(g: h5py.Group, sweep) -> None:
             ds.dims[0].attach_scale(member)
     for key, value in sweep.attrs.items():
         g.attrs[key] = attr_value(value)
+    if sweep.points:
+        points = g.create_group("points")
+        for name, pset in sweep.points.items():
+            _write_points(points.create_group(name), pset)
+
+
+def _write_points(g: h5py.Group, pset) -> None:
+    """One point set flat on its own dimension ``point`` (and ``component`` for (P, d)
+    columns), so that ``xarray.open_dataset(path, group="sweep/points/<set>",
+    engine="h5netcdf")`` shows named dimensions; ``member`` is a variable on ``point``."""
+    point = dataset(g, "point", np.arange(len(pset.member), dtype=np.int64))
+    point.make_scale("point")
+    component = None
+    if pset.components:
+        component = g.create_dataset("component", data=np.array(pset.components, dtype=object),
+                                     dtype=STR)
+        component.make_scale("component")
+    member = dataset(g, "member", np.asarray(pset.member, dtype=np.int64))
+    member.dims[0].attach_scale(point)
+    for name, values in pset.columns.items():
+        ds = dataset(g, name, np.asarray(values, dtype=np.float64))
+        ds.dims[0].attach_scale(point)
+        if ds.ndim == 2 and component is not None:
+            ds.dims[1].attach_scale(component)
+    for key, value in pset.attrs.items():
+        g.attrs[key] = attr_value(value)
 
 
 def _write_run(g: h5py.Group, run: RunRecord) -> None:
@@ -356,7 +386,18 @@ def _read_sweep(g: h5py.Group):
                 for k, ds in g.get("labels", {}).items()},
         status=np.array(decode(g["status"][()]), dtype=object),
         message=np.array(decode(g["message"][()]), dtype=object),
-        attrs=attrs)
+        attrs=attrs,
+        points={k: _read_points(p) for k, p in g.get("points", {}).items()})
+
+
+def _read_points(g: h5py.Group):
+    from .sweep import PointSet
+
+    skip = {"point", "member", "component"}
+    return PointSet(columns={k: ds[()] for k, ds in g.items() if k not in skip},
+                    member=g["member"][()],
+                    components=tuple(decode(g["component"][()])) if "component" in g else (),
+                    attrs={k: decode(v) for k, v in g.attrs.items()})
 
 
 @dataclass(frozen=True)

@@ -19,11 +19,19 @@ The archive holds the family (dimension ``member``)::
     /sweep/labels/<name>       (M,) each text result (the heavy top's case, say)
     /sweep/status              (M,) "ok", or why the member has no result
     /sweep/message             (M,) what went wrong, if anything
+    /sweep/points/<set>/...    per-member point sets of varying length (a Poincaré
+                               section's crossings), flat on the dimension ``point``:
+                               ``member`` (P,) int64 and one array per column
     /runs/member_<i>           the whole run of the ``store`` members kept
+
+A kind may return per-member point sets (:meth:`reportgen.scenes.base.Scene.member_points`);
+each member keeps at most ``max_points`` points of each set (default 2000, the first ones),
+and its result ``<set>_points`` counts all it had, so a report can say what was capped.
 
 Members run in blocks; each finished block is kept on disk next to the archive (in
 ``.sweep-<key>/``), so a sweep killed half-way resumes at its first unfinished block.
-Memory stays bounded by the per-member scalars, never by trajectories.
+Memory stays bounded by the per-member scalars and the capped point sets, never by
+trajectories.
 """
 
 from __future__ import annotations
@@ -44,14 +52,17 @@ import numpy as np
 from .config import ConfigError, _short
 from .fsutil import temp_name
 
-__all__ = ["SweepSpec", "SweepData", "parse_sweep", "run_sweep", "member_data"]
+__all__ = ["SweepSpec", "SweepData", "PointSet", "parse_sweep", "run_sweep", "member_data"]
 
 #: keys of a range value; the others of [sweep] that are not swept config paths
 RANGE_KEYS = frozenset({"start", "stop", "num", "spacing"})
-OPTIONS = frozenset({"zip", "store", "block"})
+OPTIONS = frozenset({"zip", "store", "block", "max_points"})
 MAX_MEMBERS = 10_000_000
 MAX_STORE = 50
 DEFAULT_STORE = 5
+#: points of each point set kept per member (its first ones), and the most a config may ask
+DEFAULT_MAX_POINTS = 2000
+LIMIT_MAX_POINTS = 1_000_000
 #: longer text results of a member (a reference's description, say) are not kept
 MAX_LABEL = 40
 #: a member's short numeric arrays (a spectrum) become one result per element
@@ -97,6 +108,7 @@ class SweepSpec:
     zip: bool = False
     store: int = DEFAULT_STORE
     block: int = 0  # members per block; 0: chosen by size
+    max_points: int = DEFAULT_MAX_POINTS  # points of each point set kept per member
 
     @property
     def shape(self) -> tuple[int, ...]:
@@ -135,7 +147,7 @@ class SweepSpec:
         """The table as JSON, itself a valid ``[sweep]`` table (paths as dotted keys,
         ranges stay ranges, options filled in): part of the physics key."""
         return {**{a.path: a.resolved() for a in self.axes}, "zip": self.zip,
-                "store": self.store, "block": self.block}
+                "store": self.store, "block": self.block, "max_points": self.max_points}
 
 
 def _flatten(table: dict, prefix: str = "") -> list[tuple[str, Any]]:
@@ -178,6 +190,11 @@ def parse_sweep(table: Any, label: str) -> tuple[SweepSpec | None, list[str]]:
     block = table.get("block", 0)
     if not isinstance(block, int) or isinstance(block, bool) or block < 0:
         bad("block", "must be a whole number of members per block (0: automatic)", block)
+    max_points = table.get("max_points", DEFAULT_MAX_POINTS)
+    if not isinstance(max_points, int) or isinstance(max_points, bool) \
+            or not 0 <= max_points <= LIMIT_MAX_POINTS:
+        bad("max_points", f"must be a whole number of points kept per member, from 0 to "
+                          f"{LIMIT_MAX_POINTS}", max_points)
     axes = []
     for path, value in _flatten(table):
         if isinstance(value, list):
@@ -217,7 +234,8 @@ def parse_sweep(table: Any, label: str) -> tuple[SweepSpec | None, list[str]]:
             table)
     if problems:
         return None, problems
-    spec = SweepSpec(axes=tuple(axes), zip=zip_, store=store, block=block)
+    spec = SweepSpec(axes=tuple(axes), zip=zip_, store=store, block=block,
+                     max_points=max_points)
     if zip_ and len({a.size for a in axes}) > 1:
         bad("zip", "paired keys need the same number of values",
             {a.path: a.size for a in axes})
@@ -256,6 +274,57 @@ def corner_members(spec: SweepSpec) -> list[dict[str, float]]:
 
 
 @dataclass
+class PointSet:
+    """Points of a varying number per member (a surface of section's crossings), flat:
+    row k belongs to member ``member[k]``; ``/sweep/points/<set>`` of the archive.
+
+    Attributes
+    ----------
+    columns : dict of str -> ndarray, shape (P,) or (P, d)
+        One array per quantity, rows in the member's own order (time, say).
+    member : ndarray of int64, shape (P,)
+        The member each row belongs to (in a block, counted from the block's first).
+    components : tuple of str, length d
+        Names of the second axis of the (P, d) columns (a state's columns), if any.
+    attrs : dict
+        What the points are (strings, numbers, lists of strings): the same for every
+        member, taken from the first member that has the set.
+    """
+
+    columns: dict[str, np.ndarray]
+    member: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    components: tuple[str, ...] = ()
+    attrs: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def rows(self) -> int:
+        return len(next(iter(self.columns.values()))) if self.columns else 0
+
+    def of_member(self, i: int, limit: int) -> PointSet:
+        """The first ``limit`` rows, all given to member ``i``."""
+        n = min(self.rows, limit)
+        return PointSet({k: np.asarray(v)[:n] for k, v in self.columns.items()},
+                        np.full(n, i, dtype=np.int64), tuple(self.components), dict(self.attrs))
+
+    def counts(self, members: int) -> np.ndarray:
+        """(members,) the number of rows each member has."""
+        return np.bincount(np.asarray(self.member, dtype=np.int64), minlength=members)
+
+    @staticmethod
+    def concat(sets: list[PointSet], offsets: list[int] | None = None) -> PointSet:
+        """One set of the rows of ``sets`` in turn, their members shifted by ``offsets``."""
+        offsets = offsets if offsets is not None else [0] * len(sets)
+        names = dict.fromkeys(k for s in sets for k in s.columns)
+        first = next((s for s in sets if s.attrs or s.components), sets[0])
+        return PointSet(
+            {k: np.concatenate([np.asarray(s.columns[k], dtype=np.float64) for s in sets
+                                if k in s.columns]) for k in names},
+            np.concatenate([np.asarray(s.member, dtype=np.int64) + o
+                            for s, o in zip(sets, offsets, strict=True)]),
+            tuple(first.components), dict(first.attrs))
+
+
+@dataclass
 class SweepBlock:
     """What a kind's ``sweep_block`` returns for members ``lo:hi``."""
 
@@ -263,6 +332,8 @@ class SweepBlock:
     status: np.ndarray  # (n,) str
     message: np.ndarray | None = None  # (n,) str
     labels: dict[str, np.ndarray] = field(default_factory=dict)  # text results, (n,) str
+    #: per-member point sets, members counted from the block's first
+    points: dict[str, PointSet] = field(default_factory=dict)
 
 
 @dataclass
@@ -275,6 +346,8 @@ class SweepData:
     status: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=object))
     message: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=object))
     attrs: dict[str, Any] = field(default_factory=dict)
+    #: per-member point sets of varying length (``/sweep/points``)
+    points: dict[str, PointSet] = field(default_factory=dict)
 
     @property
     def size(self) -> int:
@@ -293,6 +366,12 @@ def _save_block(path: Path, block: SweepBlock) -> None:
     """One finished block, written whole under a temporary name, then renamed."""
     arrays = {f"analysis/{k}": np.asarray(v, dtype=np.float64) for k, v in block.analysis.items()}
     arrays.update({f"labels/{k}": np.asarray(v, dtype=str) for k, v in block.labels.items()})
+    for name, points in block.points.items():
+        arrays[f"points/{name}/member"] = np.asarray(points.member, dtype=np.int64)
+        arrays[f"points/{name}/components"] = np.asarray(points.components, dtype=str)
+        arrays[f"points/{name}/attrs"] = np.asarray(json.dumps(points.attrs))
+        arrays.update({f"points/{name}/columns/{k}": np.asarray(v, dtype=np.float64)
+                       for k, v in points.columns.items()})
     arrays["status"] = np.asarray(block.status, dtype=str)
     if block.message is not None:
         arrays["message"] = np.asarray(block.message, dtype=str)
@@ -310,9 +389,23 @@ def _load_block(path: Path) -> SweepBlock | None:
             analysis = {k.split("/", 1)[1]: z[k] for k in z.files if k.startswith("analysis/")}
             labels = {k.split("/", 1)[1]: z[k] for k in z.files if k.startswith("labels/")}
             return SweepBlock(analysis=analysis, status=z["status"], labels=labels,
-                              message=z["message"] if "message" in z.files else None)
+                              message=z["message"] if "message" in z.files else None,
+                              points=_load_points(z))
     except (OSError, ValueError, KeyError):
         return None  # unreadable: run the block again
+
+
+def _load_points(z) -> dict[str, PointSet]:
+    """The point sets of a saved block (``points/<set>/...`` entries of the npz)."""
+    names = dict.fromkeys(k.split("/")[1] for k in z.files if k.startswith("points/"))
+    points = {}
+    for name in names:
+        prefix = f"points/{name}/columns/"
+        points[name] = PointSet(
+            {k[len(prefix):]: z[k] for k in z.files if k.startswith(prefix)},
+            z[f"points/{name}/member"], tuple(str(c) for c in z[f"points/{name}/components"]),
+            json.loads(str(z[f"points/{name}/attrs"])))
+    return points
 
 
 def partial_folder(folder: Path, key: str) -> Path:
@@ -383,11 +476,18 @@ def run_sweep(spec: SweepSpec, run_block: Callable[[int, int, dict[str, np.ndarr
     status = np.concatenate([np.asarray(blk.status, dtype=str) for blk in blocks])
     message = np.concatenate([np.asarray(blk.message, dtype=str) if blk.message is not None
                               else np.full(len(blk.status), "") for blk in blocks])
+    points = {}
+    for name in dict.fromkeys(k for blk in blocks for k in blk.points):
+        having = [(blk.points[name], starts[b]) for b, blk in enumerate(blocks)
+                  if name in blk.points]
+        points[name] = PointSet.concat([p for p, _ in having], [lo for _, lo in having])
+        points[name].attrs["max_points"] = spec.max_points
     data = SweepData(values=values, analysis=analysis, labels=labels,
                      status=status.astype(object),
                      message=message.astype(object),
                      attrs={"paths": json.dumps(spec.paths), "shape": json.dumps(spec.shape),
-                            "zip": spec.zip, "block": block})
+                            "zip": spec.zip, "block": block},
+                     points=points)
     return data, resumed
 
 
@@ -397,15 +497,18 @@ def discard_partial(folder: Path, key: str) -> None:
 
 
 def generic_block(make_member: Callable[[dict[str, float]], Any], values: dict[str, np.ndarray],
-                  ) -> SweepBlock:
+                  points: Callable[[Any], dict[str, PointSet]] | None = None,
+                  max_points: int = DEFAULT_MAX_POINTS) -> SweepBlock:
     """Members run one by one as whole scenes (``make_member(assignments)`` builds one;
     its ``simulate`` is called): every number of their ``/analysis`` becomes a sweep
     result (a short array, such as a spectrum, one per element: ``name_1``, ``name_2``
-    ...), every short text a label.  The fallback of kinds without a compiled
-    ensemble."""
+    ...), every short text a label.  ``points(results)`` (optional) gives a member's point
+    sets: each keeps its first ``max_points`` rows, and the result ``<set>_points`` counts
+    all of them.  The fallback of kinds without a compiled ensemble."""
     n = len(next(iter(values.values())))
     rows: list[dict[str, float]] = []
     texts: list[dict[str, str]] = []
+    kept: dict[str, list[PointSet]] = {}
     status = np.full(n, OK, dtype=object)
     message = np.full(n, "", dtype=object)
     for i in range(n):
@@ -425,6 +528,9 @@ def generic_block(make_member: Callable[[dict[str, float]], Any], values: dict[s
                       and value.size <= MAX_SPREAD and value.dtype.kind in "fiub"):
                     for j, x in enumerate(value):  # frequencies -> frequencies_1, _2, ...
                         row[f"{name}_{j + 1}"] = float(x)
+            for name, found in (points(results) if points is not None else {}).items():
+                row[f"{name}_points"] = float(found.rows)
+                kept.setdefault(name, []).append(found.of_member(i, max_points))
             status[i] = OK if results.status == "ok" else results.status
             message[i] = results.message
         except ConfigError as exc:
@@ -438,4 +544,5 @@ def generic_block(make_member: Callable[[dict[str, float]], Any], values: dict[s
     label_names = dict.fromkeys(k for text in texts for k in text)
     labels = {k: np.array([text.get(k, "") for text in texts], dtype=object)
               for k in label_names}
-    return SweepBlock(analysis=analysis, status=status, message=message, labels=labels)
+    return SweepBlock(analysis=analysis, status=status, message=message, labels=labels,
+                      points={k: PointSet.concat(sets) for k, sets in kept.items()})

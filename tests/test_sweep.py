@@ -173,7 +173,8 @@ def test_sweep_is_part_of_the_physics_key(write_config):
     key = [load_scene(parse_config_text(t)).physics_key() for t in (base, other)]
     assert key[0] != key[1]
     resolved = load_scene(parse_config_text(base)).resolved_config()["sweep"]
-    assert resolved == {"initial.theta": [0.5, 1.0], "zip": False, "store": 5, "block": 0}
+    assert resolved == {"initial.theta": [0.5, 1.0], "zip": False, "store": 5, "block": 0,
+                        "max_points": 2000}
     spec, problems = parse_sweep(resolved, "f.toml")  # itself a valid table
     assert problems == [] and spec.resolved() == resolved
 
@@ -331,7 +332,8 @@ def test_kepler_family_period_against_eccentricity(write_config, tmp_path):
     assert 'id="kepler_family"' in html and "2 of 3" in html
 
 
-@pytest.mark.parametrize("name", ["pendulum_period_sweep", "heavy_top_spin_family"])
+@pytest.mark.parametrize("name", ["pendulum_period_sweep", "heavy_top_spin_family",
+                                  "hamiltonian_henon_heiles_section_family"])
 def test_every_broken_key_of_a_shipped_sweep_is_named(name, tmp_path, cli):
     """Each value of the resolved [sweep] table broken in turn (NaN for a number, 7 for a
     string or boolean), and an unknown key added to each of its tables: validate exits 2

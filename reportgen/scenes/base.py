@@ -43,6 +43,7 @@ The pipeline never special-cases a kind.
 
 from __future__ import annotations
 
+import fnmatch
 import hashlib
 import json
 import math
@@ -198,6 +199,9 @@ class Scene:
         Section("sweep_members", "Members kept whole",
                 description="The members whose whole run the archive keeps ([sweep] store)."),
     )
+    #: results of the members' analysis left out of the family's results figure (fnmatch
+    #: patterns): the kind's own bookkeeping and self-checks, noise against a swept value
+    SWEEP_HIDDEN_RESULTS: ClassVar[tuple[str, ...]] = ()
     #: the validated ``[sweep]`` table, if the config has one (set by ``__init__``)
     sweep: _sweep.SweepSpec | None
 
@@ -314,7 +318,15 @@ class Scene:
     def sweep_block(self, lo: int, hi: int, values: dict[str, np.ndarray]) -> _sweep.SweepBlock:
         """Members ``lo:hi`` of the sweep (``values``: their swept values).  Default: each
         member run as a whole scene; kinds with a compiled ensemble override it."""
-        return _sweep.generic_block(self.member, values)
+        return _sweep.generic_block(self.member, values, points=self.member_points,
+                                    max_points=self.sweep.max_points)
+
+    @staticmethod
+    def member_points(results: Results) -> dict[str, _sweep.PointSet]:
+        """A member's point sets of varying length from its results (a surface of
+        section's crossings), kept in ``/sweep/points/<set>`` for the family figures.
+        Default: none."""
+        return {}
 
     def sweep_min_block(self) -> int:
         """The fewest members per block of this sweep (see :meth:`SweepSpec.block_size`):
@@ -427,14 +439,22 @@ class Scene:
         return list(names)
 
     @classmethod
+    def held_family_sections(cls, data: ArchiveData) -> list[str]:
+        """The family sections this sweep's archive holds the data of (a kind drops those
+        whose results its members did not give).  Default: all, but the kept members only
+        if some were kept."""
+        return [f.name for f in cls.family_sections + cls.SWEEP_SECTIONS
+                if f.name != "sweep_members" or data.runs]
+
+    @classmethod
     def chosen_sections(cls, data: ArchiveData) -> list[Section]:
         """The configured sections, or the defaults, minus what the archive does not hold."""
         asked = data.config.report.sections
         if data.sweep is not None:
             family = cls.family_sections + cls.SWEEP_SECTIONS
             names = [n for n in asked if any(f.name == n for f in family)] if asked else None
-            return [f for f in family if (names is None or f.name in names)
-                    and (f.name != "sweep_members" or data.runs)]
+            held = cls.held_family_sections(data)
+            return [f for f in family if (names is None or f.name in names) and f.name in held]
         names = list(asked) if asked else cls.default_sections(data)
         if data.study is None:
             names = [n for n in names if n != "error_vs_runtime"]
@@ -490,7 +510,8 @@ class Scene:
             return not any(np.array_equal(v, np.abs(x[sweep.ok & np.isfinite(x)]))
                            or np.array_equal(v, x[sweep.ok & np.isfinite(x)]) for x in swept)
 
-        names = [n for n, v in sweep.analysis.items() if telling(np.asarray(v, dtype=float))]
+        names = [n for n, v in sweep.analysis.items() if telling(np.asarray(v, dtype=float))
+                 and not any(fnmatch.fnmatchcase(n, p) for p in cls.SWEEP_HIDDEN_RESULTS)]
         figures = []
         if names:
             fig = common_plots.sweep_results(sweep.values, {n: sweep.analysis[n] for n in names},

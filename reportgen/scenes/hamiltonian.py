@@ -22,7 +22,8 @@ from pydantic import Field, model_validator
 from ..config import Real, RunConfig, Strict
 from ..lazy import lazy_module
 from ..results import Check, Results
-from .base import Scene, SceneConfig, Section, SectionContent, Table, fmt, fmt_err
+from ..sweep import PointSet
+from .base import Scene, SceneConfig, Section, SectionContent, Table, fmt, fmt_err, member_text
 
 common_plots = lazy_module("reportgen.plots.common")
 plots = lazy_module("reportgen.plots.hamiltonian")
@@ -276,8 +277,20 @@ class HamiltonianScene(Scene):
         Section("error_vs_runtime", "Error against run time", integrates=True),
     )
 
+    family_sections = (
+        Section("poincare_family", "Surface of section from many orbits",
+                description="The crossings of every member's orbit on one surface of "
+                            "section, each orbit coloured by its swept value."),
+    )
+
+    SWEEP_HIDDEN_RESULTS = ("jacobi_*", "poisson_*_max", "legendre_*", "study_t_end")
+
     #: phase-portrait grid points per axis (one degree of freedom)
     PHASE_GRID = 241
+    #: grid points per axis of H on the surface of section (its allowed region's edge)
+    SECTION_GRID = 301
+    #: members of a sweep told apart by a legend; more get a colour bar
+    LEGEND_MEMBERS = 7
     #: fewest crossings for a surface of section to be shown without being asked for
     MIN_CROSSINGS = 20
     #: equations whose TeX is longer than this are not typeset (unreadably small)
@@ -672,17 +685,167 @@ class HamiltonianScene(Scene):
         vals = system.values(main.y, main.t)
         ydot = np.column_stack(numeric.evaluate_many(system.hamilton.rhs, vals,
                                                      shape=main.t.shape))
+        # every column at the crossings: the whole state there, u and v among them
         points = section_crossings(main.t, main.y, ydot, columns.index(s_col), value, direction,
-                                   [columns.index(c) for c in axes])
-        u, v = points[:, 1], points[:, 2]
+                                   list(range(len(columns))))
+        times, state = points[:, 0], points[:, 1:]
+        u, v = state[:, columns.index(axes[0])], state[:, columns.index(axes[1])]
         wrap = [name in a["angles"] for name in axes]
         if wrap[0]:
             u = _wrapped(u)
         if wrap[1]:
             v = _wrapped(v)
-        a["poincare"] = {"t": points[:, 0], "u": u, "v": v}
+        a["poincare"] = {"t": times, "u": u, "v": v, "state": state}
         a["poincare_surface"] = [s_col, f"{value!r}", direction]
         a["poincare_axes"] = axes
+        if not system.time_dependent and len(times):
+            # the crossings lie on the run's energy surface up to the interpolation error
+            H = numeric.evaluate(system.H, system.values(state, times))
+            a["poincare_H_error"] = float(np.max(np.abs(H - a["H0"])))
+
+    # ------------------------------------------------------------------ sweeps
+    @staticmethod
+    def member_points(results) -> dict[str, PointSet]:
+        """A member's crossings of the surface of section: time, the two plotted columns
+        (angles wrapped) and the whole state there."""
+        a = results.analysis
+        pts = a.get("poincare")
+        if pts is None:
+            return {}
+        surface, axes = a["poincare_surface"], a["poincare_axes"]
+        return {"poincare": PointSet(
+            columns={"t": pts["t"], "u": pts["u"], "v": pts["v"], "state": pts["state"]},
+            components=tuple(results.runs["main"].columns),
+            attrs={"surface": list(surface), "axes": list(axes)})}
+
+    def sweep_extras(self, sweep) -> dict:
+        """The edge of the section's allowed region when every member has one energy E:
+        H on a grid of the two plotted columns, the surface's coordinate at its value and
+        the remaining momentum zero (so the crossings lie inside H ≤ E there)."""
+        pts = sweep.points.get("poincare")
+        energy = self._family_energy(sweep)
+        system = self.system()
+        if pts is None or not len(pts.member) or energy is None or system.n != 2 \
+                or any(not p.startswith("initial.") for p in sweep.values):
+            return {}  # one H and one energy for all members, or no common edge
+        s_col, value, _ = pts.attrs["surface"]
+        axes = list(pts.attrs["axes"])
+        columns = list(system.columns)
+        rest = [c for c in columns if c not in (s_col, *axes)]
+        if len(rest) != 1 or rest[0] not in columns[system.n:] \
+                or set(axes) & set(self._angles(system)):
+            return {}  # the edge is where a momentum vanishes, in unwrapped columns
+
+        def span(x):
+            lo, hi = float(np.min(x)), float(np.max(x))
+            pad = 0.08 * max(hi - lo, 1e-9)
+            return np.linspace(lo - pad, hi + pad, self.SECTION_GRID)
+
+        gu, gv = span(pts.columns["u"]), span(pts.columns["v"])
+        U, V = np.meshgrid(gu, gv)
+        state = np.zeros((U.size, len(columns)))
+        state[:, columns.index(s_col)] = float(value)
+        state[:, columns.index(axes[0])] = U.ravel()
+        state[:, columns.index(axes[1])] = V.ravel()
+        H = numeric.evaluate(system.H, system.values(state, 0.0))
+        return {"poincare_edge": {"u": gu, "v": gv, "H": np.reshape(H, U.shape)},
+                "poincare_edge_energy": energy, "poincare_edge_momentum": rest[0]}
+
+    @staticmethod
+    def _family_energy(sweep) -> float | None:
+        """The members' common energy H(0), or None if they differ (beyond rounding)."""
+        h0 = np.asarray(sweep.analysis.get("H0", []), dtype=float)
+        h0 = h0[sweep.ok & np.isfinite(h0)] if h0.size else h0
+        if h0.size == 0 or np.ptp(h0) > 1e-12 * max(float(np.max(np.abs(h0))), 1.0):
+            return None
+        return float(np.median(h0))
+
+    def sweep_checks(self, sweep) -> list[Check]:
+        """The member whose H(0) is furthest from the configured energy (the left-out
+        momentum is solved for each member so that H = energy)."""
+        h0 = sweep.analysis.get("H0")
+        given = self.config.initial.get("energy")
+        energy = sweep.values.get("initial.energy")
+        if h0 is None or (given is None and energy is None):
+            return []
+        energy = energy if energy is not None else np.full(sweep.size, float(given))
+        gap = np.where(sweep.ok, np.abs(h0 - energy), np.nan)
+        if not np.any(np.isfinite(gap)):
+            return []
+        i = int(np.nanargmax(gap))
+        return [Check(f"H(0) of the member furthest from its energy ({member_text(sweep, i)})",
+                      float(h0[i]), float(energy[i]), "",
+                      "initial.energy (the left-out momentum solved so that H = energy)",
+                      scale=max(abs(float(energy[i])), 1e-300))]
+
+    @classmethod
+    def held_family_sections(cls, data):
+        names = super().held_family_sections(data)
+        pts = data.sweep.points.get("poincare")
+        if pts is None or not len(pts.member):
+            names.remove("poincare_family")
+        return names
+
+    @classmethod
+    def section_poincare_family(cls, data):
+        sweep, a = data.sweep, data.analysis
+        pts = sweep.points["poincare"]
+        s_col, value, direction = pts.attrs["surface"]
+        uname, vname = pts.attrs["axes"]
+        member = np.asarray(pts.member)
+        kept = pts.counts(sweep.size)
+        crossing = np.flatnonzero(kept)
+        paths = list(sweep.values)
+        if len(paths) == 1 or sweep.attrs.get("zip"):
+            key = paths[0]
+            colour = np.asarray(sweep.values[key], dtype=float)
+        else:  # a grid of several keys: the member's number keys its colour
+            key = "member"
+            colour = np.arange(sweep.size, dtype=float)
+        labels = ({int(i): member_text(sweep, int(i), short=True) for i in crossing}
+                  if len(crossing) <= cls.LEGEND_MEMBERS else None)
+        edge = a.get("poincare_edge")
+        fig = plots.poincare_family(
+            pts.columns["u"], pts.columns["v"], member, colour, uname, vname,
+            colour_label=key, labels=labels,
+            edge=None if edge is None else (edge["u"], edge["v"], edge["H"],
+                                            a["poincare_edge_energy"]),
+            edge_label=None if edge is None else
+            f"{a['poincare_edge_momentum']} = 0 on H = {fmt(a['poincare_edge_energy'], 6)}")
+        which = {"up": f"with {s_col} increasing", "down": f"with {s_col} decreasing",
+                 "both": "in either direction"}[direction]
+        total = np.asarray(sweep.analysis.get("poincare_points", kept), dtype=float)
+        capped = np.flatnonzero(sweep.ok & (total > kept))
+        facts = [("orbits", f"{len(crossing)} of {sweep.size} members cross the surface"),
+                 ("crossings drawn", f"{len(member)} ({int(kept[crossing].min())} to "
+                                     f"{int(kept[crossing].max())} per orbit)")]
+        h_error = sweep.analysis.get("poincare_H_error")
+        if h_error is not None and np.any(np.isfinite(h_error)):
+            facts.append(("max |H − H(0)| at the crossings, over the members",
+                          fmt_err(float(np.nanmax(h_error)))))
+        energy = cls._family_energy(sweep)
+        if energy is not None:
+            facts.append(("energy of every orbit", f"H = {fmt(energy, 12)}"))
+        notes = ["A regular (quasi-periodic) orbit crosses the surface on a closed curve: an "
+                 "island around a stable periodic orbit or a curve across the section; a "
+                 "chaotic orbit scatters over an area, the chaotic sea between the islands."]
+        if len(capped):
+            cap = int(pts.attrs.get("max_points", 0))
+            notes.append(f"Capped: the archive keeps the first {cap} crossings of each orbit; "
+                         f"{len(capped)} of the orbits had more (up to "
+                         f"{int(np.max(total[capped]))}). [sweep] max_points keeps more.")
+        missing = np.flatnonzero(sweep.ok & (kept == 0))
+        if len(missing):
+            notes.append(f"{len(missing)} member(s) did not cross the surface during the run: "
+                         + ", ".join(member_text(sweep, int(i), short=True)
+                                     for i in missing[:5]) + (" …" if len(missing) > 5 else ""))
+        caption = (f"Surface of section {s_col} = {value} crossed {which}: ({uname}, {vname}) "
+                   f"at the crossings of {len(crossing)} orbits, each orbit in its own colour "
+                   + (f"(keyed to {key})" if labels is None else "(legend)")
+                   + (f"; the closed curve: the edge of the allowed region, where "
+                      f"{a['poincare_edge_momentum']} = 0" if edge is not None else "") + ".")
+        return SectionContent(figures=[cls.figure("poincare_family", fig, caption)],
+                              facts=facts, notes=notes)
 
     # ------------------------------------------------------------------ report side
     @classmethod
@@ -900,9 +1063,10 @@ def _wrapped(angle):
 
 def section_crossings(t, y, ydot, column: int, value: float, direction: str,
                       axes: list[int]) -> np.ndarray:
-    """Rows (t, u, v) where ``y[:, column]`` crosses ``value``, with u, v the ``axes``
-    columns there; each crossing located by Newton on the cubic Hermite interpolant of the
-    interval (derivatives ``ydot``), u and v interpolated the same way."""
+    """Rows (t, u, v, ...) where ``y[:, column]`` crosses ``value``, with u, v, ... the
+    ``axes`` columns there; each crossing located by Newton on the cubic Hermite
+    interpolant of the interval (derivatives ``ydot``), the other columns interpolated the
+    same way.  Shape (crossings, 1 + len(axes))."""
     s = y[:, column] - value
     if direction == "up":
         idx = np.nonzero((s[:-1] < 0) & (s[1:] >= 0))[0]
@@ -933,6 +1097,6 @@ def section_crossings(t, y, ydot, column: int, value: float, direction: str,
         d = slope(column, x)
         step = np.where(d != 0, (hermite(column, x) - value) / np.where(d != 0, d, 1.0), 0.0)
         x = np.clip(x - step, 0.0, 1.0)
-    return np.column_stack([t[idx] + x * h, hermite(axes[0], x), hermite(axes[1], x)]) \
-        if len(idx) else np.empty((0, 3))
+    return np.column_stack([t[idx] + x * h, *(hermite(c, x) for c in axes)]) \
+        if len(idx) else np.empty((0, 1 + len(axes)))
 
