@@ -665,14 +665,24 @@ class Scene:
                                      progress=progress)
         except _integrators.MethodMismatch as exc:
             raise ConfigError([f"{self.source.label}: key 'run.method': {exc}"]) from None
+        return self.run_record(res, model.columns, invariants=invariants,
+                               invariant_scales=invariant_scales)
+
+    def run_record(self, res, columns, y: np.ndarray | None = None,
+                   invariants: Callable[[np.ndarray, np.ndarray], dict[str, np.ndarray]]
+                   | None = None, invariant_scales: dict[str, float] | None = None) -> RunRecord:
+        """The archived run of a solver-policy result (:class:`PolicyResult`): attrs, the
+        invariants and the stability verdict (see :meth:`integrate`).  ``y`` (N, len(columns))
+        replaces the solution's states when the integrated variables are not the archived
+        ones (a regularized formulation, converted back by the scene)."""
         sol = res.solution
-        inv = invariants(sol.t, sol.y) if invariants is not None else {}
+        y = sol.y if y is None else y
+        inv = invariants(sol.t, y) if invariants is not None else {}
         attrs = _solution_attrs(sol) | {
             "method_reason": res.reason, "solver_status": res.status.value,
             "status": res.status.verdict, "message": res.message}
-        record = RunRecord(t=sol.t, y=sol.y, columns=list(model.columns), invariants=inv,
-                           attrs=attrs)
-        _stability.assess_run(record, rtol=run.rtol, scales=invariant_scales)
+        record = RunRecord(t=sol.t, y=y, columns=list(columns), invariants=inv, attrs=attrs)
+        _stability.assess_run(record, rtol=self.config.run.rtol, scales=invariant_scales)
         for name, scale in (invariant_scales or {}).items():
             record.attrs[f"scale_{name}"] = float(scale)
         return record
@@ -683,15 +693,17 @@ class Scene:
         return _study.reference_run(model, y0, t_eval)
 
     def study(self, results: Results, model: OdeModel, y0, t_eval, reference=None,
-              progress: ProgressFn | None = None) -> None:
+              progress: ProgressFn | None = None, reference_kind: str = "exact") -> None:
         """Fill ``results.study`` with the error-against-run-time study, if this run wants
         it (:meth:`wants_study`).  scipy peers' rows come from the user cache when it
-        holds this problem (:mod:`reportgen.cache`); ours are measured every time."""
+        holds this problem (:mod:`reportgen.cache`); ours are measured every time.
+        ``reference_kind`` says what a given ``reference`` is (default: a closed form)."""
         if not self.wants_study():
             return
         result = _study.work_precision(model, y0, t_eval, reference=reference,
                                        progress=progress, cache=default_cache(),
-                                       budget_s=self.config.run.study_budget)
+                                       budget_s=self.config.run.study_budget,
+                                       reference_kind=reference_kind)
         results.study = result.to_records()
         results.study_attrs = {"reference_kind": result.reference_kind,
                                "budget_s": float(self.config.run.study_budget),
