@@ -642,6 +642,7 @@ class Scene:
         invariant_scales: dict[str, float] | None = None,
         method: str | None = None,
         method_reason: str | None = None,
+        fictitious_time: tuple[int, tuple[str, ...], Callable] | None = None,
     ) -> RunRecord:
         """Integrate ``model`` with the configured method and return the archived run.
 
@@ -654,12 +655,23 @@ class Scene:
         The choice, the stiffness switch and the failure verdict are the solver policy's
         (:func:`reportgen.core.integrators.solve`); its :class:`RunStatus` is archived as
         the run attr ``solver_status`` next to the overall ``status``.
+
+        ``fictitious_time`` = (index of the physical time in the state, archived columns,
+        ``convert``) for a regularized ``model`` integrated in its fictitious time
+        (:func:`reportgen.core.integrators.solve_fictitious_time`, outputs at the physical
+        times ``t_eval``); ``convert(states)`` gives the archived (N, len(columns)) array.
         """
         run = self.config.run
         if method is None:
             method, method_reason = run.method, "named in the config"
         spec = _integrators.SolverSpec(method=method, rtol=run.rtol, atol=run.atol, h=run.h,
                                        reason=method_reason or "chosen by the scene")
+        if fictitious_time is not None:
+            time_index, columns, convert = fictitious_time
+            res = _integrators.solve_fictitious_time(model, y0, t_eval, time_index, spec,
+                                                     spec.reason, progress=progress)
+            return self.run_record(res, columns, y=convert(res.solution.y),
+                                   invariants=invariants, invariant_scales=invariant_scales)
         try:
             res = _integrators.solve(model, y0, t_eval, spec, n_periods=n_periods,
                                      progress=progress)

@@ -131,7 +131,11 @@ class TwoCenterScene(Scene):
                 "separation_constant": core.separation_constant(*y.T, p.mu, p.a)}
 
     def models(self) -> list:
-        return [core.model(self.config.params.mu, self.config.params.a)]
+        """The model the run integrates: Cartesian, or regularized (:meth:`formulation`)."""
+        p = self.config.params
+        if self.formulation()[0] == "regularized":
+            return [regularized.initial_state(*self._y0(), p.mu, p.a)[0]]
+        return [core.model(p.mu, p.a)]
 
     def formulation(self) -> tuple[str, str]:
         """("cartesian" or "regularized", why): the config's choice, or auto's (see
@@ -154,16 +158,9 @@ class TwoCenterScene(Scene):
         why = "unbound orbit" if E >= 0 else f"{where} (≥ {CLOSE_APPROACH:g}·a)"
         return "cartesian", f"{why}: Cartesian coordinates"
 
-    def _integrate_regularized(self, t, reason, progress):
-        """The run in the regularized variables, archived in Cartesian columns."""
-        run, p = self.config.run, self.config.params
-        model, z0 = regularized.initial_state(*self._y0(), p.mu, p.a)
-        spec = integrators.SolverSpec(method=run.method, rtol=run.rtol, atol=run.atol)
-        res = integrators.solve_fictitious_time(model, z0, t, regularized.T_INDEX, spec,
-                                                reason, progress=progress)
-        x, y, vx, vy, _ = regularized.from_regularized(res.solution.y, p.a)
-        return self.run_record(res, core.COLUMNS, y=np.column_stack([x, y, vx, vy]),
-                               invariants=self._invariants, invariant_scales=self._scales())
+    def _cartesian(self, states):
+        """(N, 5) regularized states -> (N, 4) x, y, vx, vy."""
+        return np.column_stack(regularized.from_regularized(states, self.config.params.a)[:4])
 
     def _regularized_reference(self, t):
         """The orbit at ``t`` from the regularized variables at rtol 1e-14 (the study's
@@ -173,7 +170,7 @@ class TwoCenterScene(Scene):
         sol = integrators.solve_fictitious_time(
             model, z0, t, regularized.T_INDEX,
             integrators.SolverSpec(method="dop853", rtol=1e-14, atol=1e-16), "").solution
-        return np.column_stack(regularized.from_regularized(sol.y, p.a)[:4])
+        return self._cartesian(sol.y)
 
     def simulate(self, progress=None) -> Results:
         run, p = self.config.run, self.config.params
@@ -183,7 +180,13 @@ class TwoCenterScene(Scene):
         results = Results()
         formulation, reason = self.formulation()
         if formulation == "regularized":
-            main = self._integrate_regularized(t, reason, progress)
+            z0 = regularized.to_regularized(*y0, p.a)
+            main = self.integrate(model, z0, t, invariants=self._invariants,
+                                  invariant_scales=self._scales(), progress=progress,
+                                  method=run.method, method_reason=reason,
+                                  fictitious_time=(regularized.T_INDEX, core.COLUMNS,
+                                                   self._cartesian))
+            model = core.model(p.mu, p.a)  # the study compares Cartesian integrators
         else:
             main = self.integrate(model, y0, t, invariants=self._invariants,
                                   invariant_scales=self._scales(), progress=progress)
