@@ -663,6 +663,7 @@ class Scene:
         invariant_scales: dict[str, float] | None = None,
         method: str | None = None,
         method_reason: str | None = None,
+        fictitious_time: tuple[int, tuple[str, ...], Callable] | None = None,
     ) -> RunRecord:
         """Integrate ``model`` with the configured method and return the archived run.
 
@@ -675,25 +676,46 @@ class Scene:
         The choice, the stiffness switch and the failure verdict are the solver policy's
         (:func:`reportgen.core.integrators.solve`); its :class:`RunStatus` is archived as
         the run attr ``solver_status`` next to the overall ``status``.
+
+        ``fictitious_time`` = (index of the physical time in the state, archived columns,
+        ``convert``) for a regularized ``model`` integrated in its fictitious time
+        (:func:`reportgen.core.integrators.solve_fictitious_time`, outputs at the physical
+        times ``t_eval``); ``convert(states)`` gives the archived (N, len(columns)) array.
         """
         run = self.config.run
         if method is None:
             method, method_reason = run.method, "named in the config"
         spec = _integrators.SolverSpec(method=method, rtol=run.rtol, atol=run.atol, h=run.h,
                                        reason=method_reason or "chosen by the scene")
+        if fictitious_time is not None:
+            time_index, columns, convert = fictitious_time
+            res = _integrators.solve_fictitious_time(model, y0, t_eval, time_index, spec,
+                                                     spec.reason, progress=progress)
+            return self.run_record(res, columns, y=convert(res.solution.y),
+                                   invariants=invariants, invariant_scales=invariant_scales)
         try:
             res = _integrators.solve(model, y0, t_eval, spec, n_periods=n_periods,
                                      progress=progress)
         except _integrators.MethodMismatch as exc:
             raise ConfigError([f"{self.source.label}: key 'run.method': {exc}"]) from None
+        return self.run_record(res, model.columns, invariants=invariants,
+                               invariant_scales=invariant_scales)
+
+    def run_record(self, res, columns, y: np.ndarray | None = None,
+                   invariants: Callable[[np.ndarray, np.ndarray], dict[str, np.ndarray]]
+                   | None = None, invariant_scales: dict[str, float] | None = None) -> RunRecord:
+        """The archived run of a solver-policy result (:class:`PolicyResult`): attrs, the
+        invariants and the stability verdict (see :meth:`integrate`).  ``y`` (N, len(columns))
+        replaces the solution's states when the integrated variables are not the archived
+        ones (a regularized formulation, converted back by the scene)."""
         sol = res.solution
-        inv = invariants(sol.t, sol.y) if invariants is not None else {}
+        y = sol.y if y is None else y
+        inv = invariants(sol.t, y) if invariants is not None else {}
         attrs = _solution_attrs(sol) | {
             "method_reason": res.reason, "solver_status": res.status.value,
             "status": res.status.verdict, "message": res.message}
-        record = RunRecord(t=sol.t, y=sol.y, columns=list(model.columns), invariants=inv,
-                           attrs=attrs)
-        _stability.assess_run(record, rtol=run.rtol, scales=invariant_scales)
+        record = RunRecord(t=sol.t, y=y, columns=list(columns), invariants=inv, attrs=attrs)
+        _stability.assess_run(record, rtol=self.config.run.rtol, scales=invariant_scales)
         for name, scale in (invariant_scales or {}).items():
             record.attrs[f"scale_{name}"] = float(scale)
         return record
@@ -704,15 +726,17 @@ class Scene:
         return _study.reference_run(model, y0, t_eval)
 
     def study(self, results: Results, model: OdeModel, y0, t_eval, reference=None,
-              progress: ProgressFn | None = None) -> None:
+              progress: ProgressFn | None = None, reference_kind: str = "exact") -> None:
         """Fill ``results.study`` with the error-against-run-time study, if this run wants
         it (:meth:`wants_study`).  scipy peers' rows come from the user cache when it
-        holds this problem (:mod:`reportgen.cache`); ours are measured every time."""
+        holds this problem (:mod:`reportgen.cache`); ours are measured every time.
+        ``reference_kind`` says what a given ``reference`` is (default: a closed form)."""
         if not self.wants_study():
             return
         result = _study.work_precision(model, y0, t_eval, reference=reference,
                                        progress=progress, cache=default_cache(),
-                                       budget_s=self.config.run.study_budget)
+                                       budget_s=self.config.run.study_budget,
+                                       reference_kind=reference_kind)
         results.study = result.to_records()
         results.study_attrs = {"reference_kind": result.reference_kind,
                                "budget_s": float(self.config.run.study_budget),

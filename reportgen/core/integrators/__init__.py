@@ -8,6 +8,8 @@ Public API::
               progress=None, max_steps=10_000_000) -> Solution   # one named method
     METHODS: dict name -> method object with capability flags
     choose_auto(model, rtol, n_periods=None) -> (method name, reason)
+    solve_fictitious_time(model, y0, t_eval, t_index, spec, reason) -> PolicyResult
+                                              # a regularized model, outputs at physical t
     RunStatus, SolveCode, MethodMismatch, Solution
 """
 
@@ -22,7 +24,7 @@ _EXPORTS = {
     "SolveCode": ".base",
     "integrate": ".driver",
     "PolicyResult": ".policy", "SolverSpec": ".policy", "choose_auto": ".policy",
-    "solve": ".policy",
+    "solve": ".policy", "solve_fictitious_time": ".policy",
     "METHODS": ".registry",
 }
 

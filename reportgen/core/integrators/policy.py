@@ -242,5 +242,25 @@ def solve(model, y0, t_eval, spec: SolverSpec, *, n_periods: float | None = None
                         message=message, stiffness=stiff)
 
 
+def solve_fictitious_time(model, y0, t_eval, t_index: int, spec: SolverSpec, reason: str,
+                          progress: Callable[[float], None] | None = None) -> PolicyResult:
+    """Run and judge a regularized ``model`` in its fictitious time (component ``t_index``
+    of the state is the physical time), outputs at the physical times ``t_eval``.
+
+    DOP853 only (:func:`.fictitious_time.integrate_fictitious_time`): ``spec.method`` must
+    be ``"auto"`` or ``"dop853"``.  A regularized model is not stiff (that is what the
+    regularization is for), so there is no stiffness check; the verdict is the run's code.
+    """
+    from .fictitious_time import integrate_fictitious_time
+
+    if spec.method not in ("auto", "dop853"):
+        raise ValueError(f"method: a regularized formulation runs with dop853 (or auto), "
+                         f"got {spec.method!r}")
+    sol = integrate_fictitious_time(model, y0, t_eval, t_index, rtol=spec.rtol, atol=spec.atol,
+                                    progress=progress, max_steps=spec.max_steps)
+    return PolicyResult(solution=sol, method="dop853", reason=reason,
+                        status=STATUS_OF_CODE[sol.code], message="" if sol.ok else sol.message)
+
+
 __all__ = ["LONG_RUN_PERIODS", "REGULARIZE_ECCENTRICITY", "PolicyResult", "RunStatus",
-           "SolverSpec", "choose_auto", "is_explicit_adaptive", "solve"]
+           "SolverSpec", "choose_auto", "is_explicit_adaptive", "solve", "solve_fictitious_time"]

@@ -31,6 +31,7 @@ import numpy as np
 from ..model import OdeModel, Separable
 
 # params = (mu, a)
+COLUMNS = ("x", "y", "vx", "vy")
 
 
 # inlined into its callers: see "Helpers" in reportgen.core.model
@@ -65,7 +66,7 @@ def kick(q, params, out):
 
 
 def model(mu: float, a: float) -> OdeModel:
-    return OdeModel(name="two fixed centres", columns=("x", "y", "vx", "vy"), rhs=rhs,
+    return OdeModel(name="two fixed centres", columns=COLUMNS, rhs=rhs,
                     params=np.array([mu, a]), separable=Separable(n=2, drift=drift, kick=kick))
 
 
@@ -141,6 +142,26 @@ def coordinate_bounds(E, C, mu, a):
     else:
         out["family"] = "satellite"
     return out
+
+
+def closest_approach_bound(E, C, mu, a):
+    """Lower bound of min(r1, r2) over the whole motion: a (ξ_min − |η|_max).
+
+    min(r1, r2) = a (ξ − |η|), and (7.59) confines ξ ≥ ξ_min and |η| ≤ |η|_max (see
+    :func:`coordinate_bounds`; for E ≥ 0, ξ_min is the root of 2a²Eξ² + 4aμξ + β, which
+    increases for ξ ≥ 1).  Zero when the region holds a centre: in the fictitious time
+    ξ and η oscillate independently, so such an orbit comes arbitrarily close to it."""
+    bounds = coordinate_bounds(E, C, mu, a)
+    xi_min = bounds["xi_min"]
+    if E >= 0:
+        A, B, b = 2 * a * a * E, 4 * a * mu, bounds["beta"]
+        if A + B + b >= 0:
+            xi_min = 1.0
+        elif A == 0.0:
+            xi_min = -b / B
+        else:
+            xi_min = (-B + math.sqrt(B * B - 4 * A * b)) / (2 * A)
+    return max(0.0, a * (xi_min - bounds["eta_abs_max"]))
 
 
 def coordinate_ellipse(xi, a, samples=400):
