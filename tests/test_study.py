@@ -66,7 +66,7 @@ def test_matched_error_speedup(study):
     assert speedups == sorted(speedups, reverse=True)
     for name, m in best.items():
         assert set(m) == {"method", "label", "tolerance", "h", "error_max", "wall_time_s",
-                          "speedup"}
+                          "nfev", "speedup"}
         assert m["error_max"] <= base["error_max"]
         assert np.isfinite(m["speedup"]) and m["speedup"] > 0
         assert m["speedup"] == pytest.approx(base["wall_time_s"] / m["wall_time_s"])

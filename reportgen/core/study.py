@@ -405,7 +405,8 @@ def matched_error_speedup(rows, baseline="scipy_dop853", baseline_rtol=1e-10):
         if good:
             best = min(good, key=lambda r: r["wall_time_s"])
             matches.append({key: best[key] for key in
-                            ("method", "label", "tolerance", "h", "error_max", "wall_time_s")}
+                            ("method", "label", "tolerance", "h", "error_max", "wall_time_s",
+                             "nfev")}
                            | {"speedup": b["wall_time_s"] / best["wall_time_s"]})
     matches.sort(key=lambda r: -r["speedup"])
     return {"baseline": b, "matches": matches}
