@@ -41,6 +41,10 @@ def scene_bench(scene, print=builtins.print) -> dict | None:
     if scene.config.run is None:
         print(f"{scene.source.name}: integrates nothing; skipped")
         return None
+    if not scene.config.run.study:
+        print(f"{scene.source.name}: its config turns the study off ([run] study = false); "
+              "skipped")
+        return None
     config = scene.config.model_copy(update={"run": scene.config.run.model_copy(
         update={"study": True, "study_budget": math.inf}), "report": scene.config.report.model_copy(
         update={"sections": None})})

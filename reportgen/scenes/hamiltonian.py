@@ -283,7 +283,8 @@ class HamiltonianScene(Scene):
                             "section, each orbit coloured by its swept value."),
     )
 
-    SWEEP_HIDDEN_RESULTS = ("jacobi_*", "poisson_*_max", "legendre_*", "study_t_end")
+    SWEEP_HIDDEN_RESULTS = ("jacobi_*", "poisson_*_max", "legendre_*", "study_t_end",
+                            "initial_state_*")  # shown by name: initial_<column>
 
     #: phase-portrait grid points per axis (one degree of freedom)
     PHASE_GRID = 241
@@ -464,6 +465,8 @@ class HamiltonianScene(Scene):
         a["cyclic"] = [str(c) for c in cyclic]
         a["H0"] = h0
         a["initial_state"] = y0
+        for column, value in zip(system.columns, y0, strict=True):
+            a[f"initial_{column}"] = float(value)  # by name: a sweep's results plot these
         for name, bracket in brackets.items():
             a[f"poisson_{name}"] = str(bracket)
             a[f"poisson_{name}_latex"] = system.latex(bracket)
