@@ -20,6 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from .config import ConfigError
+from .timing import best_time
 
 BASELINE, BASELINE_RTOL = "scipy_dop853", 1e-10
 
@@ -114,15 +115,6 @@ def summarize(results: list[dict], print=builtins.print) -> None:
                      "scipy's evaluations")
 
 
-def _best_time(fn, repeats: int) -> tuple[float, object]:
-    best, result = math.inf, None
-    for _ in range(repeats):
-        start = time.perf_counter()
-        result = fn()
-        best = min(best, time.perf_counter() - start)
-    return best, result
-
-
 def heavy_top_textbook(scene, print=builtins.print, samples: int = 201) -> dict:
     """The heavy top against the script a user would write: scipy DOP853 (rtol 1e-10,
     atol 1e-12) on the Euler-angle Lagrange equations
@@ -152,7 +144,7 @@ def heavy_top_textbook(scene, print=builtins.print, samples: int = 201) -> dict:
         return {}
     f = model_core.euler_angle_rhs(p.I1, p.I3, p.Mgl)
     y0 = [theta0, 0.0, 0.0, theta_dot0, phi_dot0, omega3 - phi_dot0 * math.cos(theta0)]
-    peer_s, sol = _best_time(lambda: solve_ivp(f, (0.0, t_end), y0, method="DOP853",
+    peer_s, sol = best_time(lambda: solve_ivp(f, (0.0, t_end), y0, method="DOP853",
                                                rtol=1e-10, atol=1e-12, t_eval=t), 3)
     peer_err = (float(np.max(np.abs(sol.y[0] - exact))) if sol.success else math.inf)
     model = model_core.spin_free_model(p.I1, p.I3, p.Mgl, omega3)
@@ -160,7 +152,7 @@ def heavy_top_textbook(scene, print=builtins.print, samples: int = 201) -> dict:
     ours = None
     for rtol in 10.0 ** -np.arange(6.0, 14.5, 0.5):
         integrate(model, s0, t, rtol=rtol, atol=rtol * 1e-2)  # warm-up (and compile)
-        wall, run = _best_time(lambda rtol=rtol: integrate(model, s0, t, rtol=rtol,
+        wall, run = best_time(lambda rtol=rtol: integrate(model, s0, t, rtol=rtol,
                                                            atol=rtol * 1e-2), 20)
         err = float(np.max(np.abs(kinematics.tilt_angle(run.y[:, :4]) - exact)))
         if err <= peer_err:

@@ -17,10 +17,10 @@ This is a benchmark, not a test: the numbers depend on the machine.
 from __future__ import annotations
 
 import builtins
-import math
-import time
 
 import numpy as np
+
+from .timing import best_time
 
 G = 1.0
 MASSES = (3.0, 4.0, 5.0)
@@ -41,12 +41,7 @@ def initial_state() -> np.ndarray:
 def _timed(run, repeats=3):
     """(min wall time of ``repeats`` calls of ``run``, the last result); warm up first."""
     run()
-    best, result = math.inf, None
-    for _ in range(repeats):
-        start = time.perf_counter()
-        result = run()
-        best = min(best, time.perf_counter() - start)
-    return best, result
+    return best_time(run, repeats)
 
 
 def _energy_errors(y):

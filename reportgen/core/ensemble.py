@@ -68,6 +68,7 @@ from .integrators.compiled import (
     all_finite,
     copy_into,
     dense_eval,
+    dop853_component,
     dop853_dense_coefficients,
     error_norm,
     initial_step,
@@ -99,27 +100,6 @@ def crosses(g0, g1, direction):
     if direction >= 0 and g0 < 0.0 <= g1:
         return True
     return direction <= 0 and g0 > 0.0 >= g1
-
-
-@numba.njit(cache=True)
-def dop853_component(F, y_old, i, x):
-    """Component ``i`` of the DOP853 interpolant at ``x`` in [0, 1], and its x-derivative.
-
-    The nested form of :func:`.compiled.dense_eval` (same operations, so the same value
-    to the bit) with the derivative carried along by the product rule.
-    """
-    nf = F.shape[0]
-    acc = 0.0
-    dacc = 0.0
-    for r in range(nf):
-        acc += F[nf - 1 - r, i]
-        if r % 2 == 0:
-            dacc = dacc * x + acc
-            acc *= x
-        else:
-            dacc = dacc * (1.0 - x) - acc
-            acc *= 1.0 - x
-    return acc + y_old[i], dacc
 
 
 @numba.njit(cache=True)

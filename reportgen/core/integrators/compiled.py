@@ -189,6 +189,28 @@ def dense_eval(kind, nst, P, t_old, h, y_old, K, F, tout, out):
 
 
 @numba.njit(cache=True)
+def dop853_component(F, y_old, i, x):
+    """Component ``i`` of the DOP853 interpolant at ``x`` in [0, 1], and its x-derivative.
+
+    The nested form of :func:`dense_eval` (same operations, so the same value
+    to the bit) with the derivative carried along by the product rule: the ensemble's
+    event location and the fictitious-time driver's output search use it.
+    """
+    nf = F.shape[0]
+    acc = 0.0
+    dacc = 0.0
+    for r in range(nf):
+        acc += F[nf - 1 - r, i]
+        if r % 2 == 0:
+            dacc = dacc * x + acc
+            acc *= x
+        else:
+            dacc = dacc * (1.0 - x) - acc
+            acc *= 1.0 - x
+    return acc + y_old[i], dacc
+
+
+@numba.njit(cache=True)
 def dop853_dense_coefficients(nst, P, h, y_old, y_new, K, F):
     """The coefficients F of the 7th-order interpolant (K has the three extra stages)."""
     d = y_old.size

@@ -41,23 +41,6 @@ MAX_LOCATE_ITERATIONS = 60
 _K_ROWS = 16
 
 
-@numba.njit(cache=True, inline="always")
-def _dense_component(F, base, i, x):
-    """Component ``i`` of the DOP853 continuous extension at x = (s − s_old)/h, and its
-    derivative in x (the nested form of :func:`.compiled.dense_eval`, kind 1)."""
-    nf = F.shape[0]
-    acc, dacc = 0.0, 0.0
-    for r in range(nf):
-        acc += F[nf - 1 - r, i]
-        if r % 2 == 0:
-            dacc = dacc * x + acc
-            acc *= x
-        else:
-            dacc = dacc * (1.0 - x) - acc
-            acc *= 1.0 - x
-    return base + acc, dacc
-
-
 @numba.njit(cache=True)
 def located_outputs(rhs, t_index, times, i0, i1, Y, probe, buf, y, y_old, K, F, state,
                     counters, params, rtol, atol, max_steps, located):
@@ -93,7 +76,7 @@ def located_outputs(rhs, t_index, times, i0, i1, Y, probe, buf, y, y_old, K, F, 
         x = x_lo + (x_hi - x_lo) * ((target - t_lo) / (t_hi - t_lo)) if t_hi > t_lo else x_hi
         tol = 4.0 * codes.EPS * max(abs(target), 1.0)
         for _ in range(MAX_LOCATE_ITERATIONS):
-            t_x, dt_dx = _dense_component(F, y_old[t_index], t_index, x)
+            t_x, dt_dx = codes.dop853_component(F, y_old, t_index, x)
             miss = t_x - target
             if abs(miss) <= tol or x_hi - x_lo <= 4.0 * codes.EPS:
                 break
@@ -104,7 +87,7 @@ def located_outputs(rhs, t_index, times, i0, i1, Y, probe, buf, y, y_old, K, F, 
             x_next = x - miss / dt_dx if dt_dx > 0.0 else math.nan
             x = x_next if x_lo < x_next < x_hi else 0.5 * (x_lo + x_hi)
         for i in range(d):
-            Y[k, i] = _dense_component(F, y_old[i], i, x)[0]
+            Y[k, i] = codes.dop853_component(F, y_old, i, x)[0]
         located[0] = s_old + x * h
         located[1] = Y[k, t_index]
     return codes.OK, i1
