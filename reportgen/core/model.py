@@ -53,6 +53,41 @@ class Separable:
 
 
 @dataclass(frozen=True)
+class SurfaceOfSection:
+    """A surface of section as a model offers it: the product of ``count`` factors
+    g_k(y) vanishes on it, and it is crossed "upward" where the product goes from
+    negative to positive along the run.
+
+    A product, not one function, because a regularizing change of variables can fold the
+    surface: the x-axis of the plane (y = 0) is p = 0 or sin q = 0 in the Thiele–Burrau
+    variables, and an orbit passing near a centre crosses both within one step, so that
+    the product would not change sign over it.  Each factor's sign change is found on
+    its own (:mod:`reportgen.core.integrators.fictitious_time`).
+
+    Attributes
+    ----------
+    factors : numba dispatcher
+        ``factors(t, y, params, out)`` writes g_k(y) to ``out[k]``, k < count (the
+        signature of ``rhs``, with the model's ``params``; like ``rhs``, it must not
+        raise).
+    count : int
+        Number of factors (at least 1).
+    """
+
+    factors: Callable
+    count: int = 1
+
+    def __post_init__(self):
+        if not 1 <= self.count <= MAX_SECTION_FACTORS:
+            raise ValueError(f"count: expected 1 to {MAX_SECTION_FACTORS} factors, "
+                             f"got {self.count!r}")
+
+
+#: factors of a surface of section (a product of a few folds, see SurfaceOfSection)
+MAX_SECTION_FACTORS = 4
+
+
+@dataclass(frozen=True)
 class OdeModel:
     """A compiled first-order system and what it offers to integrators.
 

@@ -8,8 +8,9 @@ Public API::
               progress=None, max_steps=10_000_000) -> Solution   # one named method
     METHODS: dict name -> method object with capability flags
     choose_auto(model, rtol, n_periods=None) -> (method name, reason)
-    solve_fictitious_time(model, y0, t_eval, t_index, spec, reason) -> PolicyResult
-                                              # a regularized model, outputs at physical t
+    solve_fictitious_time(model, y0, t_eval, t_index, spec, reason, section=None)
+        -> PolicyResult   # a regularized model, outputs at physical t (t_index None: a
+                          # model in its own time); a section's crossings located on the steps
     RunStatus, SolveCode, MethodMismatch, Solution
 """
 

@@ -68,6 +68,10 @@ class Solution:
     wall_time_s : float
         Integration time, excluding compilation (``compile_time_s``, which is 0
         when the kernel was already compiled or loaded in this process).
+    crossings : ndarray, shape (K, 1 + d), or None
+        Where a run asked for a surface of section crossed it (see
+        :class:`reportgen.core.model.SurfaceOfSection`): the physical time, then the
+        integrated state, one row per crossing in time order; None when none was asked.
     """
 
     t: np.ndarray
@@ -83,6 +87,7 @@ class Solution:
     message: str
     wall_time_s: float
     compile_time_s: float
+    crossings: np.ndarray | None = None
 
     @property
     def ok(self) -> bool:

@@ -242,22 +242,29 @@ def solve(model, y0, t_eval, spec: SolverSpec, *, n_periods: float | None = None
                         message=message, stiffness=stiff)
 
 
-def solve_fictitious_time(model, y0, t_eval, t_index: int, spec: SolverSpec, reason: str,
-                          progress: Callable[[float], None] | None = None) -> PolicyResult:
+def solve_fictitious_time(model, y0, t_eval, t_index: int | None, spec: SolverSpec,
+                          reason: str, progress: Callable[[float], None] | None = None,
+                          section=None) -> PolicyResult:
     """Run and judge a regularized ``model`` in its fictitious time (component ``t_index``
     of the state is the physical time), outputs at the physical times ``t_eval``.
 
     DOP853 only (:func:`.fictitious_time.integrate_fictitious_time`): ``spec.method`` must
     be ``"auto"`` or ``"dop853"``.  A regularized model is not stiff (that is what the
     regularization is for), so there is no stiffness check; the verdict is the run's code.
+
+    ``section`` (a :class:`~reportgen.core.model.SurfaceOfSection`): its crossings are
+    located on the steps (``solution.crossings``).  ``t_index = None`` runs a model in its
+    own time this way, for its section: the steps and outputs of DOP853 in :func:`solve`,
+    without the stiffness check (a model with a section is one the scene knows).
     """
     from .fictitious_time import integrate_fictitious_time
 
     if spec.method not in ("auto", "dop853"):
-        raise ValueError(f"method: a regularized formulation runs with dop853 (or auto), "
-                         f"got {spec.method!r}")
+        raise ValueError(f"method: a regularized formulation or a surface of section runs "
+                         f"with dop853 (or auto), got {spec.method!r}")
     sol = integrate_fictitious_time(model, y0, t_eval, t_index, rtol=spec.rtol, atol=spec.atol,
-                                    progress=progress, max_steps=spec.max_steps)
+                                    progress=progress, max_steps=spec.max_steps,
+                                    section=section)
     return PolicyResult(solution=sol, method="dop853", reason=reason,
                         status=STATUS_OF_CODE[sol.code], message="" if sol.ok else sol.message)
 
