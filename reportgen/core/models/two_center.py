@@ -28,7 +28,7 @@ import math
 import numba
 import numpy as np
 
-from ..model import OdeModel, Separable
+from ..model import OdeModel, Separable, SurfaceOfSection
 
 # params = (mu, a)
 COLUMNS = ("x", "y", "vx", "vy")
@@ -68,6 +68,38 @@ def kick(q, params, out):
 def model(mu: float, a: float) -> OdeModel:
     return OdeModel(name="two fixed centres", columns=COLUMNS, rhs=rhs,
                     params=np.array([mu, a]), separable=Separable(n=2, drift=drift, kick=kick))
+
+
+@numba.njit(cache=True)
+def axis_factors(t, y, params, out):
+    """The surface of section y = 0 (the line through the centres): its one factor."""
+    out[0] = y[1]
+
+
+#: the line through the centres, y = 0, crossed with ẏ > 0
+AXIS_SECTION = SurfaceOfSection(factors=axis_factors, count=1)
+
+
+def separation_constant_on_axis(x, vx, E, mu, a):
+    """C at a point of the line y = 0 from x, ẋ and the energy E (ẏ² = 2(E − V) − ẋ²).
+
+    On y = 0, L1 L2 = (x² − a²) ẏ² and cos θ1 − cos θ2 = sgn(x + a) − sgn(x − a), which is
+    2 between the centres and 0 outside, so (7.59 in Cartesian form)
+
+        C = (x² − a²) (2 (E + μ/|x + a| + μ/|x − a|) − ẋ²) + 4 a μ [|x| < a].
+
+    The crossings of one orbit with the line lie on the curve C(x, ẋ) = C of the orbit:
+    its surface of section y = 0 is a level curve of this function.
+
+    Returns
+    -------
+    C, vy2 : ndarray
+        C, and ẏ² (negative outside the region the energy allows).
+    """
+    x, vx = np.asarray(x, dtype=np.float64), np.asarray(vx, dtype=np.float64)
+    vy2 = 2.0 * (E + mu / np.abs(x + a) + mu / np.abs(x - a)) - vx * vx
+    between = np.abs(x) < a
+    return (x * x - a * a) * vy2 + 4.0 * a * mu * between, vy2
 
 
 def distances(x, y, a):

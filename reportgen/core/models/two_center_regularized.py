@@ -45,7 +45,7 @@ import math
 import numba
 import numpy as np
 
-from ..model import OdeModel
+from ..model import OdeModel, SurfaceOfSection
 from . import two_center
 
 COLUMNS = ("p", "q", "P_p", "P_q", "t")
@@ -77,6 +77,21 @@ def jac(s, y, params, out):
     out[3, 1] = 2.0 * a * a * E * math.cos(2.0 * y[1])
     out[4, 0] = a * a * math.sinh(2.0 * y[0])
     out[4, 1] = a * a * math.sin(2.0 * y[1])
+
+
+@numba.njit(cache=True)
+def axis_factors(s, y, params, out):
+    """The line through the centres, y = a sinh p sin q = 0, as two factors: p = 0 (the
+    segment between the centres, ξ = 1) and sin q = 0 (the axis outside them, η = ±1).
+    Their product has the sign of y; near a centre (u = 0 or iπ) an orbit crosses both
+    within one step, where y itself would not change sign over it."""
+    out[0] = y[0]
+    out[1] = math.sin(y[1])
+
+
+#: the line through the centres, y = 0, crossed with ẏ > 0 (dt/ds = r1 r2 > 0: the same
+#: direction in s)
+AXIS_SECTION = SurfaceOfSection(factors=axis_factors, count=2)
 
 
 def model(mu: float, a: float, E: float) -> OdeModel:
