@@ -7,14 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from .common import envelope
-from .style import CONTEXT, HIGHLIGHT, INK, PALETTE, new_figure, new_figure_grid
-
-#: viridis (perceptually uniform, colour-blind safe) without its last yellows, which
-#: vanish as small markers on white
-FAMILY_COLOURMAP = ("viridis", 0.0, 0.85)
-#: spans of the two plotted columns within this ratio are drawn at equal scales (a
-#: section's closed curves then keep their shape)
-EQUAL_SCALE_RATIO = 2.5
+from .style import CONTEXT, HIGHLIGHT, PALETTE, new_figure, new_figure_grid
 
 
 def coordinates(t, series: dict[str, np.ndarray]):
@@ -73,62 +66,6 @@ def poincare(u, v, uname: str, vname: str):
     ax.plot(u, v, ".", color=HIGHLIGHT, markersize=2.5 if len(u) > 400 else 4.0)
     ax.set_xlabel(uname)
     ax.set_ylabel(vname)
-    return fig
-
-
-def poincare_family(u, v, member, colour, uname: str, vname: str, *, colour_label: str,
-                    labels: dict[int, str] | None = None, edge=None, edge_label=None):
-    """The crossings of many orbits on one surface of section, each orbit in its own colour.
-
-    Parameters
-    ----------
-    u, v : ndarray, shape (P,)
-        The crossings' two plotted columns.
-    member : ndarray of int, shape (P,)
-        The orbit (sweep member) of each crossing.
-    colour : ndarray, shape (M,)
-        The value each member's colour is keyed to (its swept value).
-    labels : dict of member -> str, optional
-        Few orbits: a legend with these labels instead of a colour bar.
-    edge : (u grid, v grid, H on the grid, E), optional
-        The level H = E drawn as the edge of the allowed region.
-    """
-    from matplotlib import colormaps
-    from matplotlib.cm import ScalarMappable
-    from matplotlib.colors import ListedColormap, Normalize
-
-    fig, ax = new_figure(figsize=(6.4, 5.4))
-    u, v, member = np.asarray(u), np.asarray(v), np.asarray(member, dtype=np.int64)
-    colour = np.asarray(colour, dtype=float)
-    name, start, stop = FAMILY_COLOURMAP
-    cmap = ListedColormap(colormaps[name](np.linspace(start, stop, 256)))
-    drawn = np.unique(member)
-    lo, hi = float(np.min(colour[drawn])), float(np.max(colour[drawn]))
-    norm = Normalize(lo, hi if hi > lo else lo + 1.0)
-    # marker area [pt²]: dense sets smaller, so that islands stay apart (rasterized: the
-    # file's size does not grow with the points)
-    size = 6.0 if len(u) < 3000 else 3.0 if len(u) < 30000 else 1.2
-    if labels is not None:
-        for i, colour_i in zip(drawn, PALETTE, strict=False):
-            pick = member == i
-            ax.scatter(u[pick], v[pick], s=2 * size, color=colour_i, marker=".",
-                       linewidths=0, rasterized=True, label=labels.get(int(i), str(i)))
-    else:
-        ax.scatter(u, v, c=colour[member], cmap=cmap, norm=norm, s=size, marker=".",
-                   linewidths=0, rasterized=True)
-        fig.colorbar(ScalarMappable(norm=norm, cmap=cmap), ax=ax, label=colour_label,
-                     shrink=0.85)
-    if edge is not None:
-        gu, gv, H, energy = edge
-        ax.contour(gu, gv, H, levels=[energy], colors=INK, linewidths=0.8)
-        ax.plot([], [], color=INK, linewidth=0.8, label=edge_label)
-    ax.set_xlabel(uname)
-    ax.set_ylabel(vname)
-    spans = np.ptp(u), np.ptp(v)
-    if min(spans) > 0 and max(spans) / min(spans) <= EQUAL_SCALE_RATIO:
-        ax.set_aspect("equal", adjustable="datalim")
-    if labels is not None or edge is not None:
-        ax.legend(loc="upper right", fontsize=8, markerscale=2.5)
     return fig
 
 

@@ -27,6 +27,7 @@ from .base import Scene, SceneConfig, Section, SectionContent, Table, fmt, fmt_e
 
 common_plots = lazy_module("reportgen.plots.common")
 plots = lazy_module("reportgen.plots.hamiltonian")
+section_plots = lazy_module("reportgen.plots.sections")
 expressions = lazy_module("reportgen.core.expressions")  # no SymPy: validation uses it
 formula = lazy_module("reportgen.core.formula")
 numeric = lazy_module("reportgen.core.numeric")
@@ -808,7 +809,7 @@ class HamiltonianScene(Scene):
         labels = ({int(i): member_text(sweep, int(i), short=True) for i in crossing}
                   if len(crossing) <= cls.LEGEND_MEMBERS else None)
         edge = a.get("poincare_edge")
-        fig = plots.poincare_family(
+        fig = section_plots.poincare_family(
             pts.columns["u"], pts.columns["v"], member, colour, uname, vname,
             colour_label=key, labels=labels,
             edge=None if edge is None else (edge["u"], edge["v"], edge["H"],
