@@ -204,6 +204,10 @@ class Scene:
     SWEEP_HIDDEN_RESULTS: ClassVar[tuple[str, ...]] = ()
     #: the validated ``[sweep]`` table, if the config has one (set by ``__init__``)
     sweep: _sweep.SweepSpec | None
+    #: this scene is a member of a sweep (made by :meth:`member`): it computes what the
+    #: family figures need of it (a surface of section's crossings, say), which a single
+    #: run of the same config does not show and so does not compute
+    family_member: bool = False
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
@@ -312,8 +316,10 @@ class Scene:
         data = _sweep.member_data(self._template, assignments)
         if isinstance(data.get("run"), dict):
             data["run"] = {**data["run"], "study": False}
-        return type(self).from_source(SourceConfig(path=self.source.path,
-                                                   text=self.source.text, data=data))
+        scene = type(self).from_source(SourceConfig(path=self.source.path,
+                                                    text=self.source.text, data=data))
+        scene.family_member = True
+        return scene
 
     def sweep_block(self, lo: int, hi: int, values: dict[str, np.ndarray]) -> _sweep.SweepBlock:
         """Members ``lo:hi`` of the sweep (``values``: their swept values).  Default: each

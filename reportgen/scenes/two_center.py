@@ -15,15 +15,17 @@ from typing import Literal
 import numpy as np
 from pydantic import Field, model_validator
 
-from ..config import Positive, Real, RunConfig, Strict
+from ..config import ConfigError, Positive, Real, RunConfig, Strict
 from ..lazy import lazy_module
 from ..results import Check, Results
-from .base import Scene, SceneConfig, Section, SectionContent, fmt, fmt_err
+from ..sweep import PointSet
+from .base import Scene, SceneConfig, Section, SectionContent, fmt, fmt_err, member_text
 
 core = lazy_module("reportgen.core.models.two_center")
 regularized = lazy_module("reportgen.core.models.two_center_regularized")
 integrators = lazy_module("reportgen.core.integrators")
 plots = lazy_module("reportgen.plots.gravitation")
+section_plots = lazy_module("reportgen.plots.sections")
 
 #: ``formulation = "auto"`` regularizes a bound orbit whose region of motion (7.59) comes
 #: within CLOSE_APPROACH·a of a centre.  Measured at rtol 1e-12 (μ = a = 1, outputs
@@ -47,7 +49,11 @@ class Initial(Strict):
     x: Real = Field(description="initial position x [m]")
     y: Real = Field(description="initial position y [m]")
     vx: Real = Field(description="initial velocity x [m/s]")
-    vy: Real = Field(description="initial velocity y [m/s]")
+    vy: Real | None = Field(None, description="initial velocity y [m/s]; leave it out and give "
+                                              "energy to have it solved for (vy ≥ 0)")
+    energy: Real | None = Field(None, description="energy per unit mass E [m²/s²], instead of "
+                                                  "vy: vy = +√(2(E − V(x, y)) − vx²), so that "
+                                                  "a sweep's members share one energy")
 
 
 class TwoCenterRun(RunConfig):
@@ -77,7 +83,30 @@ class TwoCenterConfig(SceneConfig):
             if ini.y == 0.0 and ini.x == sign * a:
                 raise ValueError(f"initial.x / initial.y: the particle starts at the centre "
                                  f"({sign * a:g}, 0) = (±params.a, 0) (a collision)")
+        if (ini.vy is None) == (ini.energy is None):
+            raise ValueError("initial.vy / initial.energy: give exactly one of them (got "
+                             + ("both" if ini.vy is not None else "neither") + ")")
+        if ini.energy is not None:
+            floor = potential(ini.x, ini.y, self.params.mu, a) + 0.5 * ini.vx**2
+            if ini.energy < floor:
+                raise ValueError(f"initial.energy: must be at least V(x, y) + vx²/2 = "
+                                 f"{floor:.12g} at the start, where vy would be imaginary "
+                                 f"(got {ini.energy!r})")
         return self
+
+    def initial_state(self) -> tuple[float, float, float, float]:
+        """(x, y, vx, vy), vy solved for when ``initial.energy`` is given (vy ≥ 0)."""
+        ini, p = self.initial, self.params
+        if ini.vy is not None:
+            return ini.x, ini.y, ini.vx, ini.vy
+        vy2 = 2.0 * (ini.energy - potential(ini.x, ini.y, p.mu, p.a)) - ini.vx**2
+        return ini.x, ini.y, ini.vx, math.sqrt(max(vy2, 0.0))
+
+
+def potential(x: float, y: float, mu: float, a: float) -> float:
+    """V = −μ/r1 − μ/r2 per unit mass at (x, y) (the config's check of initial.energy;
+    the numerics use :mod:`reportgen.core.models.two_center`)."""
+    return -mu / math.hypot(x + a, y) - mu / math.hypot(x - a, y)
 
 
 FAMILY_TEXT = {
@@ -106,9 +135,59 @@ class TwoCenterScene(Scene):
         Section("error_vs_runtime", "Error against run time", integrates=True),
     )
 
+    family_sections = (
+        Section("poincare_family", "Surface of section y = 0 from many orbits",
+                description="Every member's crossings of the line through the centres "
+                            "(y = 0, ẏ > 0) in (x, ẋ), each orbit coloured by its swept "
+                            "value, on the curves its energy and separation constant "
+                            "predict."),
+    )
+
+    #: self-checks of the members, shown in the family section instead
+    SWEEP_HIDDEN_RESULTS = ("poincare_*_error",)
+    #: the surface of section: the line through the centres, crossed with ẏ > 0, drawn in
+    #: (x, ẋ); as archived in ``/sweep/points/poincare`` attrs (column, value, direction)
+    SURFACE = ("y", "0.0", "up")
+    AXES = ("x", "vx")
+    #: grid points per axis of C(x, ẋ) on the section (the predicted curves)
+    SECTION_GRID = 301
+    #: margin of that grid around the crossings, as a fraction of their span
+    SECTION_MARGIN = 0.08
+    #: members of a sweep told apart by a legend; more get a colour bar
+    LEGEND_MEMBERS = 7
+    #: marker area of a crossing [pt²]: an integrable family's crossings lie on curves
+    #: that do not crowd one another, so they can be larger than in a chaotic sea
+    MARKER_SIZE = 9.0
+
+    #: the members compute their crossings only for the family's surface of section
+    computed_on_request = ("error_vs_runtime", "poincare_family")
+
+    def wants_section(self, name: str) -> bool:
+        """The family's surface of section is wanted by a sweep (and its members) whose
+        config does not narrow ``[report] sections`` to leave it out."""
+        if name == "poincare_family":
+            asked = self.config.report.sections
+            return ((self.sweep is not None or self.family_member)
+                    and (asked is None or name in asked))
+        return super().wants_section(name)
+
+    @classmethod
+    def from_source(cls, source):
+        """A sweep's members locate their crossings of y = 0 on DOP853's steps: a sweep
+        that shows its surface of section with another named method is refused (exit 2)
+        before anything runs."""
+        scene = super().from_source(source)
+        method = scene.config.run.method
+        if scene.wants_section("poincare_family") and method not in ("auto", "dop853"):
+            raise ConfigError([
+                f"{source.label}: key 'run.method': a two_center [sweep] locates each member's "
+                f"crossings of y = 0 (its surface of section) on the continuous extension of "
+                f'DOP853\'s steps: expected "auto" or "dop853", got {method!r} (or leave '
+                f"poincare_family out of [report] sections)"])
+        return scene
+
     def _y0(self):
-        i = self.config.initial
-        return np.array([i.x, i.y, i.vx, i.vy])
+        return np.array(self.config.initial_state())
 
     def _constants(self):
         p = self.config.params
@@ -179,7 +258,12 @@ class TwoCenterScene(Scene):
         t = np.linspace(0.0, run.t_end, run.samples)
         results = Results()
         formulation, reason = self.formulation()
-        if formulation == "regularized":
+        crossings = None
+        if self.family_member and self.wants_section("poincare_family"):
+            main, crossings = self._run_with_section(model, formulation, reason, t, progress)
+            if formulation == "regularized":
+                model = core.model(p.mu, p.a)
+        elif formulation == "regularized":
             z0 = regularized.to_regularized(*y0, p.a)
             main = self.integrate(model, z0, t, invariants=self._invariants,
                                   invariant_scales=self._scales(), progress=progress,
@@ -206,6 +290,8 @@ class TwoCenterScene(Scene):
         a.update(self._coordinate_lines(xi, eta, bounds))
         a["closest_approach_bound"] = core.closest_approach_bound(E, C, p.mu, p.a)
         a["closest_approach_run"] = float(np.min(p.a * (xi - np.abs(eta))))
+        if crossings is not None:
+            a.update(self._section_analysis(*crossings))
         scales = self._scales()
         for name, label in (("energy", "energy E(t_end)"),
                             ("separation_constant", "separation constant C(t_end)")):
@@ -226,6 +312,210 @@ class TwoCenterScene(Scene):
         else:
             self.study(results, model, y0, t_study)
         return results
+
+    def _run_with_section(self, model, formulation: str, reason: str, t, progress):
+        """A sweep member's run, stepped so that its crossings of y = 0 with ẏ > 0 are
+        located on each DOP853 step's continuous extension (in t, or in s when
+        regularized, where the line is p = 0 or sin q = 0).  Returns (the run, (times,
+        (K, 4) states x, y, vx, vy at the crossings))."""
+        run, p = self.config.run, self.config.params
+        y0 = self._y0()
+        if formulation == "regularized":
+            start, index, section = (regularized.to_regularized(*y0, p.a), regularized.T_INDEX,
+                                     regularized.AXIS_SECTION)
+            convert = self._cartesian
+        else:
+            start, index, section, convert = y0, None, core.AXIS_SECTION, np.asarray
+        reason = (f"{reason}; stepped so that the crossings of y = 0 (the family's surface of "
+                  "section) are located on each step's continuous extension")
+        spec = integrators.SolverSpec(method=run.method, rtol=run.rtol, atol=run.atol,
+                                      reason=reason)
+        res = integrators.solve_fictitious_time(model, start, t, index, spec, reason,
+                                                progress=progress, section=section)
+        main = self.run_record(res, core.COLUMNS, y=convert(res.solution.y),
+                               invariants=self._invariants, invariant_scales=self._scales())
+        found = res.solution.crossings
+        return main, (found[:, 0], np.reshape(convert(found[:, 1:]), (-1, 4)))
+
+    def _section_analysis(self, times, states) -> dict:
+        """The crossings as the family's point set, and how far E and C at them are from
+        their values at t = 0 (relative to the invariants' scales)."""
+        p = self.config.params
+        E, C = self._constants()
+        scales = self._scales()
+        out = {"poincare": {"t": times, "u": states[:, 0], "v": states[:, 2], "state": states},
+               "formulation": self.formulation()[0]}
+        if len(times):
+            out["poincare_E_error"] = float(np.max(np.abs(
+                core.energy(*states.T, p.mu, p.a) - E))) / scales["energy"]
+            out["poincare_C_error"] = float(np.max(np.abs(
+                core.separation_constant(*states.T, p.mu, p.a) - C))) / \
+                scales["separation_constant"]
+        return out
+
+    # ------------------------------------------------------------------ sweeps
+    @classmethod
+    def member_points(cls, results) -> dict[str, PointSet]:
+        """A member's crossings of y = 0 (ẏ > 0): time, x, ẋ and the whole state there."""
+        pts = results.analysis.get("poincare")
+        if pts is None:
+            return {}
+        return {"poincare": PointSet(
+            columns={"t": pts["t"], "u": pts["u"], "v": pts["v"], "state": pts["state"]},
+            components=tuple(core.COLUMNS),
+            attrs={"surface": list(cls.SURFACE), "axes": list(cls.AXES)})}
+
+    def sweep_extras(self, sweep) -> dict:
+        """When every member has one energy E (and the centres are not swept): C(x, ẋ) on
+        the section at that energy, on a grid around the crossings, for the curves
+        C = C(member) each member's crossings must lie on, and ẏ² there (its zero is the
+        edge of the region E allows).  NaN outside that region and next to the centres'
+        lines x = ±a, where C jumps by 4aμ (so no contour is drawn along the jump)."""
+        pts = sweep.points.get("poincare")
+        energy = self._family_energy(sweep)
+        if pts is None or not len(pts.member) or energy is None \
+                or any(not path.startswith("initial.") for path in sweep.values):
+            return {}
+        p = self.config.params
+
+        def span(x):
+            lo, hi = float(np.min(x)), float(np.max(x))
+            pad = self.SECTION_MARGIN * max(hi - lo, 1e-9)
+            return np.linspace(lo - pad, hi + pad, self.SECTION_GRID)
+
+        gu, gv = span(pts.columns["u"]), span(pts.columns["v"])
+        U, V = np.meshgrid(gu, gv)
+        C, vy2 = core.separation_constant_on_axis(U, V, energy, p.mu, p.a)
+        step = gu[1] - gu[0]
+        C = np.where((vy2 >= 0) & (np.abs(np.abs(U) - p.a) > 1.5 * step), C, np.nan)
+        return {"poincare_grid": {"u": gu, "v": gv, "C": C, "vy2": vy2},
+                "poincare_energy": energy}
+
+    @staticmethod
+    def _family_energy(sweep) -> float | None:
+        """The members' common energy E, or None if they differ (beyond rounding)."""
+        energy = np.asarray(sweep.analysis.get("energy", []), dtype=float)
+        energy = energy[sweep.ok & np.isfinite(energy)] if energy.size else energy
+        if energy.size == 0 or np.ptp(energy) > 1e-12 * max(float(np.max(np.abs(energy))),
+                                                             1.0):
+            return None
+        return float(np.median(energy))
+
+    def sweep_checks(self, sweep) -> list[Check]:
+        """The second integral at the stored crossings: the crossing whose C is furthest
+        from its orbit's C(0), over all members; and, with ``initial.energy``, the member
+        whose E(0) is furthest from it (vy is solved for so that E = energy)."""
+        checks = []
+        pts = sweep.points.get("poincare")
+        C0 = np.asarray(sweep.analysis.get("separation_constant", []), dtype=float)
+        if pts is not None and len(pts.member) and C0.size:
+            p = self.config.params
+            state = np.asarray(pts.columns["state"])
+            member = np.asarray(pts.member)
+            C = core.separation_constant(*state.T, p.mu, p.a)
+            gap = np.where(np.isfinite(C), np.abs(C - C0[member]), np.inf)
+            k = int(np.argmax(gap))
+            i = int(member[k])
+            scale = self.member({path: float(v[i]) for path, v in sweep.values.items()}
+                                )._scales()["separation_constant"]
+            checks.append(Check(
+                f"separation constant C at the crossings of y = 0, the furthest from its "
+                f"orbit's C(0) ({member_text(sweep, i)}, t = {fmt(float(pts.columns['t'][k]), 6)})",
+                float(C[k]), float(C0[i]), "",
+                "C(0) of the orbit, conserved (7.59)", scale=scale))
+        given = self.config.initial.energy
+        energy = sweep.values.get("initial.energy")
+        E0 = sweep.analysis.get("energy")
+        if E0 is not None and (given is not None or energy is not None):
+            energy = energy if energy is not None else np.full(sweep.size, float(given))
+            gap = np.where(sweep.ok, np.abs(E0 - energy), np.nan)
+            if np.any(np.isfinite(gap)):
+                i = int(np.nanargmax(gap))
+                checks.append(Check(
+                    f"E(0) of the member furthest from its energy ({member_text(sweep, i)})",
+                    float(E0[i]), float(energy[i]), "",
+                    "initial.energy (vy solved so that E = energy)",
+                    scale=max(abs(float(energy[i])), 1e-300)))
+        return checks
+
+    @classmethod
+    def held_family_sections(cls, data):
+        names = super().held_family_sections(data)
+        pts = data.sweep.points.get("poincare")
+        if pts is None or not len(pts.member):
+            names.remove("poincare_family")
+        return names
+
+    @classmethod
+    def section_poincare_family(cls, data):
+        sweep, a, p = data.sweep, data.analysis, data.config.params
+        pts = sweep.points["poincare"]
+        member = np.asarray(pts.member)
+        kept = pts.counts(sweep.size)
+        crossing = np.flatnonzero(kept)
+        paths = list(sweep.values)
+        if len(paths) == 1 or sweep.attrs.get("zip"):
+            key = paths[0]
+            colour = np.asarray(sweep.values[key], dtype=float)
+        else:  # a grid of several keys: the member's number keys its colour
+            key = "member"
+            colour = np.arange(sweep.size, dtype=float)
+        labels = ({int(i): member_text(sweep, int(i), short=True) for i in crossing}
+                  if len(crossing) <= cls.LEGEND_MEMBERS else None)
+        grid = a.get("poincare_grid")
+        C0 = np.asarray(sweep.analysis["separation_constant"], dtype=float)
+        levels = C0[crossing[sweep.ok[crossing]]]
+        fig = section_plots.poincare_family(
+            pts.columns["u"], pts.columns["v"], member, colour, "x [m]", "ẋ [m/s]",
+            colour_label=key, labels=labels,
+            edge=None if grid is None else (grid["u"], grid["v"], grid["vy2"], 0.0),
+            edge_label=None if grid is None else
+            f"ẏ = 0 on E = {fmt(a['poincare_energy'], 6)}",
+            curves=None if grid is None else (grid["u"], grid["v"], grid["C"], levels),
+            marker_size=cls.MARKER_SIZE, legend_below=True,
+            curves_label=None if grid is None else "C(x, ẋ) = C of each orbit",
+            lines=[(-p.a, "a centre, x = ±a"), (p.a, "a centre, x = ±a")])
+        total = np.asarray(sweep.analysis.get("poincare_points", kept), dtype=float)
+        capped = np.flatnonzero(sweep.ok & (total > kept))
+        facts = [("orbits", f"{len(crossing)} of {sweep.size} members cross y = 0 upward"),
+                 ("crossings drawn", f"{len(member)} ({int(kept[crossing].min())} to "
+                                     f"{int(kept[crossing].max())} per orbit)")]
+        for name, label in (("poincare_C_error", "separation constant C at the crossings"),
+                            ("poincare_E_error", "energy E at the crossings")):
+            error = sweep.analysis.get(name)
+            if error is not None and np.any(np.isfinite(error)):
+                facts.append((label, f"within {fmt_err(float(np.nanmax(error)))} of its value "
+                                     "at t = 0, relative, on every orbit"))
+        if "poincare_energy" in a:
+            facts.append(("energy of every orbit", f"E = {fmt(a['poincare_energy'], 12)}"))
+        formulation = sweep.labels.get("formulation")
+        if formulation is not None:
+            regularized_members = int(np.sum(np.asarray(formulation) == "regularized"))
+            facts.append(("formulation", f"{len(formulation) - regularized_members} Cartesian, "
+                                         f"{regularized_members} regularized (Thiele–Burrau)"))
+        notes = []
+        if len(capped):
+            cap = int(pts.attrs.get("max_points", 0))
+            notes.append(f"Capped: the archive keeps the first {cap} crossings of each orbit; "
+                         f"{len(capped)} of the orbits had more (up to "
+                         f"{int(np.max(total[capped]))}). [sweep] max_points keeps more.")
+        missing = np.flatnonzero(sweep.ok & (kept == 0))
+        if len(missing):
+            notes.append(f"{len(missing)} member(s) did not cross y = 0 upward during the run: "
+                         + ", ".join(member_text(sweep, int(i), short=True)
+                                     for i in missing[:5]) + (" …" if len(missing) > 5 else ""))
+        if grid is None:
+            notes.append("The members do not share one energy, so no predicted curves are "
+                         "drawn: C(x, ẋ) on the section depends on E.")
+        caption = ("Surface of section y = 0 crossed with ẏ > 0 (the line through the "
+                   f"centres): (x, ẋ) at the crossings of {len(crossing)} orbits, each orbit in "
+                   "its own colour " + (f"(keyed to {key})" if labels is None else "(legend)")
+                   + ". The problem is integrable: each regular orbit's crossings lie on one "
+                   "closed curve" + (", the grey curve C(x, ẋ) = C of the orbit at its energy; "
+                                     "dark: ẏ = 0, the edge of the region the energy allows"
+                                     if grid is not None else "") + ".")
+        return SectionContent(figures=[cls.figure("poincare_family", fig, caption)],
+                              facts=facts, notes=notes)
 
     def _coordinate_lines(self, xi, eta, bounds) -> dict:
         """The elliptic-coordinate grid drawn under the orbit, and the coordinate lines
