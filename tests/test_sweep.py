@@ -333,7 +333,8 @@ def test_kepler_family_period_against_eccentricity(write_config, tmp_path):
 
 
 @pytest.mark.parametrize("name", ["pendulum_period_sweep", "heavy_top_spin_family",
-                                  "hamiltonian_henon_heiles_section_family"])
+                                  "hamiltonian_henon_heiles_section_family",
+                                  "two_center_section_family"])
 def test_every_broken_key_of_a_shipped_sweep_is_named(name, tmp_path, cli):
     """Each value of the resolved [sweep] table broken in turn (NaN for a number, 7 for a
     string or boolean), and an unknown key added to each of its tables: validate exits 2
