@@ -143,8 +143,10 @@ class TwoCenterScene(Scene):
                             "predict."),
     )
 
-    #: self-checks of the members, shown in the family section instead
-    SWEEP_HIDDEN_RESULTS = ("poincare_*_error",)
+    #: self-checks of the members (shown in the family section instead) and the sampled
+    #: ranges of ξ and |η| (the bounds from 7.59 up to sampling: noise against the swept
+    #: value where a bound is 0 or 1)
+    SWEEP_HIDDEN_RESULTS = ("poincare_*_error", "xi_range_run_*", "eta_abs_range_run_*")
     #: the surface of section: the line through the centres, crossed with ẏ > 0, drawn in
     #: (x, ẋ); as archived in ``/sweep/points/poincare`` attrs (column, value, direction)
     SURFACE = ("y", "0.0", "up")
