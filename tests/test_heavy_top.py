@@ -364,9 +364,83 @@ def test_spin_free_theta_matches_the_elliptic_closed_form():
     assert errors[0] > 10 * errors[1] > 100 * errors[2]
 
 
+@pytest.mark.parametrize("start", [(0.7, -0.9, 0.4, 5.0), (0.9, 0.0, 0.3, 6.0),
+                                   (2.5, 0.4, -0.3, 3.0), (1.2, 0.0, 0.8, 0.0)])
+def test_reduced_form_is_the_body_motion(start):
+    # Lagrange's reduction (w = 1 − cos θ, ẅ = g'(w)/2, φ and ψ as quadratures) mapped
+    # back to (q, ω) is the body model's motion: a hanging top (θ0 = 2.5, θ up to 2.93)
+    # and one with no spin (ω3 = 0, a spherical pendulum) included; each keeps away from
+    # the vertical, where the reduction is singular.
+    t = np.linspace(0.0, 20.0, 301)
+    body = integrate(model_core.model(I1, I3, MGL), model_core.initial_state(*start), t,
+                     rtol=1e-13, atol=1e-15)
+    c = theory.constants(I1, I3, MGL, *start)
+    model = model_core.reduced_model(I1, I3, MGL, start[3], c.A, c.B)
+    red = integrate(model, model_core.reduced_initial_state(*start[:2]), t, rtol=1e-13,
+                    atol=1e-15)
+    assert body.ok and red.ok
+    assert np.max(np.abs(model_core.reduced_body_state(red.y, model.params) - body.y)) < 1e-10
+
+
+def test_reduced_theta_matches_the_elliptic_closed_form_with_fewer_steps():
+    # θ(t) of the reduced run against the sn² closed form (Goldstein 5.72) on the top of
+    # issue 15: the error follows the tolerance; it takes fewer steps than the spin-free
+    # form for the same accuracy.
+    start = (0.9, 0.0, 0.3, 6.0)
+    i1, i3, mgl = 1.3, 0.45, 0.9
+    t = np.linspace(0.0, 60.0, 201)
+    c = theory.constants(i1, i3, mgl, *start)
+    exact = theory.theta_closed_form(t, theory.roots(c), c)
+    model = model_core.reduced_model(i1, i3, mgl, start[3], c.A, c.B)
+    y0 = model_core.reduced_initial_state(*start[:2])
+    runs = [integrate(model, y0, t, rtol=rtol, atol=rtol * 1e-2) for rtol in (1e-8, 1e-10, 1e-12)]
+    errors = [float(np.max(np.abs(theory.theta_of_w(r.y[:, 0]) - exact))) for r in runs]
+    assert errors[0] < 1e-6 and errors[1] < 2e-10 and errors[2] < 1e-11
+    assert errors[0] > 10 * errors[1] > 100 * errors[2]
+    free = integrate(model_core.spin_free_model(i1, i3, mgl, start[3]),
+                     model_core.spin_free_initial_state(*start[:3]), t, rtol=1e-10, atol=1e-12)
+    assert runs[1].nsteps < free.nsteps
+
+
+def test_reduced_form_on_the_vertical_fails_cleanly():
+    # w = 0 with B = 0 is 0/0 in φ̇: the driver (compiled for this model, the division
+    # inlined) reports NONFINITE instead of raising.
+    model = model_core.reduced_model(I1, I3, MGL, 5.0, 0.0, 0.0)
+    sol = integrate(model, np.zeros(4), np.linspace(0.0, 1.0, 11))
+    assert not sol.ok and sol.code.name == "NONFINITE"
+
+
+@pytest.mark.parametrize("initial, run, expected", [
+    ("theta = 0.9\ntheta_dot = 0.0\nphi_dot = 0.3\nomega3 = 6.0", "", "reduced"),
+    ("theta = 0.05\ntheta_dot = 0.0\nphi_dot = 0.0\nomega3 = 5.0", "", "spin_free"),
+    ("theta = 0.0\ntheta_dot = 0.0\nphi_dot = 0.0\nomega3 = 5.0", "", "spin_free"),
+    ("theta = 0.9\ntheta_dot = 0.0\nphi_dot = 0.3\nomega3 = 6.0",
+     'formulation = "spin_free"', "spin_free"),
+    ("theta = 0.05\ntheta_dot = 0.0\nphi_dot = 0.0\nomega3 = 5.0",
+     'formulation = "reduced"', "reduced")])
+def test_formulation_auto_keeps_the_reduced_form_off_the_vertical(initial, run, expected):
+    from reportgen.scenes.heavy_top import HeavyTopScene
+
+    scene = HeavyTopScene.from_source(parse_config_text(
+        f'kind = "heavy_top"\ntitle = "t"\n[params]\nI1 = 1.0\nI3 = 0.5\nMgl = 1.0\n'
+        f"[initial]\n{initial}\n[run]\nt_end = 5.0\n{run}\n"))
+    assert scene.formulation(next(iter(scene.starts.values())))[0] == expected
+
+
+def test_reduced_formulation_of_a_top_through_the_vertical_is_refused():
+    from reportgen.scenes.heavy_top import HeavyTopScene
+
+    with pytest.raises(ConfigError, match=r"run\.formulation.*singular on the vertical"):
+        HeavyTopScene.from_source(parse_config_text(
+            'kind = "heavy_top"\ntitle = "t"\n[params]\nI1 = 1.0\nI3 = 0.5\nMgl = 1.0\n'
+            "[initial]\ntheta = 0.0\ntheta_dot = 0.0\nphi_dot = 0.0\nomega3 = 5.0\n"
+            '[run]\nt_end = 5.0\nformulation = "reduced"\n'))
+
+
 def test_bench_textbook_row_reaches_the_euler_angle_scripts_theta_error():
-    # reportgen bench: scipy DOP853 on the Euler-angle equations against our spin-free run
-    # at the loosest rtol reaching its θ error (both against the closed form).
+    # reportgen bench: scipy DOP853 on the Euler-angle equations against our run (the
+    # reduced form here) at the loosest rtol reaching its θ error (both against the
+    # closed form).
     from reportgen.bench import heavy_top_textbook
     from reportgen.config import parse_config_text
     from reportgen.scenes.heavy_top import HeavyTopScene
@@ -380,6 +454,7 @@ def test_bench_textbook_row_reaches_the_euler_angle_scripts_theta_error():
     assert 0 < row["peer_error"] < 1e-8 and row["peer_nfev"] > 100
     ours = row["ours"]
     assert ours["error"] <= row["peer_error"] and ours["speedup"] > 1
+    assert ours["formulation"] == "reduced"
     assert "textbook" in lines[0]
 
 

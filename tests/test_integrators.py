@@ -344,9 +344,63 @@ def test_unrolled_dop853_takes_erk_adaptives_steps_bit_for_bit(case):
             tail = (t, i0, i1, Y, run.y, run.y_old, run.K, run.F, run.state, run.counters,
                     run.params, 1e-9, 1e-11, 10**6)
             status = (kern.dop853_adaptive(*tail) if unrolled
-                      else compiled.erk_adaptive(kern.rhs, *run.args, *tail))
+                      else compiled.erk_adaptive(kern.rhs, *dop.driver_args(), *tail))
             assert status == compiled.OK
         runs.append((Y, run.counters.copy(), run.state.copy()))
     (Ya, ca, sa), (Yb, cb, sb) = runs
     assert ca[1] > 10 and np.all(np.isfinite(Ya))
     assert np.array_equal(Ya, Yb) and np.array_equal(ca, cb) and np.array_equal(sa, sb)
+
+
+@pytest.mark.parametrize("case", ["reduced_top", "chunked"])
+def test_specialized_dop853_takes_the_shared_drivers_steps_bit_for_bit(case):
+    # A model with specialize=True runs DOP853 on a driver compiled for it (rhs inlined,
+    # dimension a constant, integrators.specialized): the same method, so the same
+    # outputs and counters as the shared driver, to the last bit, whole or in chunks.
+    import dataclasses
+
+    from reportgen.core import heavy_top_theory as theory
+    from reportgen.core.models import heavy_top
+
+    c = theory.constants(1.3, 0.45, 0.9, 0.9, 0.0, 0.3, 6.0)
+    model = heavy_top.reduced_model(1.3, 0.45, 0.9, 6.0, c.A, c.B)
+    assert model.specialize
+    y0 = heavy_top.reduced_initial_state(0.9, 0.0)
+    t = np.linspace(0.0, 30.0, 101)
+    progress = (lambda x: None) if case == "chunked" else None
+    ours = integrate(model, y0, t, rtol=1e-10, atol=1e-12, progress=progress)
+    shared = integrate(dataclasses.replace(model, specialize=False), y0, t, rtol=1e-10,
+                       atol=1e-12)
+    assert ours.ok and ours.nsteps > 50
+    assert np.array_equal(ours.y, shared.y)
+    assert (ours.nfev, ours.nsteps, ours.nreject) == (shared.nfev, shared.nsteps, shared.nreject)
+
+
+def test_specialized_driver_refuses_what_it_cannot_inline():
+    import numba
+
+    from reportgen.core.integrators.specialized import dop853_driver
+    from reportgen.core.models import pendulum
+
+    # pendulum.rhs has numba's default error model: inlined, 1/0 would raise in the driver
+    with pytest.raises(ValueError, match="error_model"):
+        dop853_driver(pendulum.rhs, 2)
+
+    @numba.njit(error_model="numpy")
+    def local(t, y, params, out):
+        out[0] = y[0]
+
+    with pytest.raises(ValueError, match="module-level"):
+        dop853_driver(local, 1)
+    with pytest.raises(TypeError, match="njit"):
+        dop853_driver(lambda t, y, p, o: None, 1)
+
+
+def test_specialized_driver_text_follows_the_model_module():
+    # numba does not notice an inlined function's edit: the driver's text (so its file
+    # and cache) carries a hash of the model's module and of the shared step code.
+    from reportgen.core.integrators import _gen_dop853, specialized
+
+    a = _gen_dop853.source(("m", "rhs"), 4, specialized._stamp("reportgen.core.models.pendulum"))
+    b = _gen_dop853.source(("m", "rhs"), 4, specialized._stamp("reportgen.core.models.oscillator"))
+    assert a != b and "d = 4\n" in a and "def dop853_adaptive(t_eval," in a

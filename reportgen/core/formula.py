@@ -26,19 +26,13 @@ like every hand-written kind's:
 
 from __future__ import annotations
 
-import hashlib
-import importlib.util
-import os
-import sys
-import threading
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 import sympy
 
-from . import mechanics
+from . import codegen, mechanics
 from .expressions import RESERVED, ExpressionError, parse_expression
 
 #: bump when the generated code changes
@@ -307,43 +301,10 @@ def module_source(system: FormulaSystem) -> str:
     return "\n".join(parts)
 
 
-def code_folder() -> Path:
-    """``$XDG_CACHE_HOME/reportgen/formula`` (as :func:`reportgen.cache.cache_root`, which
-    core may not import: it sits below the rest of the package)."""
-    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-    return Path(base) / "reportgen" / "formula"
-
-
-_LOCK = threading.Lock()
-_MODULES: dict[str, object] = {}
-
-
 def load_module(source: str):
-    """Import ``source`` from its file under :func:`code_folder` (written once per
-    content, atomically), memoized per process."""
-    digest = hashlib.sha256(f"{CODE_VERSION}\n{source}".encode()).hexdigest()[:24]
-    name = f"reportgen_formula_{digest}"
-    with _LOCK:
-        module = _MODULES.get(name)
-        if module is not None:
-            return module
-        folder = code_folder()
-        folder.mkdir(parents=True, exist_ok=True)
-        path = folder / f"{name}.py"
-        try:
-            current = path.read_text(encoding="utf-8")
-        except OSError:
-            current = None
-        if current != source:  # written whole under a temporary name, then renamed
-            tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-            tmp.write_text(source, encoding="utf-8")
-            os.replace(tmp, path)
-        spec = importlib.util.spec_from_file_location(name, path)
-        module = importlib.util.module_from_spec(spec)
-        sys.modules[name] = module
-        spec.loader.exec_module(module)
-        _MODULES[name] = module
-        return module
+    """Import the generated ``source`` (:func:`reportgen.core.codegen.load_module`, under
+    ``$XDG_CACHE_HOME/reportgen/formula``), memoized per process."""
+    return codegen.load_module(source, "formula", CODE_VERSION)
 
 
 def compiled_model(system: FormulaSystem, name: str = "formula"):

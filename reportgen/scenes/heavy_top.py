@@ -23,7 +23,7 @@ from typing import Literal, NamedTuple
 import numpy as np
 from pydantic import Field, model_validator
 
-from ..config import Positive, Real, RunConfig, Strict
+from ..config import ConfigError, Positive, Real, RunConfig, Strict
 from ..lazy import lazy_module
 from ..results import AuditCase, Check, Results, RunRecord
 from .base import (
@@ -100,11 +100,33 @@ class Sleeping(Strict):
                                                       "(default: run.t_end)")
 
 
+#: ``formulation = "auto"`` integrates Lagrange's reduced equations when the axis stays at
+#: least this far from the vertical over the whole motion (sin θ ≥ this for θ1 ≤ θ ≤ θ2),
+#: else the spin-free frame, for which the vertical is an ordinary point
+REDUCED_MIN_SIN = 0.1
+
+FORMULATION_TEXT = {
+    "reduced": "Lagrange's reduction: the nutation w = 1 − cos θ (ẅ = g′(w)/2, a polynomial) "
+               "and the quadratures φ, ψ; the body attitude follows from θ, φ, ψ",
+    "spin_free": "the frame that follows the axis without spinning (a quaternion and "
+                 "its angular velocity ⊥ the axis), turned by ω3 t",
+}
+
+
+class HeavyTopRun(RunConfig):
+    formulation: Literal["auto", "reduced", "spin_free"] = Field(
+        "auto", description='"reduced" (Lagrange\'s reduction in w = 1 − cos θ, with φ and ψ '
+                            'as quadratures: cheapest, singular on the vertical), "spin_free" '
+                            '(the non-spinning frame of the axis: regular everywhere) or '
+                            '"auto": reduced when sin θ ≥ '
+                            f'{REDUCED_MIN_SIN:g} over the whole motion')
+
+
 class HeavyTopConfig(SceneConfig):
     params: Params
     initial: Initial | None = None
     band: Band | None = None
-    run: RunConfig
+    run: HeavyTopRun
     sleeping: Sleeping | None = None
     expect_case: Literal["loops", "waves", "cusps", "steady", "sleeping"] | None = Field(
         None, description="the Fig. 4.3 case the parameters must give (presets set it)")
@@ -359,6 +381,15 @@ class HeavyTopScene(Scene):
         p = self.config.params
         return theory.invariant_scales(p.I1, p.I3, p.Mgl, start.omega3, c)
 
+    @classmethod
+    def from_source(cls, source):
+        """A ``[run] formulation`` that cannot integrate one of the starts is refused (exit
+        2) before anything runs."""
+        scene = super().from_source(source)
+        for start in scene.starts.values():
+            scene.formulation(start)
+        return scene
+
     # -------------------------------------------------------------- simulation
     def models(self) -> list:
         """The top's spin-free model for the first start (the sleeping sweep integrates
@@ -366,10 +397,44 @@ class HeavyTopScene(Scene):
         return [self._model(next(iter(self.starts.values())))]
 
     def _model(self, start: Start):
-        """The spin-free top (:func:`~reportgen.core.models.heavy_top.spin_free_model`) of
-        one start: the body's spin ω3 is a parameter, not a state."""
+        """The model one start integrates (:meth:`formulation`): the spin ω3 is a
+        parameter, not a state."""
+        return self._integration(start)[0]
+
+    def formulation(self, start: Start) -> tuple[str, str]:
+        """("reduced" or "spin_free", why).  The reduced equations divide by sin²θ, so
+        ``auto`` takes them only when the axis keeps away from the vertical (sin θ ≥
+        :data:`REDUCED_MIN_SIN` at both turning circles; sin is concave on [0, π], so
+        then in between too); a named one that cannot run is refused (exit 2)."""
+        run = self.config.run
+        r = theory.roots(self._constants(start))
+        lowest = min(math.sin(theory.theta_of_w(r.w1)), math.sin(theory.theta_of_w(r.w2)))
+        if run.formulation == "spin_free":
+            return "spin_free", '[run] formulation = "spin_free"'
+        if run.formulation == "reduced":
+            if lowest <= 0.0:
+                raise ConfigError([
+                    f"{self.source.label}: key 'run.formulation': the reduced equations are "
+                    f"singular on the vertical, which this top reaches (sin θ = {lowest:.3g} "
+                    f'at a turning circle): expected "spin_free" or "auto", got "reduced"'])
+            return "reduced", '[run] formulation = "reduced"'
+        if lowest >= REDUCED_MIN_SIN:
+            return "reduced", f"auto: sin θ ≥ {lowest:.3g} over the motion"
+        return "spin_free", (f"auto: the axis comes within sin θ = {lowest:.3g} of the "
+                             "vertical")
+
+    def _integration(self, start: Start):
+        """(model, y0, body(t, y) -> the body state (q, ω), formulation, why) of one start."""
         p = self.config.params
-        return model_core.spin_free_model(p.I1, p.I3, p.Mgl, start.omega3)
+        name, why = self.formulation(start)
+        if name == "reduced":
+            c = self._constants(start)
+            model = model_core.reduced_model(p.I1, p.I3, p.Mgl, start.omega3, c.A, c.B)
+            return (model, model_core.reduced_initial_state(start.theta, start.theta_dot),
+                    lambda t_, y: model_core.reduced_body_state(y, model.params), name, why)
+        model = model_core.spin_free_model(p.I1, p.I3, p.Mgl, start.omega3)
+        return (model, model_core.spin_free_initial_state(*start[:3]),
+                lambda t_, y: model_core.body_state(t_, y, start.omega3), name, why)
 
     def simulate(self, progress=None) -> Results:
         run = self.config.run
@@ -396,9 +461,8 @@ class HeavyTopScene(Scene):
             # computed whenever [sleeping] is given: [report] edits re-stamp the archive
             # without simulating again, and the section must then still find it
             results.analysis["sleeping_sweep"] = self._sleeping_sweep()
-        main = next(iter(starts.values()))
-        y0 = model_core.spin_free_initial_state(*main[:3])
-        self.study(results, self._model(main), y0, np.linspace(0.0, run.t_end, 201),
+        model, y0, *_ = self._integration(next(iter(starts.values())))
+        self.study(results, model, y0, np.linspace(0.0, run.t_end, 201),
                    progress=progress)
         return results
 
@@ -410,19 +474,17 @@ class HeavyTopScene(Scene):
         case = theory.classify(r, c)
         period = theory.nutation_period(r, c)
         precession = theory.precession_per_period(r, c)
-        y0 = model_core.spin_free_initial_state(*start[:3])
+        model, y0, body, formulation, why = self._integration(start)
         t = np.linspace(0.0, run.t_end, run.samples)
         scales = self._scales(start, c)
-
-        def body(t_, y):
-            return model_core.body_state(t_, y, start.omega3)
-
-        raw = self.integrate(self._model(start), y0, t,
+        raw = self.integrate(model, y0, t,
                              invariants=lambda t_, y: self._invariants(body(t_, y)),
                              invariant_scales=scales, progress=progress,
                              n_periods=run.t_end / period if math.isfinite(period) else None)
         raw.y = body(raw.t, raw.y)  # the archived state: body quaternion and ω
         main, motion = self._derived_run(raw)
+        main.attrs["formulation"] = formulation
+        main.attrs["formulation_reason"] = why
 
         slow, fast = theory.steady_precession_rates(p.I1, p.I3, p.Mgl, start.theta, start.omega3)
         w_cf, _u_cf = theory.u_closed_form(t, r, c)
@@ -769,6 +831,10 @@ class HeavyTopScene(Scene):
                           f"{fmt_err(a['weierstrass_max_difference'])} on the output grid"))
         facts.append(("sleeping-top threshold", f"ω3 = 2√(I1 M g l)/I3 = "
                       f"{fmt(a['sleeping_threshold_omega3'])} rad/s (10.50)"))
+        formulation = data.runs["main"].attrs.get("formulation")
+        if formulation in FORMULATION_TEXT:  # archives before it was stored: spin-free
+            facts.append(("integrated", f"{FORMULATION_TEXT[formulation]} "
+                                        f"({data.runs['main'].attrs.get('formulation_reason')})"))
         return facts
 
     @classmethod

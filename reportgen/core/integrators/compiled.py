@@ -90,6 +90,15 @@ def all_finite(y):
 
 
 @numba.njit(cache=True)
+def increasing(t):
+    """Whether ``t`` is strictly increasing (False on a NaN)."""
+    for i in range(1, t.size):
+        if not t[i] > t[i - 1]:
+            return False
+    return True
+
+
+@numba.njit(cache=True)
 def rms_scaled(x, scale):
     acc = 0.0
     for i in range(x.size):
@@ -100,9 +109,22 @@ def rms_scaled(x, scale):
 
 @numba.njit(cache=True)
 def initial_step(rhs, t0, y0, f0, params, order, rtol, atol, span):
-    """Starting step size, Hairer-Norsett-Wanner I, sec. II.4 (as scipy select_initial_step)."""
+    """Starting step size, Hairer-Norsett-Wanner I, sec. II.4 (as scipy select_initial_step):
+    a guess h0 from |y0| and |f0| (:func:`initial_guess`), then one evaluation at
+    y0 + h0 f0 to estimate the second derivative (:func:`initial_choice`)."""
     d = y0.size
     scale = np.empty(d)
+    y1 = np.empty(d)
+    h0 = initial_guess(y0, f0, rtol, atol, span, scale, y1)
+    f1 = np.empty(d)
+    rhs(t0 + h0, y1, params, f1)
+    return initial_choice(f0, f1, h0, scale, order, span)
+
+
+@numba.njit(cache=True)
+def initial_guess(y0, f0, rtol, atol, span, scale, y1):
+    """h0 of :func:`initial_step`; fills ``scale`` (atol + |y0| rtol) and ``y1 = y0 + h0 f0``."""
+    d = y0.size
     for i in range(d):
         scale[i] = atol + abs(y0[i]) * rtol
     d0 = rms_scaled(y0, scale)
@@ -112,12 +134,16 @@ def initial_step(rhs, t0, y0, f0, params, order, rtol, atol, span):
     else:
         h0 = 0.01 * d0 / d1
     h0 = min(h0, span)
-    y1 = np.empty(d)
     for i in range(d):
         y1[i] = y0[i] + h0 * f0[i]
-    f1 = np.empty(d)
-    rhs(t0 + h0, y1, params, f1)
-    for i in range(d):
+    return h0
+
+
+@numba.njit(cache=True)
+def initial_choice(f0, f1, h0, scale, order, span):
+    """The step of :func:`initial_step` from f0 = f(y0) and f1 = f(y0 + h0 f0) (overwritten)."""
+    d1 = rms_scaled(f0, scale)
+    for i in range(f0.size):
         f1[i] -= f0[i]
     d2 = rms_scaled(f1, scale) / h0
     if d1 <= 1e-15 and d2 <= 1e-15:

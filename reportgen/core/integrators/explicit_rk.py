@@ -119,7 +119,7 @@ class EmbeddedRun(Run):
         d = y0.size
         n_rows = m.A.shape[0] if m.dense_kind == 1 else m.n_stages + 1
         self.kern, self.m, self.t_eval, self.Y = kern, m, t_eval, Y
-        self.args = m.driver_args()
+        self.args = None if m.unrolled else m.driver_args()
         self.y = np.array(y0, dtype=np.float64)
         self.y_old = self.y.copy()
         self.K = np.zeros((n_rows, d))

@@ -110,6 +110,7 @@ class ModelKernels:
         sep = model.separable
         self._funcs = (model.rhs, model.jac, sep and sep.drift, sep and sep.kick)
         self.has_jac = model.jac is not None
+        self.dim = model.dim if model.specialize else None
 
     @cached_property
     def rhs(self):
@@ -130,8 +131,17 @@ class ModelKernels:
     def erk_adaptive(self, *args):
         return compiled.erk_adaptive(self.rhs, *args)
 
+    @cached_property
+    def dop853_specialized(self):
+        from .specialized import dop853_driver
+
+        return dop853_driver(self._funcs[0], self.dim)
+
     def dop853_adaptive(self, *args):
-        """DOP853 with its tableau written out (:mod:`._dop853_unrolled`): erk_adaptive's steps."""
+        """DOP853 with its tableau written out (:mod:`._dop853_unrolled`): erk_adaptive's
+        steps; on a driver compiled for this model when it asks (``model.specialize``)."""
+        if self.dim is not None:
+            return self.dop853_specialized(*args)
         return _dop853_unrolled.dop853_adaptive(self.rhs, *args)
 
     def erk_fixed(self, *args):
@@ -150,7 +160,7 @@ def kernels_for(model) -> ModelKernels:
     of functions; the callbacks are compiled or loaded when a driver first needs them)."""
     sep = model.separable
     funcs = (model.rhs, model.jac, sep and sep.drift, sep and sep.kick)
-    key = tuple(id(f) for f in funcs)
+    key = (*(id(f) for f in funcs), model.dim if model.specialize else None)
     with _LOCK:
         kern = _KERNELS.get(key)
         if kern is None:

@@ -119,6 +119,64 @@ def body_state(t, y, omega3):
                             np.full(t.shape, float(omega3))])
 
 
+REDUCED_COLUMNS = ("w", "w_dot", "phi", "psi")
+
+# params = (I1, I3, Mgl, omega3, k0, k1, k2, B, a)
+
+
+@numba.njit(cache=True, error_model="numpy")
+def reduced_rhs(t, y, params, out):
+    """Lagrange's reduction in w = 1 − cos θ: ẇ² = g(w) (the energy integral with p_φ and
+    p_ψ eliminated), so ẅ = g'(w)/2 = k0 + k1 w − k2 w², a polynomial with no singular
+    point; φ̇ = (B + a w) / (w (2 − w)) and ψ̇ = ω3 − (1 − w) φ̇ are quadratures
+    (Goldstein 5.62-5.71 in w).  Singular only where the axis reaches the vertical."""
+    omega3, k0, k1, k2, b_, a = (params[3], params[4], params[5], params[6], params[7],
+                                 params[8])
+    w, w_dot = y[0], y[1]
+    phi_dot = (b_ + a * w) / (w * (2.0 - w))
+    out[0] = w_dot
+    out[1] = k0 + (k1 - k2 * w) * w
+    out[2] = phi_dot
+    out[3] = omega3 - (1.0 - w) * phi_dot
+
+
+def reduced_model(I1: float, I3: float, Mgl: float, omega3: float, A: float,
+                  B: float) -> OdeModel:
+    """The top reduced to its nutation ``(w, ẇ)`` plus the angles ``(φ, ψ)``, with
+    A = α − β and B = b − a of the initial state
+    (:class:`~reportgen.core.heavy_top_theory.TopConstants`).  g(w) = w (2 − w)(A + β w)
+    − (B + a w)² gives ẅ = (A − a B) + (2β − A − a²) w − (3/2) β w²."""
+    a, beta = I3 * omega3 / I1, 2.0 * Mgl / I1
+    return OdeModel(name="heavy_top_reduced", columns=REDUCED_COLUMNS, rhs=reduced_rhs,
+                    specialize=True,
+                    params=np.array([I1, I3, Mgl, omega3, A - a * B, 2.0 * beta - A - a * a,
+                                     1.5 * beta, B, a], dtype=np.float64))
+
+
+def reduced_initial_state(theta, theta_dot):
+    """(w, ẇ, φ, ψ) at t = 0: w = 2 sin²(θ/2), ẇ = θ̇ sin θ, φ = ψ = 0."""
+    return np.array([2.0 * math.sin(0.5 * theta) ** 2, theta_dot * math.sin(theta), 0.0, 0.0])
+
+
+def reduced_body_state(y, params):
+    """Reduced states ``y`` (N, 4) -> the body state (N, 7) of :func:`rhs`:
+    q from (φ, θ, ψ) (:func:`euler_to_quaternion`) and ω from Goldstein (4.87),
+    ω1 = φ̇ sin θ sin ψ + θ̇ cos ψ, ω2 = φ̇ sin θ cos ψ − θ̇ sin ψ, ω3."""
+    omega3, b_, a = params[3], params[7], params[8]
+    w, w_dot, phi, psi = (y[:, i] for i in range(4))
+    half_s, half_c = np.sqrt(0.5 * w), np.sqrt(1.0 - 0.5 * w)  # sin θ/2, cos θ/2
+    sin_theta = 2.0 * half_s * half_c
+    theta_dot = w_dot / sin_theta
+    phi_dot = (b_ + a * w) / (w * (2.0 - w))
+    plus, minus = 0.5 * (phi + psi), 0.5 * (phi - psi)
+    q = np.column_stack([half_c * np.cos(plus), half_s * np.cos(minus), half_s * np.sin(minus),
+                         half_c * np.sin(plus)])
+    cs, sn = np.cos(psi), np.sin(psi)
+    return np.column_stack([q, phi_dot * sin_theta * sn + theta_dot * cs,
+                            phi_dot * sin_theta * cs - theta_dot * sn,
+                            np.full(w.shape, float(omega3))])
+
+
 # ----------------------------------------------------------------- quaternions
 def euler_to_quaternion(phi, theta, psi):
     """Unit quaternion (w, x, y, z) of the z-x-z rotation R = Rz(φ) Rx(θ) Rz(ψ)."""
