@@ -116,7 +116,15 @@ def effective_potential(theta, V, *, energy, theta1, theta2, ylabel="V'(θ) [J]"
     finite = V[np.isfinite(V)]
     lo = float(np.min(finite))
     span = max(energy - lo, 1e-12)
-    ax.set_ylim(lo - 0.3 * span, energy + 1.5 * span)
+    top = energy + 1.5 * span
+    ax.set_ylim(lo - 0.3 * span, top)
+    # θ where the well shows under that window, with as much again on each side: a narrow
+    # band is then a well, not a spike at the middle of [0, π]
+    inside = np.asarray(theta)[np.isfinite(V) & (np.asarray(V) <= top)]
+    if inside.size:
+        a, b = float(inside.min()), float(inside.max())
+        pad = max(b - a, 1e-6)
+        ax.set_xlim(max(float(np.min(theta)), a - pad), min(float(np.max(theta)), b + pad))
     ax.set_xlabel("θ [rad]")
     ax.set_ylabel(ylabel)
     ax.legend(loc="upper right")
@@ -141,7 +149,9 @@ def time_series(t, theta, theta_closed, phi_dot, u_error, *, theta1, theta2,
     ax.axhline(0.0, color="k", linewidth=0.8)
     ax.set_ylabel("dφ/dt [rad/s]")
     ax = axes[2, 0]
-    ax.semilogy(t, np.maximum(np.abs(u_error), 1e-30), color=HIGHLIGHT)
+    # exact agreement (the start) left out: on a log axis it would stretch it to 1e-30
+    err = np.abs(np.asarray(u_error, dtype=float))
+    ax.semilogy(t, np.where(err > 0.0, err, np.nan), color=HIGHLIGHT)
     ax.set_ylabel(error_label)
     ax.set_xlabel("time t [s]")
     return fig
