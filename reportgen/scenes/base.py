@@ -756,6 +756,24 @@ def member_text(sweep, i: int, short: bool = False) -> str:
                      f"{fmt(float(v[i]), 4 if short else 8)}" for p, v in sweep.values.items())
 
 
+def section_colours(sweep, points, legend_members: int):
+    """How a family's surface of section tells its members apart: (crossing members,
+    colour key, colour per member, labels or None).  One swept key (or zipped keys) colours
+    by its value, a grid of several by the member's number; up to ``legend_members``
+    members with crossings get a legend label each (more: a colour bar)."""
+    crossing = np.flatnonzero(points.counts(sweep.size))
+    paths = list(sweep.values)
+    if len(paths) == 1 or sweep.attrs.get("zip"):
+        key = paths[0]
+        colour = np.asarray(sweep.values[key], dtype=float)
+    else:  # a grid of several keys: the member's number keys its colour
+        key = "member"
+        colour = np.arange(sweep.size, dtype=float)
+    labels = ({int(i): member_text(sweep, int(i), short=True) for i in crossing}
+              if len(crossing) <= legend_members else None)
+    return crossing, key, colour, labels
+
+
 def kept_members(data: ArchiveData) -> list[tuple[int, str]]:
     """(member index, run name) of a sweep's members kept whole, in member order."""
     return sorted((int(name.split("_", 1)[1]), name) for name in data.runs

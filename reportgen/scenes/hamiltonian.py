@@ -23,7 +23,17 @@ from ..config import Real, RunConfig, Strict
 from ..lazy import lazy_module
 from ..results import Check, Results
 from ..sweep import PointSet
-from .base import Scene, SceneConfig, Section, SectionContent, Table, fmt, fmt_err, member_text
+from .base import (
+    Scene,
+    SceneConfig,
+    Section,
+    SectionContent,
+    Table,
+    fmt,
+    fmt_err,
+    member_text,
+    section_colours,
+)
 
 common_plots = lazy_module("reportgen.plots.common")
 plots = lazy_module("reportgen.plots.hamiltonian")
@@ -798,16 +808,7 @@ class HamiltonianScene(Scene):
         uname, vname = pts.attrs["axes"]
         member = np.asarray(pts.member)
         kept = pts.counts(sweep.size)
-        crossing = np.flatnonzero(kept)
-        paths = list(sweep.values)
-        if len(paths) == 1 or sweep.attrs.get("zip"):
-            key = paths[0]
-            colour = np.asarray(sweep.values[key], dtype=float)
-        else:  # a grid of several keys: the member's number keys its colour
-            key = "member"
-            colour = np.arange(sweep.size, dtype=float)
-        labels = ({int(i): member_text(sweep, int(i), short=True) for i in crossing}
-                  if len(crossing) <= cls.LEGEND_MEMBERS else None)
+        crossing, key, colour, labels = section_colours(sweep, pts, cls.LEGEND_MEMBERS)
         edge = a.get("poincare_edge")
         fig = section_plots.poincare_family(
             pts.columns["u"], pts.columns["v"], member, colour, uname, vname,

@@ -19,7 +19,7 @@ from ..config import ConfigError, Positive, Real, RunConfig, Strict
 from ..lazy import lazy_module
 from ..results import Check, Results
 from ..sweep import PointSet
-from .base import Scene, SceneConfig, Section, SectionContent, fmt, fmt_err, member_text
+from .base import Scene, SceneConfig, Section, SectionContent, fmt, fmt_err, member_text, section_colours
 
 core = lazy_module("reportgen.core.models.two_center")
 regularized = lazy_module("reportgen.core.models.two_center_regularized")
@@ -454,16 +454,7 @@ class TwoCenterScene(Scene):
         pts = sweep.points["poincare"]
         member = np.asarray(pts.member)
         kept = pts.counts(sweep.size)
-        crossing = np.flatnonzero(kept)
-        paths = list(sweep.values)
-        if len(paths) == 1 or sweep.attrs.get("zip"):
-            key = paths[0]
-            colour = np.asarray(sweep.values[key], dtype=float)
-        else:  # a grid of several keys: the member's number keys its colour
-            key = "member"
-            colour = np.arange(sweep.size, dtype=float)
-        labels = ({int(i): member_text(sweep, int(i), short=True) for i in crossing}
-                  if len(crossing) <= cls.LEGEND_MEMBERS else None)
+        crossing, key, colour, labels = section_colours(sweep, pts, cls.LEGEND_MEMBERS)
         grid = a.get("poincare_grid")
         C0 = np.asarray(sweep.analysis["separation_constant"], dtype=float)
         levels = C0[crossing[sweep.ok[crossing]]]
