@@ -150,9 +150,9 @@ def heavy_top_textbook(scene, print=builtins.print, samples: int = 201) -> dict:
     peer_err = (float(np.max(np.abs(sol.y[0] - exact))) if sol.success else math.inf)
     # what the scene integrates (reduced, or spin-free near the vertical), up to θ(t)
     model, s0, _body, formulation, _why = scene._integration(start)
-    if formulation == "reduced":  # w = 1 − cos θ, away from 0 and 2 (the formulation's rule)
+    if formulation == "reduced":  # the state's first component is w = 1 − cos θ
         def theta_of(y):
-            return 2.0 * np.arcsin(np.sqrt(0.5 * y[:, 0]))
+            return theory.theta_of_w(y[:, 0])
     else:
         def theta_of(y):
             return kinematics.tilt_angle(y[:, :4])

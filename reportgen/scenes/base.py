@@ -102,6 +102,9 @@ class Section:
     title: str
     integrates: bool = False  # needs /runs/main
     description: str = ""
+    #: a family section that draws this point set of the sweep (``/sweep/points/<points>``):
+    #: held only when the members gave it points
+    points: str = ""
 
 
 @dataclass
@@ -448,9 +451,14 @@ class Scene:
     def held_family_sections(cls, data: ArchiveData) -> list[str]:
         """The family sections this sweep's archive holds the data of (a kind drops those
         whose results its members did not give).  Default: all, but the kept members only
-        if some were kept."""
-        return [f.name for f in cls.family_sections + cls.SWEEP_SECTIONS
-                if f.name != "sweep_members" or data.runs]
+        if some were kept, and a section drawing a point set only if it has points."""
+        def held(f: Section) -> bool:
+            if f.points:
+                pts = data.sweep.points.get(f.points)
+                return pts is not None and len(pts.member) > 0
+            return f.name != "sweep_members" or bool(data.runs)
+
+        return [f.name for f in cls.family_sections + cls.SWEEP_SECTIONS if held(f)]
 
     @classmethod
     def chosen_sections(cls, data: ArchiveData) -> list[Section]:

@@ -291,7 +291,8 @@ class HamiltonianScene(Scene):
     family_sections = (
         Section("poincare_family", "Surface of section from many orbits",
                 description="The crossings of every member's orbit on one surface of "
-                            "section, each orbit coloured by its swept value."),
+                            "section, each orbit coloured by its swept value.",
+                points="poincare"),
     )
 
     SWEEP_HIDDEN_RESULTS = ("jacobi_*", "poisson_*_max", "legendre_*", "study_t_end",
@@ -791,14 +792,6 @@ class HamiltonianScene(Scene):
                       float(h0[i]), float(energy[i]), "",
                       "initial.energy (the left-out momentum solved so that H = energy)",
                       scale=max(abs(float(energy[i])), 1e-300))]
-
-    @classmethod
-    def held_family_sections(cls, data):
-        names = super().held_family_sections(data)
-        pts = data.sweep.points.get("poincare")
-        if pts is None or not len(pts.member):
-            names.remove("poincare_family")
-        return names
 
     @classmethod
     def section_poincare_family(cls, data):

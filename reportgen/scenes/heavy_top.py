@@ -392,8 +392,8 @@ class HeavyTopScene(Scene):
 
     # -------------------------------------------------------------- simulation
     def models(self) -> list:
-        """The top's spin-free model for the first start (the sleeping sweep integrates
-        it with DOP853, its own choice)."""
+        """The model the first start integrates (:meth:`formulation`; the sleeping sweep
+        integrates the spin-free one with DOP853, its own choice)."""
         return [self._model(next(iter(self.starts.values())))]
 
     def _model(self, start: Start):
@@ -401,13 +401,15 @@ class HeavyTopScene(Scene):
         parameter, not a state."""
         return self._integration(start)[0]
 
-    def formulation(self, start: Start) -> tuple[str, str]:
+    def formulation(self, start: Start, c: theory.TopConstants | None = None
+                    ) -> tuple[str, str]:
         """("reduced" or "spin_free", why).  The reduced equations divide by sin²θ, so
         ``auto`` takes them only when the axis keeps away from the vertical (sin θ ≥
         :data:`REDUCED_MIN_SIN` at both turning circles; sin is concave on [0, π], so
-        then in between too); a named one that cannot run is refused (exit 2)."""
+        then in between too); a named one that cannot run is refused (exit 2).  ``c``:
+        the start's constants, when the caller has them."""
         run = self.config.run
-        r = theory.roots(self._constants(start))
+        r = theory.roots(self._constants(start) if c is None else c)
         lowest = min(math.sin(theory.theta_of_w(r.w1)), math.sin(theory.theta_of_w(r.w2)))
         if run.formulation == "spin_free":
             return "spin_free", '[run] formulation = "spin_free"'
@@ -423,12 +425,13 @@ class HeavyTopScene(Scene):
         return "spin_free", (f"auto: the axis comes within sin θ = {lowest:.3g} of the "
                              "vertical")
 
-    def _integration(self, start: Start):
-        """(model, y0, body(t, y) -> the body state (q, ω), formulation, why) of one start."""
+    def _integration(self, start: Start, c: theory.TopConstants | None = None):
+        """(model, y0, body(t, y) -> the body state (q, ω), formulation, why) of one start
+        (``c``: its constants, when the caller has them)."""
         p = self.config.params
-        name, why = self.formulation(start)
+        c = self._constants(start) if c is None else c
+        name, why = self.formulation(start, c)
         if name == "reduced":
-            c = self._constants(start)
             model = model_core.reduced_model(p.I1, p.I3, p.Mgl, start.omega3, c.A, c.B)
             return (model, model_core.reduced_initial_state(start.theta, start.theta_dot),
                     lambda t_, y: model_core.reduced_body_state(y, model.params), name, why)
@@ -474,7 +477,7 @@ class HeavyTopScene(Scene):
         case = theory.classify(r, c)
         period = theory.nutation_period(r, c)
         precession = theory.precession_per_period(r, c)
-        model, y0, body, formulation, why = self._integration(start)
+        model, y0, body, formulation, why = self._integration(start, c)
         t = np.linspace(0.0, run.t_end, run.samples)
         scales = self._scales(start, c)
         raw = self.integrate(model, y0, t,

@@ -140,7 +140,8 @@ class TwoCenterScene(Scene):
                 description="Every member's crossings of the line through the centres "
                             "(y = 0, ẏ > 0) in (x, ẋ), each orbit coloured by its swept "
                             "value, on the curves its energy and separation constant "
-                            "predict."),
+                            "predict.",
+                points="poincare"),
     )
 
     #: self-checks of the members (shown in the family section instead) and the sampled
@@ -439,14 +440,6 @@ class TwoCenterScene(Scene):
                     "initial.energy (vy solved so that E = energy)",
                     scale=max(abs(float(energy[i])), 1e-300)))
         return checks
-
-    @classmethod
-    def held_family_sections(cls, data):
-        names = super().held_family_sections(data)
-        pts = data.sweep.points.get("poincare")
-        if pts is None or not len(pts.member):
-            names.remove("poincare_family")
-        return names
 
     @classmethod
     def section_poincare_family(cls, data):
