@@ -782,6 +782,28 @@ def section_colours(sweep, points, legend_members: int):
     return crossing, key, colour, labels
 
 
+def section_point_notes(sweep, name: str, kept, not_crossing: str) -> list[str]:
+    """The notes of a family's surface of section on its point set ``name`` (``kept``
+    points per member): orbits whose crossings were capped by ``[sweep] max_points`` (the
+    members' ``<name>_points`` result counts them all), and ok members with none
+    (``not_crossing`` says what they did not do, e.g. "cross the surface")."""
+    points = sweep.points[name]
+    notes = []
+    total = np.asarray(sweep.analysis.get(f"{name}_points", kept), dtype=float)
+    capped = np.flatnonzero(sweep.ok & (total > kept))
+    if len(capped):
+        cap = int(points.attrs.get("max_points", 0))
+        notes.append(f"Capped: the archive keeps the first {cap} crossings of each orbit; "
+                     f"{len(capped)} of the orbits had more (up to "
+                     f"{int(np.max(total[capped]))}). [sweep] max_points keeps more.")
+    missing = np.flatnonzero(sweep.ok & (kept == 0))
+    if len(missing):
+        notes.append(f"{len(missing)} member(s) did not {not_crossing} during the run: "
+                     + ", ".join(member_text(sweep, int(i), short=True)
+                                 for i in missing[:5]) + (" …" if len(missing) > 5 else ""))
+    return notes
+
+
 def kept_members(data: ArchiveData) -> list[tuple[int, str]]:
     """(member index, run name) of a sweep's members kept whole, in member order."""
     return sorted((int(name.split("_", 1)[1]), name) for name in data.runs

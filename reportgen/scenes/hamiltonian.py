@@ -33,6 +33,7 @@ from .base import (
     fmt_err,
     member_text,
     section_colours,
+    section_point_notes,
 )
 
 common_plots = lazy_module("reportgen.plots.common")
@@ -812,8 +813,6 @@ class HamiltonianScene(Scene):
             f"{a['poincare_edge_momentum']} = 0 on H = {fmt(a['poincare_edge_energy'], 6)}")
         which = {"up": f"with {s_col} increasing", "down": f"with {s_col} decreasing",
                  "both": "in either direction"}[direction]
-        total = np.asarray(sweep.analysis.get("poincare_points", kept), dtype=float)
-        capped = np.flatnonzero(sweep.ok & (total > kept))
         facts = [("orbits", f"{len(crossing)} of {sweep.size} members cross the surface"),
                  ("crossings drawn", f"{len(member)} ({int(kept[crossing].min())} to "
                                      f"{int(kept[crossing].max())} per orbit)")]
@@ -827,16 +826,7 @@ class HamiltonianScene(Scene):
         notes = ["A regular (quasi-periodic) orbit crosses the surface on a closed curve: an "
                  "island around a stable periodic orbit or a curve across the section; a "
                  "chaotic orbit scatters over an area, the chaotic sea between the islands."]
-        if len(capped):
-            cap = int(pts.attrs.get("max_points", 0))
-            notes.append(f"Capped: the archive keeps the first {cap} crossings of each orbit; "
-                         f"{len(capped)} of the orbits had more (up to "
-                         f"{int(np.max(total[capped]))}). [sweep] max_points keeps more.")
-        missing = np.flatnonzero(sweep.ok & (kept == 0))
-        if len(missing):
-            notes.append(f"{len(missing)} member(s) did not cross the surface during the run: "
-                         + ", ".join(member_text(sweep, int(i), short=True)
-                                     for i in missing[:5]) + (" …" if len(missing) > 5 else ""))
+        notes += section_point_notes(sweep, "poincare", kept, "cross the surface")
         caption = (f"Surface of section {s_col} = {value} crossed {which}: ({uname}, {vname}) "
                    f"at the crossings of {len(crossing)} orbits, each orbit in its own colour "
                    + (f"(keyed to {key})" if labels is None else "(legend)")

@@ -19,7 +19,17 @@ from ..config import ConfigError, Positive, Real, RunConfig, Strict
 from ..lazy import lazy_module
 from ..results import Check, Results
 from ..sweep import PointSet
-from .base import Scene, SceneConfig, Section, SectionContent, fmt, fmt_err, member_text, section_colours
+from .base import (
+    Scene,
+    SceneConfig,
+    Section,
+    SectionContent,
+    fmt,
+    fmt_err,
+    member_text,
+    section_colours,
+    section_point_notes,
+)
 
 core = lazy_module("reportgen.core.models.two_center")
 regularized = lazy_module("reportgen.core.models.two_center_regularized")
@@ -461,8 +471,6 @@ class TwoCenterScene(Scene):
             marker_size=cls.MARKER_SIZE, legend_below=True,
             curves_label=None if grid is None else "C(x, ẋ) = C of each orbit",
             lines=[(-p.a, "a centre, x = ±a"), (p.a, "a centre, x = ±a")])
-        total = np.asarray(sweep.analysis.get("poincare_points", kept), dtype=float)
-        capped = np.flatnonzero(sweep.ok & (total > kept))
         facts = [("orbits", f"{len(crossing)} of {sweep.size} members cross y = 0 upward"),
                  ("crossings drawn", f"{len(member)} ({int(kept[crossing].min())} to "
                                      f"{int(kept[crossing].max())} per orbit)")]
@@ -479,17 +487,7 @@ class TwoCenterScene(Scene):
             regularized_members = int(np.sum(np.asarray(formulation) == "regularized"))
             facts.append(("formulation", f"{len(formulation) - regularized_members} Cartesian, "
                                          f"{regularized_members} regularized (Thiele–Burrau)"))
-        notes = []
-        if len(capped):
-            cap = int(pts.attrs.get("max_points", 0))
-            notes.append(f"Capped: the archive keeps the first {cap} crossings of each orbit; "
-                         f"{len(capped)} of the orbits had more (up to "
-                         f"{int(np.max(total[capped]))}). [sweep] max_points keeps more.")
-        missing = np.flatnonzero(sweep.ok & (kept == 0))
-        if len(missing):
-            notes.append(f"{len(missing)} member(s) did not cross y = 0 upward during the run: "
-                         + ", ".join(member_text(sweep, int(i), short=True)
-                                     for i in missing[:5]) + (" …" if len(missing) > 5 else ""))
+        notes = section_point_notes(sweep, "poincare", kept, "cross y = 0 upward")
         if grid is None:
             notes.append("The members do not share one energy, so no predicted curves are "
                          "drawn: C(x, ẋ) on the section depends on E.")
