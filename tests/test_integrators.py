@@ -189,6 +189,44 @@ def test_gauss_is_A_stable_on_stiff_oscillator(method, with_jac):
     assert integrate(model, y0, t, method="rk4", h=0.1).code is SolveCode.NONFINITE
 
 
+@pytest.mark.parametrize("method", GAUSS)
+@pytest.mark.parametrize("h", [0.0025, 0.0033, 0.005])
+def test_gauss_newton_converges_on_a_stiff_spring_at_rest(method, h):
+    """Two masses on a stiff (1e4) and a soft spring, the stiff one unstretched, both at
+    rest: the light mass's velocity stays ~0 while the terms of its force (±1e3) cancel.
+    Its Newton increments stall at the rounding of those terms, far above 4 eps of its
+    value; the test must be relative to them (it failed at these steps before)."""
+    from reportgen.core.models import linear_chain
+
+    model = linear_chain.model(np.diag([1.0, 0.01]),
+                               np.array([[10001.0, -10000.0], [-10000.0, 10000.0]]), ["a", "b"])
+    sol = integrate(model, np.array([0.1, 0.1, 0.0, 0.0]), np.linspace(0.0, 4.0, 401),
+                    method=method, h=h)
+    assert sol.status == "ok", sol.message
+
+
+@pytest.mark.parametrize("method", GAUSS)
+def test_gauss_tableau_is_symplectic_beyond_double_rounding(method):
+    """The tableau kept as double pairs (A + A_lo, b + b_lo): b_i a_ij + b_j a_ji = b_i b_j
+    (Hairer-Lubich-Wanner VI.4, Thm 4.3) to ~1e-32 at 40 digits, and sum b = 1; the
+    doubles alone miss it at ~1e-17."""
+    from decimal import Decimal, localcontext
+
+    m = METHODS[method]
+    with localcontext() as ctx:
+        ctx.prec = 40
+        A = [[Decimal(float(m.A[i, j])) + Decimal(float(m.A_lo[i, j]))
+              for j in range(m.A.shape[1])] for i in range(m.A.shape[0])]
+        b = [Decimal(float(m.b[i])) + Decimal(float(m.b_lo[i])) for i in range(m.b.size)]
+        worst = max(abs(b[i] * A[i][j] + b[j] * A[j][i] - b[i] * b[j])
+                    for i in range(len(b)) for j in range(len(b)))
+        assert worst < Decimal("1e-30")
+        assert abs(sum(b) - 1) < Decimal("1e-30")
+        # and the rows are the collocation conditions sum_j a_ij = c_i
+        for i in range(len(b)):
+            assert abs(sum(A[i]) - Decimal(float(m.c[i]))) < Decimal("1e-16")
+
+
 @pytest.mark.parametrize("method", [n for n, m in METHODS.items() if m.needs_separable])
 def test_splitting_on_non_separable_model_is_a_mismatch(method):
     with pytest.raises(MethodMismatch, match="separable Hamiltonian.*damped_oscillator"):

@@ -563,15 +563,19 @@ def lu_solve(LU, perm, x):
 
 
 @numba.njit(cache=True)
-def collocation_fixed(rhs, jac, use_fd_jac, A, c, dvec, t_eval, i0, i1, Y, y, h_max, params,
-                      counters, tfail, max_iter):
+def collocation_fixed(rhs, jac, use_fd_jac, A, A_lo, b, b_lo, c, t_eval, i0, i1, Y, y, h_max,
+                      params, counters, tfail, max_iter):
     """Implicit Runge-Kutta (Gauss-Legendre collocation) with constant steps.
 
     Stage increments Z_i = Y_i - y solve Z = h (A (x) I) F(y + Z) by simplified
     Newton with the matrix I - h A (x) J(t, y) frozen over the step (Hairer-Wanner II,
-    sec. IV.8, eq. (8.9)); the new state is y + sum_i d_i Z_i with d = b^T A^{-1}
-    (eq. (8.2b)), which needs no extra evaluation of f.  ``jac`` is ignored when
-    ``use_fd_jac`` (the model has none): then J comes from finite differences of ``rhs``.
+    sec. IV.8, eq. (8.9)).  The new state is y + h sum_i b_i f(Y_i), with the f(Y_i) of
+    the last iteration, added with compensated summation (Hairer, McLachlan &
+    Razakarivony 2008): y + sum_i d_i Z_i, d = b^T A^{-1} (eq. (8.2b)) multiplies the
+    iteration's round-off by |d| ~ 5.  The tableau is passed as pairs of doubles (``A`` +
+    ``A_lo``, ``b`` + ``b_lo``), so that it is symplectic to well below one rounding
+    (:class:`..symplectic.GaussLegendre`).  ``jac`` is ignored when ``use_fd_jac`` (the
+    model has none): then J comes from finite differences of ``rhs``.
     """
     d = y.size
     s = c.size
@@ -585,6 +589,7 @@ def collocation_fixed(rhs, jac, use_fd_jac, A, c, dvec, t_eval, i0, i1, Y, y, h_
     ytmp = np.empty(d)
     ftmp = np.empty(d)
     comp = np.empty(d)
+    floor = np.empty(d)
     for i in range(d):
         comp[i] = 0.0
     for j in range(i0, i1):
@@ -606,6 +611,14 @@ def collocation_fixed(rhs, jac, use_fd_jac, A, c, dvec, t_eval, i0, i1, Y, y, h_
                             if p == q and i == l:
                                 v += 1.0
                             M[p * d + i, q * d + l] = v
+            # a component near zero is known no better than the rounding of the terms of
+            # h f_i, which may be large and cancel (a stiff spring at rest): its Newton
+            # test is relative to h sum_l |J_il y_l|, else it stalls above 4 eps forever
+            for i in range(d):
+                acc = 0.0
+                for l in range(d):
+                    acc += abs(J[i, l] * y[l])
+                floor[i] = max(h * acc, 1e-300)
             if not lu_factor(M, perm):  # J not finite (or h a_ii lambda = 1 to the last bit)
                 tfail[0] = t
                 return NONFINITE
@@ -624,9 +637,11 @@ def collocation_fixed(rhs, jac, use_fd_jac, A, c, dvec, t_eval, i0, i1, Y, y, h_
                 for p in range(s):
                     for i in range(d):
                         acc = 0.0
+                        lo = 0.0
                         for q in range(s):
                             acc += A[p, q] * Fz[q, i]
-                        G[p * d + i] = Z[p, i] - h * acc
+                            lo += A_lo[p, q] * Fz[q, i]
+                        G[p * d + i] = Z[p, i] - h * (acc + lo)
                 lu_solve(M, perm, G)  # G <- dZ = M^{-1} G
                 nrm = 0.0
                 for p in range(s):
@@ -634,7 +649,7 @@ def collocation_fixed(rhs, jac, use_fd_jac, A, c, dvec, t_eval, i0, i1, Y, y, h_
                         Z[p, i] -= G[p * d + i]
                         # per component: one large component (a clock t, say) must not
                         # loosen the test for the others
-                        scale = max(max(abs(y[i]), abs(Z[p, i])), 1e-300)
+                        scale = max(max(abs(y[i]), abs(Z[p, i])), floor[i])
                         nrm = max(nrm, abs(G[p * d + i]) / scale)
                 if not math.isfinite(nrm):
                     break
@@ -651,8 +666,11 @@ def collocation_fixed(rhs, jac, use_fd_jac, A, c, dvec, t_eval, i0, i1, Y, y, h_
                 return NEWTON
             for i in range(d):
                 acc = 0.0
+                lo = 0.0
                 for p in range(s):
-                    acc += dvec[p] * Z[p, i]
+                    acc += b[p] * Fz[p, i]
+                    lo += b_lo[p] * Fz[p, i]
+                acc = h * (acc + lo)
                 # compensated (Kahan) summation of y + increment: without it the rounding
                 # of ~1e5 small increments random-walks past the method's invariants
                 inc = acc - comp[i]

