@@ -442,3 +442,17 @@ def test_specialized_driver_text_follows_the_model_module():
     a = _gen_dop853.source(("m", "rhs"), 4, specialized._stamp("reportgen.core.models.pendulum"))
     b = _gen_dop853.source(("m", "rhs"), 4, specialized._stamp("reportgen.core.models.oscillator"))
     assert a != b and "d = 4\n" in a and "def dop853_adaptive(t_eval," in a
+
+
+def test_callbacks_carry_their_numba_type_and_address():
+    """A driver call types its callback arguments: ours carry the FunctionType made once
+    (numba builds a new one per call for a plain cfunc) and answer the wrapper-address
+    protocol with the compiled address."""
+    from numba.core.typing.typeof import Purpose, typeof
+
+    from reportgen.core.integrators import kernels
+
+    kern = kernels.kernels_for(pendulum.model(G, L))
+    assert typeof(kern.rhs, Purpose.argument) is kern.rhs.numba_type
+    assert kern.rhs.numba_type == numba.types.FunctionType(kern.rhs._sig)
+    assert kern.rhs.__wrapper_address__() == kern.rhs.address > 0
