@@ -37,7 +37,7 @@ def study_rows(records: np.ndarray) -> list[dict]:
 
 def scene_bench(scene, print=builtins.print) -> dict | None:
     """Run one scene with its study on and print the matched-error speed ratio."""
-    from .core.study import matched_error_speedup
+    from .core.study import FINE_TOLERANCES, matched_error_speedup
 
     if scene.config.run is None:
         print(f"{scene.source.name}: integrates nothing; skipped")
@@ -50,6 +50,7 @@ def scene_bench(scene, print=builtins.print) -> dict | None:
         update={"study": True, "study_budget": math.inf}), "report": scene.config.report.model_copy(
         update={"sections": None})})
     scene = type(scene)(config, scene.source)
+    scene.study_tolerances = FINE_TOLERANCES
     start = time.perf_counter()
     results = scene.simulate()
     elapsed = time.perf_counter() - start

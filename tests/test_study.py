@@ -159,3 +159,23 @@ def test_matched_error_speedup_counts_a_kinds_own_method(study):
     out = matched_error_speedup([*study.rows, own])
     best = {m["method"]: m for m in out["matches"]}
     assert best["splitting2"]["speedup"] == pytest.approx(100.0)
+
+
+def test_our_tolerances_refine_our_ladder_only():
+    """``reportgen bench``'s ladder: our adaptive methods run the quarter decades around
+    the baseline, the peers keep the decades (the baseline stays at rtol 1e-10)."""
+    from reportgen.core.study import FINE_TOLERANCES
+
+    assert {1e-8, 10 ** -8.25, 10 ** -10.5, 1e-12} <= set(FINE_TOLERANCES)
+    res = work_precision(pendulum.model(G, L), Y0, T_EVAL, reference=exact,
+                         methods=["dop853", "scipy_dop853"], tolerances=[1e-8, 1e-10],
+                         our_tolerances=[1e-8, 10 ** -8.5, 1e-9, 10 ** -9.5, 1e-10],
+                         repeats=1, budget_s=float("inf"))
+    ladder = {n: [r["tolerance"] for r in res.rows if r["method"] == n]
+              for n in ("dop853", "scipy_dop853")}
+    assert ladder["scipy_dop853"] == [1e-8, 1e-10]
+    assert ladder["dop853"] == [1e-8, 10 ** -8.5, 1e-9, 10 ** -9.5, 1e-10]
+    # a finer ladder can only lower the matched run's cost: the quarter decades' errors
+    # fall between the decades'
+    errors = [r["error_max"] for r in res.rows if r["method"] == "dop853"]
+    assert errors == sorted(errors, reverse=True)

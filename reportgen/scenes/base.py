@@ -211,6 +211,9 @@ class Scene:
     #: family figures need of it (a surface of section's crossings, say), which a single
     #: run of the same config does not show and so does not compute
     family_member: bool = False
+    #: rtol ladder of the study's runs of our adaptive methods (None: the study's default);
+    #: ``reportgen bench`` sets a finer one so that the run matching scipy is the cheapest
+    study_tolerances: tuple[float, ...] | None = None
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
@@ -750,7 +753,8 @@ class Scene:
         result = _study.work_precision(model, y0, t_eval, reference=reference,
                                        progress=progress, cache=default_cache(),
                                        budget_s=self.config.run.study_budget,
-                                       reference_kind=reference_kind)
+                                       reference_kind=reference_kind,
+                                       our_tolerances=self.study_tolerances)
         results.study = result.to_records()
         results.study_attrs = {"reference_kind": result.reference_kind,
                                "budget_s": float(self.config.run.study_budget),
