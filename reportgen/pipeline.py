@@ -25,6 +25,7 @@ from .archive import (
     stored_identity,
     write_archive,
 )
+from .codestamp import drawing_code
 from .config import ConfigError, read_config
 from .errors import UsageError  # noqa: F401 - part of this module's interface
 from .forked import JobProcess, serve
@@ -100,7 +101,10 @@ def _report_current(folder: Path, identity: Identity, formats) -> bool:
 
 
 def _archive_stamp(identity: Identity) -> str:
-    return f"{identity.physics_key}:{identity.config_sha256}:{identity.reportgen_version}"
+    """What a scene's reports were rendered from: the archive's content and the code and
+    templates that render (an updated checkout renders again)."""
+    return (f"{identity.physics_key}:{identity.config_sha256}:{identity.reportgen_version}:"
+            f"{drawing_code()}")
 
 
 def run_scene(config_path: str, out_root: str, force: bool = False,

@@ -25,6 +25,7 @@ from markupsafe import Markup
 from . import __version__
 from .archive import ArchiveData, read_archive
 from .audit_archive import read_audit
+from .codestamp import drawing_code
 from .equations import equation_html
 from .errors import ReportError
 from .forked import JobProcess, serve
@@ -176,12 +177,13 @@ FIGURES_FORMAT = 2
 
 def figures_key(data: ArchiveData, formats: tuple[str, ...]) -> str:
     """Content key of the figures stage: what the archive's numbers are, which sections
-    are drawn, and the reportgen version.  A title edit leaves it unchanged."""
+    are drawn, the reportgen version and its drawing code
+    (:func:`reportgen.codestamp.drawing_code`).  A title edit leaves it unchanged."""
     scene = kind_of_archive(data)
     blob = json.dumps({"physics": data.attrs.get("physics_key", ""),
                        "sections": [s.name for s in scene.chosen_sections(data)],
                        "files": list(formats), "reportgen": __version__,
-                       "format": FIGURES_FORMAT},
+                       "code": drawing_code(), "format": FIGURES_FORMAT},
                       sort_keys=True)
     return hashlib.sha256(blob.encode("utf-8")).hexdigest()
 

@@ -247,3 +247,68 @@ def test_gallery_follows_an_edited_archive(write_config, tmp_path):
     run_batch([str(a.parent)], out_root=str(out), jobs=1, formats=("html",))
     index = (out / "index.html").read_text()
     assert "Second title" in index and "First title" not in index and "Other" in index
+
+
+def test_code_stamps_follow_the_code_that_simulates_and_draws(tmp_path):
+    """The package is installed editable: after a pull, the same version may run other
+    code.  An edit of a plot module or a template changes only the drawing stamp (figures
+    and reports again, no simulation); an edit of the physics changes the simulate stamp;
+    an edit of the command line neither.  Stamps do not depend on where the checkout is."""
+    import shutil
+
+    from reportgen import codestamp
+
+    def copy(name):
+        pkg = tmp_path / name / "reportgen"
+        shutil.copytree(codestamp.PACKAGE, pkg, ignore=shutil.ignore_patterns("__pycache__"))
+        templates = tmp_path / name / "templates"
+        shutil.copytree(next(d for d in codestamp.TEMPLATE_DIRS if d.is_dir()), templates)
+        return pkg, templates
+
+    def stamps(pkg, templates):
+        return (codestamp.physics_code(pkg), codestamp.drawing_code(pkg, (templates,)))
+
+    base = stamps(*copy("a"))
+    assert stamps(*copy("b")) == base
+    assert base == (codestamp.physics_code(), codestamp.drawing_code())
+
+    pkg, templates = copy("plot")
+    (pkg / "plots" / "pendulum.py").write_text("# edited\n" + (
+        pkg / "plots" / "pendulum.py").read_text())
+    physics, drawing = stamps(pkg, templates)
+    assert physics == base[0] and drawing != base[1]
+
+    pkg, templates = copy("template")
+    (templates / "scene.html.j2").write_text((templates / "scene.html.j2").read_text() + " ")
+    assert stamps(pkg, templates)[0] == base[0] and stamps(pkg, templates)[1] != base[1]
+
+    pkg, templates = copy("physics")
+    (pkg / "core" / "models" / "pendulum.py").write_text(
+        "# edited\n" + (pkg / "core" / "models" / "pendulum.py").read_text())
+    physics, drawing = stamps(pkg, templates)
+    assert physics != base[0] and drawing == base[1]
+
+    pkg, templates = copy("cli")
+    (pkg / "cli.py").write_text("# edited\n" + (pkg / "cli.py").read_text())
+    assert stamps(pkg, templates) == base
+
+
+def test_new_drawing_code_redraws_and_rerenders_without_simulating(write_config, tmp_path,
+                                                                   monkeypatch):
+    """A checkout whose drawing code changed (here: its stamp) redraws the figures and
+    renders the report again from the archive, which is kept."""
+    from reportgen import pipeline, report
+
+    path = write_config("pend", pendulum_text())
+    out = tmp_path / "out"
+    run_scene(str(path), str(out), formats=("html",))
+    before = _arrays(out / "pend" / "run.h5")
+    figure = next((out / "pend" / "figures").glob("*.svg"))
+    figure.write_text("stale")
+    assert run_scene(str(path), str(out), formats=("html",)).stages == []
+    for module in (pipeline, report):
+        monkeypatch.setattr(module, "drawing_code", lambda: "another checkout")
+    again = run_scene(str(path), str(out), formats=("html",))
+    assert again.stages == ["report"], again
+    assert _arrays(out / "pend" / "run.h5") == before
+    assert figure.read_text() != "stale"

@@ -57,6 +57,7 @@ from pydantic import Field, ValidationError
 from .. import __version__
 from .. import sweep as _sweep
 from ..cache import default_cache
+from ..codestamp import physics_code
 from ..config import (
     ConfigError,
     ReportConfig,
@@ -405,15 +406,16 @@ class Scene:
         return run is not None and run.study and self.wants_section("error_vs_runtime")
 
     def physics_key(self) -> str:
-        """Content key of the simulate stage: the validated, preset-resolved physics and the
-        reportgen version.  Title, ``[report]`` and the preset's name are not in it; whether
-        the study and the other ``computed_on_request`` sections are wanted is (they are
-        computed only then)."""
+        """Content key of the simulate stage: the validated, preset-resolved physics, the
+        reportgen version and its code (:func:`reportgen.codestamp.physics_code`).  Title,
+        ``[report]`` and the preset's name are not in it; whether the study and the other
+        ``computed_on_request`` sections are wanted is (they are computed only then)."""
         physics = {k: v for k, v in self.resolved_config().items()
                    if k not in PRESENTATION_KEYS}
         computed = sorted(name for name in self.computed_on_request if self.computes(name))
         blob = json.dumps({"physics": physics, "computed": computed,
-                           "reportgen": __version__}, sort_keys=True, separators=(",", ":"))
+                           "reportgen": __version__, "code": physics_code()},
+                          sort_keys=True, separators=(",", ":"))
         return hashlib.sha256(blob.encode("utf-8")).hexdigest()
 
     def models(self) -> list[OdeModel]:
