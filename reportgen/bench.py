@@ -111,9 +111,11 @@ def summarize(results: list[dict], print=builtins.print) -> None:
             continue
         peer_us = base["wall_time_s"] / max(base["nfev"], 1) * 1e6
         ours_ns = best["wall_time_s"] / max(best["nfev"], 1) * 1e9
+        evals = best["nfev"] / max(base["nfev"], 1)
         print(text + f"  below: scipy {peer_us:4.1f} µs per evaluation, ours {ours_ns:4.0f} ns "
-                     f"(all the step's work), with {best['nfev'] / max(base['nfev'], 1):.2f}× "
-                     "scipy's evaluations")
+                     f"(all the step's work), with {evals:.2f}× scipy's evaluations; "
+                     f"{TARGET_SPEEDUP:.0f}× needs ≤ {peer_us * 1e3 / TARGET_SPEEDUP / evals:.0f} "
+                     "ns")
 
 
 def heavy_top_textbook(scene, print=builtins.print, samples: int = 201) -> dict:
