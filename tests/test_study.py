@@ -179,3 +179,24 @@ def test_our_tolerances_refine_our_ladder_only():
     # fall between the decades'
     errors = [r["error_max"] for r in res.rows if r["method"] == "dop853"]
     assert errors == sorted(errors, reverse=True)
+
+
+def test_unconverged_gauss_reference_gives_way_to_the_dop853_one(monkeypatch):
+    """With no gauss6 run meeting its convergence test (here: no halving allowed) the
+    dop853 rows are measured against the dop853 reference, finite, and the reference
+    says so; before, an unconverged or failed gauss6 run was used (hamiltonian_two_centres:
+    every dop853 error was nan, and our best match was rk45 at 30x)."""
+    from reportgen.core import study as study_module
+
+    monkeypatch.setattr(study_module, "_GAUSS_REF_MAX_HALVINGS", 0)
+    res = work_precision(pendulum.model(G, L), Y0, T_EVAL, methods=["dop853", "rk45"],
+                         tolerances=[1e-6, 1e-8], repeats=1)
+    assert "also for dop853 rows" in res.reference_kind
+    errors = [r["error_max"] for r in res.rows if r["method"] == "dop853"]
+    assert errors and all(0 < e < 1e-4 for e in errors)
+    assert np.isnan(res.reference_agreement)
+    # and converged, it is the independent reference (the default)
+    monkeypatch.undo()
+    res = work_precision(pendulum.model(G, L), Y0, T_EVAL, methods=["dop853"],
+                         tolerances=[1e-8], repeats=1)
+    assert "gauss6 h=" in res.reference_kind and res.reference_agreement < 1e-11
