@@ -203,9 +203,9 @@ _GENERIC_FIRST_STEP = """\
 """
 # rhs passed on to initial_step would be a dispatcher argument, which numba cannot cache
 _SPECIAL_FIRST_STEP = """\
-        h = initial_guess(y, f_new, rtol, atol, span, ytmp, y_new)
+        h, f_norm = initial_guess(y, f_new, rtol, atol, span, ytmp, y_new)
         rhs(t + h, y_new, params, ftmp)
-        h = initial_choice(f_new, ftmp, h, ytmp, 8, span)
+        h = initial_choice(f_new, ftmp, h, f_norm, ytmp, 8, span)
 """
 
 

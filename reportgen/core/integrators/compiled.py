@@ -115,15 +115,16 @@ def initial_step(rhs, t0, y0, f0, params, order, rtol, atol, span):
     d = y0.size
     scale = np.empty(d)
     y1 = np.empty(d)
-    h0 = initial_guess(y0, f0, rtol, atol, span, scale, y1)
+    h0, d1 = initial_guess(y0, f0, rtol, atol, span, scale, y1)
     f1 = np.empty(d)
     rhs(t0 + h0, y1, params, f1)
-    return initial_choice(f0, f1, h0, scale, order, span)
+    return initial_choice(f0, f1, h0, d1, scale, order, span)
 
 
 @numba.njit(cache=True)
 def initial_guess(y0, f0, rtol, atol, span, scale, y1):
-    """h0 of :func:`initial_step`; fills ``scale`` (atol + |y0| rtol) and ``y1 = y0 + h0 f0``."""
+    """(h0, d1 = ‖f0‖) of :func:`initial_step`; fills ``scale`` (atol + |y0| rtol) and
+    ``y1 = y0 + h0 f0``."""
     d = y0.size
     for i in range(d):
         scale[i] = atol + abs(y0[i]) * rtol
@@ -136,13 +137,13 @@ def initial_guess(y0, f0, rtol, atol, span, scale, y1):
     h0 = min(h0, span)
     for i in range(d):
         y1[i] = y0[i] + h0 * f0[i]
-    return h0
+    return h0, d1
 
 
 @numba.njit(cache=True)
-def initial_choice(f0, f1, h0, scale, order, span):
-    """The step of :func:`initial_step` from f0 = f(y0) and f1 = f(y0 + h0 f0) (overwritten)."""
-    d1 = rms_scaled(f0, scale)
+def initial_choice(f0, f1, h0, d1, scale, order, span):
+    """The step of :func:`initial_step` from f0 = f(y0), its norm ``d1`` and
+    f1 = f(y0 + h0 f0) (overwritten)."""
     for i in range(f0.size):
         f1[i] -= f0[i]
     d2 = rms_scaled(f1, scale) / h0
