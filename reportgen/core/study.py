@@ -296,6 +296,7 @@ def work_precision(model, y0, t_eval, reference=None, methods=None, tolerances=N
     y0 = np.asarray(y0, dtype=np.float64)
     t_eval = np.asarray(t_eval, dtype=np.float64)
     tolerances = sorted(DEFAULT_TOLERANCES if tolerances is None else tolerances, reverse=True)
+    ours = tolerances if our_tolerances is None else sorted(our_tolerances, reverse=True)
     if methods is None:  # a method for one force law only (levi_civita) is not "skipped"
         methods = [n for n, m in METHODS.items()
                    if n != "radau" and not (m.needs_separable and model.separable is None)
@@ -330,9 +331,7 @@ def work_precision(model, y0, t_eval, reference=None, methods=None, tolerances=N
         m = METHODS[name]
         y_ref = refs.get(name, refs["default"])
         if m.adaptive:
-            ladder = tolerances if m.peer or our_tolerances is None else sorted(
-                our_tolerances, reverse=True)
-            grid = [("rtol", r) for r in ladder
+            grid = [("rtol", r) for r in (tolerances if m.peer else ours)
                     if r >= MIN_RTOL.get(name, 0.0) and (not m.peer or r >= SCIPY_FLOOR)]
         else:
             grid = [("h", h) for h in steps]
