@@ -347,14 +347,22 @@ def test_spin_free_form_is_the_body_motion_in_fewer_steps(start, step_ratio):
     assert free.nsteps < step_ratio * body.nsteps
 
 
-def test_spin_free_theta_matches_the_elliptic_closed_form():
-    # θ(t) of the spin-free run against cos θ = u1 + (u2 − u1) sn²(λt + τ0 | k²)
-    # (Goldstein 5.72), the top of issue 15 over 60 s: the error follows the tolerance.
-    start = (0.9, 0.0, 0.3, 6.0)
-    i1, i3, mgl = 1.3, 0.45, 0.9
+#: the top of issue 15: (θ0, θ̇0, φ̇0, ω3) and (I1, I3, Mgl), over 60 s
+ISSUE_TOP, ISSUE_TOP_BODY = (0.9, 0.0, 0.3, 6.0), (1.3, 0.45, 0.9)
+
+
+def _issue_top():
+    """The issue's top: its start, body, output times, constants and θ(t) from
+    cos θ = u1 + (u2 − u1) sn²(λt + τ0 | k²) (Goldstein 5.72)."""
     t = np.linspace(0.0, 60.0, 201)
-    c = theory.constants(i1, i3, mgl, *start)
-    exact = theory.theta_closed_form(t, theory.roots(c), c)
+    c = theory.constants(*ISSUE_TOP_BODY, *ISSUE_TOP)
+    return ISSUE_TOP, ISSUE_TOP_BODY, t, c, theory.theta_closed_form(t, theory.roots(c), c)
+
+
+def test_spin_free_theta_matches_the_elliptic_closed_form():
+    # θ(t) of the spin-free run against the sn² closed form, the top of issue 15 over
+    # 60 s: the error follows the tolerance.
+    start, (i1, i3, mgl), t, _, exact = _issue_top()
     model = model_core.spin_free_model(i1, i3, mgl, start[3])
     y0 = model_core.spin_free_initial_state(*start[:3])
     errors = [float(np.max(np.abs(kinematics.tilt_angle(
@@ -386,11 +394,7 @@ def test_reduced_theta_matches_the_elliptic_closed_form_with_fewer_steps():
     # θ(t) of the reduced run against the sn² closed form (Goldstein 5.72) on the top of
     # issue 15: the error follows the tolerance; it takes fewer steps than the spin-free
     # form for the same accuracy.
-    start = (0.9, 0.0, 0.3, 6.0)
-    i1, i3, mgl = 1.3, 0.45, 0.9
-    t = np.linspace(0.0, 60.0, 201)
-    c = theory.constants(i1, i3, mgl, *start)
-    exact = theory.theta_closed_form(t, theory.roots(c), c)
+    start, (i1, i3, mgl), t, c, exact = _issue_top()
     model = model_core.reduced_model(i1, i3, mgl, start[3], c.A, c.B)
     y0 = model_core.reduced_initial_state(*start[:2])
     runs = [integrate(model, y0, t, rtol=rtol, atol=rtol * 1e-2) for rtol in (1e-8, 1e-10, 1e-12)]
