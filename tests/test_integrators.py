@@ -456,3 +456,46 @@ def test_callbacks_carry_their_numba_type_and_address():
     assert typeof(kern.rhs, Purpose.argument) is kern.rhs.numba_type
     assert kern.rhs.numba_type == numba.types.FunctionType(kern.rhs._sig)
     assert kern.rhs.__wrapper_address__() == kern.rhs.address > 0
+
+
+
+def _branchy_rhs(t, y, params, out):
+    # the Kepler model's shape: a branch on a parameter after reading the state; numba's
+    # refcount pruning leaves atomic NRT_incref/decref calls on all three arrays here
+    r2 = y[0] * y[0] + y[1] * y[1]
+    f = params[0] / (r2 * np.sqrt(r2))
+    if params[1] != 0.0:
+        f += params[1] / (r2 * r2)
+    out[0] = -f * y[0]
+    out[1] = -f * y[1]
+
+
+def _allocating_rhs(t, y, params, out):
+    tmp = np.empty(2)  # needs numba's reference counting
+    tmp[0], tmp[1] = y[1], -params[0] * y[0]
+    out[:] = tmp
+
+
+@numba.njit
+def _call_callback(cf, y, params, out):
+    cf(0.0, y, params, out)
+
+
+def test_callbacks_compile_without_reference_counting_unless_they_allocate():
+    """A callback borrows its arrays for one call: it is compiled without numba's
+    reference counting, whose atomic calls cost most of a small right-hand side where
+    pruning fails (kernels.py).  A function that allocates falls back to counting."""
+    from reportgen.core.integrators.kernels import RHS_SIG, as_cfunc
+
+    counted = numba.cfunc(RHS_SIG, error_model="numpy")(_branchy_rhs)
+    assert "NRT_incref" in counted.inspect_llvm()  # the pattern does defeat pruning
+    branchy = as_cfunc(numba.njit(_branchy_rhs), RHS_SIG)
+    allocating = as_cfunc(numba.njit(_allocating_rhs), RHS_SIG)
+    assert "NRT_" not in branchy.inspect_llvm()
+    assert "NRT_incref" in allocating.inspect_llvm()
+    y, params = np.array([0.6, 0.8]), np.array([2.0, 0.5])
+    for cf, fn in ((branchy, _branchy_rhs), (allocating, _allocating_rhs)):
+        got, want = np.zeros(2), np.zeros(2)
+        _call_callback(cf, y, params, got)
+        fn(0.0, y, params, want)
+        assert np.array_equal(got, want)

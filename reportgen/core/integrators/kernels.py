@@ -29,6 +29,14 @@ Caching and errors
 * numba types a plain cfunc argument by building a new ``FunctionType`` at every call
   of a driver: 5 µs of the ~19 µs a short ``integrate`` costs (measured).  Ours are
   :class:`_TypedCFunc`, whose type is built once.
+* They compile without numba's reference counting (``_nrt=False``).  A callback only
+  borrows its arrays for the call, yet numba's refcount pruning leaves an atomic
+  ``NRT_incref``/``NRT_decref`` pair per array whenever a branch or an array view
+  defeats it: the Kepler right-hand side (``if params[2] != 0.0``) spent 35 of its
+  42 ns per call on them, the linear chain's (``reshape`` views) most of its time.  A
+  function that allocates cannot compile so and keeps the counting (:func:`as_cfunc`).
+  The choice is part of the on-disk cache key (:class:`_UncountedCache`), so callbacks
+  cached before it are not loaded for it.
 """
 
 from __future__ import annotations
@@ -39,7 +47,7 @@ from functools import cached_property
 import numba
 from numba import types
 from numba.core import sigutils
-from numba.core.caching import NullCache
+from numba.core.caching import FunctionCache, NullCache
 from numba.core.ccallback import CFunc
 from numba.core.typing.typeof import typeof_impl
 
@@ -99,13 +107,33 @@ def _typeof_typed_cfunc(val, c):
     return val.numba_type
 
 
+class _UncountedCache(FunctionCache):
+    """numba's cache of a function, with "compiled without reference counting" in the
+    index key (numba's own key holds the signature and the bytecode, not the flags)."""
+
+    def _index_key(self, sig, codegen):
+        return (*super()._index_key(sig, codegen), "nrt=False")
+
+
 def _compile_cfunc(py, sig, options, cache: bool) -> _TypedCFunc:
     """What ``numba.cfunc(sig, cache=cache, **options)(py)`` does, as a :class:`_TypedCFunc`."""
     cf = _TypedCFunc(py, sig, options)
     if cache:
-        cf.enable_caching()
+        if options.get("_nrt", True):
+            cf.enable_caching()
+        else:
+            cf._cache = _UncountedCache(py)
     cf.compile()
     return cf
+
+
+def _compile_uncounted(py, sig, options, cache: bool) -> _TypedCFunc:
+    """The callback without reference counting if ``py`` compiles so (it does not when it
+    allocates an array), else with it."""
+    try:
+        return _compile_cfunc(py, sig, {**options, "_nrt": False}, cache)
+    except numba.core.errors.NumbaError:
+        return _compile_cfunc(py, sig, options, cache)
 
 
 def as_cfunc(func, sig):
@@ -124,9 +152,9 @@ def as_cfunc(func, sig):
         options = {**getattr(func, "targetoptions", {}), "error_model": "numpy"}
         cache = not isinstance(getattr(func, "_cache", None), NullCache)
         try:
-            cf = _compile_cfunc(py, sig, options, cache)
+            cf = _compile_uncounted(py, sig, options, cache)
         except RuntimeError:  # numba cannot locate a cache for this function
-            cf = _compile_cfunc(py, sig, options, False)
+            cf = _compile_uncounted(py, sig, options, False)
         _CFUNCS[key] = (func, cf)
         return cf
 
