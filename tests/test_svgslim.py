@@ -218,3 +218,23 @@ def test_slim_copies_cached_by_content(tmp_path):
     assert other != made and slim_cached(svg, cache, thin=0) not in (made, other)
     prune_cache(cache, {made})
     assert sorted(cache.glob("*.svg")) == [made]
+
+
+def test_a_dense_family_costs_the_pdf_four_vertices_per_member():
+    # The period-against-amplitude figure of a 2000-member sweep: its error panel's dots
+    # are edgeless squares (style.dots), 4 vertices each in the slim SVG, where circles
+    # were 13 Bézier points each (50,000 numbers for WeasyPrint to parse in Python).
+    import numpy as np
+    from scipy import special
+
+    from reportgen.plots.pendulum import period_family
+    from reportgen.report import figure_bytes
+
+    amplitude = np.linspace(0.01, 3.1, 2000)
+    exact = 4 * special.ellipk(np.sin(amplitude / 2) ** 2) / math.sqrt(9.81)
+    noise = np.random.default_rng(1).standard_normal(amplitude.size) * 1e-12
+    fig = period_family(amplitude, exact * (1 + noise), exact)
+    slim = slim_svg(figure_bytes(fig, "family", "svg").decode())
+    vertices = sum(len(re.findall(r"-?[\d.]+[ ,]-?[\d.]+", d))
+                   for d in re.findall(r' d="([^"]*)"', slim))
+    assert 2000 * 4 <= vertices < 2000 * 4 + 6000

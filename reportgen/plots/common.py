@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .style import CONTEXT, HIGHLIGHT, REFERENCE, new_figure, new_figure_grid
+from .style import CONTEXT, HIGHLIGHT, REFERENCE, dots, new_figure, new_figure_grid
 
 #: a time series longer than this is drawn as its per-bin extremes (see :func:`envelope`)
 ENVELOPE_ABOVE = 6000
@@ -155,7 +155,7 @@ def sweep_results(values: dict[str, np.ndarray], analysis: dict[str, np.ndarray]
                 ax.plot(*envelope(x[pick][order], y[pick][order]), label=label or None,
                         **style)
             else:
-                ax.plot(*envelope(x[pick][order], y[pick][order]), ".", markersize=2)
+                ax.plot(*envelope(x[pick][order], y[pick][order]), **dots(1.4))
         ax.set_ylabel(name.replace("_", " "))
         if as_lines and others and name == names[0]:  # one legend serves every panel
             ax.legend(loc="best", fontsize=8)
@@ -209,12 +209,15 @@ def family_against_reference(x, measured, exact, *, xlabel, ylabel, measured_lab
     dense = x.size > 80
     ax.plot(*envelope(x, ref), "o", mfc="none", color=REFERENCE, ms=7, mew=1.5,
             label=exact_label)
-    ax.plot(*envelope(x, y), "o", color=HIGHLIGHT, ms=1.5 if dense else 3.5,
-            label=f"{measured_label} ({x.size} members)")
+    ax.plot(*envelope(x, y), color=HIGHLIGHT, label=f"{measured_label} ({x.size} members)",
+            **(dots() if dense else {"marker": "o", "ms": 3.5, "ls": "none"}))
     ax.set_ylabel(ylabel)
-    ax.legend(loc="best")
+    legend = ax.legend(loc="best")
+    if dense:  # the legend's sample of the dots at a size one can see
+        legend.legend_handles[1].set_markersize(4.0)
     rel = np.maximum(np.abs(y / ref - 1), 1e-17)
-    ax_err.semilogy(*envelope(x, rel), "o", color=HIGHLIGHT, ms=1.5 if dense else 3.5)
+    ax_err.semilogy(*envelope(x, rel), color=HIGHLIGHT,
+                    **(dots() if dense else {"marker": "o", "ms": 3.5, "ls": "none"}))
     ax_err.set_ylabel("relative difference")
     ax_err.set_xlabel(xlabel)
     return fig

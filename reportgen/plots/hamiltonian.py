@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from .common import envelope
-from .style import CONTEXT, HIGHLIGHT, PALETTE, new_figure, new_figure_grid
+from .style import CONTEXT, HIGHLIGHT, PALETTE, dots, new_figure, new_figure_grid
 
 
 def coordinates(t, series: dict[str, np.ndarray]):
@@ -63,7 +63,8 @@ def phase_portrait(q, p, grid_q, grid_p, H, H0: float, qname: str, angle: bool =
 def poincare(u, v, uname: str, vname: str):
     """The crossings of the surface of section as points."""
     fig, ax = new_figure(figsize=(5.8, 5.0))
-    ax.plot(u, v, ".", color=HIGHLIGHT, markersize=2.5 if len(u) > 400 else 4.0)
+    ax.plot(u, v, color=HIGHLIGHT,
+            **(dots() if len(u) > 400 else {"marker": ".", "markersize": 4.0, "ls": "none"}))
     ax.set_xlabel(uname)
     ax.set_ylabel(vname)
     return fig
