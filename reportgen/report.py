@@ -200,7 +200,10 @@ def draw_sections(data: ArchiveData, out_dir: Path,
     ``jobs > 1`` (the edit loop's single scene) draws with a second process, ``helper``
     if one was started ahead (:class:`FigureHelper`), else one forked now; this process
     and the helper take the sections one at a time, so neither waits on the other's
-    share.  Each figure's bytes depend only on the archive and its id, not on who drew it.
+    share: the helper from the first section on, this process from the last back (the
+    first sections are the headline ones and often the heaviest, and this process may
+    still pay its first figure's imports).  Each figure's bytes depend only on the
+    archive and its id, not on who drew it.
     ``for_pdf``: also make the figures' slim copies for the PDF (:func:`slim_cache`).
     """
     scene = kind_of_archive(data)
@@ -212,9 +215,9 @@ def draw_sections(data: ArchiveData, out_dir: Path,
     if own:
         helper = FigureHelper(warm=False)
     try:
-        helper.start(data.path, out_dir, formats, for_pdf)
+        helper.start(data.path, out_dir, formats, for_pdf, len(chosen))
         drawn = {}
-        while (i := helper.claim()) < len(chosen):
+        while (i := helper.claim_last()) >= 0:
             drawn[i] = _draw_section(scene, chosen[i], data, out_dir, formats, for_pdf)
         drawn.update(helper.result())
     finally:
@@ -235,21 +238,23 @@ class FigureHelper(JobProcess):
     def __init__(self, warm: bool = True):
         from multiprocessing import get_context
 
-        self._next = get_context("fork").Value("i", 0)  # shared: the next section to draw
-        super().__init__(_figure_helper_main, self._next, warm)
+        # shared: [first, end) of the sections nobody draws yet
+        self._left = get_context("fork").Array("i", 2)
+        super().__init__(_figure_helper_main, self._left, warm)
         self._closed = False
-        #: how many sections the helper drew, job by job
-        self.result_sizes: list[int] = []
+        #: the sections the helper drew (their indices), job by job
+        self.result_indices: list[list[int]] = []
 
-    def start(self, archive: str, out_dir: Path, formats, for_pdf: bool) -> None:
-        """Hand the helper one archive's sections (counted from the first)."""
-        with self._next.get_lock():
-            self._next.value = 0
+    def start(self, archive: str, out_dir: Path, formats, for_pdf: bool,
+              sections: int) -> None:
+        """Hand the helper one archive's ``sections`` sections."""
+        with self._left.get_lock():
+            self._left[0], self._left[1] = 0, sections
         self.jobs.send((str(archive), str(out_dir), tuple(formats), for_pdf))
 
-    def claim(self) -> int:
-        """The index of the next section nobody draws yet."""
-        return _claim(self._next)
+    def claim_last(self) -> int:
+        """The index of the last section nobody draws yet, or -1 when none is left."""
+        return _claim(self._left, last=True)
 
     def result(self) -> dict[int, dict[str, Any]]:
         """The sections the helper drew, by index; raises what it raised."""
@@ -260,7 +265,7 @@ class FigureHelper(JobProcess):
                                   f"(exit code {self.proc.exitcode})")
         if isinstance(result, BaseException):
             raise result
-        self.result_sizes.append(len(result))
+        self.result_indices.append(sorted(result))
         return result
 
     def close(self) -> None:
@@ -271,14 +276,20 @@ class FigureHelper(JobProcess):
         self.stop()
 
 
-def _claim(counter) -> int:
-    with counter.get_lock():
-        i = counter.value
-        counter.value += 1
-    return i
+def _claim(left, last: bool = False) -> int:
+    """The first (or ``last``) index of the range ``left`` = [first, end) of sections
+    nobody draws yet, taken out of it; -1 when it is empty."""
+    with left.get_lock():
+        if left[0] >= left[1]:
+            return -1
+        if last:
+            left[1] -= 1
+            return left[1]
+        left[0] += 1
+        return left[0] - 1
 
 
-def _figure_helper_main(jobs, results, counter, warm: bool) -> None:
+def _figure_helper_main(jobs, results, left, warm: bool) -> None:
     if warm:
         try:
             os.nice(10)
@@ -296,7 +307,7 @@ def _figure_helper_main(jobs, results, counter, warm: bool) -> None:
             scene = kind_of_archive(data)
             chosen = list(scene.chosen_sections(data))
             mine = {}
-            while (i := _claim(counter)) < len(chosen):
+            while (i := _claim(left)) >= 0:
                 mine[i] = _draw_section(scene, chosen[i], data, Path(out_dir), formats,
                                         for_pdf)
             return mine
