@@ -27,35 +27,40 @@ def _unpack(params):
     return n, minv, a
 
 
+# The hot functions index params flat: M⁻¹[i, j] = params[1 + i n + j] and
+# A[i, j] = params[1 + n² + i n + j].  Through _unpack's reshaped views the two-pendulum
+# right-hand side took 36 ns per call, flat 20 ns (measured as benchmarks/formula_rhs.py).
 @numba.njit(cache=True)
 def drift(p, params, out):
-    n, minv, _ = _unpack(params)
+    n = int(params[0])
     for i in range(n):
         s = 0.0
         for j in range(n):
-            s += minv[i, j] * p[j]
+            s += params[1 + i * n + j] * p[j]
         out[i] = s
 
 
 @numba.njit(cache=True)
 def kick(q, params, out):
-    n, _, a = _unpack(params)
+    n = int(params[0])
+    a0 = 1 + n * n
     for i in range(n):
         s = 0.0
         for j in range(n):
-            s -= a[i, j] * q[j]
+            s -= params[a0 + i * n + j] * q[j]
         out[i] = s
 
 
 @numba.njit(cache=True)
 def rhs(t, y, params, out):
-    n, minv, a = _unpack(params)
+    n = int(params[0])
+    a0 = 1 + n * n
     for i in range(n):
         sq = 0.0
         sp = 0.0
         for j in range(n):
-            sq += minv[i, j] * y[n + j]
-            sp -= a[i, j] * y[j]
+            sq += params[1 + i * n + j] * y[n + j]
+            sp -= params[a0 + i * n + j] * y[j]
         out[i] = sq
         out[n + i] = sp
 
