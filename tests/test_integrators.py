@@ -458,7 +458,6 @@ def test_callbacks_carry_their_numba_type_and_address():
     assert kern.rhs.__wrapper_address__() == kern.rhs.address > 0
 
 
-
 def _branchy_rhs(t, y, params, out):
     # the Kepler model's shape: a branch on a parameter after reading the state; numba's
     # refcount pruning leaves atomic NRT_incref/decref calls on all three arrays here

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .style import CONTEXT, HIGHLIGHT, REFERENCE, dots, new_figure, new_figure_grid
+from .style import CONTEXT, HIGHLIGHT, REFERENCE, dots, member_markers, new_figure, new_figure_grid
 
 #: a time series longer than this is drawn as its per-bin extremes (see :func:`envelope`)
 ENVELOPE_ABOVE = 6000
@@ -210,14 +210,13 @@ def family_against_reference(x, measured, exact, *, xlabel, ylabel, measured_lab
     ax.plot(*envelope(x, ref), "o", mfc="none", color=REFERENCE, ms=7, mew=1.5,
             label=exact_label)
     ax.plot(*envelope(x, y), color=HIGHLIGHT, label=f"{measured_label} ({x.size} members)",
-            **(dots() if dense else {"marker": "o", "ms": 3.5, "ls": "none"}))
+            **member_markers(dense))
     ax.set_ylabel(ylabel)
     legend = ax.legend(loc="best")
     if dense:  # the legend's sample of the dots at a size one can see
         legend.legend_handles[1].set_markersize(4.0)
     rel = np.maximum(np.abs(y / ref - 1), 1e-17)
-    ax_err.semilogy(*envelope(x, rel), color=HIGHLIGHT,
-                    **(dots() if dense else {"marker": "o", "ms": 3.5, "ls": "none"}))
+    ax_err.semilogy(*envelope(x, rel), color=HIGHLIGHT, **member_markers(dense))
     ax_err.set_ylabel("relative difference")
     ax_err.set_xlabel(xlabel)
     return fig

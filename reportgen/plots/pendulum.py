@@ -7,7 +7,7 @@ import math
 import numpy as np
 
 from .common import envelope
-from .style import CONTEXT, HIGHLIGHT, REFERENCE, SEPARATRIX, dots, new_figure, new_figure_grid
+from .style import CONTEXT, HIGHLIGHT, REFERENCE, SEPARATRIX, member_markers, new_figure, new_figure_grid
 
 
 def phase_portrait(theta, theta_dot, *, grid_theta, grid_theta_dot, energy, levels,
@@ -97,8 +97,7 @@ def period_family(amplitude, measured, exact, *, curve=None, small_angle=None):
     ax.set_ylabel("period T [s]")
     ax.legend(loc="upper left")
     rel = np.maximum(np.abs(y / np.asarray(exact)[order] - 1), 1e-17)
-    ax_err.semilogy(*envelope(x, rel), color=HIGHLIGHT,
-                    **(dots() if dense else {"marker": "o", "ms": 3.5, "ls": "none"}))
+    ax_err.semilogy(*envelope(x, rel), color=HIGHLIGHT, **member_markers(dense))
     ax_err.set_ylabel("|T − T_exact| / T_exact")
     ax_err.set_xlabel("amplitude θ0 [rad]")
     return fig

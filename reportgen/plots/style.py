@@ -90,6 +90,12 @@ def dots(size: float = 1.6) -> dict:
     return {"marker": "s", "markersize": size, "markeredgewidth": 0.0, "linestyle": "none"}
 
 
+def member_markers(dense: bool) -> dict:
+    """Line style of a family's members, one point each: :func:`dots` when ``dense``,
+    else 3.5-point circles."""
+    return dots() if dense else {"marker": "o", "markersize": 3.5, "linestyle": "none"}
+
+
 def new_figure(ax=None, *, figsize=None, projection=None):
     """(fig, ax): the given axes and its figure, or a new Figure (not registered with pyplot)."""
     if ax is not None:
