@@ -8,6 +8,7 @@ Closed forms used:
 * y' = y^2, y(0) = 1: y = 1 / (1 - t), blows up at t = 1.
 """
 
+import importlib
 import math
 import os
 import subprocess
@@ -498,3 +499,43 @@ def test_callbacks_compile_without_reference_counting_unless_they_allocate():
         _call_callback(cf, y, params, got)
         fn(0.0, y, params, want)
         assert np.array_equal(got, want)
+
+
+
+def test_no_compiled_code_passes_a_literal_int_to_a_driver():
+    """Numba compiles a separate specialization for each literal int argument: a call
+    ``dop853_adaptive(rhs, probe, 1, 2, ...)`` or ``initial_step(..., 8, ...)`` from
+    compiled code costs the whole DOP853 step's compile again (3-5 s on an empty cache).
+    The fictitious-time loop and the unrolled driver pass int64s, so all callers share
+    one compiled step.  (Signatures cannot show it on a warm cache: a caller loaded from
+    the cache never consults its callees' dispatchers, so this reads the source.)"""
+    import ast
+    import inspect
+    import pkgutil
+    import textwrap
+
+    from numba.core.registry import CPUDispatcher
+
+    import reportgen
+
+    drivers = {"dop853_adaptive", "erk_adaptive", "erk_fixed", "initial_step",
+               "collocation_fixed", "splitting_fixed"}
+    found, callers = [], 0
+    for info in pkgutil.walk_packages(reportgen.__path__, "reportgen."):
+        if info.name.endswith("__main__"):
+            continue
+        module = importlib.import_module(info.name)
+        for name, obj in vars(module).items():
+            if not (isinstance(obj, CPUDispatcher) and obj.py_func.__module__ == info.name):
+                continue
+            tree = ast.parse(textwrap.dedent(inspect.getsource(obj.py_func)))
+            for call in ast.walk(tree):
+                if (isinstance(call, ast.Call) and isinstance(call.func, ast.Name)
+                        and call.func.id in drivers):
+                    callers += 1
+                    literal = [a.value for a in call.args if isinstance(a, ast.Constant)
+                               and type(a.value) is int]
+                    if literal:
+                        found.append((info.name, name, call.func.id, literal))
+    assert callers >= 4  # the unrolled driver, the fictitious-time loop, erk, the ensemble
+    assert not found, found

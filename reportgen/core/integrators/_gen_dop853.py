@@ -198,8 +198,10 @@ from {module} import {name} as rhs
 
 '''
 
+# the order as an int64, not a literal 8: the same compiled initial_step as erk_adaptive's
+# and the ensemble's (a literal argument is a separate specialization, compiled again)
 _GENERIC_FIRST_STEP = """\
-        h = initial_step(rhs, t, y, f_new, params, 8, rtol, atol, span)
+        h = initial_step(rhs, t, y, f_new, params, np.int64(8), rtol, atol, span)
 """
 # rhs passed on to initial_step would be a dispatcher argument, which numba cannot cache
 _SPECIAL_FIRST_STEP = """\

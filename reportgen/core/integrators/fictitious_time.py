@@ -182,6 +182,9 @@ def located_outputs(rhs, t_index, times, i0, i1, Y, probe, buf, y, y_old, K, F, 
     """
     d = y.size
     t_last = times[times.size - 1]
+    # output rows [1, 2) of buf as int64s, not literals: the driver's compiled code is then
+    # the one driver.integrate uses (a literal argument is a separate specialization)
+    row, end = np.int64(1), np.int64(2)
     for k in range(i0, i1):
         target = times[k]
         # 1. accepted steps until the last one ends at or past the output time; asking
@@ -189,7 +192,7 @@ def located_outputs(rhs, t_index, times, i0, i1, Y, probe, buf, y, y_old, K, F, 
         # step and form its continuous extension F
         while _now(t_index, y, state) < target:
             probe[1] = np.nextafter(state[0], np.inf)
-            status = dop853_adaptive(rhs, probe, 1, 2, buf, y, y_old, K, F, state, counters,
+            status = dop853_adaptive(rhs, probe, row, end, buf, y, y_old, K, F, state, counters,
                                      params, rtol, atol, max_steps)
             if status != codes.OK:
                 return status, k, crossings
