@@ -13,6 +13,7 @@ from reportgen.archive import read_archive
 from reportgen.config import ConfigError, parse_config_text
 from reportgen.pipeline import run_scene
 from reportgen.scenes import load_scene
+from reportgen.scenes.base import fmt
 from reportgen.sweep import SweepBlock, parse_sweep, partial_folder
 
 OSCILLATOR = """
@@ -227,6 +228,12 @@ def test_pendulum_period_sweep_of_2000_members(write_config, tmp_path):
     assert data.checks and data.checks[0].rel_error == pytest.approx(rel.max(), rel=1e-6)
     html = (tmp_path / "out" / "family" / "report.html").read_text()
     assert 'id="period_family"' in html and "2000 of 2000" in html
+    # the members' run time leaves out the start-up (imports, the ensemble's compiled
+    # code), which the headline states beside it
+    start_up = sweep.attrs["members_compile_s"]
+    assert 0.0 < start_up and sweep.attrs["members_wall_time_s"] > 0.0
+    assert (f"start-up (imports, compiled code from numba's cache or compiled anew) "
+            f"{fmt(start_up, 2)} s more") in html.replace("&#39;", "'")
 
 
 def test_heavy_top_spin_family_keeps_each_members_case(write_config, tmp_path):

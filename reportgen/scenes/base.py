@@ -346,6 +346,11 @@ class Scene:
         1 for members run as whole scenes; a compiled ensemble asks for more."""
         return 1
 
+    def sweep_warm_up(self) -> None:
+        """Import and compile (or load from numba's cache) what this sweep's member blocks
+        run, so that their run time leaves it out.  Default: nothing (members run as whole scenes
+        pay it in the first member)."""
+
     def sweep_extras(self, sweep: _sweep.SweepData) -> dict[str, Any]:
         """What the kind's family figures need besides the members' results (an exact
         curve, say), stored in ``/analysis``.  Default: nothing."""
@@ -364,6 +369,11 @@ class Scene:
         import time
 
         spec = self.sweep
+        compile_s = math.nan
+        if submit is None:  # on a cluster the workers compile
+            t0 = time.perf_counter()
+            self.sweep_warm_up()
+            compile_s = time.perf_counter() - t0
         t0 = time.perf_counter()
         data, resumed = _sweep.run_sweep(spec, self.sweep_block, folder, self.physics_key(),
                                          progress, min_block=self.sweep_min_block(),
@@ -376,7 +386,8 @@ class Scene:
             if run is not None:
                 results.runs[f"member_{i}"] = run
         counts = data.counts()
-        data.attrs.update({"members_wall_time_s": members_s, "resumed": resumed})
+        data.attrs.update({"members_wall_time_s": members_s, "resumed": resumed,
+                           "members_compile_s": compile_s})
         results.sweep = data
         results.analysis = {"sweep_members": spec.size, "sweep_ok": counts.get("ok", 0),
                             "sweep_members_per_s": (spec.size - resumed) / max(members_s, 1e-9),
@@ -507,10 +518,13 @@ class Scene:
         resumed = int(sweep.attrs.get("resumed", 0))
         if math.isfinite(wall):
             run = sweep.size - resumed
+            compile_s = float(sweep.attrs.get("members_compile_s", math.nan))
             facts.append(("run time of the members",
                           f"{fmt(wall, 4)} s ({fmt(run / max(wall, 1e-12), 4)} members/s"
                           + (f"; {resumed} resumed from an interrupted run" if resumed else "")
-                          + ")"))
+                          + ")" + (f"; start-up (imports, compiled code from numba's cache or "
+                                   f"compiled anew) {fmt(compile_s, 2)} s more"
+                                   if math.isfinite(compile_s) and compile_s >= 0.01 else "")))
         return facts
 
     @classmethod

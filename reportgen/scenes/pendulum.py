@@ -299,6 +299,14 @@ class PendulumScene(Scene):
             "period_relative_error": np.abs(measured - exact) / exact,
             "period_small_angle": 2 * math.pi / omega0}, status=status)
 
+    def sweep_warm_up(self) -> None:
+        """One member through the compiled ensemble (compiles it on an empty cache)."""
+        if self._ensemble_sweep():
+            from ..core import ensemble
+
+            ensemble.pendulum_periods(np.array([0.5]), 1.0, 1.0, rtol=self.config.run.rtol,
+                                      atol=self.config.run.atol)
+
     def _ensemble_sweep(self) -> bool:
         """Whether this sweep's members run as one compiled ensemble."""
         return (self.sweep is not None and set(self.sweep.paths) <= self.ENSEMBLE_KEYS
