@@ -22,6 +22,9 @@ from ..lazy import lazy_module
 from ..results import AuditCase, Check, Results
 from .base import Scene, SceneConfig, Section, SectionContent, Table, fmt, fmt_err
 
+#: the Levi-Civita methods (reportgen.core.integrators.regularized): bound Kepler orbits only
+KEPLER_ONLY_METHODS = ("levi_civita", "levi_civita_dop853")
+
 core = lazy_module("reportgen.core.models.kepler")
 plots = lazy_module("reportgen.plots.gravitation")
 common_plots = lazy_module("reportgen.plots.common")
@@ -78,16 +81,17 @@ class CentralForceConfig(SceneConfig):
         if L == 0.0:
             raise ValueError("initial.x, initial.y, initial.vx, initial.vy: zero angular "
                              "momentum (r ∥ v): a radial orbit that ends in a collision")
-        if self.run.method == "levi_civita":
+        if self.run.method in KEPLER_ONLY_METHODS:
             # the regularization is of the 1/r potential's bound orbits (core/integrators/
             # regularized.py): refused here, before anything runs, for any other
+            name = self.run.method
             if p.potential != "kepler":
-                raise ValueError(f"run.method: \"levi_civita\" integrates only the "
+                raise ValueError(f"run.method: \"{name}\" integrates only the "
                                  f"inverse-square force, params.potential = \"kepler\" "
                                  f"(got potential {p.potential!r})")
             energy = 0.5 * mu * (ini.vx**2 + ini.vy**2) - p.k / math.hypot(ini.x, ini.y)
             if energy >= 0.0:
-                raise ValueError(f"run.method: \"levi_civita\" needs a bound orbit, E < 0 "
+                raise ValueError(f"run.method: \"{name}\" needs a bound orbit, E < 0 "
                                  f"(got E = {energy:.6g} J)")
         if p.potential == "kepler_inverse_cube" and L**2 <= 2.0 * mu * p.epsilon:
             raise ValueError(f"params.epsilon: L² ≤ 2 μ ε (L² = {L**2:.6g}, 2με = "

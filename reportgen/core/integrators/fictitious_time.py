@@ -275,7 +275,7 @@ def integrate_fictitious_time(model, y0, t_eval, t_index: int | None, rtol: floa
     t_eval = np.ascontiguousarray(t_eval, dtype=np.float64)
     if y0.shape != (model.dim,) or not np.all(np.isfinite(y0)):
         raise ValueError(f"y0: expected {model.dim} finite values, got {y0}")
-    if t_eval.ndim != 1 or t_eval.size < 1 or np.any(np.diff(t_eval) <= 0):
+    if t_eval.ndim != 1 or t_eval.size < 1 or not codes.increasing(t_eval):
         raise ValueError("t_eval: expected a 1-D array of strictly increasing times")
     own_time = t_index is None
     if not own_time and y0[t_index] != t_eval[0]:
@@ -299,11 +299,12 @@ def integrate_fictitious_time(model, y0, t_eval, t_index: int | None, rtol: floa
     work.update(_section_work(section, params, s0, y0))
     compile_s = _compile(kern, model, y0, index, work["section"])
     n_chunks = _N_CHUNKS if (progress is not None and N > _N_CHUNKS) else 1
-    bounds = np.linspace(1, N, n_chunks + 1).round().astype(int)
+    bounds = (np.linspace(1, N, n_chunks + 1).round().astype(int).tolist() if n_chunks > 1
+              else [1, N])
     t0 = time.perf_counter()
     status, reached = codes.OK, N
     for k in range(n_chunks):
-        status, reached = _advance(kern, index, t_eval, int(bounds[k]), int(bounds[k + 1]),
+        status, reached = _advance(kern, index, t_eval, bounds[k], bounds[k + 1],
                                    Y, probe, params, rtol, atol, max_steps, work)
         if progress is not None:
             progress(float(bounds[k + 1]) / N)
@@ -337,20 +338,29 @@ def _work(y0, s0, t0) -> dict:
                 counters=np.zeros(3, dtype=np.int64), located=np.array([s0, t0]))
 
 
+_NO_SECTION: dict[int, dict] = {}
+
+
 def _section_work(section, params, s0, y0) -> dict:
     """The section's callback, its factors at ``y0`` and the work arrays of the search
-    (one unused factor and no rows without a section)."""
+    (one unused factor and no rows without a section: those are never written, so one set
+    per dimension serves every run)."""
     d = y0.size
+    if section is None and d in _NO_SECTION:
+        return _NO_SECTION[d]
     m = section.count if section is not None else 0
     g_old = np.zeros(max(m, 1))
     if section is not None:
         section.factors(float(s0), y0, params, g_old)
-    return dict(section=as_cfunc(section.factors if section is not None else _no_section,
+    work = dict(section=as_cfunc(section.factors if section is not None else _no_section,
                                  RHS_SIG),
                 n_factors=m, g_old=g_old, g_new=np.zeros(max(m, 1)), g_x=np.zeros(max(m, 1)),
                 y_x=np.zeros(d), found=np.zeros((max(m, 1), 2 + d)),
                 crossings=np.zeros((64 if m else 0, 1 + d)),
                 n_crossings=np.zeros(1, dtype=np.int64))
+    if section is None:
+        _NO_SECTION[d] = work
+    return work
 
 
 def _advance(kern, t_index, t_eval, i0, i1, Y, probe, params, rtol, atol, max_steps, w):

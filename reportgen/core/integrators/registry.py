@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from .base import Method
 from .explicit_rk import DOP853, RK4, RK45
-from .regularized import LeviCivita
+from .regularized import LeviCivita, LeviCivitaDop853
 from .scipy_peer import RadauFallback, ScipyDOP853, ScipyLSODA, ScipyRadau, ScipyRK45
 from .symplectic import Gauss4, Gauss6, Verlet, Yoshida4, Yoshida6, Yoshida8
 
@@ -14,7 +14,7 @@ METHODS: dict[str, Method] = {
         DOP853(), RK45(), RK4(),
         Verlet(), Yoshida4(), Yoshida6(), Yoshida8(),
         Gauss4(), Gauss6(),
-        LeviCivita(),
+        LeviCivita(), LeviCivitaDop853(),
         RadauFallback(),
         ScipyRK45(), ScipyDOP853(), ScipyLSODA(), ScipyRadau(),
     )

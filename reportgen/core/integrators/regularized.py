@@ -154,3 +154,49 @@ class LeviCivita(Method):
                         nsteps=sum(r.nsteps for r in runs), nreject=0, code=last.code,
                         message=message, wall_time_s=wall - compile_s,
                         compile_time_s=compile_s)
+
+
+class LeviCivitaDop853(Method):
+    """Levi-Civita regularization + DOP853 in the fictitious time, for the inverse-square
+    force only: the adaptive sibling of :class:`LeviCivita`.
+
+    (LC) is a harmonic oscillator in s, as smooth at pericentre as at apocentre, so DOP853's
+    steps in s are nearly uniform in eccentric anomaly whatever the eccentricity: 10 orbits
+    at e = 0.95 take 101 steps (1,532 evaluations) at rtol 1e-10, where DOP853 on the
+    Cartesian equations takes 16,800 evaluations.  The outputs at the physical times are
+    located on each step's 7th-order continuous extension by Newton's method on its t
+    component (:func:`.fictitious_time.integrate_fictitious_time`), so they are as accurate
+    as the steps.  ``rtol``/``atol`` apply to the regularized state (w, w', t).
+
+    Unlike :class:`LeviCivita` (Gauss collocation) it does not keep the energy at
+    round-off: DOP853's error drifts it like any non-symplectic method's.  ``auto`` keeps
+    choosing ``levi_civita`` for eccentric orbits; this one is for speed at a given phase
+    error, and is one of ours in the error-against-run-time study.
+    """
+
+    name, label, order = "levi_civita_dop853", "Levi-Civita + DOP853 (Kepler only)", 8
+    adaptive = True
+    needs_kepler = True
+    compiled = False
+
+    def solve(self, model, y0, t_eval, rtol, atol, progress=None) -> Solution:
+        from ..models import kepler_regularized as lc
+        from .fictitious_time import integrate_fictitious_time
+
+        start = time.perf_counter()
+        y0 = np.asarray(y0, dtype=np.float64)
+        t_eval = np.ascontiguousarray(t_eval, dtype=np.float64)
+        gm = float(model.extra["kepler_gm"])
+        energy = lc.specific_energy(*y0, gm)
+        if not energy < 0.0:
+            raise ValueError(f"y0: method '{self.name}' needs a bound orbit (specific energy "
+                             f"< 0), got {energy:.6g}")
+        sol = integrate_fictitious_time(lc.model(energy), lc.to_regularized(*y0, t=float(
+            t_eval[0])), t_eval, 4, rtol, atol, progress=progress)
+        x, y, vx, vy, _ = lc.from_regularized(sol.y)
+        Y = np.column_stack([x, y, vx, vy])
+        Y[0] = y0  # t_eval[0] is the start: y0 exactly, as every method returns it
+        message = sol.message if sol.ok else f"{self.name}: {sol.message}"
+        # the wall time is the whole call's (conversions included), compile excluded
+        return replace(sol, y=Y, method=self.name, message=message,
+                       wall_time_s=time.perf_counter() - start - sol.compile_time_s)
