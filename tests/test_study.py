@@ -200,3 +200,26 @@ def test_unconverged_gauss_reference_gives_way_to_the_dop853_one(monkeypatch):
     res = work_precision(pendulum.model(G, L), Y0, T_EVAL, methods=["dop853"],
                          tolerances=[1e-8], repeats=1)
     assert "gauss6 h=" in res.reference_kind and res.reference_agreement < 1e-11
+
+
+def test_a_fixed_step_ladder_goes_on_past_steps_too_long_for_the_method():
+    """Gauss collocation's Newton iteration fails at the pericentre of an e = 0.95 Kepler
+    orbit with the longest steps of the ladder; the shorter steps still run (the ladder
+    used to end at its first rung and the study showed the method as failed)."""
+    import math
+
+    from reportgen.core.models import kepler
+
+    e = 0.95
+    y0 = np.array([1.0 - e, 0.0, 0.0, math.sqrt((1.0 + e) / (1.0 - e))])
+    t = np.linspace(0.0, 2.0 * math.pi, 51)
+    el = kepler.orbital_elements(*y0, 1.0)
+    res = work_precision(kepler.model(1.0, 1.0), y0, t, methods=["gauss6"], repeats=1,
+                         reference=lambda ts: np.column_stack(kepler.kepler_state(ts, el)),
+                         steps=[0.2, 0.1, 0.05, 0.02, 0.01, 0.005], budget_s=math.inf)
+    status = [r["status"] for r in res.rows]
+    assert status[0] == "failed" and "ok" in status, status
+    first_ok = status.index("ok")
+    assert all(s == "failed" for s in status[:first_ok])
+    ok = [r for r in res.rows if r["status"] == "ok"]
+    assert ok[-1]["error_max"] < ok[0]["error_max"]
