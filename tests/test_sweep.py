@@ -230,7 +230,7 @@ def test_pendulum_period_sweep_of_2000_members(write_config, tmp_path):
     assert 'id="period_family"' in html and "2000 of 2000" in html
     # the members' run time leaves out the start-up (imports, the ensemble's compiled
     # code), which the headline states beside it
-    start_up = sweep.attrs["members_compile_s"]
+    start_up = sweep.attrs["members_start_up_s"]
     assert 0.0 < start_up and sweep.attrs["members_wall_time_s"] > 0.0
     assert (f"start-up (imports, compiled code from numba's cache or compiled anew) "
             f"{fmt(start_up, 2)} s more") in html.replace("&#39;", "'")

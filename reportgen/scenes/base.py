@@ -369,11 +369,11 @@ class Scene:
         import time
 
         spec = self.sweep
-        compile_s = math.nan
+        start_up_s = math.nan
         if submit is None:  # on a cluster the workers compile
             t0 = time.perf_counter()
             self.sweep_warm_up()
-            compile_s = time.perf_counter() - t0
+            start_up_s = time.perf_counter() - t0
         t0 = time.perf_counter()
         data, resumed = _sweep.run_sweep(spec, self.sweep_block, folder, self.physics_key(),
                                          progress, min_block=self.sweep_min_block(),
@@ -387,7 +387,7 @@ class Scene:
                 results.runs[f"member_{i}"] = run
         counts = data.counts()
         data.attrs.update({"members_wall_time_s": members_s, "resumed": resumed,
-                           "members_compile_s": compile_s})
+                           "members_start_up_s": start_up_s})
         results.sweep = data
         results.analysis = {"sweep_members": spec.size, "sweep_ok": counts.get("ok", 0),
                             "sweep_members_per_s": (spec.size - resumed) / max(members_s, 1e-9),
@@ -518,13 +518,13 @@ class Scene:
         resumed = int(sweep.attrs.get("resumed", 0))
         if math.isfinite(wall):
             run = sweep.size - resumed
-            compile_s = float(sweep.attrs.get("members_compile_s", math.nan))
+            start_up_s = float(sweep.attrs.get("members_start_up_s", math.nan))
             facts.append(("run time of the members",
                           f"{fmt(wall, 4)} s ({fmt(run / max(wall, 1e-12), 4)} members/s"
                           + (f"; {resumed} resumed from an interrupted run" if resumed else "")
                           + ")" + (f"; start-up (imports, compiled code from numba's cache or "
-                                   f"compiled anew) {fmt(compile_s, 2)} s more"
-                                   if math.isfinite(compile_s) and compile_s >= 0.01 else "")))
+                                   f"compiled anew) {fmt(start_up_s, 2)} s more"
+                                   if math.isfinite(start_up_s) and start_up_s >= 0.01 else "")))
         return facts
 
     @classmethod

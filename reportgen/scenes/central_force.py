@@ -22,12 +22,10 @@ from ..lazy import lazy_module
 from ..results import AuditCase, Check, Results
 from .base import Scene, SceneConfig, Section, SectionContent, Table, fmt, fmt_err
 
-#: the Levi-Civita methods (reportgen.core.integrators.regularized): bound Kepler orbits only
-KEPLER_ONLY_METHODS = ("levi_civita", "levi_civita_dop853")
-
 core = lazy_module("reportgen.core.models.kepler")
 plots = lazy_module("reportgen.plots.gravitation")
 common_plots = lazy_module("reportgen.plots.common")
+integrators = lazy_module("reportgen.core.integrators")  # its method list imports no numba
 
 
 class Params(Strict):
@@ -81,7 +79,8 @@ class CentralForceConfig(SceneConfig):
         if L == 0.0:
             raise ValueError("initial.x, initial.y, initial.vx, initial.vy: zero angular "
                              "momentum (r ∥ v): a radial orbit that ends in a collision")
-        if self.run.method in KEPLER_ONLY_METHODS:
+        method = integrators.METHODS.get(self.run.method)
+        if method is not None and method.needs_kepler:
             # the regularization is of the 1/r potential's bound orbits (core/integrators/
             # regularized.py): refused here, before anything runs, for any other
             name = self.run.method

@@ -62,6 +62,19 @@ def steps_per_orbit(rtol: float, eccentricity: float) -> int:
     return max(MIN_STEPS_PER_ORBIT, math.ceil((STEP_CONSTANT * speed / rtol) ** (1.0 / 6.0)))
 
 
+def _bound_orbit(method: str, model, y0) -> tuple[float, float]:
+    """(GM, specific energy h) of the Kepler orbit from ``y0``; a ValueError naming
+    ``method`` unless it is bound (h < 0), which both regularizations need."""
+    from ..models import kepler_regularized as lc
+
+    gm = float(model.extra["kepler_gm"])
+    energy = lc.specific_energy(*y0, gm)
+    if not energy < 0.0:
+        raise ValueError(f"y0: method '{method}' needs a bound orbit (specific energy "
+                         f"< 0), got {energy:.6g}")
+    return gm, energy
+
+
 def _gauss6(reg, state, s, ds, progress=None) -> Solution:
     """(LC) from ``state`` at s[0] to the fictitious times ``s`` with gauss6, steps ≤ ``ds``."""
     from .compiled_run import run_compiled
@@ -90,11 +103,7 @@ class LeviCivita(Method):
         from ..models import kepler
         from ..models import kepler_regularized as lc
 
-        gm = float(model.extra["kepler_gm"])
-        energy = lc.specific_energy(*y0, gm)
-        if not energy < 0.0:
-            raise ValueError(f"y0: method '{self.name}' needs a bound orbit (specific energy "
-                             f"< 0), got {energy:.6g}")
+        gm, energy = _bound_orbit(self.name, model, y0)
         elements = kepler.orbital_elements(*y0, gm)
         n_orbit = steps_per_orbit(rtol, elements["eccentricity"])
         ds = lc.orbit_fictitious_period(energy) / n_orbit
@@ -186,11 +195,7 @@ class LeviCivitaDop853(Method):
         start = time.perf_counter()
         y0 = np.asarray(y0, dtype=np.float64)
         t_eval = np.ascontiguousarray(t_eval, dtype=np.float64)
-        gm = float(model.extra["kepler_gm"])
-        energy = lc.specific_energy(*y0, gm)
-        if not energy < 0.0:
-            raise ValueError(f"y0: method '{self.name}' needs a bound orbit (specific energy "
-                             f"< 0), got {energy:.6g}")
+        _, energy = _bound_orbit(self.name, model, y0)
         sol = integrate_fictitious_time(lc.model(energy), lc.to_regularized(*y0, t=float(
             t_eval[0])), t_eval, 4, rtol, atol, progress=progress)
         x, y, vx, vy, _ = lc.from_regularized(sol.y)
