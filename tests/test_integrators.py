@@ -539,3 +539,57 @@ def test_no_compiled_code_passes_a_literal_int_to_a_driver():
                         found.append((info.name, name, call.func.id, literal))
     assert callers >= 4  # the unrolled driver, the fictitious-time loop, erk, the ensemble
     assert not found, found
+
+
+def _axpy(a, x, y, out):
+    for i in range(x.size):
+        out[i] = a * x[i] + y[i]
+
+
+def test_the_loop_vectorizer_is_off_except_inside_loop_vectorizer():
+    """reportgen turns LLVM's loop vectorizer off (reportgen/__init__.py: on states of 2-9
+    components its runtime checks cost more than its vector arithmetic saves) and
+    kernels.loop_vectorizer turns it back on for what compiles inside, as the wide DOP853
+    twin does.  Compiled here, uncached: numba shows no assembly for cached code."""
+    import re
+
+    from reportgen.core.integrators import kernels
+
+    if os.environ.get("NUMBA_LOOP_VECTORIZE") != "0":
+        pytest.skip("NUMBA_LOOP_VECTORIZE was set before reportgen was imported")
+    packed = re.compile(r"\bv?(?:add|sub|mul|fmadd\d*)pd\b")  # packed double arithmetic
+    sig = "void(f8, f8[::1], f8[::1], f8[::1])"
+    plain = numba.njit(_axpy)
+    plain.compile(sig)
+    with kernels.loop_vectorizer():
+        vectorized = numba.njit(_axpy)
+        vectorized.compile(sig)
+    assert not packed.findall(plain.inspect_asm(plain.signatures[0]))
+    assert packed.findall(vectorized.inspect_asm(vectorized.signatures[0]))
+    assert numba.core.config.LOOP_VECTORIZE == 0  # restored
+
+
+def test_wide_states_run_the_vectorized_twin_with_the_same_steps():
+    """From kernels.WIDE_STATE components DOP853 runs on its loop-vectorized twin: the
+    same operations in the same order (no fast-math), so the same trajectory to the bit
+    and the same evaluations as the shared driver."""
+    from reportgen.core.integrators import kernels
+    from reportgen.core.models import linear_chain
+
+    n = 6  # 12 components
+    stiffness = 2.0 * np.eye(n) - np.eye(n, k=1) - np.eye(n, k=-1)
+    model = linear_chain.model(np.eye(n), stiffness, [f"q{i}" for i in range(n)])
+    y0 = np.zeros(2 * n)
+    y0[0] = 0.1
+    t = np.linspace(0.0, 30.0, 301)
+    kern = kernels.kernels_for(model)
+    assert model.dim >= kernels.WIDE_STATE and kern.wide
+    wide = integrate(model, y0, t, rtol=1e-10, atol=1e-12)
+    try:
+        kern.wide = False
+        shared = integrate(model, y0, t, rtol=1e-10, atol=1e-12)
+    finally:
+        kern.wide = True
+    assert wide.status == shared.status == "ok"
+    assert (wide.nfev, wide.nsteps) == (shared.nfev, shared.nsteps)
+    assert np.array_equal(wide.y, shared.y)
