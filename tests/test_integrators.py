@@ -419,11 +419,11 @@ def test_specialized_driver_refuses_what_it_cannot_inline():
     import numba
 
     from reportgen.core.integrators.specialized import dop853_driver
-    from reportgen.core.models import pendulum
+    from reportgen.core.models import oscillator
 
-    # pendulum.rhs has numba's default error model: inlined, 1/0 would raise in the driver
+    # oscillator.rhs has numba's default error model: inlined, 1/0 would raise in the driver
     with pytest.raises(ValueError, match="error_model"):
-        dop853_driver(pendulum.rhs, 2)
+        dop853_driver(oscillator.rhs, 2)
 
     @numba.njit(error_model="numpy")
     def local(t, y, params, out):
