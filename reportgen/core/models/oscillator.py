@@ -23,7 +23,7 @@ from ..model import OdeModel, Separable
 # params = (a, b): q' = a p, p' = -b q
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")
 def rhs(t, y, params, out):
     out[0] = params[0] * y[1]
     out[1] = -params[1] * y[0]
@@ -48,8 +48,10 @@ def kick(q, params, out):
 
 
 def model(a: float, b: float, columns=("q", "p"), name="oscillator") -> OdeModel:
+    # DOP853 on a driver with rhs inlined and d = 2 (see reportgen.core.model.OdeModel)
     return OdeModel(name=name, columns=columns, rhs=rhs, params=np.array([a, b]),
-                    separable=Separable(n=1, drift=drift, kick=kick), jac=jac)
+                    separable=Separable(n=1, drift=drift, kick=kick), jac=jac,
+                    specialize=True)
 
 
 def hamilton_model(m: float, omega: float) -> OdeModel:
