@@ -35,7 +35,7 @@ Caching and errors
   defeats it: the Kepler right-hand side (``if params[2] != 0.0``) spent 35 of its
   42 ns per call on them, the linear chain's (``reshape`` views) most of its time.  A
   function that allocates cannot compile so and keeps the counting (:func:`as_cfunc`).
-  The choice is part of the on-disk cache key (:class:`_UncountedCache`), so callbacks
+  The choice is part of the on-disk cache key (:class:`_FlaggedCache`), so callbacks
   cached before it are not loaded for it.
 """
 
@@ -108,12 +108,17 @@ def _typeof_typed_cfunc(val, c):
     return val.numba_type
 
 
-class _UncountedCache(FunctionCache):
-    """numba's cache of a function, with "compiled without reference counting" in the
-    index key (numba's own key holds the signature and the bytecode, not the flags)."""
+class _FlaggedCache(FunctionCache):
+    """numba's cache of a function, with ``flag`` (how it was compiled) in the index key:
+    numba's own key holds the signature and the bytecode, not the compile options, so a
+    function compiled two ways would otherwise load whichever was saved first."""
+
+    def __init__(self, py_func, flag: str):
+        super().__init__(py_func)
+        self._flag = flag
 
     def _index_key(self, sig, codegen):
-        return (*super()._index_key(sig, codegen), "nrt=False")
+        return (*super()._index_key(sig, codegen), self._flag)
 
 
 @contextlib.contextmanager
@@ -136,14 +141,6 @@ def loop_vectorizer():
             config.LOOP_VECTORIZE = before
 
 
-class _VectorizedCache(FunctionCache):
-    """numba's cache of a function, with "loop-vectorized" in the index key: the twin of
-    a driver shares its source, so numba's own key could not tell the two apart."""
-
-    def _index_key(self, sig, codegen):
-        return (*super()._index_key(sig, codegen), "loop_vectorize=1")
-
-
 class _VectorizedTwin:
     """``dispatcher``'s function compiled once more with the loop vectorizer on
     (:func:`loop_vectorizer`), cached under its own key; called like the dispatcher."""
@@ -151,7 +148,7 @@ class _VectorizedTwin:
     def __init__(self, dispatcher):
         options = {k: v for k, v in dispatcher.targetoptions.items() if k != "nopython"}
         self._twin = numba.njit(**options)(dispatcher.py_func)
-        self._twin._cache = _VectorizedCache(dispatcher.py_func)
+        self._twin._cache = _FlaggedCache(dispatcher.py_func, "loop_vectorize=1")
         self._ready = False
 
     def __call__(self, *args):
@@ -170,7 +167,7 @@ def _compile_cfunc(py, sig, options, cache: bool) -> _TypedCFunc:
         if options.get("_nrt", True):
             cf.enable_caching()
         else:
-            cf._cache = _UncountedCache(py)
+            cf._cache = _FlaggedCache(py, "nrt=False")
     cf.compile()
     return cf
 
