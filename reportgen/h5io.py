@@ -92,7 +92,10 @@ def table(group: h5py.Group, name: str, records: np.ndarray) -> h5py.Dataset:
     out = np.empty(records.shape, dtype=dtype)
     for fname in records.dtype.names:
         col = records[fname]
-        out[fname] = col.astype(str).astype(object) if col.dtype.kind in "OUS" else col
+        if col.dtype.kind == "S":  # UTF-8 bytes (numpy's own cast would decode ASCII)
+            out[fname] = [v.decode("utf-8") for v in col]
+        else:
+            out[fname] = col.astype(str).astype(object) if col.dtype.kind in "OU" else col
     return group.create_dataset(name, data=out, chunks=True if out.size else None,
                                 fletcher32=bool(out.size))
 

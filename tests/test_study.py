@@ -1,5 +1,7 @@
 """Work-precision study on the pendulum (exact solution: DLMF 22.19.2, see pendulum.py)."""
 
+import math
+
 import numpy as np
 import pytest
 
@@ -24,7 +26,7 @@ def exact(t):
 def study():
     return work_precision(pendulum.model(G, L), Y0, T_EVAL, reference=exact,
                           tolerances=[1e-6, 1e-8, 1e-10, 1e-12], steps=[T / 100, T / 200],
-                          repeats=1)
+                          repeats=1, budget_s=math.inf)  # every method's rows, however busy
 
 
 def test_rows_for_ours_and_peers(study):
@@ -52,6 +54,24 @@ def test_records_are_a_structured_array(study):
     assert rec.dtype.names[:2] == ("method", "label")
     assert rec.dtype["method"].kind == "S"  # h5py stores fixed-width bytes directly
     assert len(rec) == len(study.rows)
+
+
+def test_method_labels_keep_their_typography_through_the_archive_table(study, tmp_path):
+    # Labels are UTF-8 in the fixed-width byte fields ("Störmer–Verlet", en dashes in
+    # "Gauss–Legendre"): they must fit the field and come back as written.
+    import h5py
+
+    from reportgen.h5io import read_table, table
+
+    assert METHODS["verlet"].label.startswith("Störmer–Verlet")
+    width = study.to_records().dtype["label"].itemsize
+    assert all(len(m.label.encode("utf-8")) <= width for m in METHODS.values())
+    with h5py.File(tmp_path / "t.h5", "w") as f:
+        table(f, "study", study.to_records())
+    with h5py.File(tmp_path / "t.h5", "r") as f:
+        back = read_table(f["study"])
+    assert sorted(set(back["label"])) == sorted({r["label"] for r in study.rows})
+    assert "Störmer–Verlet (numba)" in set(back["label"])
 
 
 def test_matched_error_speedup(study):

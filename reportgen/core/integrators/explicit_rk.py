@@ -153,7 +153,7 @@ class EmbeddedRun(Run):
 class RK45(EmbeddedRungeKutta):
     """Dormand-Prince 5(4), FSAL, 4th-order dense output (Shampine 1986), tableau as scipy."""
 
-    name, label, order = "rk45", "Dormand-Prince RK45 (numba)", 5
+    name, label, order = "rk45", "Dormand–Prince RK45 (numba)", 5
     error_estimator_order, n_stages, dense_kind = 4, 6, 0
     c = np.array([0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1])
     A = np.array([

@@ -92,7 +92,7 @@ class LeviCivita(Method):
     and sets its own step, uniform in s and so ∝ r in t.
     """
 
-    name, label, order = "levi_civita", "Levi-Civita + Gauss-Legendre 6 (Kepler only)", 6
+    name, label, order = "levi_civita", "Levi-Civita + Gauss–Legendre 6 (Kepler only)", 6
     adaptive = True
     implicit = True
     needs_kepler = True

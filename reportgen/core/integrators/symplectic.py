@@ -1,4 +1,4 @@
-"""Symplectic methods: compositions of Stormer-Verlet, and Gauss-Legendre collocation.
+"""Symplectic methods: compositions of Störmer–Verlet, and Gauss-Legendre collocation.
 
 A composition method is the list of weights gamma_i of Verlet sub-steps,
 Phi_h = S(gamma_m h) o ... o S(gamma_1 h); symmetric weights give a symmetric method.
@@ -28,7 +28,7 @@ from .explicit_rk import FixedStepRun
 
 
 class Composition(Method):
-    """Symmetric composition of kick-drift-kick Stormer-Verlet with weights ``gammas``."""
+    """Symmetric composition of kick-drift-kick Störmer–Verlet with weights ``gammas``."""
 
     symplectic = True
     symmetric = True
@@ -57,7 +57,7 @@ def _palindrome(w: list[float]) -> tuple[float, ...]:
 
 
 class Verlet(Composition):
-    name, label, order = "verlet", "Stormer-Verlet (numba)", 2
+    name, label, order = "verlet", "Störmer–Verlet (numba)", 2
     gammas = (1.0,)
 
 
@@ -151,10 +151,10 @@ def _gauss6_tableau(sqrt):
 
 
 class Gauss4(GaussLegendre):
-    name, label, order = "gauss4", "Gauss-Legendre 2-stage (numba, implicit)", 4
+    name, label, order = "gauss4", "Gauss–Legendre 2-stage (numba, implicit)", 4
     tableau = staticmethod(_gauss4_tableau)
 
 
 class Gauss6(GaussLegendre):
-    name, label, order = "gauss6", "Gauss-Legendre 3-stage (numba, implicit)", 6
+    name, label, order = "gauss6", "Gauss–Legendre 3-stage (numba, implicit)", 6
     tableau = staticmethod(_gauss6_tableau)
