@@ -4,7 +4,16 @@ from __future__ import annotations
 
 import numpy as np
 
-from .style import CONTEXT, HIGHLIGHT, REFERENCE, dots, member_markers, new_figure, new_figure_grid
+from .style import (
+    CONTEXT,
+    HIGHLIGHT,
+    PALETTE,
+    REFERENCE,
+    dots,
+    member_markers,
+    new_figure,
+    new_figure_grid,
+)
 
 #: a time series longer than this is drawn as its per-bin extremes (see :func:`envelope`)
 ENVELOPE_ABOVE = 6000
@@ -68,7 +77,9 @@ def work_precision(study: np.ndarray, *, error_field="error_max", ax=None):
     """
     fig, ax = new_figure(ax, figsize=(6.8, 5.6))
     methods = list(dict.fromkeys(study["method"]))
-    markers = "osD^v<>phX*"
+    # colours repeat after the palette's 7: a method sharing a colour with an earlier
+    # one differs from it in marker shape ('P', 'X' against 'o', 's') and line (dash-dot)
+    markers = "osD^v<>PX*hd"
     for i, method in enumerate(methods):
         rows = study[(study["method"] == method) & (study["status"] == "ok")]
         err = np.asarray(rows[error_field], dtype=float)
@@ -80,7 +91,7 @@ def work_precision(study: np.ndarray, *, error_field="error_max", ax=None):
         peer = str(method).startswith("scipy")
         ax.loglog(
             time[keep][order], np.maximum(err[keep][order], 1e-17),
-            linestyle="--" if peer else "-",
+            linestyle="--" if peer else ("-" if i < len(PALETTE) else "-."),
             marker=markers[i % len(markers)],
             markerfacecolor="none" if peer else None,
             label=str(rows["label"][0]),

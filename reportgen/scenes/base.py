@@ -677,7 +677,8 @@ class Scene:
         return SectionContent(
             figures=[cls.figure("work_precision", fig,
                                 "Work-precision diagram: max error over the run against wall "
-                                "time. Solid: reportgen's compiled integrators; dashed: scipy "
+                                "time. Filled markers on solid (or dash-dot) lines: reportgen's "
+                                "compiled integrators; hollow markers on dashed lines: scipy "
                                 "solve_ivp.")],
             tables=[table], notes=notes)
 
