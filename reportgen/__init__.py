@@ -13,3 +13,10 @@ __version__ = "0.2.0"
 # 10 or more components runs a twin compiled with the vectorizer on
 # (reportgen.core.integrators.kernels.WIDE_STATE).
 _os.environ.setdefault("NUMBA_LOOP_VECTORIZE", "0")
+# numba's on-disk cache does not key its entries on this setting: code compiled with the
+# vectorizer on would be loaded later by runs without it (and the other way round).  A
+# user who turns it on gets a cache folder of their own, unless they chose one.
+if _os.environ["NUMBA_LOOP_VECTORIZE"] != "0" and not _os.environ.get("NUMBA_CACHE_DIR"):
+    _os.environ["NUMBA_CACHE_DIR"] = _os.path.join(
+        _os.environ.get("XDG_CACHE_HOME") or _os.path.join(_os.path.expanduser("~"), ".cache"),
+        "reportgen", "numba-loop-vectorize-" + _os.environ["NUMBA_LOOP_VECTORIZE"])

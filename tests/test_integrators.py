@@ -573,6 +573,27 @@ def test_the_loop_vectorizer_is_off_except_inside_loop_vectorizer():
     assert numba.core.config.LOOP_VECTORIZE == 0  # restored
 
 
+def test_a_user_who_turns_the_vectorizer_on_gets_a_numba_cache_of_their_own(tmp_path):
+    """numba's cache index ignores NUMBA_LOOP_VECTORIZE: without a folder of its own, code
+    compiled with the vectorizer on would be loaded by later runs with it off (a 1.4x
+    slower rigid body, measured).  A folder the user chose is kept."""
+    probe = ("import reportgen, numba.core.config as c; "
+             "print(c.LOOP_VECTORIZE, repr(c.CACHE_DIR))")
+    base = {k: v for k, v in os.environ.items()
+            if k not in ("NUMBA_LOOP_VECTORIZE", "NUMBA_CACHE_DIR")}
+    base["XDG_CACHE_HOME"] = str(tmp_path)
+
+    def probed(**env) -> str:
+        return subprocess.run([sys.executable, "-c", probe], env={**base, **env},
+                              capture_output=True, text=True, check=True).stdout.split()
+
+    assert probed() == ["0", "''"]  # numba's default: next to the sources
+    own = tmp_path / "reportgen" / "numba-loop-vectorize-1"
+    assert probed(NUMBA_LOOP_VECTORIZE="1") == ["1", repr(str(own))]
+    assert probed(NUMBA_LOOP_VECTORIZE="1", NUMBA_CACHE_DIR="/elsewhere") == [
+        "1", "'/elsewhere'"]
+
+
 def test_wide_states_run_the_vectorized_twin_with_the_same_steps():
     """From kernels.WIDE_STATE components DOP853 runs on its loop-vectorized twin: the
     same operations in the same order (no fast-math), so the same trajectory to the bit
