@@ -51,7 +51,7 @@ COLUMNS = ("omega_1", "omega_2", "omega_3", "q_w", "q_x", "q_y", "q_z")
 # params = (I1, I2, I3, kappa)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")  # inlined in its driver: a 0 divisor gives inf
 def rhs(t, y, params, out):
     I1, I2, I3, kappa = params[0], params[1], params[2], params[3]
     w1, w2, w3 = y[0], y[1], y[2]
@@ -103,7 +103,8 @@ def jac(t, y, params, out):
 def model(I1: float, I2: float, I3: float, kappa: float = 0.0) -> OdeModel:
     """Compiled free rigid body with principal moments I1, I2, I3 [kg m²]."""
     return OdeModel(name="rigid_body", columns=COLUMNS, rhs=rhs,
-                    params=np.array([I1, I2, I3, kappa], dtype=float), jac=jac)
+                    params=np.array([I1, I2, I3, kappa], dtype=float), jac=jac,
+                    specialize=True)
 
 
 # ------------------------------------------------------------------ invariants
