@@ -69,7 +69,7 @@ SPIN_FREE_COLUMNS = ("p_w", "p_x", "p_y", "p_z", "Omega_1", "Omega_2")
 # params = (I1, I3, Mgl, omega3, Mgl / I1, I3 omega3 / I1)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")  # inlined in its driver: a 0 divisor gives inf
 def spin_free_rhs(t, y, params, out):
     """F' (quaternion p, body -> space at ψ = 0) and its angular velocity Ω = (Ω1, Ω2, 0)
     in F' axes.  Euler's equations in the frame F' (which turns at Ω, not at ω):
@@ -94,7 +94,7 @@ def spin_free_model(I1: float, I3: float, Mgl: float, omega3: float) -> OdeModel
     params ``(I1, I3, Mgl, ω3, Mgl/I1, I3 ω3/I1)`` (the last two are what the equations use)."""
     return OdeModel(name="heavy_top_spin_free", columns=SPIN_FREE_COLUMNS, rhs=spin_free_rhs,
                     params=np.array([I1, I3, Mgl, omega3, Mgl / I1, I3 * omega3 / I1],
-                                    dtype=np.float64))
+                                    dtype=np.float64), specialize=True)
 
 
 def spin_free_initial_state(theta, theta_dot, phi_dot):
