@@ -57,7 +57,7 @@ def _accelerations(q, params, out):
             out[3 * j + 2] -= fj * dz
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")
 def rhs(t, y, params, out):
     for i in range(9):
         out[i] = y[9 + i]
@@ -79,7 +79,7 @@ def model(G: float, masses) -> OdeModel:
     m = np.asarray(masses, dtype=np.float64)
     return OdeModel(name="three-body", columns=COLUMNS, rhs=rhs,
                     params=np.array([G, m[0], m[1], m[2]]),
-                    separable=Separable(n=9, drift=drift, kick=kick))
+                    separable=Separable(n=9, drift=drift, kick=kick), specialize=True)
 
 
 def split(y):
