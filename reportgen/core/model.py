@@ -87,6 +87,14 @@ class SurfaceOfSection:
 MAX_SECTION_FACTORS = 4
 
 
+#: a model whose size is set by its scene (a chain of n masses, FPUT's m pairs) runs
+#: DOP853 on a driver of its own (``OdeModel.specialize``) up to this many components:
+#: measured on small oscillations (ns per evaluation, shared driver -> specialized),
+#: 4 components 48 -> 23, 6: 44 -> 31, 12: 69 -> 58; at 18 the shared one, then
+#: loop-vectorized, was faster (90 -> 97), and the unrolled driver's compile grows with d
+SPECIALIZE_UP_TO = 12
+
+
 @dataclass(frozen=True)
 class OdeModel:
     """A compiled first-order system and what it offers to integrators.
@@ -111,7 +119,8 @@ class OdeModel:
         DOP853 runs on a driver compiled for this model alone
         (:mod:`reportgen.core.integrators.specialized`): ~2x fewer ns per step on a
         small cheap system, ~4 s more compile once per cache.  ``rhs`` must then be a
-        module-level ``njit(error_model="numpy")`` function.
+        module-level ``njit(error_model="numpy")`` function.  Models whose size the scene
+        sets ask for it up to :data:`SPECIALIZE_UP_TO` components.
     """
 
     name: str

@@ -27,7 +27,7 @@ import math
 import numba
 import numpy as np
 
-from ..model import OdeModel, Separable
+from ..model import SPECIALIZE_UP_TO, OdeModel, Separable
 
 
 # inlined into its callers: see "Helpers" in reportgen.core.model
@@ -54,7 +54,7 @@ def _grad_v(q, omega, out):
             out[2 * i - 1] -= f
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, error_model="numpy")
 def rhs(t, y, params, out):
     n = y.shape[0] // 2
     for k in range(n):
@@ -116,7 +116,8 @@ def columns(m: int) -> tuple[str, ...]:
 
 def model(m: int, omega: float) -> OdeModel:
     return OdeModel(name="fput", columns=columns(m), rhs=rhs, params=np.array([float(omega)]),
-                    separable=Separable(n=2 * m, drift=drift, kick=kick), jac=jac)
+                    separable=Separable(n=2 * m, drift=drift, kick=kick), jac=jac,
+                    specialize=4 * m <= SPECIALIZE_UP_TO)
 
 
 def gni_initial(m: int, omega: float) -> tuple[list[float], list[float]]:

@@ -15,7 +15,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from ..model import OdeModel, Separable
+from ..model import SPECIALIZE_UP_TO, OdeModel, Separable
 
 
 # inlined into its callers: see "Helpers" in reportgen.core.model
@@ -75,12 +75,6 @@ def jac(t, y, params, out):
         for j in range(n):
             out[i, n + j] = minv[i, j]
             out[n + i, j] = -a[i, j]
-
-
-#: DOP853 runs on a driver compiled for the model and its dimension up to this many state
-#: components (ns per evaluation, shared driver -> specialized: 4 components 48 -> 23,
-#: 6: 44 -> 31, 12: 69 -> 58; at 18 the shared, loop-vectorized one is faster, 90 -> 97)
-SPECIALIZE_UP_TO = 12
 
 
 def model(M: np.ndarray, A: np.ndarray, names: list[str], stiff_hint: bool = False,
