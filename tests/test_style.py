@@ -74,3 +74,27 @@ def test_the_cycle_is_the_palette():
 
     cycle = [c["color"] for c in matplotlib.rcParams["axes.prop_cycle"]]
     assert [to_rgb(c) for c in cycle] == [to_rgb(c) for c in style.PALETTE]
+
+
+@pytest.mark.parametrize("studied", ["all", "separable", "coupled_pendula"])
+def test_the_work_precision_legend_fits_the_figure_and_tells_every_method_apart(studied):
+    """The methods of a study, long labels included: the legend stays inside the figure's
+    width (the coupled pendula's twelve in three columns ran past both edges), and no two
+    methods share colour, marker and line style (past the palette's 7 colours the
+    markers and the line change)."""
+    from reportgen.core.integrators import METHODS
+    from reportgen.plots.common import work_precision
+
+    names = [n for n, m in METHODS.items() if (m.compiled or m.peer)
+             and (studied == "all" or not m.needs_kepler)
+             and (studied != "coupled_pendula" or n != "scipy_lsoda")]
+    dtype = [("method", object), ("label", object), ("status", object),
+             ("error_max", float), ("wall_time_s", float)]
+    rows = np.array([(n, METHODS[n].label, "ok", 10.0 ** -(k % 12), 1e-4 * (k + 1))
+                     for n in names for k in range(2)], dtype=dtype)
+    fig = work_precision(rows)
+    legend = fig.legends[0]
+    assert legend.get_window_extent().width <= fig.bbox.width
+    looks = {(line.get_color(), line.get_marker(), line.get_linestyle(),
+              line.get_markerfacecolor()) for line in fig.axes[0].get_lines()}
+    assert len(looks) == len(names)

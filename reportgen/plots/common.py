@@ -10,6 +10,7 @@ from .style import (
     PALETTE,
     REFERENCE,
     dots,
+    legend_below,
     member_markers,
     new_figure,
     new_figure_grid,
@@ -98,7 +99,7 @@ def work_precision(study: np.ndarray, *, error_field="error_max", ax=None):
         )
     ax.set_xlabel("wall time per run [s]  (min of repeats, compile time excluded)")
     ax.set_ylabel("max error over the run")
-    fig.legend(loc="outside lower center", fontsize=8, ncol=3, frameon=False)
+    legend_below(fig)
     return fig
 
 

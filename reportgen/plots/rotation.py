@@ -10,7 +10,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from .rigid_body import AXIS_COLOURS
-from .style import CONTEXT, HIGHLIGHT, REFERENCE, SEPARATRIX, new_figure
+from .style import CONTEXT, HIGHLIGHT, REFERENCE, SEPARATRIX, legend_below, new_figure
 
 #: Euler-angle convention names as printed
 CONVENTION = {"zxz": "z-x-z", "zyz": "z-y-z"}
@@ -94,7 +94,7 @@ def axis_angle(axis, angle, vector, rotated, arc, circle, centre, turned_axes, *
         turned_axes), size * np.stack([-0.5 * n, 1.5 * n]), np.asarray(circle)])
     centre, half = _fit(drawn)
     _frame_3d(ax, 0.8 * half, azim=_oblique_azimuth(n), centre=centre, zoom=1.0)
-    fig.legend(loc="outside lower center", ncols=3, fontsize=8, frameon=False)
+    legend_below(fig)
     return fig
 
 

@@ -109,3 +109,15 @@ def new_figure_grid(nrows, ncols, *, figsize=None, sharex=False):
     fig = Figure(figsize=figsize or RC["figure.figsize"], layout="constrained")
     axes = fig.subplots(nrows, ncols, sharex=sharex, squeeze=False)
     return fig, axes
+
+
+def legend_below(fig, *, fontsize: float = 8, max_columns: int = 3):
+    """The figure's legend under its axes, in as many columns (at most ``max_columns``) as
+    fit the figure's width: long labels (``Gauss–Legendre 3-stage (numba, implicit)``) in
+    three columns ran past both edges of a 6.8-inch work-precision diagram."""
+    for ncols in range(max_columns, 0, -1):
+        legend = fig.legend(loc="outside lower center", ncols=ncols, fontsize=fontsize,
+                            frameon=False)
+        if ncols == 1 or legend.get_window_extent().width <= 0.98 * fig.bbox.width:
+            return legend
+        legend.remove()
