@@ -430,3 +430,24 @@ def test_audit_case_is_reported_stiff():
     result = audit_case(NormalModesScene.audit_cases()[0])
     assert result.verdict == "stiff"
     assert result.runs[0].used == "gauss6" and result.runs[0].error < 1e-8
+
+
+def test_only_a_stiff_scene_is_told_about_stiffness_next_to_its_diagram(write_config, cli,
+                                                                         tmp_path):
+    """The work-precision section explains the stability bound of explicit methods only
+    where the scene is stiff (a report leaves out what its scene does not need)."""
+    from reportgen.archive import read_archive
+    from reportgen.scenes.normal_modes import NormalModesScene
+
+    cfg = write_config("stiff", STIFF.format(t_end=4.0, study="true"))
+    code, _, err = cli("run", cfg, "--out", tmp_path / "o", "--jobs", 1, "--format", "html")
+    assert code == 0, err  # auto chose an implicit method: ok
+    html = (tmp_path / "o" / "stiff" / "report.html").read_text()
+    assert "This scene is stiff (ω_max/ω_min = " in html
+    assert "Error against run time" in html
+    data = read_archive(tmp_path / "o" / "stiff" / "run.h5")
+    assert any("stability bound" in n for n in
+               NormalModesScene.section_error_vs_runtime(data).notes)
+    data.analysis["stiff"] = False
+    assert not any("stability bound" in n for n in
+                   NormalModesScene.section_error_vs_runtime(data).notes)
