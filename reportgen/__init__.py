@@ -1,8 +1,18 @@
 """reportgen: config-driven simulator and report generator for classical mechanics."""
 
 import os as _os
+from pathlib import Path as _Path
 
 __version__ = "0.2.0"
+
+
+def cache_root() -> _Path:
+    """``$XDG_CACHE_HOME/reportgen``, else ``~/.cache/reportgen``: the folder of every user
+    cache of the package (peer rows, generated code, templates, equations).  Here, at the
+    root, so that :mod:`reportgen.core` may use it too."""
+    base = _os.environ.get("XDG_CACHE_HOME") or _os.path.join(_os.path.expanduser("~"), ".cache")
+    return _Path(base) / "reportgen"
+
 
 # Our drivers loop over states of 2 to ~20 components through LLVM's loop vectorizer,
 # which wraps every such loop in runtime alias and trip-count checks that cost more than
@@ -17,6 +27,5 @@ _os.environ.setdefault("NUMBA_LOOP_VECTORIZE", "0")
 # vectorizer on would be loaded later by runs without it (and the other way round).  A
 # user who turns it on gets a cache folder of their own, unless they chose one.
 if _os.environ["NUMBA_LOOP_VECTORIZE"] != "0" and not _os.environ.get("NUMBA_CACHE_DIR"):
-    _os.environ["NUMBA_CACHE_DIR"] = _os.path.join(
-        _os.environ.get("XDG_CACHE_HOME") or _os.path.join(_os.path.expanduser("~"), ".cache"),
-        "reportgen", "numba-loop-vectorize-" + _os.environ["NUMBA_LOOP_VECTORIZE"])
+    _os.environ["NUMBA_CACHE_DIR"] = str(
+        cache_root() / ("numba-loop-vectorize-" + _os.environ["NUMBA_LOOP_VECTORIZE"]))

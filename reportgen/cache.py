@@ -19,18 +19,13 @@ import os
 from pathlib import Path
 from typing import Any
 
+from . import cache_root
 from .fsutil import atomic_write
 
 #: set to a non-empty value to bypass the cache (what ``--no-cache`` does)
 NO_CACHE_ENV = "REPORTGEN_NO_CACHE"
 #: bump when the stored rows change meaning
 CACHE_FORMAT = 1
-
-
-def cache_root() -> Path:
-    """``$XDG_CACHE_HOME/reportgen``, else ``~/.cache/reportgen``."""
-    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
-    return Path(base) / "reportgen"
 
 
 class PeerCache:

@@ -16,15 +16,15 @@ import sys
 import threading
 from pathlib import Path
 
+from .. import cache_root
+
 _LOCK = threading.Lock()
 _MODULES: dict[str, object] = {}
 
 
 def code_folder(kind: str) -> Path:
-    """``$XDG_CACHE_HOME/reportgen/<kind>`` (as :func:`reportgen.cache.cache_root`, which
-    core may not import: it sits below the rest of the package)."""
-    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-    return Path(base) / "reportgen" / kind
+    """``$XDG_CACHE_HOME/reportgen/<kind>`` (:func:`reportgen.cache_root`)."""
+    return cache_root() / kind
 
 
 def load_module(source: str, kind: str, version: str = ""):
