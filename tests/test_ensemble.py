@@ -157,7 +157,8 @@ def test_terminal_events_stop_members():
 
 def test_failing_members_are_flagged_and_others_unchanged():
     """A NaN initial state gives NONFINITE at once; a stiff member (g/l = 1e10) exceeds
-    max_steps; the other members are bit for bit those of a run without them."""
+    max_steps (attempted steps, accepted and rejected); the other members are bit for bit
+    those of a run without them."""
     good = sweep(max_steps=2000)
     M = good.status.size
     Y0 = np.column_stack([np.linspace(0.05, 3.0, M), np.linspace(-0.5, 0.5, M)])
@@ -168,7 +169,7 @@ def test_failing_members_are_flagged_and_others_unchanged():
                        event="theta", max_events=5, t_eval=good.t_eval,
                        store=[0, M // 2, M - 1], max_steps=2000)
     assert bad.status[7] == NONFINITE and bad.counters[7, 0] == 0
-    assert bad.status[M // 2] == MAXSTEPS and bad.counters[M // 2, 1] == 2000
+    assert bad.status[M // 2] == MAXSTEPS and bad.counters[M // 2, 1:].sum() == 2000
     others = np.setdiff1d(np.arange(M), [7, M // 2])
     assert np.all(bad.status[others] == OK)
     for name in RESULT_FIELDS[:-1]:

@@ -63,7 +63,7 @@ from .integrators.compiled import (
     MAXSTEPS,
     NONFINITE,
     OK,
-    UNDERFLOW,
+    UNDERFLOW,  # noqa: F401 (re-exported: a member's status)
     accept_step,
     all_finite,
     copy_into,
@@ -75,19 +75,21 @@ from .integrators.compiled import (
     rk_update,
     stage_state,
     step_factor,
+    stop_status,
     store_row,
 )
 from .integrators.explicit_rk import DOP853
 from .integrators.kernels import kernels_for
+from .integrators.status import Status
 from .model import OdeModel
 
 #: :func:`pendulum_periods`: theta0 outside (0, pi), or g / l not positive, or not finite
-NOT_LIBRATING = 5
+NOT_LIBRATING = Status.NOT_LIBRATING.code
 #: :func:`pendulum_periods`: fewer than two upward crossings before the horizon
-NO_PERIOD = 6
-STATUS_NAMES = {OK: "ok", NONFINITE: "nonfinite", UNDERFLOW: "step underflow",
-                MAXSTEPS: "max_steps", NOT_LIBRATING: "not librating",
-                NO_PERIOD: "no period"}
+NO_PERIOD = Status.NO_PERIOD.code
+#: a member's integer status -> its spelling: :class:`.integrators.status.Status`, whose
+#: ``from_code`` reads a code; kept for ``STATUS_NAMES.get(int(c), ...)``
+STATUS_NAMES = {s.code: s.value for s in Status}
 
 
 @numba.njit(cache=True, inline="always")
@@ -201,11 +203,13 @@ def dop853_member(rhs, A, b, c, E, E3, P, nst, kind, err_exp, order, y0, p, t0, 
         j += 1
     status = OK
     while t < t_end:
-        if counters[1] >= max_steps:
+        if counters[1] + counters[2] >= max_steps:  # attempted steps, as erk_adaptive
             status = MAXSTEPS
             break
-        if not h >= 10.0 * EPS * max(abs(t), 1e-300):  # also catches a NaN step
-            status = UNDERFLOW if math.isfinite(err) else NONFINITE
+        # NaN fails every comparison, so a NaN step stops here (``h < min_step`` was False
+        # for it: the loop spun); h >= 10 eps |t| also means t + h > t (no zero progress)
+        if not (10.0 * EPS * max(abs(t), 1e-300) <= h < math.inf):
+            status = stop_status(t + h, err)
             break
         # one attempt t -> t + h, as in erk_adaptive
         for i in range(d):
@@ -300,7 +304,8 @@ class Ensemble:
         its last accepted state, at ``t_final``.
     t_final : ndarray, shape (M,)
     status : ndarray of int, shape (M,)
-        ``OK``, ``NONFINITE``, ``UNDERFLOW`` or ``MAXSTEPS`` (:mod:`.integrators.compiled`).
+        ``OK``, ``NONFINITE``, ``UNDERFLOW`` or ``MAXSTEPS`` (:mod:`.integrators.compiled`;
+        :meth:`.integrators.status.Status.from_code` names them).
     counters : ndarray of int64, shape (M, 3)
         (function evaluations, accepted steps, rejected steps).
     events : ndarray, shape (M, max_events)
@@ -383,7 +388,7 @@ def run_ensemble(model: OdeModel, Y0, P=None, t_end: float = 1.0, *, t0: float =
     store : sequence of int
         Members whose states at ``t_eval`` are kept (memory S N d).
     max_steps : int
-        Budget of accepted steps per member (``MAXSTEPS`` beyond it).
+        Budget of attempted steps (accepted + rejected) per member (``MAXSTEPS`` beyond it).
     block : int
         Members per compiled call; ``progress(fraction)`` is called after each.
         Results do not depend on it (nor on ``numba.set_num_threads``).

@@ -11,7 +11,8 @@ Public API::
     solve_fictitious_time(model, y0, t_eval, t_index, spec, reason, section=None)
         -> PolicyResult   # a regularized model, outputs at physical t (t_index None: a
                           # model in its own time); a section's crossings located on the steps
-    RunStatus, SolveCode, MethodMismatch, Solution
+    Status (the one status vocabulary; SolveCode is it), RunStatus (the policy's subset),
+    MethodMismatch, Solution
 """
 
 from __future__ import annotations
@@ -22,7 +23,7 @@ import importlib
 #: listing the methods (``METHODS``, ``reportgen kinds``) does not import numba or scipy.
 _EXPORTS = {
     "Method": ".base", "MethodMismatch": ".base", "RunStatus": ".base", "Solution": ".base",
-    "SolveCode": ".base",
+    "SolveCode": ".base", "Status": ".status",
     "integrate": ".driver",
     "PolicyResult": ".policy", "SolverSpec": ".policy", "choose_auto": ".policy",
     "solve": ".policy", "solve_fictitious_time": ".policy",

@@ -10,7 +10,17 @@ import math
 import numba
 import numpy as np
 
-from .compiled import EPS, MAXSTEPS, OK, UNDERFLOW, accept_step, all_finite, initial_step, step_factor
+from .compiled import (
+    EPS,
+    MAXSTEPS,
+    OK,
+    accept_step,
+    all_finite,
+    initial_step,
+    overflow_or_inf,
+    step_factor,
+    stop_status,
+)
 
 
 @numba.njit(cache=True)
@@ -29,6 +39,7 @@ def dop853_adaptive(rhs, t_eval, i0, i1, Y, y, y_old, K, F, state, counters, par
     span = t_eval[t_eval.size - 1] - t_eval[0]
     status = OK
     err_exp = -0.125
+    err = 0.0
     if h == 0.0:
         rhs(t, y, params, f_new)
         for i in range(d):
@@ -80,12 +91,11 @@ def dop853_adaptive(rhs, t_eval, i0, i1, Y, y, y_old, K, F, state, counters, par
             j += 1
         if j >= i1:
             break
-        if counters[1] >= max_steps:
+        if counters[1] + counters[2] >= max_steps:
             status = MAXSTEPS
             break
-        min_step = 10.0 * EPS * max(abs(t), 1e-300)
-        if h < min_step:
-            status = UNDERFLOW
+        if not (10.0 * EPS * max(abs(t), 1e-300) <= h < math.inf):
+            status = stop_status(t + h, err)
             break
         for i in range(d):
             K[0, i] = K[12, i]
@@ -151,8 +161,10 @@ def dop853_adaptive(rhs, t_eval, i0, i1, Y, y, y_old, K, F, state, counters, par
         counters[0] += 12
         e5n = 0.0
         e3n = 0.0
+        probe = 0.0
         for i in range(d):
             scale = atol + max(abs(y[i]), abs(y_new[i])) * rtol
+            probe += y_new[i] * 0.0
             e5 = (0.0 * f_new[i] + 0.01312004499419488 * K[0, i] + -1.2251564463762044 * K[5, i] + -0.4957589496572502 * K[6, i] + 1.6643771824549864 * K[7, i] + -0.35032884874997366 * K[8, i] + 0.3341791187130175 * K[9, i] + 0.08192320648511571 * K[10, i] + -0.022355307863886294 * K[11, i]) / scale
             e3 = (0.0 * f_new[i] + -0.18980075407240762 * K[0, i] + 4.450312892752409 * K[5, i] + 1.8915178993145003 * K[6, i] + -5.801203960010585 * K[7, i] + -0.4226823213237919 * K[8, i] + -0.1521609496625161 * K[9, i] + 0.20136540080403034 * K[10, i] + 0.02265179219836082 * K[11, i]) / scale
             e5n += e5 * e5
@@ -161,8 +173,8 @@ def dop853_adaptive(rhs, t_eval, i0, i1, Y, y, y_old, K, F, state, counters, par
             err = 0.0
         else:
             err = h * e5n / math.sqrt((e5n + 0.01 * e3n) * d)
-        if not (math.isfinite(err) and all_finite(f_new)):
-            err = math.inf
+        if not (math.isfinite(err) and probe == 0.0 and all_finite(f_new)):
+            err = overflow_or_inf(probe, f_new)
         factor = step_factor(err, err_exp, rejected)
         if err < 1.0:
             rejected = False

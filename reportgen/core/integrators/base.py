@@ -7,10 +7,10 @@ Subclass contract
    ``symmetric``, ``peer``, ``compiled``).  Flags are data: tests and the study select methods by them.
 2. Compiled methods implement ``start(kern, model, y0, t_eval, Y, rtol, atol, h)``
    (``kern``: the drivers bound to the model, :func:`.kernels.kernels_for`) returning a
-   :class:`Run` whose ``advance(i0, i1)`` fills ``Y[i0:i1]`` and returns a status code
-   from :mod:`.compiled` (``OK`` ...).  Bookkeeping (chunking, progress, timing, the
-   failure :class:`SolveCode` and message, the Solution) is done once, in
-   :func:`reportgen.core.integrators.integrate`.
+   :class:`Run` whose ``advance(i0, i1)`` fills ``Y[i0:i1]`` and returns a driver's
+   integer status code (:attr:`.status.Status.code`; :mod:`.compiled`'s ``OK`` ...).
+   Bookkeeping (chunking, progress, timing, the failure :class:`SolveCode` and message,
+   the Solution) is done once, in :func:`reportgen.core.integrators.integrate`.
 3. ``check(model)`` raises :class:`MethodMismatch` before any work when the method
    cannot run on the model.
 """
@@ -22,29 +22,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .status import POLICY_STATUSES, Status
+
 
 class MethodMismatch(Exception):
     """The method needs structure the model does not offer (raised before any work)."""
 
 
-class SolveCode(enum.StrEnum):
-    """How one integrator run ended: the structured cause behind ``Solution.message``.
-
-    Decisions (the solver policy, the stability verdict) read this code, never the
-    message text, which is for people.
-    """
-
-    OK = "ok"
-    #: the state, or every trial step's right-hand side, became NaN or inf
-    NONFINITE = "nonfinite"
-    #: the adaptive step fell below 10 eps |t| with finite values
-    STEP_UNDERFLOW = "step_underflow"
-    #: the budget of accepted steps (``max_steps``) ran out
-    MAX_STEPS = "max_steps"
-    #: the Newton iteration of an implicit method did not converge
-    NEWTON = "newton"
-    #: a peer (scipy) solver reported failure
-    SOLVER_ERROR = "solver_error"
+#: How one integrator run ended: the structured cause behind ``Solution.message``.
+#: Decisions (the solver policy, the stability verdict) read this code, never the
+#: message text, which is for people.  The one vocabulary of :mod:`.status` (the name
+#: is kept): OK, NONFINITE, STEP_UNDERFLOW, MAX_STEPS, NEWTON, BAD_STEP, SOLVER_ERROR.
+SolveCode = Status
 
 
 @dataclass(frozen=True)
@@ -152,41 +141,32 @@ class Run:
     def advance(self, i0: int, i1: int) -> int:
         raise NotImplementedError
 
-    def last_trial_finite(self) -> bool:
-        """Whether the last attempted step gave finite values (adaptive runs override)."""
-        return True
-
 
 class RunStatus(enum.StrEnum):
-    """What the policy made of one run (archived as the run attr ``solver_status``)."""
+    """What the policy made of one run (archived as the run attr ``solver_status``): the
+    members of :class:`.status.Status` it names (:data:`.status.POLICY_STATUSES`), with
+    their spellings and verdicts; every other failure is archived as FAILED."""
 
-    OK = "ok"
+    OK = Status.OK
     #: a method named explicitly looks stiff (kept, flagged)
-    STIFF = "stiff"
+    STIFF = Status.STIFF
     #: the step budget ran out
-    MAX_STEPS = "max_steps"
+    MAX_STEPS = Status.MAX_STEPS
     #: the state (or every trial step) became NaN or inf
-    NONFINITE = "nonfinite"
+    NONFINITE = Status.NONFINITE
     #: any other integrator failure (step-size underflow, Newton, scipy)
-    FAILED = "failed"
+    FAILED = Status.FAILED
     #: the automatic choice met stiffness and used an implicit method: it looked stiff and
     #: was redone with the fallback, or the model was marked stiff in advance
-    SWITCHED = "switched"
+    SWITCHED = Status.SWITCHED
 
     @property
     def verdict(self) -> str:
         """The run's archived ``status``: ``"ok"``, ``"unstable"`` or ``"failed"``."""
-        if self in (RunStatus.OK, RunStatus.SWITCHED):
-            return "ok"
-        return "unstable" if self is RunStatus.STIFF else "failed"
+        return Status(self).verdict
 
+
+assert {s.value for s in RunStatus} == {s.value for s in POLICY_STATUSES}
 
 #: integrator outcome -> policy status (before the stiffness checks)
-STATUS_OF_CODE = {
-    SolveCode.OK: RunStatus.OK,
-    SolveCode.MAX_STEPS: RunStatus.MAX_STEPS,
-    SolveCode.NONFINITE: RunStatus.NONFINITE,
-    SolveCode.STEP_UNDERFLOW: RunStatus.FAILED,
-    SolveCode.NEWTON: RunStatus.FAILED,
-    SolveCode.SOLVER_ERROR: RunStatus.FAILED,
-}
+STATUS_OF_CODE = {s: RunStatus(s.policy) for s in Status}

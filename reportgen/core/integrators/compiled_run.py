@@ -13,24 +13,28 @@ import time
 import numpy as np
 
 from . import compiled as codes
-from .base import Method, Solution, SolveCode
+from .base import Method, Solution
 from .explicit_rk import DOP853
 from .kernels import kernels_for
+from .status import Status
 
-#: driver status codes (:mod:`.compiled`) -> how the run ended
-_CODE = {
-    codes.OK: SolveCode.OK,
-    codes.NONFINITE: SolveCode.NONFINITE,
-    codes.UNDERFLOW: SolveCode.STEP_UNDERFLOW,
-    codes.MAXSTEPS: SolveCode.MAX_STEPS,
-    codes.NEWTON: SolveCode.NEWTON,
-}
+#: why a run failed, for people (MAX_STEPS: :func:`fail_reason`)
 _FAIL_REASON = {
-    SolveCode.NONFINITE: "the state or the right-hand side became non-finite (NaN or inf)",
-    SolveCode.STEP_UNDERFLOW: "step size underflow (h < 10 eps |t|)",
-    SolveCode.NEWTON: "the Newton iteration for the implicit stages did not converge "
-                      "(try a smaller h)",
+    Status.NONFINITE: "the state, the right-hand side or the step size became non-finite "
+                      "(NaN or inf)",
+    Status.STEP_UNDERFLOW: "step size underflow (h < 10 eps |t|, or t + h == t)",
+    Status.NEWTON: "the Newton iteration for the implicit stages did not converge "
+                   "(try a smaller h)",
+    Status.BAD_STEP: f"no usable fixed step (h not positive and finite, or more than "
+                     f"{codes.MAX_FIXED_STEPS:.3g} steps per output interval)",
 }
+
+
+def fail_reason(code: Status, max_steps: int) -> str:
+    """Why a run that ended with ``code`` failed, in words."""
+    return _FAIL_REASON.get(code, f"max_steps = {max_steps} attempted steps exceeded")
+
+
 _N_CHUNKS = 20
 _WARMED: set = set()
 
@@ -114,10 +118,11 @@ def run_compiled(method: Method, model, y0, t_eval, rtol, atol, h, progress, max
     run = method.start(kern, model, y0, t_eval, Y, rtol, atol,
                        None if method.adaptive else float(h if h is not None else 1.0),
                        max_steps)
-    # fixed-step: stop at the output interval where the step budget runs out
+    # fixed-step: stop at the output interval where the step budget runs out (the counts
+    # are floats: a tiny h needs more steps than any int holds, never a negative count)
     i_end = N
     if not method.adaptive:
-        over = np.nonzero(run.steps_before > max_steps)[0]
+        over = np.nonzero(~(run.steps_before <= max_steps))[0]
         if over.size:
             i_end = int(over[0])
     n_chunks = _N_CHUNKS if (progress is not None and i_end > _N_CHUNKS) else 1
@@ -135,17 +140,18 @@ def run_compiled(method: Method, model, y0, t_eval, rtol, atol, h, progress, max
         status = codes.MAXSTEPS
         run.t_fail = float(t_eval[i_end - 1])
     counters = run.counters
-    code = _CODE[status]
-    if code is SolveCode.STEP_UNDERFLOW and not run.last_trial_finite():
-        code = SolveCode.NONFINITE  # the step collapsed because every trial gave NaN/inf
+    code = Status.from_code(status)  # the driver tells a collapsed NaN step from underflow
     message = "ok"
-    if code is not SolveCode.OK:
-        reason = _FAIL_REASON.get(code, f"max_steps = {max_steps} exceeded")
+    if code is not Status.OK:
+        reason = fail_reason(code, max_steps)
+        if code is Status.MAX_STEPS and i_end < N:
+            reason += (f": h = {run.h:.3g} needs {run.steps_before[i_end]:.4g} steps to reach "
+                       f"t = {t_eval[i_end]:.6g}")
         bad = ~np.all(np.isfinite(Y), axis=1)
         last = int(np.argmax(bad)) - 1 if bad.any() else N - 1
         message = (f"{method.name} failed at t = {run.t_fail:.6g}: {reason}; "
                    f"outputs valid up to t = {t_eval[max(last, 0)]:.6g}")
-        if code is SolveCode.STEP_UNDERFLOW and run.__dict__.get("y") is not None:
+        if code is Status.STEP_UNDERFLOW and run.__dict__.get("y") is not None:
             message += f" (|y| = {np.max(np.abs(run.y)):.3g}; the solution may blow up)"
     return Solution(
         t=t_eval.copy(), y=Y, method=method.name, rtol=float(rtol), atol=float(atol),

@@ -34,7 +34,8 @@ def integrate(model, y0, t_eval, method: str = "dop853", rtol: float = 1e-10,
         Called between ~20 chunks of the output grid; chunking leaves the result
         unchanged (adaptive runs carry their step across chunks).
     max_steps : int
-        Budget of accepted steps.
+        Budget of attempted steps, accepted and rejected (a fixed-step run: its steps,
+        counted before any is taken); ``code`` MAX_STEPS beyond it.
 
     Notes
     -----
@@ -47,9 +48,11 @@ def integrate(model, y0, t_eval, method: str = "dop853", rtol: float = 1e-10,
     MethodMismatch
         Before any work, if the method needs structure the model lacks.
     ValueError
-        Malformed ``y0`` / ``t_eval`` / unknown method.  Numerical failures never
-        raise: they give ``status="failed"``, a :class:`SolveCode` in ``code`` and a
-        message.
+        Malformed ``y0`` / ``t_eval`` / unknown method / ``h`` not positive and finite.
+        Numerical failures never raise: they give ``status="failed"``, a
+        :class:`SolveCode` (:class:`.status.Status`) in ``code`` and a message; every run
+        ends (a NaN step size is NONFINITE, a step that makes no progress STEP_UNDERFLOW,
+        a fixed step too small for the budget MAX_STEPS).
     """
 
     if method not in METHODS:

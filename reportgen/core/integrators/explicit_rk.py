@@ -18,15 +18,22 @@ from .base import Method, Run
 
 
 def _fixed_steps(t_eval: np.ndarray, h: float) -> np.ndarray:
-    """Steps per output interval: the smallest count with step <= h (as the kernels do)."""
+    """Steps per output interval: the smallest count with step <= h (as the kernels do,
+    :func:`.compiled.steps_in`), as floats: exact up to 2^53, and a count beyond any
+    budget (a tiny h) stays a large number instead of overflowing an int."""
     dt = np.diff(t_eval)
-    return np.maximum(1, np.ceil(dt / h * (1.0 - 1e-12))).astype(np.int64)
+    return np.maximum(1.0, np.ceil(dt / h * (1.0 - 1e-12)))
 
 
 class FixedStepRun(Run):
-    """Shared bookkeeping of the fixed-step kernels (they all take the same tail)."""
+    """Shared bookkeeping of the fixed-step kernels (they all take the same tail).
+
+    Raises ValueError for a step ``h`` that is not positive and finite."""
 
     def __init__(self, kernel, head: tuple, t_eval, Y, y0, h, params):
+        h = float(h)
+        if not 0.0 < h < math.inf:
+            raise ValueError(f"h: expected a positive finite step, got {h!r}")
         self.kernel, self.head = kernel, head
         self.t_eval, self.Y, self.h = t_eval, Y, h
         self.params = np.ascontiguousarray(params, dtype=np.float64)  # the callbacks' layout
@@ -34,9 +41,10 @@ class FixedStepRun(Run):
         self.counters = np.zeros(3, dtype=np.int64)
         self.tfail = np.full(1, np.nan)
         Y[0] = self.y
-        n = _fixed_steps(t_eval, h) if t_eval.size > 1 else np.ones(0, dtype=np.int64)
-        self.h_used = float(np.max(np.diff(t_eval) / n)) if n.size else float(h)
-        self.steps_before = np.concatenate([[0], np.cumsum(n)])  # steps to reach t_eval[j]
+        n = _fixed_steps(t_eval, h) if t_eval.size > 1 else np.ones(0)
+        self.h_used = float(np.max(np.diff(t_eval) / n)) if n.size else h
+        # steps to reach t_eval[j] (floats; compared with the budget before any is taken)
+        self.steps_before = np.concatenate([[0.0], np.cumsum(n)])
 
     def advance(self, i0: int, i1: int) -> int:
         i0 = max(i0, 1)
@@ -139,15 +147,6 @@ class EmbeddedRun(Run):
             status = self.kern.erk_adaptive(*self.args, *tail)
         self.t_fail = float(self.state[0])
         return int(status)
-
-    def last_trial_finite(self) -> bool:
-        """Whether the stages of the last attempted step were finite.
-
-        ``K[1:n_stages]`` keep the stages of the last attempt, accepted or rejected, so
-        a step size that collapsed because every trial gave NaN/inf is told apart from
-        a genuine underflow with finite values.
-        """
-        return bool(np.all(np.isfinite(self.K[1:self.m.n_stages])))
 
 
 class RK45(EmbeddedRungeKutta):

@@ -43,8 +43,9 @@ import numpy as np
 from . import compiled as codes
 from ._dop853_unrolled import dop853_adaptive
 from .base import Solution
-from .compiled_run import _CODE, _FAIL_REASON
+from .compiled_run import fail_reason
 from .kernels import RHS_SIG, as_cfunc, kernels_for
+from .status import Status
 
 _N_CHUNKS = 20
 #: bisection steps are taken when a Newton iterate leaves the bracket; this many in all
@@ -311,12 +312,12 @@ def integrate_fictitious_time(model, y0, t_eval, t_index: int | None, rtol: floa
         if status != codes.OK:
             break
     wall = time.perf_counter() - t0
-    code = _CODE[int(status)]
+    code = Status.from_code(status)
     counters = work["counters"]
     message = "ok"
     if status != codes.OK:
         Y[reached:] = np.nan
-        reason = _FAIL_REASON.get(code, f"max_steps = {max_steps} exceeded")
+        reason = fail_reason(code, max_steps)
         where = "t" if own_time else "s"
         now = work["state"][0] if own_time else work["y"][t_index]
         message = (f"dop853{'' if own_time else ' in fictitious time'} failed at "

@@ -4,7 +4,8 @@ A :class:`SolverSpec` says what was asked (``method = "auto"`` or a name, the
 tolerances, the step); :func:`solve` decides and runs:
 
 1. ``auto`` picks a method from the model's structure (:func:`choose_auto`);
-2. the run's outcome is read from the integrator's :class:`~.base.SolveCode`;
+2. the run's outcome is read from the integrator's :class:`~.base.SolveCode` (the one
+   vocabulary, :class:`~.status.Status`), and archived as its :class:`RunStatus`;
 3. an explicit adaptive run is checked for stiffness
    (:func:`reportgen.core.integrators.stability.stiffness_signs`): an *automatic* choice that
    looks stiff is rerun with the implicit fallback (``radau``) and says so; a method
@@ -64,7 +65,7 @@ class SolverSpec:
     h : float or None
         Step of fixed-step methods; None lets the driver choose.
     max_steps : int
-        Budget of accepted steps of the compiled methods.
+        Budget of attempted steps (accepted + rejected) of the compiled methods.
     reason : str
         Why a named method was chosen (the archived ``method_reason``); ignored for
         ``auto``, which gives its own.
@@ -169,12 +170,16 @@ def choose_auto(model, rtol: float, n_periods: float | None = None,
 
 
 def _bound_kepler_eccentricity(model, y0) -> float | None:
-    """e of the bound Kepler orbit through ``y0`` (None: not Kepler, not bound, no y0)."""
+    """e of the bound Kepler orbit through ``y0`` (None: not Kepler, not bound, no y0, or
+    ``y0`` at the centre or not finite)."""
     if y0 is None or "kepler_gm" not in model.extra:
         return None
     from ..models.kepler import orbital_elements
 
-    elements = orbital_elements(*(float(v) for v in y0), float(model.extra["kepler_gm"]))
+    x, y, vx, vy = (float(v) for v in y0)
+    if not (math.hypot(x, y) > 0.0 and math.isfinite(vx) and math.isfinite(vy)):
+        return None  # no orbit through the centre (1/r): the run reports what happens
+    elements = orbital_elements(x, y, vx, vy, float(model.extra["kepler_gm"]))
     return elements["eccentricity"] if elements["bound"] else None
 
 

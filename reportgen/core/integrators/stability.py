@@ -19,7 +19,8 @@ import math
 
 import numpy as np
 
-from .base import RunStatus, SolveCode
+from .base import SolveCode
+from .status import Status
 
 #: relative invariant drift allowed per unit of requested rtol, and its floor
 DRIFT_PER_RTOL = 1e4
@@ -127,14 +128,15 @@ def assess_run(record, rtol: float, scales: dict[str, float] | None = None) -> N
     """Set ``record.attrs['status']``/``['message']`` from the checks above (in place).
 
     The starting verdict is the solver policy's (``attrs['solver_status']``, a
-    :class:`~reportgen.core.integrators.RunStatus` value: ok/switched -> "ok",
+    :class:`~reportgen.core.integrators.RunStatus` value, read as a :class:`.status.Status`
+    so that any spelling of the vocabulary is understood: ok/switched -> "ok",
     stiff -> "unstable", a failure -> "failed"), else ``attrs['status']``.  Also
     stores ``drift_<name>`` attrs, the relative drift of each invariant.
     """
 
     attrs = record.attrs
     solver = attrs.get("solver_status")
-    status = RunStatus(solver).verdict if solver else attrs.get("status", "ok")
+    status = Status(solver).verdict if solver else attrs.get("status", "ok")
     messages = [attrs["message"]] if attrs.get("message") else []
     if status == "ok" and not np.all(np.isfinite(record.y)):
         status = "failed"
