@@ -40,7 +40,7 @@ from __future__ import annotations
 import json
 import math
 import shutil
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
@@ -49,8 +49,14 @@ import h5py
 import numpy as np
 
 from . import __version__
+from .archive_check import STATUSES as _CHECKED_STATUSES
+from .archive_check import check_archive, is_int, is_number
 from .fsutil import install, temp_name
-from .h5io import (
+from .h5io import (  # noqa: F401 - FORMAT* are part of this module's interface
+    FORMAT,
+    FORMAT_VERSION,
+    OLDEST_READABLE,
+    QUANTITIES_ATTR,
     STR,
     ArchiveError,
     attr_value,
@@ -60,14 +66,10 @@ from .h5io import (
     read_mapping,
     read_table,
     table,
-    write_mapping,
 )
+from .layout import printable
 from .results import Check, Results, RunRecord
-
-FORMAT = "reportgen"
-FORMAT_VERSION = 2
-#: oldest format this reader opens (1: no dimension scales, no resolved config)
-OLDEST_READABLE = 1
+from .scene.schema import Quantity, ResultsSchema
 
 
 class ConfigView(dict):
@@ -139,18 +141,35 @@ def _checks_records(checks: list[Check]) -> np.ndarray:
     )
 
 
+class ResultsError(Exception):
+    """A kind's results depart from its declared schema (a bug of the kind, found at
+    write time rather than when a figure is drawn)."""
+
+
 def write_archive(path: Path, *, kind: str, title: str, scene: str, config_text: str,
                   config_sha256: str, results: Results, resolved_config: dict | None = None,
-                  physics_key: str = "") -> None:
-    """Write ``results`` atomically to ``path`` (see the module docstring)."""
+                  physics_key: str = "", schema: ResultsSchema | None = None) -> None:
+    """Write ``results`` atomically to ``path`` (see the module docstring).
+
+    ``schema``: the kind's declared results; every dataset then carries its ``units``,
+    ``long_name`` and ``symbol``, and results that depart from the declaration raise
+    :class:`ResultsError` before anything is written."""
     path = Path(path)
+    if schema is not None:
+        problems = schema.problems(results)
+        if problems:
+            raise ResultsError(f"kind {kind!r}: results depart from its declaration: "
+                               + "; ".join(problems[:8])
+                               + (f" (and {len(problems) - 8} more)" if len(problems) > 8
+                                  else ""))
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = temp_name(path)
     try:
         with h5py.File(tmp, "w") as f:
             _write_contents(f, kind=kind, title=title, scene=scene, config_text=config_text,
                             config_sha256=config_sha256, results=results,
-                            resolved_config=resolved_config or {}, physics_key=physics_key)
+                            resolved_config=resolved_config or {}, physics_key=physics_key,
+                            schema=schema or UNDECLARED)
             f.flush()
         install(tmp, path)
     finally:
@@ -163,7 +182,8 @@ def _config_json(resolved_config: dict) -> str:
 
 
 def _write_contents(f: h5py.File, *, kind, title, scene, config_text, config_sha256,
-                    results: Results, resolved_config: dict, physics_key: str) -> None:
+                    results: Results, resolved_config: dict, physics_key: str,
+                    schema: ResultsSchema) -> None:
     f.attrs.update({
         "format": FORMAT,
         "format_version": FORMAT_VERSION,
@@ -178,8 +198,7 @@ def _write_contents(f: h5py.File, *, kind, title, scene, config_text, config_sha
         "message": results.message,
         "wall_time_s": float(results.wall_time_s),
     })
-    f.create_dataset("config", data=config_text, dtype=STR)
-    f.create_dataset("config_resolved", data=_config_json(resolved_config), dtype=STR)
+    _write_config(f, config_text, resolved_config)
     f.create_group("provenance").attrs.update(provenance())
     runs = f.create_group("runs")
     first_name: dict[int, str] = {}
@@ -188,38 +207,104 @@ def _write_contents(f: h5py.File, *, kind, title, scene, config_text, config_sha
             runs[name] = runs[first_name[id(run)]]
             continue
         first_name[id(run)] = name
-        _write_run(runs.create_group(name), run)
-    write_mapping(f.create_group("analysis"), results.analysis)
-    table(f, "checks", _checks_records(results.checks))
+        _write_run(runs.create_group(name), run, schema)
+    _write_analysis(f.create_group("analysis"), results.analysis, schema)
+    described(table(f, "checks", _checks_records(results.checks)),
+              "headline numbers against their exact or independent references")
     if results.study is not None:
         study = f.create_group("study")
-        study_table = table(study, "error_vs_runtime", results.study)
+        study_table = described(table(study, "error_vs_runtime", results.study),
+                                "error against run time: one row per method and tolerance")
         for key, value in results.study_attrs.items():
             study_table.attrs[key] = attr_value(value)
     if results.sweep is not None:
-        _write_sweep(f.create_group("sweep"), results.sweep)
+        _write_sweep(f.create_group("sweep"), results.sweep, schema)
 
 
-def _write_sweep(g: h5py.Group, sweep) -> None:
+#: the schema of a kind that declares none: every dataset still gets CF attributes
+UNDECLARED = ResultsSchema()
+
+
+def described(ds: h5py.Dataset, long_name: str, units: str = "", symbol: str = ""):
+    """Give ``ds`` its CF attributes (``units`` "" for text and tables)."""
+    ds.attrs.update({"units": units, "long_name": long_name, "symbol": symbol})
+    return ds
+
+
+def _quantity(lookup, name: str) -> Quantity:
+    """The declared quantity ``name`` by ``lookup``, or an undeclared stand-in."""
+    try:
+        return lookup(name)
+    except KeyError:
+        return Quantity(name, "", "", name.replace("_", " ").replace("/", ": "))
+
+
+def _write_config(f: h5py.File, config_text: str, resolved_config: dict) -> None:
+    described(f.create_dataset("config", data=config_text, dtype=STR),
+              "the TOML config exactly as given")
+    described(f.create_dataset("config_resolved", data=_config_json(resolved_config),
+                               dtype=STR),
+              "the validated config with its preset and defaults, as JSON")
+
+
+def _write_analysis(g: h5py.Group, mapping: dict[str, Any], schema: ResultsSchema,
+                    prefix: str = "") -> None:
+    """``/analysis``: arrays as datasets with their CF attributes, scalars and text as
+    attrs (their units and names in the group attr ``__quantities__``, JSON), dicts as
+    subgroups."""
+    scalars = {}
+    for key, value in mapping.items():
+        name = f"{prefix}{key}"
+        if isinstance(value, dict):
+            _write_analysis(g.create_group(key), value, schema, name + "/")
+        elif isinstance(value, np.ndarray) or (
+            isinstance(value, (list, tuple)) and not all(isinstance(v, str) for v in value)
+        ):
+            q = _quantity(schema.result, name)
+            ds = dataset(g, key, value)
+            ds.attrs.update(q.cf_attrs)
+        else:
+            g.attrs[key] = attr_value(value)
+            q = _quantity(schema.result, name)
+            scalars[key] = q.cf_attrs
+    if scalars:
+        g.attrs[QUANTITIES_ATTR] = json.dumps(scalars, ensure_ascii=False, sort_keys=True)
+
+
+def sweep_units(sweep, path: str) -> str:
+    """The unit of a swept config key (from the config schema, kept with the sweep)."""
+    return str(getattr(sweep, "value_units", {}).get(path, ""))
+
+
+def _write_sweep(g: h5py.Group, sweep, schema: ResultsSchema) -> None:
     """A sweep's family on the dimension ``member`` (netCDF-style scale), so that
     ``xarray.open_dataset(path, group="sweep", engine="h5netcdf")`` (and the groups
     ``sweep/values``, ``sweep/analysis``) show every array on ``member``."""
-    member = dataset(g, "member", np.arange(sweep.size, dtype=np.int64))
+    member = described(dataset(g, "member", np.arange(sweep.size, dtype=np.int64)),
+                       "member of the sweep", "1")
     member.make_scale("member")
-    for name, values in (("status", sweep.status), ("message", sweep.message)):
+    for name, values, what in (("status", sweep.status, "the member's run status"),
+                               ("message", sweep.message, "why the member is not ok")):
         ds = g.create_dataset(name, data=np.array([str(v) for v in values], dtype=object),
                               dtype=STR)
+        described(ds, what)
         ds.dims[0].attach_scale(member)
     labels = g.create_group("labels")
     for name, values in sweep.labels.items():
         ds = labels.create_dataset(name, data=np.array([str(v) for v in values],
                                                        dtype=object), dtype=STR)
+        described(ds, _quantity(schema.result, name).description)
         ds.dims[0].attach_scale(member)
-    for group, arrays in (("values", sweep.values), ("analysis", sweep.analysis)):
-        sub = g.create_group(group)
-        for name, values in arrays.items():
-            ds = dataset(sub, name, np.asarray(values, dtype=np.float64))
-            ds.dims[0].attach_scale(member)
+    sub = g.create_group("values")
+    for name, values in sweep.values.items():
+        ds = described(dataset(sub, name, np.asarray(values, dtype=np.float64)),
+                       f"swept value of {name}", sweep_units(sweep, name))
+        ds.dims[0].attach_scale(member)
+    sub = g.create_group("analysis")
+    for name, values in sweep.analysis.items():
+        ds = dataset(sub, name, np.asarray(values, dtype=np.float64))
+        ds.attrs.update(_quantity(schema.result, name).cf_attrs)
+        ds.dims[0].attach_scale(member)
     for key, value in sweep.attrs.items():
         g.attrs[key] = attr_value(value)
     if sweep.points:
@@ -232,17 +317,22 @@ def _write_points(g: h5py.Group, pset) -> None:
     """One point set flat on its own dimension ``point`` (and ``component`` for (P, d)
     columns), so that ``xarray.open_dataset(path, group="sweep/points/<set>",
     engine="h5netcdf")`` shows named dimensions; ``member`` is a variable on ``point``."""
-    point = dataset(g, "point", np.arange(len(pset.member), dtype=np.int64))
+    point = described(dataset(g, "point", np.arange(len(pset.member), dtype=np.int64)),
+                      "point of the set", "1")
     point.make_scale("point")
     component = None
     if pset.components:
-        component = g.create_dataset("component", data=np.array(pset.components, dtype=object),
-                                     dtype=STR)
+        component = described(g.create_dataset(
+            "component", data=np.array(pset.components, dtype=object), dtype=STR),
+            "component of a point")
         component.make_scale("component")
-    member = dataset(g, "member", np.asarray(pset.member, dtype=np.int64))
+    member = described(dataset(g, "member", np.asarray(pset.member, dtype=np.int64)),
+                       "the member the point belongs to", "1")
     member.dims[0].attach_scale(point)
     for name, values in pset.columns.items():
-        ds = dataset(g, name, np.asarray(values, dtype=np.float64))
+        ds = described(dataset(g, name, np.asarray(values, dtype=np.float64)),
+                       str(pset.attrs.get(f"long_name_{name}", name.replace("_", " "))),
+                       str(pset.attrs.get(f"units_{name}", "")))
         ds.dims[0].attach_scale(point)
         if ds.ndim == 2 and component is not None:
             ds.dims[1].attach_scale(component)
@@ -250,24 +340,36 @@ def _write_points(g: h5py.Group, pset) -> None:
         g.attrs[key] = attr_value(value)
 
 
-def _write_run(g: h5py.Group, run: RunRecord) -> None:
+def _write_run(g: h5py.Group, run: RunRecord, schema: ResultsSchema) -> None:
     """One trajectory with netCDF-style dimension scales, so that
     ``xarray.open_dataset(path, group="runs/<name>", engine="h5netcdf")`` shows the
     dimensions ``t`` and ``component`` (with the column names) and every invariant and
-    reference as a variable on ``t``."""
-    t = dataset(g, "t", np.asarray(run.t, dtype=np.float64))
+    reference as a variable on ``t``.  ``y`` holds columns of several units: its
+    ``column_units``, ``column_long_names`` and ``column_symbols`` attrs give them, and
+    its ``units`` is theirs when they agree ("various" otherwise)."""
+    t = described(dataset(g, "t", np.asarray(run.t, dtype=np.float64)),
+                  schema.time.description, schema.time.unit, schema.time.symbol)
     t.make_scale("t")
-    component = g.create_dataset("component", data=np.array(run.columns, dtype=object),
-                                 dtype=STR)
+    component = described(g.create_dataset(
+        "component", data=np.array(run.columns, dtype=object), dtype=STR),
+        "state component")
     component.make_scale("component")
     y = dataset(g, "y", np.asarray(run.y, dtype=np.float64).reshape(len(run.t), -1))
     y.attrs["columns"] = np.array(run.columns, dtype=STR)
+    columns = [_quantity(schema.column, c) for c in run.columns]
+    units = {q.unit for q in columns}
+    described(y, "state: " + ", ".join(q.description for q in columns),
+              units.pop() if len(units) == 1 else "various")
+    for key in ("units", "long_names", "symbols"):
+        attr = {"units": "unit", "long_names": "description", "symbols": "symbol"}[key]
+        y.attrs[f"column_{key}"] = np.array([getattr(q, attr) for q in columns], dtype=STR)
     y.dims[0].attach_scale(t)
     y.dims[1].attach_scale(component)
     inv = g.create_group("invariants")
     taken = {"t", "y", "component", "invariants", "reference"}
     for q, values in run.invariants.items():
         ds = dataset(inv, q, np.asarray(values, dtype=np.float64))
+        ds.attrs.update(_quantity(schema.invariant, q).cf_attrs)
         if ds.ndim == 1 and len(ds) == len(run.t):
             ds.dims[0].attach_scale(t)
             g[q if q not in taken else f"invariant_{q}"] = ds  # hard link: a variable on t
@@ -275,6 +377,8 @@ def _write_run(g: h5py.Group, run: RunRecord) -> None:
         ref = g.create_group("reference")
         for c, values in run.reference.items():
             ds = dataset(ref, c, np.asarray(values, dtype=np.float64))
+            q = _quantity(schema.column, c)
+            described(ds, f"reference solution: {q.description}", q.unit, q.symbol)
             if ds.ndim == 1 and len(ds) == len(run.t):
                 ds.dims[0].attach_scale(t)
                 if f"reference_{c}" not in g:
@@ -295,11 +399,10 @@ def restamp(path: Path, *, title: str, config_text: str, config_sha256: str,
         with h5py.File(tmp, "r+") as f:
             f.attrs["title"] = title
             f.attrs["config_sha256"] = config_sha256
-            for name, text in (("config", config_text),
-                               ("config_resolved", _config_json(resolved_config))):
+            for name in ("config", "config_resolved"):
                 if name in f:
                     del f[name]
-                f.create_dataset(name, data=text, dtype=STR)
+            _write_config(f, config_text, resolved_config)
             f.flush()
         install(tmp, path)
     finally:
@@ -309,26 +412,12 @@ def restamp(path: Path, *, title: str, config_text: str, config_sha256: str,
 
 # ------------------------------------------------------------------- reading
 
-#: what makes an archive unreadable: (check, fatal?, message)
-_LOAD_PROBLEMS = (
-    (lambda f: f.attrs.get("format") == FORMAT, True, "not a reportgen archive (no format attr)"),
-    (lambda f: int(f.attrs.get("format_version", -1)) <= FORMAT_VERSION, True,
-     f"written by a newer reportgen (format_version > {FORMAT_VERSION})"),
-    (lambda f: int(f.attrs.get("format_version", -1)) >= OLDEST_READABLE, True,
-     f"format_version older than {OLDEST_READABLE}: not readable by this reportgen"),
-    (lambda f: "config" in f, True, "has no /config"),
-    (lambda f: "kind" in f.attrs, True, "has no kind attribute"),
-)
-
-
 def read_archive(path: Path) -> ArchiveData:
     """Read a whole archive; ArchiveError names the file and the problem."""
     path = Path(path)
     try:
         with h5py.File(path, "r") as f:
-            for check, fatal, message in _LOAD_PROBLEMS:
-                if fatal and not check(f):
-                    raise ArchiveError(f"{path}: {message}")
+            check_archive(f, path)  # types, shapes, sizes and links, before reading data
             data = ArchiveData(
                 path=path,
                 attrs={k: decode(v) for k, v in f.attrs.items()},
@@ -369,6 +458,8 @@ def read_archive(path: Path) -> ArchiveData:
         raise ArchiveError(f"{path}: unreadable or corrupted HDF5 file ({exc})") from None
     except KeyError as exc:
         raise ArchiveError(f"{path}: incomplete archive, missing {exc}") from None
+    except (TypeError, ValueError, IndexError, AttributeError, RecursionError) as exc:
+        raise ArchiveError(f"{path}: malformed archive ({type(exc).__name__}: {exc})") from None
     return data
 
 
@@ -418,15 +509,23 @@ def stored_identity(path: Path) -> Identity | None:
     try:
         with h5py.File(path, "r") as f:
             a = f.attrs
-            return Identity(config_sha256=decode(a["config_sha256"]),
-                            physics_key=decode(a.get("physics_key", "")),
-                            reportgen_version=decode(a["reportgen_version"]),
-                            status=decode(a.get("status", "ok")),
-                            format_version=int(a.get("format_version", 1)),
-                            message=decode(a.get("message", "")),
-                            wall_time_s=float(a.get("wall_time_s", 0.0)))
-    except (OSError, KeyError):
+            identity = Identity(config_sha256=decode(a["config_sha256"]),
+                                physics_key=decode(a.get("physics_key", "")),
+                                reportgen_version=decode(a["reportgen_version"]),
+                                status=decode(a.get("status", "ok")),
+                                format_version=a.get("format_version", 1),
+                                message=decode(a.get("message", "")),
+                                wall_time_s=a.get("wall_time_s", 0.0))
+    except (OSError, KeyError, TypeError, ValueError):
         return None
+    # read back from an output folder: an identity of the wrong types is no identity
+    if not (all(isinstance(v, str) for v in (identity.config_sha256, identity.physics_key,
+                                             identity.reportgen_version, identity.message))
+            and identity.status in _CHECKED_STATUSES and is_int(identity.format_version)
+            and is_number(identity.wall_time_s)):
+        return None
+    return replace(identity, format_version=int(identity.format_version),
+                   wall_time_s=float(identity.wall_time_s))
 
 
 def gallery_entry(path: Path) -> dict[str, Any] | None:
@@ -438,18 +537,30 @@ def gallery_entry(path: Path) -> dict[str, Any] | None:
             if f.attrs.get("format") != FORMAT:
                 return None
             a = {k: decode(v) for k, v in f.attrs.items()}
-            checks = read_table(f["checks"]) if "checks" in f else None
-    except (OSError, KeyError):
+            ds = f.get("checks")
+            # a small table only (read back from an output folder: not a declared giant)
+            checks = (read_table(ds) if isinstance(ds, h5py.Dataset) and ds.ndim == 1
+                      and ds.dtype.names and ds.shape[0] <= 10_000 else None)
+    except (OSError, KeyError, TypeError, ValueError, RuntimeError):
         return None
     headline = ""
-    if checks is not None and len(checks):
-        worst = checks[int(np.nanargmax(checks["rel_error"]))] if np.any(
-            np.isfinite(checks["rel_error"])) else checks[0]
-        headline = f"{worst['quantity']}: rel. error {float(worst['rel_error']):.1e}"
-    return {"kind": a.get("kind", ""), "title": a.get("title", ""),
-            "status": a.get("status", "ok"), "message": a.get("message", ""),
-            "wall_time_s": float(a.get("wall_time_s", math.nan)), "headline": headline,
-            "created": a.get("created", "")}
+    try:
+        if checks is not None and len(checks):
+            worst = checks[int(np.nanargmax(checks["rel_error"]))] if np.any(
+                np.isfinite(checks["rel_error"])) else checks[0]
+            headline = f"{worst['quantity']}: rel. error {float(worst['rel_error']):.1e}"
+    except (KeyError, TypeError, ValueError, IndexError):
+        headline = ""
+
+    def text(key: str, default: str = "") -> str:
+        value = a.get(key, default)
+        return value if isinstance(value, str) else default
+
+    wall = a.get("wall_time_s", math.nan)
+    return {"kind": text("kind"), "title": text("title"),
+            "status": text("status", "ok"), "message": text("message"),
+            "wall_time_s": float(wall) if is_number(wall) else math.nan,
+            "headline": headline, "created": text("created")}
 
 
 def verify_checksums(path: Path) -> list[str]:
@@ -471,8 +582,9 @@ def verify_checksums(path: Path) -> list[str]:
     return problems
 
 
-def summarize(path: Path) -> str:
-    """A short human-readable description of an archive (``reportgen inspect``)."""
+def summarize(path: Path, checksum_problems: list[str] | None = None) -> str:
+    """A short human-readable description of an archive (``reportgen inspect``);
+    ``checksum_problems``, if given, receives what :func:`verify_checksums` found."""
     data = read_archive(path)
     a = data.attrs
     lines = [
@@ -507,6 +619,9 @@ def summarize(path: Path) -> str:
         lines.append(f"  study error_vs_runtime: {len(data.study)} rows "
                      f"({data.study_attrs.get('reference_kind', '')})")
     problems = verify_checksums(path)
+    if checksum_problems is not None:
+        checksum_problems.extend(problems)
     lines.append("  checksums ok" if not problems else "  CHECKSUM PROBLEMS: " + "; ".join(problems))
-    return "\n".join(lines)
+    # titles, names and messages come from the file: shown, never acted on by the terminal
+    return "\n".join(printable(line, newlines=False) for line in lines)
 

@@ -25,11 +25,11 @@ import numpy as np
 
 from .audit_archive import write_audit
 from .config import ConfigError, SourceConfig, parse_config_text, to_toml
+from .kinds import KINDS, load_scene
 from .lazy import lazy_module
 from .pipeline import collect_configs, validate_all
 from .report import build_audit_report
 from .results import AuditCase
-from .scenes import KINDS, load_scene
 
 _policy = lazy_module("reportgen.core.integrators.policy")
 

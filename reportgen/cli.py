@@ -14,7 +14,7 @@ from pathlib import Path
 from . import __version__
 from .cache import NO_CACHE_ENV, PeerCache
 from .errors import ConfigError, UsageError
-from .layout import FORMATS, collect_configs
+from .layout import FORMATS, collect_configs, printable
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
 
@@ -191,21 +191,95 @@ def console_main() -> None:
     os._exit(code)
 
 
+#: set (to anything) to see the traceback of an unexpected error instead of its one line
+DEBUG_ENV = "REPORTGEN_DEBUG"
+
+
 def main(argv: list[str] | None = None) -> int:
+    """Run one command; its exit status.  Whatever goes wrong ends in one or a few lines
+    on stderr, never a traceback: an invalid config, bad usage or an unusable output
+    folder is status 2, a signal 128 + its number (SIGTERM, SIGHUP and Ctrl-C stop the
+    command's child processes first), an unexpected error 1 (its traceback with
+    ``REPORTGEN_DEBUG=1``)."""
+    from .forked import Terminated, children_stop_with_me
+
     args = build_parser().parse_args(argv)
     try:
-        return COMMANDS[args.command](args)
+        with children_stop_with_me():
+            return COMMANDS[args.command](args)
     except ConfigError as exc:
         for line in exc.problems:
-            print(line, file=sys.stderr)
+            _err(line)
         return EXIT_USAGE
+    except UsageError as exc:
+        return _usage(str(exc))
+    except Terminated as exc:
+        import signal
+
+        _err(f"stopped by {signal.Signals(exc.signum).name}: finished scenes are kept; run "
+             "again to resume")
+        return 128 + exc.signum
     except KeyboardInterrupt:
-        print("interrupted: finished scenes are kept; run again to resume", file=sys.stderr)
+        _err("interrupted: finished scenes are kept; run again to resume")
         return 130
+    except BrokenPipeError:  # the reader of stdout went (| head): nothing left to say
+        _silence_stdout()
+        return EXIT_OK
+    except OSError as exc:  # a file-system problem outside any scene (those fail the scene)
+        where = f"{exc.filename}: " if exc.filename else ""
+        _err(f"reportgen {args.command}: {where}{exc.strerror or exc}")
+        return EXIT_USAGE
+    except Exception as exc:
+        if os.environ.get(DEBUG_ENV):
+            raise
+        _err(f"reportgen {args.command}: unexpected error: {type(exc).__name__}: {exc} "
+             f"({DEBUG_ENV}=1 shows the traceback)")
+        return EXIT_FAILED
+
+
+def _err(message: str) -> None:
+    """One message on stderr, its control characters shown, not acted on (file names,
+    titles and messages come from configs and archives)."""
+    try:
+        print(printable(message), file=sys.stderr, flush=True)
+    except (OSError, ValueError):
+        pass
+
+
+def _say(text: str) -> None:
+    """Output on stdout (control characters shown, not acted on); a reader that went away
+    (``| head``) ends the output quietly."""
+    try:
+        print(printable(text), flush=True)
+    except BrokenPipeError:
+        _silence_stdout()
+
+
+def _silence_stdout() -> None:
+    """Point stdout at /dev/null: once its reader is gone, every later write (the flush at
+    exit among them) would fail again."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        try:
+            os.dup2(devnull, sys.stdout.fileno())
+        finally:
+            os.close(devnull)
+    except (OSError, ValueError):
+        pass
 
 
 def _usage(message: str) -> int:
-    print(f"reportgen: {message}", file=sys.stderr)
+    _err(f"reportgen: {message}")
+    return EXIT_USAGE
+
+
+def _unusable(archive, exc: Exception) -> int:
+    """An archive that passed the checks yet broke its kind's drawing: one line naming it
+    (status 2: the file is not what its kind's report needs)."""
+    if os.environ.get(DEBUG_ENV):
+        raise exc
+    _err(f"{archive}: cannot draw from this archive ({type(exc).__name__}: {exc}); it does "
+         f"not hold what its kind needs ({DEBUG_ENV}=1 shows the traceback)")
     return EXIT_USAGE
 
 
@@ -234,8 +308,8 @@ def cmd_run(args) -> int:
             worker.close()
     status = batch_status(outcomes)
     bad = [o for o in outcomes if not o.ok]
-    print(f"{len(outcomes) - len(bad)} of {len(outcomes)} scenes ok; index: "
-          f"{Path(args.out) / 'index.html'}", file=sys.stderr)
+    _err(f"{len(outcomes) - len(bad)} of {len(outcomes)} scenes ok; index: "
+         f"{Path(args.out) / 'index.html'}")
     if bad and all(o.config_error for o in bad):
         return EXIT_USAGE
     return EXIT_OK if status == "ok" else EXIT_FAILED
@@ -254,17 +328,33 @@ def cmd_watch(args) -> int:
 
 def cmd_report(args) -> int:
     from .archive import ArchiveError
+    from .fsutil import links_out
     from .report import ReportError, build_report
 
     code = EXIT_OK
     for archive in args.archives:
+        folder = Path(archive).parent
+        escaping = links_out(folder, folder)
+        if escaping:  # the report writes its figures there: never through a link out
+            _err(f"{escaping[0]}: a symbolic link leading out of {folder}; not followed, "
+                 f"no report written for {archive}")
+            code = EXIT_USAGE
+            continue
         try:
             written = build_report(Path(archive), formats=args.format)
         except (ArchiveError, ReportError) as exc:
-            print(str(exc), file=sys.stderr)
+            _err(str(exc))
             code = EXIT_USAGE
             continue
-        print("wrote " + ", ".join(str(w) for w in written))
+        except OSError as exc:  # writing the report (reading errors are ArchiveErrors)
+            _err(f"{archive}: cannot write its report: {exc.filename or ''} "
+                 f"({exc.strerror or exc})")
+            code = EXIT_USAGE
+            continue
+        except Exception as exc:  # noqa: BLE001 - one line per archive, never a traceback
+            code = _unusable(archive, exc)
+            continue
+        _say("wrote " + ", ".join(str(w) for w in written))
     return code
 
 
@@ -283,7 +373,7 @@ def cmd_figures(args) -> int:
     out = Path(args.out) if args.out else archive.parent / f"figures-{size.label}"
 
     def report(path: Path) -> None:
-        print(f"wrote {path}", file=sys.stderr)
+        _err(f"wrote {path}")
 
     try:
         written = export_figures(archive, out, size=size, dpi=args.dpi, formats=formats,
@@ -291,9 +381,14 @@ def cmd_figures(args) -> int:
     except UsageError as exc:
         return _usage(str(exc))
     except (ArchiveError, ReportError) as exc:
-        print(str(exc), file=sys.stderr)
+        _err(str(exc))
         return EXIT_USAGE
-    print(f"{len(written)} files in {out}", file=sys.stderr)
+    except OSError as exc:
+        _err(f"{out}: cannot write the figures: {exc.filename or ''} ({exc.strerror or exc})")
+        return EXIT_USAGE
+    except Exception as exc:  # noqa: BLE001 - one line, never a traceback
+        return _unusable(archive, exc)
+    _err(f"{len(written)} files in {out}")
     return EXIT_OK
 
 
@@ -308,8 +403,9 @@ def _archive_of(path: Path, root: Path) -> Path | None:
         return path
     from .archive import FORMAT_VERSION, stored_identity
     from .config import read_config
+    from .fsutil import output_folder, output_lock
+    from .kinds import load_scene
     from .pipeline import run_scene
-    from .scenes import load_scene
 
     scene = load_scene(read_config(path))  # a ConfigError is exit 2, via main
     archive = root / path.stem / "run.h5"
@@ -317,10 +413,11 @@ def _archive_of(path: Path, root: Path) -> Path | None:
     if (stored is None or stored.physics_key != scene.physics_key()
             or stored.format_version < FORMAT_VERSION):
         why = "missing" if stored is None else "out of date"
-        print(f"{archive}: {why}; running {path} first", file=sys.stderr)
-        outcome = run_scene(str(path), str(root))
+        _err(f"{archive}: {why}; running {path} first")
+        with output_lock(output_folder(root)):  # as a `reportgen run` into ``root`` would
+            outcome = run_scene(str(path), str(root))
         if outcome.status == "failed":
-            print(f"{path}: {outcome.message}", file=sys.stderr)
+            _err(f"{path}: {outcome.message}")
             return None
     return archive
 
@@ -336,37 +433,47 @@ def cmd_animate(args) -> int:
         if not archive.exists():
             raise UsageError(f"{archive}: no such file")
         out = Path(args.out) if args.out else archive.parent
-        print(f"{archive}: {frames} frames at {args.fps:g} fps -> "
-              f"{', '.join(formats)}", file=sys.stderr)
+        _err(f"{archive}: {frames} frames at {args.fps:g} fps -> {', '.join(formats)}")
         written = animate(archive, out, fps=args.fps, duration=args.duration, dpi=args.dpi,
                           formats=formats, progress=terminal_progress())
     except UsageError as exc:
         return _usage(str(exc))
     except ArchiveError as exc:
-        print(str(exc), file=sys.stderr)
+        _err(str(exc))
         return EXIT_USAGE
+    except OSError as exc:
+        _err(f"{archive}: cannot write the animation: {exc.filename or ''} "
+             f"({exc.strerror or exc})")
+        return EXIT_USAGE
+    except Exception as exc:  # noqa: BLE001 - one line, never a traceback
+        return _unusable(archive, exc)
     for path in written:
-        print(f"wrote {path}", file=sys.stderr)
+        _err(f"wrote {path}")
     if args.format is None and "mp4" not in formats:
         print("(no MP4: install the 'video' extra for ffmpeg)", file=sys.stderr)
     return EXIT_OK
 
 
 def cmd_inspect(args) -> int:
-    from .archive import ArchiveError, summarize, verify_checksums
+    from .archive import ArchiveError, summarize
 
+    archive = Path(args.archive)
+    problems: list[str] = []
     try:
-        print(summarize(Path(args.archive)))
+        text = summarize(archive, problems)
     except ArchiveError as exc:
-        print(str(exc), file=sys.stderr)
+        _err(str(exc))
         return EXIT_USAGE
-    return EXIT_FAILED if verify_checksums(Path(args.archive)) else EXIT_OK
+    except Exception as exc:  # noqa: BLE001 - one line, never a traceback
+        return _unusable(archive, exc)
+    _say(text)
+    return EXIT_FAILED if problems else EXIT_OK
 
 
 def cmd_kinds(args) -> int:
-    from .scenes.catalogue import describe_kinds
+    from .scene.catalogue import describe_kinds
 
-    print(describe_kinds())
+    _say(describe_kinds())
     return EXIT_OK
 
 
@@ -385,7 +492,7 @@ def cmd_validate(args) -> int:
                                         else "the kind's family sections")
         else:
             sections = ", ".join(asked) if asked else "the kind's default sections"
-        print(f"{scene.source.path}: ok ({scene.kind}: {sections})")
+        _say(f"{scene.source.path}: ok ({scene.kind}: {sections})")
     return EXIT_OK
 
 

@@ -23,7 +23,11 @@ from typing import Annotated, Any, Literal
 from pydantic import AfterValidator, BaseModel, ConfigDict, Field, ValidationError
 
 from .errors import ConfigError  # noqa: F401 - part of this module's interface
-from .layout import FORMATS  # noqa: F401 - part of this module's interface
+from .layout import (
+    FORMATS,  # noqa: F401 - part of this module's interface
+    printable,
+    scene_name,
+)
 
 
 class Strict(BaseModel):
@@ -94,21 +98,34 @@ class SourceConfig:
         return self.path.stem if self.path is not None else "scene"
 
 
+#: a config larger than this is refused unread (the archive keeps the text, the report shows it)
+MAX_CONFIG_BYTES = 1_000_000
+
+
 def read_config(path: Path) -> SourceConfig:
-    """Read and parse a TOML file; syntax and encoding problems are ConfigErrors."""
+    """Read and parse a TOML file; syntax and encoding problems, a file too large and a
+    file name that cannot name a scene folder (:func:`reportgen.layout.scene_name`) are
+    ConfigErrors."""
+    path = Path(path)
+    scene_name(path)
+    label = printable(str(path))
     try:
-        raw = path.read_bytes()
+        with open(path, "rb") as fh:
+            raw = fh.read(MAX_CONFIG_BYTES + 1)
     except OSError as exc:
-        raise ConfigError([f"{path}: cannot read file: {exc.strerror}"]) from None
+        raise ConfigError([f"{label}: cannot read file: {exc.strerror}"]) from None
+    if len(raw) > MAX_CONFIG_BYTES:
+        raise ConfigError([f"{label}: larger than {MAX_CONFIG_BYTES // 1000} kB: not a scene "
+                           "config"])
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError as exc:
-        raise ConfigError([f"{path}: not UTF-8 text (byte {exc.start})"]) from None
+        raise ConfigError([f"{label}: not UTF-8 text (byte {exc.start})"]) from None
     return parse_config_text(text, path)
 
 
 def parse_config_text(text: str, path: Path | None = None) -> SourceConfig:
-    label = str(path) if path is not None else "<archive config>"
+    label = printable(str(path)) if path is not None else "<archive config>"
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:

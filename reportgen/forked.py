@@ -1,15 +1,127 @@
 """Forked helper processes fed jobs on a pipe: the scene workers of a batch, the edit
 loop's PDF worker and its figure helper.
 
+Every process forked here dies with its parent, whatever ends the parent: on Linux the
+kernel sends it SIGKILL when the parent goes (``PR_SET_PDEATHSIG``, even for a parent
+killed with -9), and a parent stopped by SIGTERM, SIGHUP or Ctrl-C kills its children
+first (:func:`children_stop_with_me`).  (The kernel ties the parent-death signal to the
+*thread* that forked: a helper must be forked by a thread that outlives it, as the main
+thread does.)
+
 Standard library only, so that a worker can be forked before the heavy imports.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable
+import os
+import signal
+import sys
+import threading
+from collections.abc import Callable, Iterable, Iterator
+from contextlib import contextmanager
 from multiprocessing import get_context
 from multiprocessing.connection import Connection
 from typing import Any
+
+#: prctl(2) option: the signal a process gets when its parent ends
+PR_SET_PDEATHSIG = 1
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM or SIGHUP: stops the command like Ctrl-C (children killed, finished work
+    kept), with the exit status 128 + the signal's number."""
+
+    def __init__(self, signum: int):
+        super().__init__(signum)
+        self.signum = signum
+
+
+def die_with_parent(parent: int) -> None:
+    """In a process just forked from ``parent``: be killed when ``parent`` ends.
+
+    The kernel's parent-death signal covers a parent killed with SIGKILL; a parent that
+    ended between the fork and this call is seen by ``getppid`` (the child was re-parented)
+    and this process ends at once.  The signal handlers the parent installed
+    (:func:`children_stop_with_me`) are undone: SIGTERM and SIGHUP kill this process, and
+    Ctrl-C, sent to the whole foreground process group, is the parent's to handle (it
+    kills its children)."""
+    if sys.platform.startswith("linux"):
+        try:
+            import ctypes
+
+            libc = ctypes.CDLL(None, use_errno=True)
+            libc.prctl(ctypes.c_int(PR_SET_PDEATHSIG), ctypes.c_ulong(signal.SIGKILL),
+                       ctypes.c_ulong(0), ctypes.c_ulong(0), ctypes.c_ulong(0))
+        except (OSError, AttributeError):
+            pass  # no prctl: the parent's signal handlers and the closed pipes remain
+    if os.getppid() != parent:
+        os._exit(1)
+    try:
+        signal.signal(signal.SIGTERM, signal.SIG_DFL)
+        signal.signal(signal.SIGHUP, signal.SIG_DFL)
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+    except ValueError:  # not the main thread (cannot happen right after a fork)
+        pass
+
+
+def run_child(parent: int, target: Callable[..., Any], *args: Any) -> None:
+    """A forked process's target: :func:`die_with_parent`, then ``target(*args)``."""
+    die_with_parent(parent)
+    target(*args)
+
+
+def kill_children() -> None:
+    """Kill every process this one forked through :mod:`multiprocessing` that still runs
+    (and reap them)."""
+    mp = sys.modules.get("multiprocessing")
+    if mp is None:
+        return
+    for child in mp.active_children():
+        try:
+            child.kill()
+        except (OSError, ValueError, AttributeError):
+            pass
+    for child in mp.active_children():
+        try:
+            child.join(timeout=2)
+        except (OSError, ValueError, AssertionError):
+            pass
+
+
+@contextmanager
+def children_stop_with_me() -> Iterator[None]:
+    """While in the body, SIGINT (Ctrl-C), SIGTERM and SIGHUP kill this process's children
+    at once and raise KeyboardInterrupt (:class:`Terminated` for SIGTERM and SIGHUP) here,
+    so that the command stops promptly, keeps what it finished and says so.  Outside the
+    main thread (where handlers cannot be set) it does nothing.  The earlier handlers are
+    restored afterwards."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    me = os.getpid()
+
+    def stop(signum, frame):
+        if os.getpid() != me:  # a forked child that has not reset its handlers yet
+            os._exit(128 + signum)
+        kill_children()
+        if signum == signal.SIGINT:
+            raise KeyboardInterrupt
+        raise Terminated(signum)
+
+    previous = {}
+    for signum in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
+        try:
+            previous[signum] = signal.signal(signum, stop)
+        except (ValueError, OSError):
+            pass
+    try:
+        yield
+    finally:
+        for signum, handler in previous.items():
+            try:
+                signal.signal(signum, handler if handler is not None else signal.SIG_DFL)
+            except (ValueError, OSError, TypeError):
+                pass
 
 
 class JobProcess:
@@ -28,7 +140,7 @@ class JobProcess:
         self.results, result_in = ctx.Pipe(duplex=False)
         inherited = [self.jobs, self.results, *siblings]
         self.proc = ctx.Process(target=_child, daemon=True,
-                                args=(main, inherited, job_out, result_in, *args))
+                                args=(os.getpid(), main, inherited, job_out, result_in, *args))
         self.proc.start()
         job_out.close()
         result_in.close()
@@ -50,7 +162,8 @@ class JobProcess:
         self.results.close()
 
 
-def _child(main, inherited, jobs, results, *args) -> None:
+def _child(parent, main, inherited, jobs, results, *args) -> None:
+    die_with_parent(parent)
     for conn in inherited:
         conn.close()
     main(jobs, results, *args)

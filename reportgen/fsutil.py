@@ -1,10 +1,18 @@
-"""Atomic file writes: a crash never leaves a half-written file under a final name."""
+"""Atomic file writes (a crash never leaves a half-written file under a final name),
+staying inside the output folder (symbolic links are neither written through nor
+followed out), and the output folder's lock."""
 
 from __future__ import annotations
 
+import errno
 import os
+import sys
 import uuid
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
+
+from .errors import UsageError
 
 
 def temp_name(path: Path) -> Path:
@@ -25,13 +33,17 @@ def atomic_write(path: Path, data: bytes) -> None:
     path = Path(path)
     tmp = temp_name(path)
     try:
-        with open(tmp, "wb") as fh:
+        # a new file of our own (never an existing file, never through a link): the rename
+        # then replaces whatever ``path`` was, a symbolic link included, not its target
+        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW | os.O_CLOEXEC,
+                     0o666)
+        with open(fd, "wb") as fh:
             fh.write(data)
             fh.flush()
             os.fsync(fh.fileno())
         os.replace(tmp, path)
     finally:
-        if tmp.exists():
+        if os.path.lexists(tmp):
             tmp.unlink()
 
 
@@ -39,26 +51,69 @@ def remove_stale_temps(folder: Path) -> list[Path]:
     """Delete temporary files left by writers that no longer run (e.g. killed with -9).
 
     Temporary names carry the writer's pid; a file whose pid is alive belongs to a
-    concurrent writer and is left alone.
+    concurrent writer and is left alone.  Only regular files inside ``folder`` are
+    deleted: symbolic links to folders are not descended into (what they lead to is not
+    the scene's), and ``folder`` itself must not be a link.
     """
-    removed = []
+    removed: list[Path] = []
     folder = Path(folder)
-    if not folder.is_dir():
+    if folder.is_symlink() or not folder.is_dir():
         return removed
-    for path in folder.rglob(".*.tmp"):
-        parts = path.name.split(".")
-        try:
-            pid = int(parts[-3])
-        except (IndexError, ValueError):
-            continue
-        if pid == os.getpid() or _alive(pid):
-            continue
-        try:
-            path.unlink()
-            removed.append(path)
-        except OSError:
-            pass
+    for top, dirs, files in os.walk(folder, followlinks=False):
+        dirs[:] = [d for d in dirs if not os.path.islink(os.path.join(top, d))]
+        for name in files:
+            if not (name.startswith(".") and name.endswith(".tmp")):
+                continue
+            parts = name.split(".")
+            try:
+                pid = int(parts[-3])
+            except (IndexError, ValueError):
+                continue
+            if pid == os.getpid() or _alive(pid):
+                continue
+            path = Path(top) / name
+            try:
+                if os.path.islink(path):  # a link is unlinked itself, never its target
+                    continue
+                path.unlink()
+                removed.append(path)
+            except OSError:
+                pass
     return removed
+
+
+def inside(path: Path | str, root: Path | str) -> bool:
+    """Whether ``path``, its symbolic links resolved, is ``root`` or below it (``root``'s
+    own links resolved too: ``--out`` may itself be a link)."""
+    real, base = os.path.realpath(path), os.path.realpath(root)
+    return real == base or real.startswith(base.rstrip(os.sep) + os.sep)
+
+
+#: the folders of a scene folder that reportgen writes into (``.sweep-*`` too)
+SCENE_SUBFOLDERS = ("figures", ".pdf-figures")
+
+
+def links_out(folder: Path, root: Path) -> list[Path]:
+    """The symbolic links through which writing into the scene folder ``folder`` would
+    leave ``root`` (``--out``): the folder itself, or a folder in it that reportgen writes
+    into (``figures/``, ``.pdf-figures/``, ``.sweep-*/``) linked outside.  A link to a
+    file is harmless: files are replaced by renaming, never written through."""
+    folder, root = Path(folder), Path(root)
+    bad = []
+    if os.path.lexists(folder) and not inside(folder, root):
+        return [folder]
+    if not folder.is_dir():
+        return bad
+    try:
+        entries = list(os.scandir(folder))
+    except OSError:
+        return bad
+    for entry in entries:
+        if (entry.is_symlink() and (entry.name in SCENE_SUBFOLDERS
+                                    or entry.name.startswith(".sweep-"))
+                and not inside(entry.path, root)):
+            bad.append(Path(entry.path))
+    return bad
 
 
 def _alive(pid: int) -> bool:
@@ -83,7 +138,7 @@ def install(tmp: Path, path: Path) -> None:
         backup = path.with_name(path.stem + ".prev" + path.suffix)
         staged = temp_name(backup)
         try:
-            os.link(path, staged)
+            os.link(path, staged, follow_symlinks=False)  # a link is kept as the link
             os.replace(staged, backup)
         except OSError:
             if staged.exists():
@@ -94,3 +149,72 @@ def install(tmp: Path, path: Path) -> None:
         os.fsync(dir_fd)
     finally:
         os.close(dir_fd)
+
+
+def output_folder(root: Path | str) -> Path:
+    """``--out``, made if missing; a path that is not a folder, or one that cannot be made,
+    is a UsageError naming it."""
+    root = Path(root)
+    if os.path.lexists(root) and not root.is_dir():
+        raise UsageError(f"--out {root}: exists and is not a folder")
+    try:
+        root.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise UsageError(f"--out {root}: cannot create the folder ({exc.strerror})") from None
+    return root
+
+
+#: the lock file of an output folder: held by one ``reportgen run`` (or one batch of a
+#: ``watch``) at a time, so that two runs on one folder never undo each other's work
+LOCK_FILE = ".lock"
+
+
+@contextmanager
+def output_lock(root: Path, stream=None) -> Iterator[None]:
+    """Hold the lock of the output folder ``root`` (``flock`` on ``root/.lock``) for the
+    body; when another run holds it, say so on ``stream`` and wait for it.
+
+    The lock goes with the process that holds it (a killed run never leaves it taken).
+    A folder where no lock can be taken (a file system without ``flock``) is used
+    unlocked; one that cannot be written at all is a UsageError."""
+    import fcntl
+
+    path = Path(root) / LOCK_FILE
+    try:
+        fd = os.open(path, os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW | os.O_CLOEXEC, 0o644)
+    except OSError as exc:
+        if exc.errno == errno.ELOOP:
+            raise UsageError(f"{path}: a symbolic link, not followed; remove it") from None
+        raise UsageError(f"--out {root}: cannot write there ({exc.strerror})") from None
+    locked = False
+    try:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            locked = True
+        except BlockingIOError:
+            holder = _lock_holder(fd)
+            print(f"waiting for another reportgen run on {root}"
+                  + (f" (pid {holder})" if holder else "") + " to finish",
+                  file=stream or sys.stderr, flush=True)
+            fcntl.flock(fd, fcntl.LOCK_EX)
+            locked = True
+        except OSError:  # ENOLCK and the like: no locking on this file system
+            pass
+        if locked:
+            try:
+                os.ftruncate(fd, 0)
+                os.pwrite(fd, f"{os.getpid()}\n".encode(), 0)
+            except OSError:
+                pass
+        yield
+    finally:
+        if locked:
+            fcntl.flock(fd, fcntl.LOCK_UN)  # also for children forked while it was held
+        os.close(fd)
+
+
+def _lock_holder(fd: int) -> int | None:
+    try:
+        return int(os.pread(fd, 32, 0).decode("ascii").strip() or "0") or None
+    except (OSError, ValueError):
+        return None

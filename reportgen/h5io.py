@@ -16,6 +16,12 @@ import numpy as np
 
 STR = h5py.string_dtype("utf-8")
 
+#: the archive format (see :mod:`reportgen.archive`)
+FORMAT = "reportgen"
+FORMAT_VERSION = 2
+#: oldest format this reader opens (1: no dimension scales, no resolved config)
+OLDEST_READABLE = 1
+
 
 class ArchiveError(Exception):
     """An archive that cannot be read: names the file and what is wrong."""
@@ -110,8 +116,13 @@ def decode(value):
     return value
 
 
+#: a group attr holding the CF attributes of the group's scalar attrs (JSON), not a result
+QUANTITIES_ATTR = "__quantities__"
+
+
 def read_mapping(group: h5py.Group) -> dict[str, Any]:
-    out: dict[str, Any] = {k: decode(v) for k, v in group.attrs.items()}
+    out: dict[str, Any] = {k: decode(v) for k, v in group.attrs.items()
+                           if k != QUANTITIES_ATTR}
     for key, item in group.items():
         if isinstance(item, h5py.Group):
             out[key] = read_mapping(item)

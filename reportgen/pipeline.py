@@ -16,6 +16,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from multiprocessing import get_context
 from pathlib import Path
+from urllib.parse import quote
 
 from .archive import (
     FORMAT_VERSION,
@@ -25,15 +26,22 @@ from .archive import (
     stored_identity,
     write_archive,
 )
-from .codestamp import drawing_code
 from .config import ConfigError, read_config
 from .errors import UsageError  # noqa: F401 - part of this module's interface
-from .forked import JobProcess, serve
-from .fsutil import atomic_write, install, remove_stale_temps, temp_name
-from .layout import collect_configs, report_stamp
-from .results import worst_status
-from .scenes import load_scene
-from .scenes.base import Scene
+from .forked import JobProcess, kill_children, run_child, serve
+from .fsutil import (
+    atomic_write,
+    install,
+    links_out,
+    output_folder,
+    output_lock,
+    remove_stale_temps,
+    temp_name,
+)
+from .kinds import load_scene
+from .layout import collect_configs, figure_manifest, printable, report_stamp, scene_name
+from .results import STATUSES, worst_status
+from .scene.base import Scene
 
 
 @dataclass
@@ -89,22 +97,24 @@ def _formats(scene: Scene, override: tuple[str, ...] | None) -> tuple[str, ...]:
     return tuple(override) if override else tuple(scene.config.report.formats)
 
 
-def _report_current(folder: Path, identity: Identity, formats) -> bool:
+def _report_current(folder: Path, identity: Identity, formats, scene: Scene) -> bool:
     """Whether every wanted report was rendered from this very archive content."""
     try:
         stamp = json.loads(report_stamp(folder).read_text(encoding="utf-8"))
-    except (OSError, ValueError):
+    except (OSError, ValueError, RecursionError):
         return False
-    return (stamp.get("archive") == _archive_stamp(identity)
+    if not (isinstance(stamp, dict) and isinstance(stamp.get("formats", ()), list)):
+        return False  # not a stamp this reportgen wrote: render again
+    return (stamp.get("archive") == _archive_stamp(identity, scene)
             and all((folder / f"report.{f}").exists() and f in stamp.get("formats", ())
                     for f in formats))
 
 
-def _archive_stamp(identity: Identity) -> str:
+def _archive_stamp(identity: Identity, scene: Scene) -> str:
     """What a scene's reports were rendered from: the archive's content and the code and
-    templates that render (an updated checkout renders again)."""
+    templates that render its kind (an updated checkout renders again)."""
     return (f"{identity.physics_key}:{identity.config_sha256}:{identity.reportgen_version}:"
-            f"{drawing_code()}")
+            f"{scene.report_code()}")
 
 
 def run_scene(config_path: str, out_root: str, force: bool = False,
@@ -131,7 +141,17 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
     outcome.folder = str(folder)
     start = time.perf_counter()
     own_worker = helper = None
+    writable = False  # whether the scene's folder may take an error.log
     try:
+        scene_name(path)  # a name leading out of --out: a ConfigError, nothing written
+        escaping = links_out(folder, Path(out_root))
+        if escaping:
+            outcome.status = "failed"
+            outcome.message = (f"{printable(str(escaping[0]))} is a symbolic link leading "
+                               f"outside {printable(str(out_root))}: not followed, scene "
+                               "skipped (remove the link)")
+            return outcome
+        writable = True
         scene = load_scene(read_config(path))
         outcome.kind, outcome.title = scene.kind, scene.title
         wanted = _formats(scene, formats)
@@ -159,7 +179,7 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
             write_archive(archive, kind=scene.kind, title=scene.title, scene=scene.source.name,
                           config_text=scene.source.text, config_sha256=scene.source.sha256,
                           results=results, resolved_config=scene.resolved_config(),
-                          physics_key=key)
+                          physics_key=key, schema=scene.results_schema())
             if scene.sweep is not None:  # its finished blocks are in the archive now
                 from .sweep import discard_partial
 
@@ -173,13 +193,13 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
             outcome.stages.append("restamp")
             outcome.stage_s["restamp"] = time.perf_counter() - t0
         identity = stored_identity(archive)
-        if force or not _report_current(folder, identity, wanted):
+        if force or not _report_current(folder, identity, wanted, scene):
             from .report import build_report  # matplotlib and jinja2 only when drawing
 
             build_report(archive, formats=wanted, force_figures=force, timings=outcome.stage_s,
                          jobs=draw_jobs, pdf_worker=pdf_worker, figure_helper=helper)
             atomic_write(report_stamp(folder), json.dumps(
-                {"archive": _archive_stamp(identity), "formats": list(wanted)}).encode("utf-8"))
+                {"archive": _archive_stamp(identity, scene), "formats": list(wanted)}).encode("utf-8"))
             outcome.stages.append("report")
         outcome.reports = [str(folder / f"report.{f}") for f in wanted]
         outcome.skipped = "simulate" not in outcome.stages
@@ -192,13 +212,18 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
     except Exception as exc:  # noqa: BLE001 - one scene's crash must not stop the batch
         outcome.status = "failed"
         log = folder / "error.log"
-        try:
-            folder.mkdir(parents=True, exist_ok=True)
-            log.write_text(traceback.format_exc())
-            where = f" (traceback in {log})"
-        except OSError:
-            where = ""
+        where = ""
+        if writable:
+            try:
+                folder.mkdir(parents=True, exist_ok=True)
+                atomic_write(log, traceback.format_exc().encode("utf-8", "backslashreplace"))
+                where = f" (traceback in {log})"
+            except OSError:
+                pass
         outcome.message = f"{type(exc).__name__}: {exc}{where}"
+    except BaseException:  # Ctrl-C, a signal: the helpers go at once, not after their job
+        kill_children()
+        raise
     finally:
         for worker in (helper, own_worker):
             if worker is not None:
@@ -228,7 +253,7 @@ class Progress:
         if outcome.message and not outcome.ok:
             line += f"\n      {outcome.message}"
         self._clear()
-        print(line, file=self.stream, flush=True)
+        print(printable(line), file=self.stream, flush=True)
 
     def within(self, name: str) -> Callable[[float], None] | None:
         if not self.tty:
@@ -262,16 +287,22 @@ def run_batch(paths: list[str], out_root: str = "output", jobs: int | None = Non
     """
     scenes = validate_all(collect_configs(paths))
     progress = Progress(len(scenes), stream)
-    Path(out_root).mkdir(parents=True, exist_ok=True)
-    if scheduler:
-        outcomes = _run_on_dask(scenes, out_root, force, formats, scheduler, progress,
-                                time_limit)
-    else:
-        outcomes = _run_locally(scenes, out_root, force, formats, jobs, progress, time_limit,
-                                pdf_worker)
-    order = {s.source.name: i for i, s in enumerate(scenes)}
-    outcomes.sort(key=lambda o: order[o.name])
-    write_index(out_root, outcomes)
+    root = output_folder(out_root)
+    with output_lock(root, stream=progress.stream):  # one run at a time on a folder
+        if scheduler:
+            outcomes = _run_on_dask(scenes, out_root, force, formats, scheduler, progress,
+                                    time_limit)
+        else:
+            outcomes = _run_locally(scenes, out_root, force, formats, jobs, progress,
+                                    time_limit, pdf_worker)
+        order = {s.source.name: i for i, s in enumerate(scenes)}
+        outcomes.sort(key=lambda o: order[o.name])
+        try:
+            write_index(out_root, outcomes)
+        except OSError as exc:
+            where = exc.filename or root / "index.html"
+            raise UsageError(f"{printable(str(where))}: cannot write the index "
+                             f"({exc.strerror or exc})") from None
     return outcomes
 
 
@@ -355,7 +386,8 @@ def _preload(scenes, formats) -> None:
     groups = (("dop853", "verlet"), ("rk45", "rk4", "gauss4"))
     from .core.integrators.driver import warm_up
 
-    helpers = [ctx.Process(target=warm_up, args=(group,), daemon=True) for group in groups]
+    helpers = [ctx.Process(target=run_child, args=(os.getpid(), warm_up, group), daemon=True)
+               for group in groups]
     for helper in helpers:
         helper.start()
     modules = ["reportgen.core.study", "scipy.integrate", "scipy.special", "scipy.optimize",
@@ -495,14 +527,20 @@ def run_scene_portable(config_text: str, name: str, formats: tuple[str, ...] | N
 
 def _install_files(out_root: str, outcome: Outcome, files: dict[str, bytes]) -> Outcome:
     """Write a worker's files into ``out_root/<name>/`` atomically, archive first."""
-    folder = Path(out_root) / outcome.name
+    folder = Path(out_root) / scene_name(Path(outcome.name + ".toml"))
+    escaping = links_out(folder, Path(out_root))
+    if escaping:
+        outcome.status = "failed"
+        outcome.message = (f"{printable(str(escaping[0]))} is a symbolic link leading outside "
+                           f"{printable(str(out_root))}: not followed, scene skipped")
+        return outcome
     folder.mkdir(parents=True, exist_ok=True)
     if "run.h5" in files:
         tmp = temp_name(folder / "run.h5")
         tmp.write_bytes(files["run.h5"])
         install(tmp, folder / "run.h5")
     for rel, data in files.items():
-        if rel != "run.h5":
+        if rel != "run.h5" and ".." not in Path(rel).parts and not Path(rel).is_absolute():
             (folder / rel).parent.mkdir(parents=True, exist_ok=True)
             atomic_write(folder / rel, data)
     outcome.folder = str(folder)
@@ -517,7 +555,7 @@ def _up_to_date(scene: Scene, out_root: str, formats) -> Outcome | None:
     wanted = _formats(scene, formats)
     if (stored is None or stored.physics_key != scene.physics_key()
             or stored.config_sha256 != scene.source.sha256
-            or not _report_current(folder, stored, wanted)):
+            or not _report_current(folder, stored, wanted, scene)):
         return None
     return Outcome(name=scene.source.name, kind=scene.kind, title=scene.title,
                    status=stored.status, message=stored.message, skipped=True,
@@ -579,7 +617,7 @@ def _run_on_dask(scenes, out_root, force, formats, scheduler, progress,
 
 def sweep_block_portable(config_text: str, lo: int, hi: int, values: dict) -> object:
     """Members ``lo:hi`` of the sweep of the config ``config_text``: the task a Dask
-    worker runs for one block (:meth:`reportgen.scenes.base.Scene.sweep_block`)."""
+    worker runs for one block (:meth:`reportgen.scene.simulation.Simulation.sweep_block`)."""
     from .config import parse_config_text
 
     return load_scene(parse_config_text(config_text)).sweep_block(lo, hi, values)
@@ -604,9 +642,9 @@ def write_index(out_root: str, outcomes: list[Outcome] = ()) -> Path:
     for archive, entry in _gallery_entries(root).items():
         folder = archive.parent
         name = folder.name
-        links = [(fmt.upper(), f"{name}/report.{fmt}") for fmt in ("html", "pdf")
+        links = [(fmt.upper(), gallery_href(name, f"report.{fmt}")) for fmt in ("html", "pdf")
                  if (folder / f"report.{fmt}").exists()]
-        links.append(("HDF5", f"{name}/run.h5"))
+        links.append(("HDF5", gallery_href(name, "run.h5")))
         entries.append({**entry, "name": name, "links": links,
                         "thumbnail": _first_figure(folder)})
     seen = {e["name"] for e in entries}
@@ -641,7 +679,7 @@ def _gallery_entries(root: Path) -> dict[Path, dict]:
         name = archive.parent.name
         hit = stored.get(name) if isinstance(stored, dict) else None
         entry = (hit["entry"] if isinstance(hit, dict) and hit.get("stamp") == stamp
-                 else gallery_entry(archive))
+                 and _valid_entry(hit.get("entry")) else gallery_entry(archive))
         if entry is None:
             continue
         fresh[name] = {"stamp": stamp, "entry": entry}
@@ -655,17 +693,38 @@ def _gallery_entries(root: Path) -> dict[Path, dict]:
 
 
 def _first_figure(folder: Path) -> str | None:
-    """The first figure of a scene's report (relative to the output folder), if drawn."""
-    try:
-        stored = json.loads((folder / "figures" / "sections.json").read_text(encoding="utf-8"))
-    except (OSError, ValueError):
-        return None
-    for section in stored.get("sections", []):
-        for fig in section.get("figures", []):
-            if "svg" in fig.get("files", {}):
-                return f"{folder.name}/{fig['files']['svg']}"
+    """The first figure of a scene's report (a link relative to the output folder), if
+    drawn; from the figures' manifest, validated (:func:`reportgen.layout.figure_manifest`)."""
+    stored = figure_manifest(folder)
+    for section in stored["sections"] if stored is not None else ():
+        for fig in section["figures"]:
+            return gallery_href(folder.name, fig["files"]["svg"])
     return None
 
 
+def gallery_href(name: str, rel: str) -> str:
+    """The gallery's link to ``rel`` in the scene folder ``name``: a relative path, each
+    segment URL-quoted, so no folder name (``javascript:...``, ``?``, ``#``) can make it a
+    scheme or anything but that file (a quoted ``:`` is ``%3A``, and a segment holds no
+    ``/``: a relative path whose first segment has no ``:`` never names a scheme)."""
+    return "/".join(quote(part, safe="") for part in [name, *rel.split("/")])
+
+
+#: what a gallery entry holds (kept in ``.gallery.json``): text, and the wall time
+_ENTRY_TEXT = ("kind", "title", "status", "message", "headline", "created")
+
+
+def _valid_entry(entry) -> bool:
+    """Whether ``entry`` (read back from ``.gallery.json``) is what
+    :func:`reportgen.archive.gallery_entry` gives: else the archive is read again."""
+    return (isinstance(entry, dict) and {*_ENTRY_TEXT, "wall_time_s"} <= set(entry)
+            and all(isinstance(entry[k], str) for k in _ENTRY_TEXT)
+            and (entry["wall_time_s"] is None
+                 or (isinstance(entry["wall_time_s"], (int, float))
+                     and not isinstance(entry["wall_time_s"], bool))))
+
+
 def batch_status(outcomes: list[Outcome]) -> str:
-    return worst_status(*(o.status for o in outcomes))
+    """The worst status of the batch; a status :func:`worst_status` does not rank (one
+    read back from an archive, "inaccurate") counts as not ok."""
+    return worst_status(*(o.status if o.status in STATUSES else "failed" for o in outcomes))

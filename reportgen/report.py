@@ -25,16 +25,15 @@ from markupsafe import Markup
 from . import __version__
 from .archive import ArchiveData, read_archive
 from .audit_archive import read_audit
-from .codestamp import drawing_code
 from .equations import equation_html
 from .errors import ReportError
 from .forked import JobProcess, serve
 from .fsutil import atomic_write
+from .kinds import get_kind
 from .layout import template_dir
 from .lazy import lazy_module
 from .pdf import PdfWorker, write_pdf  # noqa: F401 - part of this module's interface
-from .scenes import get_kind
-from .scenes.base import FigureSpec, SectionContent, fmt, fmt_err
+from .scene.content import FigureSpec, SectionContent, fmt, fmt_err
 
 # Drawing libraries load on first use: a report whose figures are current (a title edit)
 # renders without importing matplotlib.
@@ -50,7 +49,8 @@ def environment() -> jinja2.Environment:
     global _ENV
     if _ENV is None:
         _ENV = jinja2.Environment(
-            loader=jinja2.FileSystemLoader(template_dir()),
+            loader=jinja2.ChoiceLoader([jinja2.FunctionLoader(_kind_template),
+                                        jinja2.FileSystemLoader(template_dir())]),
             autoescape=True,
             undefined=jinja2.StrictUndefined,
             trim_blocks=True,
@@ -63,6 +63,21 @@ def environment() -> jinja2.Environment:
         _ENV.filters["cell"] = table_cell
         _ENV.filters["eq_display"] = display_equation
     return _ENV
+
+
+def _kind_template(name: str):
+    """The jinja2 source of ``kinds/<kind>.html.j2`` from the kind's package, or None (then
+    the shared templates folder is looked in)."""
+    found = re.fullmatch(r"kinds/(\w+)\.html\.j2", name)
+    try:
+        path = get_kind(found.group(1)).template_path() if found else None
+    except KeyError:
+        return None
+    if path is None:
+        return None
+    mtime = path.stat().st_mtime_ns
+    return (path.read_text(encoding="utf-8"), str(path),
+            lambda: path.exists() and path.stat().st_mtime_ns == mtime)
 
 
 def _template_cache() -> jinja2.BytecodeCache | None:
@@ -177,13 +192,14 @@ FIGURES_FORMAT = 2
 
 def figures_key(data: ArchiveData, formats: tuple[str, ...]) -> str:
     """Content key of the figures stage: what the archive's numbers are, which sections
-    are drawn, the reportgen version and its drawing code
-    (:func:`reportgen.codestamp.drawing_code`).  A title edit leaves it unchanged."""
+    are drawn, the reportgen version and the kind's drawing code
+    (:meth:`~reportgen.scene.base.Scene.report_code`).
+    A title edit leaves it unchanged."""
     scene = kind_of_archive(data)
     blob = json.dumps({"physics": data.attrs.get("physics_key", ""),
                        "sections": [s.name for s in scene.chosen_sections(data)],
                        "files": list(formats), "reportgen": __version__,
-                       "code": drawing_code(), "format": FIGURES_FORMAT},
+                       "code": scene.report_code(), "format": FIGURES_FORMAT},
                       sort_keys=True)
     return hashlib.sha256(blob.encode("utf-8")).hexdigest()
 
@@ -361,17 +377,25 @@ def _draw_section(scene, section, data: ArchiveData, out_dir: Path,
 
 
 def cached_sections(out_dir: Path, key: str) -> list[dict[str, Any]] | None:
-    """The figures stage's stored result if its key is ``key`` and every file is there."""
-    index = out_dir / "figures" / SECTIONS_FILE
-    try:
-        stored = json.loads(index.read_text(encoding="utf-8"))
-    except (OSError, ValueError):
-        return None
-    if stored.get("key") != key:
+    """The figures stage's stored result if its key is ``key`` and every file is there.
+
+    The manifest is read back from the output folder, so it is validated first
+    (:func:`reportgen.layout.figure_manifest`: its shape, and every file a figure of its
+    format inside ``figures/``) and so is every SVG the report would inline
+    (:func:`reportgen.layout.svg_safe`); anything else is not reused: the figures are drawn
+    again, over it."""
+    from .layout import figure_manifest, svg_safe
+
+    stored = figure_manifest(out_dir)
+    if stored is None or stored["key"] != key:
         return None
     for section in stored["sections"]:
         for fig in section["figures"]:
-            if not all((out_dir / f).exists() for f in fig["files"].values()):
+            try:
+                svg = (out_dir / fig["files"]["svg"]).read_text(encoding="utf-8")
+            except (OSError, UnicodeDecodeError):
+                return None
+            if not svg_safe(svg):
                 return None
     return stored["sections"]
 
@@ -401,11 +425,18 @@ def figures_stage(data: ArchiveData, out_dir: Path, formats: tuple[str, ...] | N
 
 
 def _with_inline_svg(sections: list[dict[str, Any]], out_dir: Path) -> list[dict[str, Any]]:
+    """The sections with each figure's SVG text, read from ``out_dir/figures`` only: a file
+    named outside it (through ``..``, an absolute path or a link) is a ReportError."""
+    figures_dir = os.path.realpath(out_dir / "figures")
     out = []
     for section in sections:
         figures = []
         for fig in section["figures"]:
-            text = (out_dir / fig["files"]["svg"]).read_text(encoding="utf-8")
+            path = out_dir / fig["files"]["svg"]
+            if os.path.dirname(os.path.realpath(path)) != figures_dir:
+                raise ReportError(f"{path}: not a figure file inside {out_dir / 'figures'}; "
+                                  "not read")
+            text = path.read_text(encoding="utf-8")
             figures.append({**fig, "svg": Markup(_SVG_HEAD.sub("", text, count=1))})
         out.append({**section, "figures": figures})
     return out

@@ -24,7 +24,7 @@ The archive holds the family (dimension ``member``)::
                                ``member`` (P,) int64 and one array per column
     /runs/member_<i>           the whole run of the ``store`` members kept
 
-A kind may return per-member point sets (:meth:`reportgen.scenes.base.Scene.member_points`);
+A kind may return per-member point sets (:meth:`reportgen.scene.simulation.Simulation.member_points`);
 each member keeps at most ``max_points`` points of each set (default 2000, the first ones),
 and its result ``<set>_points`` counts all it had, so a report can say what was capped.
 

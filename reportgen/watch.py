@@ -19,7 +19,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from .errors import ConfigError, UsageError
-from .layout import collect_configs
+from .layout import collect_configs, printable
 
 
 def _snapshot(paths: list[str]) -> dict[Path, int]:
@@ -41,12 +41,19 @@ def watch(paths: list[str], out_root: str = "output", jobs: int | None = None,
           formats: tuple[str, ...] | None = None, interval: float = 0.25,
           stream=None, stop: Callable[[], bool] | None = None) -> int:
     """Run the batch, then again whenever a config under ``paths`` changes, appears or
-    goes, until interrupted (Ctrl-C) or ``stop()`` is true.  Returns the exit status."""
+    goes, until interrupted (Ctrl-C, SIGTERM, SIGHUP: child processes are stopped at
+    once) or ``stop()`` is true.  Each batch holds the output folder's lock while it runs
+    (:func:`reportgen.fsutil.output_lock`).  Returns the exit status."""
+    from .forked import children_stop_with_me
+
+    with children_stop_with_me():
+        return _watch(paths, out_root, jobs, formats, interval, stream or sys.stderr, stop)
+
+
+def _watch(paths, out_root, jobs, formats, interval, stream, stop) -> int:
     from .pdf import PdfWorker
     from .pipeline import _preload, run_batch
 
-    stream = stream or sys.stderr
-    _stop_on_sigterm()
     wants_pdf = formats is None or "pdf" in formats
     worker: PdfWorker | None = None
     seen: dict[Path, int] | None = None
@@ -72,7 +79,8 @@ def watch(paths: list[str], out_root: str = "output", jobs: int | None = None,
                     worker.close()
                 worker = PdfWorker()  # kept warm for every later edit
             started = time.perf_counter()
-            what = ", ".join(changed) if len(changed) <= 3 else f"{len(changed)} configs"
+            what = (printable(", ".join(changed)) if len(changed) <= 3
+                    else f"{len(changed)} configs")
             print(f"--- {what} changed: running" if preloaded else
                   f"--- watching {len(now)} configs: first run", file=stream, flush=True)
             try:
@@ -80,14 +88,17 @@ def watch(paths: list[str], out_root: str = "output", jobs: int | None = None,
                                      stream=stream, pdf_worker=worker)
             except ConfigError as exc:
                 for line in exc.problems:
-                    print(line, file=stream)
+                    print(printable(line), file=stream)
                 print("--- not run: fix the config (nothing was written); watching",
                       file=stream, flush=True)
+                continue
+            except UsageError as exc:  # the output folder: not a folder, not writable, full
+                print(f"--- {printable(str(exc))}; watching", file=stream, flush=True)
                 continue
             bad = sum(not o.ok for o in outcomes)
             print(f"--- done in {time.perf_counter() - started:.2f} s: "
                   f"{len(outcomes) - bad} of {len(outcomes)} scenes ok; index: "
-                  f"{Path(out_root) / 'index.html'}; watching (Ctrl-C to stop)",
+                  f"{printable(str(Path(out_root) / 'index.html'))}; watching (Ctrl-C to stop)",
                   file=stream, flush=True)
             if not preloaded:
                 # while the lecturer reads: what the next edit would otherwise import
@@ -99,16 +110,3 @@ def watch(paths: list[str], out_root: str = "output", jobs: int | None = None,
         if worker is not None:
             worker.close()
     return 0
-
-
-def _stop_on_sigterm() -> None:
-    """SIGTERM (a service manager, ``timeout``) stops the watch like Ctrl-C: the PDF worker
-    is closed and the message printed.  Only the main thread may set handlers."""
-    import signal
-    import threading
-
-    if threading.current_thread() is threading.main_thread():
-        def interrupt(signum, frame):
-            raise KeyboardInterrupt
-
-        signal.signal(signal.SIGTERM, interrupt)

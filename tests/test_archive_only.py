@@ -48,12 +48,31 @@ def _assert_same_figures(first: Path, second: Path) -> None:
             f"figure {name} differs when drawn from the archive alone"
 
 
+def _datasets_without_cf_attrs(archive: Path) -> list[str]:
+    """Every dataset of the archive lacking ``units`` or ``long_name`` (CF style), and
+    every numeric one whose ``long_name`` is empty."""
+    import h5py
+
+    bad = []
+
+    def visit(name, obj):
+        if isinstance(obj, h5py.Dataset):
+            attrs = obj.attrs
+            if "units" not in attrs or "long_name" not in attrs or not str(attrs["long_name"]):
+                bad.append(name)
+
+    with h5py.File(archive, "r") as f:
+        f.visititems(visit)
+    return bad
+
+
 @pytest.mark.parametrize("config", SHIPPED, ids=[p.stem for p in SHIPPED])
 def test_report_from_archive_alone(config, tmp_path):
     source = without_study(config, tmp_path / config.name)
     outcome = run_scene(str(source), str(tmp_path / "out"), force=True, formats=("html",))
     assert outcome.status in ("ok", "unstable"), outcome.message
     folder = tmp_path / "out" / config.stem
+    assert _datasets_without_cf_attrs(folder / "run.h5") == []
     rebuilt = tmp_path / "rebuilt"
     proc = _report_from_archive_alone(folder / "run.h5", rebuilt)
     assert proc.returncode == 0, proc.stderr[-3000:]

@@ -14,7 +14,7 @@ from reportgen.config import parse_config_text
 from reportgen.core.integrators import METHODS, RunStatus, integrate
 from reportgen.core.integrators.policy import STIFF_FALLBACK
 from reportgen.core.integrators.stability import stiffness_ratio
-from reportgen.scenes import KINDS, load_scene
+from reportgen.kinds import KINDS, load_scene
 
 
 def _scene(method="auto"):

@@ -13,8 +13,8 @@ from pydantic import BaseModel
 from pydantic.fields import FieldInfo
 
 from reportgen.config import ReportConfig, RunConfig
-from reportgen.scenes import KINDS
-from reportgen.scenes.catalogue import describe_kinds
+from reportgen.kinds import KINDS
+from reportgen.scene.catalogue import describe_kinds
 
 SHARED = (RunConfig, ReportConfig)  # described once, after the kinds
 

@@ -17,7 +17,7 @@ import pytest
 
 from reportgen.config import ConfigError, parse_config_text
 from reportgen.core.models import kepler as core
-from reportgen.scenes import load_scene
+from reportgen.kinds import load_scene
 
 KEPLER_E07 = "x = 0.3\ny = 0.0\nvx = 0.0\nvy = 2.3804761428476167"
 RUN_E07 = "t_end = 62.83185307179586\nsamples = 4001\nrtol = 1e-13\natol = 1e-15"
@@ -185,7 +185,7 @@ def test_unbound_orbit_has_no_period():
 def test_report_sections_from_the_archive(write_config, cli, tmp_path):
     # an unbound orbit has no Kepler checks and no apsides: decided from the archive alone
     from reportgen.archive import read_archive
-    from reportgen.scenes.central_force import CentralForceScene
+    from reportgen.kinds.central_force import CentralForceScene
 
     cfg = write_config("hyp", text(initial="x = 1.0\ny = 0.0\nvx = 0.0\nvy = 1.6",
                                    run="t_end = 5.0\nsamples = 101"))

@@ -8,7 +8,7 @@ import pytest
 
 from conftest import REPO, pendulum_text
 from reportgen.config import ConfigError, read_config
-from reportgen.scenes import load_scene
+from reportgen.kinds import load_scene
 
 
 def problems(path):

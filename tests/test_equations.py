@@ -11,21 +11,21 @@ import pytest
 from reportgen import equations
 from reportgen.pdf import prepare_html
 
-TEMPLATES = Path(__file__).resolve().parent.parent / "templates"
+KINDS = Path(__file__).resolve().parent.parent / "reportgen" / "kinds"
 FILTER = re.compile(r"\{% filter eq %\}(.*?)\{% endfilter", re.S)
 
 
 def _template_equations() -> list[tuple[str, str]]:
     out = []
-    for path in sorted((TEMPLATES / "kinds").glob("*.j2")):
-        out.extend((path.stem.split(".")[0], tex) for tex in FILTER.findall(path.read_text()))
+    for path in sorted(KINDS.glob("*/template.html.j2")):
+        out.extend((path.parent.name, tex) for tex in FILTER.findall(path.read_text()))
     return out
 
 
 def test_no_equation_left_as_plain_text():
     """Every displayed equation of the kinds' prose goes through the eq filter."""
-    for path in sorted((TEMPLATES / "kinds").glob("*.j2")):
-        assert '<span class="eq">' not in path.read_text(), f"{path.name}: untypeset equation"
+    for path in sorted(KINDS.glob("*/template.html.j2")):
+        assert '<span class="eq">' not in path.read_text(), f"{path.parent.name}: untypeset equation"
     assert len(_template_equations()) >= 45
 
 

@@ -9,7 +9,7 @@ import pytest
 from reportgen.config import ConfigError, parse_config_text
 from reportgen.core.integrators import integrate
 from reportgen.core.models import fput as core
-from reportgen.scenes import load_scene
+from reportgen.kinds import load_scene
 
 OMEGA = 50.0
 M = 3

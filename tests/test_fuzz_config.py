@@ -21,7 +21,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from reportgen.config import ConfigError, parse_config_text, read_config, to_toml
-from reportgen.scenes import KINDS, load_scene
+from reportgen.kinds import KINDS, load_scene
 
 REPO = Path(__file__).resolve().parent.parent
 LABEL = Path("fuzz/scene.toml")  # the file name every problem line must start with

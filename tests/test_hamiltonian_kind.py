@@ -35,7 +35,7 @@ from scipy.integrate import solve_ivp
 from reportgen.config import parse_config_text, to_toml
 from reportgen.core import formula
 from reportgen.core.expressions import parse_expression
-from reportgen.scenes import load_scene
+from reportgen.kinds import load_scene
 
 REPO = Path(__file__).resolve().parent.parent
 HAND_RTOL = HAND_ATOL = 1e-13  # the hand integrations' tolerances (scipy DOP853)
@@ -802,7 +802,7 @@ def test_preset_formulas_are_the_ones_the_quadratures_solve():
     # the kind keeps the two separable presets' H as text (importing the kind imports no
     # numerics); they must be core.hamilton_jacobi's, character for character
     from reportgen.core import hamilton_jacobi
-    from reportgen.scenes.hamiltonian import HamiltonianScene, _PresetFormulas
+    from reportgen.kinds.hamiltonian import HamiltonianScene, _PresetFormulas
 
     assert _PresetFormulas.CENTRAL_H == hamilton_jacobi.CENTRAL_H
     assert _PresetFormulas.TWO_CENTRES_H == hamilton_jacobi.TWO_CENTRES_H

@@ -26,7 +26,7 @@ from reportgen.core import heavy_top_kinematics as kinematics
 from reportgen.core import heavy_top_theory as theory
 from reportgen.core.integrators import integrate
 from reportgen.core.models import heavy_top as model_core
-from reportgen.scenes import load_scene
+from reportgen.kinds import load_scene
 
 I1, I3, MGL = 1.0, 0.5, 1.0  # the SPEC example top; sleeping threshold ω3 = 4 rad/s
 
@@ -423,7 +423,7 @@ def test_reduced_form_on_the_vertical_fails_cleanly():
     ("theta = 0.05\ntheta_dot = 0.0\nphi_dot = 0.0\nomega3 = 5.0",
      'formulation = "reduced"', "reduced")])
 def test_formulation_auto_keeps_the_reduced_form_off_the_vertical(initial, run, expected):
-    from reportgen.scenes.heavy_top import HeavyTopScene
+    from reportgen.kinds.heavy_top import HeavyTopScene
 
     scene = HeavyTopScene.from_source(parse_config_text(
         f'kind = "heavy_top"\ntitle = "t"\n[params]\nI1 = 1.0\nI3 = 0.5\nMgl = 1.0\n'
@@ -432,7 +432,7 @@ def test_formulation_auto_keeps_the_reduced_form_off_the_vertical(initial, run, 
 
 
 def test_reduced_formulation_of_a_top_through_the_vertical_is_refused():
-    from reportgen.scenes.heavy_top import HeavyTopScene
+    from reportgen.kinds.heavy_top import HeavyTopScene
 
     with pytest.raises(ConfigError, match=r"run\.formulation.*singular on the vertical"):
         HeavyTopScene.from_source(parse_config_text(
@@ -447,7 +447,7 @@ def test_bench_textbook_row_reaches_the_euler_angle_scripts_theta_error():
     # closed form).
     from reportgen.bench import heavy_top_textbook
     from reportgen.config import parse_config_text
-    from reportgen.scenes.heavy_top import HeavyTopScene
+    from reportgen.kinds.heavy_top import HeavyTopScene
 
     scene = HeavyTopScene.from_source(parse_config_text(
         'kind = "heavy_top"\ntitle = "t"\n[params]\nI1 = 1.3\nI3 = 0.45\nMgl = 0.9\n'

@@ -23,7 +23,7 @@ import pytest
 from reportgen.archive import read_archive
 from reportgen.config import ConfigError, parse_config_text
 from reportgen.core import heavy_top_theory as theory
-from reportgen.scenes import load_scene
+from reportgen.kinds import load_scene
 
 REPO = Path(__file__).resolve().parent.parent
 I1, I3, MGL = 1.0, 0.5, 1.0

@@ -104,8 +104,8 @@ def test_the_graph_sees_imports():
     """The checker itself: known edges are found (so a broken parser cannot pass)."""
     graph = _graph()
     assert "reportgen.archive" in graph["reportgen.report"]
-    assert "reportgen.scenes.base" in graph["reportgen.scenes"]
-    assert "reportgen.core.integrators" in graph["reportgen.scenes.base"]
+    assert "reportgen.scene.base" in graph["reportgen.kinds"]
+    assert "reportgen.core.integrators" in graph["reportgen.scene.simulation"]
 
 
 @pytest.mark.parametrize(("args", "absent"), [

@@ -23,7 +23,7 @@ from reportgen.core.integrators import MethodMismatch, choose_auto, integrate
 from reportgen.core.integrators.policy import REGULARIZE_ECCENTRICITY
 from reportgen.core.integrators.regularized import STEP_CONSTANT, steps_per_orbit
 from reportgen.core.models import kepler
-from reportgen.scenes import load_scene
+from reportgen.kinds import load_scene
 
 GM = 1.0
 MODEL = kepler.model(k=1.0, mu=1.0)  # GM = k/μ = 1

@@ -10,7 +10,7 @@ import pytest
 from reportgen.archive import read_archive, write_archive
 from reportgen.config import ConfigError, parse_config_text
 from reportgen.core.models import oscillator as core
-from reportgen.scenes import load_scene
+from reportgen.kinds import load_scene
 
 TEXT = """
 kind = "oscillator"

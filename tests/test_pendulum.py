@@ -17,7 +17,7 @@ from conftest import pendulum_text
 from reportgen.archive import read_archive, write_archive
 from reportgen.config import parse_config_text
 from reportgen.core.models import pendulum as core
-from reportgen.scenes import load_scene
+from reportgen.kinds import load_scene
 
 
 def simulate(text):

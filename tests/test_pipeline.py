@@ -14,8 +14,8 @@ from pypdf import PdfReader
 from conftest import pendulum_text
 from reportgen import archive as archive_mod
 from reportgen.archive import read_archive
+from reportgen.kinds.pendulum import PendulumScene
 from reportgen.pipeline import run_batch
-from reportgen.scenes.pendulum import PendulumScene
 
 OSCILLATOR = """
 kind = "oscillator"

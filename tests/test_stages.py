@@ -139,7 +139,7 @@ def test_physics_key_covers_what_simulate_computes_and_nothing_else():
     """Title and section order do not change the simulate key; asking for a section whose
     data is computed only on request (the study, rigid_body's geometric integrator) does."""
     from reportgen.config import parse_config_text
-    from reportgen.scenes import load_scene
+    from reportgen.kinds import load_scene
 
     def key(title="A body", t_end=10.0, sections=None):
         text = (f'kind = "rigid_body"\ntitle = "{title}"\n[params]\nI1 = 1.0\nI2 = 2.0\n'
@@ -251,66 +251,79 @@ def test_gallery_follows_an_edited_archive(write_config, tmp_path):
     assert "Second title" in index and "First title" not in index and "Other" in index
 
 
-def test_code_stamps_follow_the_code_that_simulates_and_draws(tmp_path):
+INERTIA_TEXT = """
+kind = "inertia"
+[shape]
+type = "cone"
+mass = 1.0
+radius = 0.5
+height = 1.0
+"""
+
+
+def test_code_stamps_follow_the_code_each_stage_imports(tmp_path):
     """The package is installed editable: after a pull, the same version may run other
-    code.  An edit of a plot module or a template changes only the drawing stamp (figures
-    and reports again, no simulation); an edit of the physics changes the simulate stamp;
-    an edit of the command line neither.  Stamps do not depend on where the checkout is."""
+    code.  Each kind's simulate stamp hashes the code its simulation imports, its drawing
+    stamp the code its report imports: a caption or plot edit in one kind changes only
+    that kind's drawing stamp; an edit of its physics or of an integrator it uses changes
+    its simulate stamp; an edit of the command line changes neither.  Stamps do not
+    depend on where the checkout is."""
     import shutil
 
     from reportgen import codestamp
+    from reportgen.kinds import KINDS
+
+    pendulum, other = KINDS["pendulum"], KINDS["inertia"]
 
     def copy(name):
         pkg = tmp_path / name / "reportgen"
         shutil.copytree(codestamp.PACKAGE, pkg, ignore=shutil.ignore_patterns("__pycache__"))
-        templates = tmp_path / name / "templates"
-        shutil.copytree(next(d for d in codestamp.TEMPLATE_DIRS if d.is_dir()), templates)
-        return pkg, templates
+        return pkg
 
-    def stamps(pkg, templates):
-        return (codestamp.physics_code(pkg), codestamp.drawing_code(pkg, (templates,)))
+    def stamps(pkg):
+        return {(kind.kind, face): codestamp.code_hash(modules(), package_dir=pkg)
+                for kind in (pendulum, other)
+                for face, modules in (("simulate", kind.simulation_modules),
+                                      ("draw", kind.report_modules))}
 
-    base = stamps(*copy("a"))
-    assert stamps(*copy("b")) == base
-    assert base == (codestamp.physics_code(), codestamp.drawing_code())
+    def edited(name, relative):
+        pkg = copy(name)
+        (pkg / relative).write_text("# edited\n" + (pkg / relative).read_text())
+        new = stamps(pkg)
+        return {key for key in base if new[key] != base[key]}
 
-    pkg, templates = copy("plot")
-    (pkg / "plots" / "pendulum.py").write_text("# edited\n" + (
-        pkg / "plots" / "pendulum.py").read_text())
-    physics, drawing = stamps(pkg, templates)
-    assert physics == base[0] and drawing != base[1]
-
-    pkg, templates = copy("template")
-    (templates / "scene.html.j2").write_text((templates / "scene.html.j2").read_text() + " ")
-    assert stamps(pkg, templates)[0] == base[0] and stamps(pkg, templates)[1] != base[1]
-
-    pkg, templates = copy("physics")
-    (pkg / "core" / "models" / "pendulum.py").write_text(
-        "# edited\n" + (pkg / "core" / "models" / "pendulum.py").read_text())
-    physics, drawing = stamps(pkg, templates)
-    assert physics != base[0] and drawing == base[1]
-
-    pkg, templates = copy("cli")
-    (pkg / "cli.py").write_text("# edited\n" + (pkg / "cli.py").read_text())
-    assert stamps(pkg, templates) == base
+    base = stamps(copy("a"))
+    assert stamps(copy("b")) == base
+    assert base == stamps(codestamp.PACKAGE)
+    assert edited("caption", "kinds/pendulum/report.py") == {("pendulum", "draw")}
+    assert edited("plot", "kinds/pendulum/plots.py") == {("pendulum", "draw")}
+    assert edited("physics", "core/models/pendulum.py") == {("pendulum", "simulate")}
+    integrator = edited("integrator", "core/integrators/compiled.py")
+    assert ("pendulum", "simulate") in integrator and not {f for _, f in integrator} - {
+        "simulate"}
+    assert edited("declared", "kinds/pendulum/results.py") == {("pendulum", "simulate"),
+                                                               ("pendulum", "draw")}
+    assert edited("cli", "cli.py") == set()
 
 
-def test_new_drawing_code_redraws_and_rerenders_without_simulating(write_config, tmp_path,
-                                                                   monkeypatch):
-    """A checkout whose drawing code changed (here: its stamp) redraws the figures and
-    renders the report again from the archive, which is kept."""
-    from reportgen import pipeline, report
+def test_caption_edit_rerenders_that_kind_only(write_config, tmp_path, monkeypatch):
+    """A new drawing stamp of one kind (its caption edited) redraws and renders that
+    kind's reports again from their archives, which are kept; other kinds' scenes are
+    up to date and no scene simulates."""
+    from reportgen.kinds import KINDS
 
     path = write_config("pend", pendulum_text())
+    cone = write_config("cone", INERTIA_TEXT)
     out = tmp_path / "out"
-    run_scene(str(path), str(out), formats=("html",))
+    for config in (path, cone):
+        run_scene(str(config), str(out), formats=("html",))
     before = _arrays(out / "pend" / "run.h5")
     figure = next((out / "pend" / "figures").glob("*.svg"))
     figure.write_text("stale")
     assert run_scene(str(path), str(out), formats=("html",)).stages == []
-    for module in (pipeline, report):
-        monkeypatch.setattr(module, "drawing_code", lambda: "another checkout")
+    monkeypatch.setattr(KINDS["pendulum"], "_report_code", "a caption edited", raising=False)
     again = run_scene(str(path), str(out), formats=("html",))
     assert again.stages == ["report"], again
+    assert run_scene(str(cone), str(out), formats=("html",)).stages == []
     assert _arrays(out / "pend" / "run.h5") == before
     assert figure.read_text() != "stale"

@@ -227,7 +227,7 @@ def test_a_dense_family_costs_the_pdf_four_vertices_per_member():
     import numpy as np
     from scipy import special
 
-    from reportgen.plots.pendulum import period_family
+    from reportgen.kinds.pendulum.plots import period_family
     from reportgen.report import figure_bytes
 
     amplitude = np.linspace(0.01, 3.1, 2000)

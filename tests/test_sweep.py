@@ -11,9 +11,9 @@ import pytest
 from conftest import pendulum_text
 from reportgen.archive import read_archive
 from reportgen.config import ConfigError, parse_config_text
+from reportgen.kinds import load_scene
 from reportgen.pipeline import run_scene
-from reportgen.scenes import load_scene
-from reportgen.scenes.base import fmt
+from reportgen.scene.content import fmt
 from reportgen.sweep import SweepBlock, parse_sweep, partial_folder
 
 OSCILLATOR = """
@@ -128,7 +128,7 @@ def test_killed_sweep_resumes_at_its_first_unfinished_block(write_config, tmp_pa
                                                             monkeypatch):
     """Finished blocks survive a crash; the next run reads them and runs only the rest,
     and the result equals an uninterrupted run."""
-    from reportgen.scenes.oscillator import OscillatorScene
+    from reportgen.kinds.oscillator import OscillatorScene
 
     text = OSCILLATOR + "[sweep]\nparams.omega = { start = 1.0, stop = 2.0, num = 5 }\n" \
                         "store = 0\nblock = 2\n"

@@ -13,9 +13,9 @@ import pytest
 
 from reportgen.archive import read_archive
 from reportgen.config import parse_config_text
+from reportgen.kinds import load_scene
+from reportgen.kinds.hamiltonian import HamiltonianScene
 from reportgen.pipeline import run_scene
-from reportgen.scenes import load_scene
-from reportgen.scenes.hamiltonian import HamiltonianScene
 from reportgen.sweep import parse_sweep, partial_folder
 
 ENERGY = 0.125

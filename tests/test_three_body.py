@@ -12,8 +12,8 @@ import pytest
 
 from reportgen.config import ConfigError, parse_config_text
 from reportgen.core.models import nbody as core
-from reportgen.scenes import load_scene
-from reportgen.scenes.three_body import ThreeBodyScene
+from reportgen.kinds import load_scene
+from reportgen.kinds.three_body import ThreeBodyScene
 
 
 def simulate(text):

@@ -9,7 +9,7 @@ import pytest
 from reportgen.config import ConfigError, parse_config_text
 from reportgen.core.integrators import integrate
 from reportgen.core.models import two_center as core
-from reportgen.scenes import load_scene
+from reportgen.kinds import load_scene
 
 TEXT = """
 kind = "two_center"

@@ -13,7 +13,7 @@ from reportgen.core.integrators import integrate
 from reportgen.core.integrators.fictitious_time import integrate_fictitious_time
 from reportgen.core.models import two_center as cart
 from reportgen.core.models import two_center_regularized as reg
-from reportgen.scenes import load_scene
+from reportgen.kinds import load_scene
 
 MU, A = 1.0, 1.0
 SATELLITE = (0.0, 1.6, 1.05, 0.0)  # configs/two_center_satellite.toml: ≥ 0.89 a from a centre

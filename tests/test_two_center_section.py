@@ -17,9 +17,9 @@ from reportgen.config import ConfigError, parse_config_text
 from reportgen.core.integrators import integrate
 from reportgen.core.integrators.fictitious_time import integrate_fictitious_time
 from reportgen.core.models import two_center, two_center_regularized
+from reportgen.kinds import load_scene
+from reportgen.kinds.two_center import TwoCenterScene
 from reportgen.pipeline import run_scene
-from reportgen.scenes import load_scene
-from reportgen.scenes.two_center import TwoCenterScene
 from reportgen.sweep import partial_folder
 
 MU = A = 1.0

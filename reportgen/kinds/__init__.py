@@ -1,0 +1,44 @@
+"""Scene kinds, found by being here: every package ``reportgen/kinds/<kind>/`` whose
+``__init__`` defines a :class:`~reportgen.scene.base.Scene` subclass with a ``kind`` is a
+kind.
+
+A kind's package holds its config schema and presets (``config.py``), its declared
+results (``results.py``), its simulation (``simulation.py``), its report (``report.py``),
+its plots and its prose template (``template.html.j2``).  Adding a kind = one new folder
+here and one config in ``configs/``; ``reportgen kinds``, ``validate``, ``run`` and the
+docs discover it.  Shared machinery never names a kind.
+"""
+
+from __future__ import annotations
+
+import importlib
+import pkgutil
+
+from ..config import ConfigError, SourceConfig
+from ..scene.base import REGISTRY, Scene
+
+
+def _discover() -> dict[str, type[Scene]]:
+    for info in pkgutil.iter_modules(__path__):
+        if info.ispkg and not info.name.startswith("_"):
+            importlib.import_module(f"{__name__}.{info.name}")
+    return dict(sorted(REGISTRY.items(), key=lambda item: (item[1].order, item[0])))
+
+
+KINDS: dict[str, type[Scene]] = _discover()
+
+
+def get_kind(kind: str) -> type[Scene]:
+    return REGISTRY[kind]
+
+
+def load_scene(source: SourceConfig) -> Scene:
+    """Validate a parsed config into its scene object; ConfigError names every problem."""
+    kind = source.data.get("kind")
+    if kind is None:
+        raise ConfigError([f"{source.label}: key 'kind': required key is missing "
+                           f"(one of: {', '.join(KINDS)})"])
+    if not isinstance(kind, str) or kind not in REGISTRY:
+        raise ConfigError([f"{source.label}: key 'kind': must be one of "
+                           f"{', '.join(KINDS)} (got {kind!r})"])
+    return REGISTRY[kind].from_source(source)

@@ -1,0 +1,106 @@
+"""What a ``central_force`` run stores: every result once, with its symbol and unit.
+
+SI units, as the config's keys document them (masses in kg, lengths in m, the
+strength k of V = −k/rⁿ in J·mⁿ).
+"""
+
+from __future__ import annotations
+
+from ...scene.schema import Quantity as Q
+from ...scene.schema import ResultsSchema
+
+#: the Laplace–Runge–Lenz vector A = p × L − μk r̂
+LRL_UNIT = "kg^2 m^3/s^2"
+
+SCHEMA = ResultsSchema(
+    columns=(
+        Q("x", "x", "m", "relative position r = r1 - r2, x", ("t",)),
+        Q("y", "y", "m", "relative position r = r1 - r2, y", ("t",)),
+        Q("vx", r"\dot{x}", "m/s", "relative velocity, x", ("t",)),
+        Q("vy", r"\dot{y}", "m/s", "relative velocity, y", ("t",)),
+    ),
+    invariants=(
+        Q("energy", "E", "J", "energy", ("t",)),
+        Q("angular_momentum", "L", "kg m^2/s", "angular momentum", ("t",)),
+        Q("lrl_x", "A_x", LRL_UNIT, "Laplace-Runge-Lenz vector, x", ("t",)),
+        Q("lrl_y", "A_y", LRL_UNIT, "Laplace-Runge-Lenz vector, y", ("t",)),
+    ),
+    analysis=(
+        # the orbit's scales: Kepler elements, or from the turning points
+        Q("eccentricity", "e", "1", "eccentricity", optional=True),
+        Q("semi_major_axis", "a", "m", "semi-major axis", optional=True),
+        Q("pericentre", r"r_\mathrm{min}", "m", "pericentre distance"),
+        Q("apocentre", r"r_\mathrm{max}", "m", "apocentre distance", optional=True),
+        Q("period", "T", "s", "period (Kepler's third law, or the radial period)",
+          optional=True),
+        Q("reduced_mass", r"\mu", "kg", "reduced mass m1 m2/(m1 + m2)"),
+        Q("total_mass", "M", "kg", "total mass m1 + m2"),
+        Q("energy", "E", "J", "energy of the relative motion"),
+        Q("angular_momentum", "L", "kg m^2/s", "angular momentum of the relative motion"),
+        Q("potential", "", "", "the potential's name (config)", kind="str"),
+        Q("bound", "", "", "whether the orbit is bound (yes or no)", kind="str"),
+        Q("period_note", "", "", "why an unbound orbit has no period", kind="str",
+          optional=True),
+        Q("turning_points", r"r_\mathrm{min}, r_\mathrm{max}", "m",
+          "turning points of the radial motion", ("turning",)),
+        Q("mass_fraction_m1", "m_1/M", "1", "mass fraction of body 1"),
+        Q("mass_fraction_m2", "m_2/M", "1", "mass fraction of body 2"),
+        Q("body_tracks/r1", r"\mathbf{r}_1", "m", "track of body 1 in the centre-of-mass "
+          "frame", ("t", "xy")),
+        Q("body_tracks/r2", r"\mathbf{r}_2", "m", "track of body 2 in the centre-of-mass "
+          "frame", ("t", "xy")),
+        Q("effective_potential_curve/r", "r", "m", "radii of the effective-potential curve",
+          ("curve_r",)),
+        Q("effective_potential_curve/potential", "V", "J", "potential V(r)", ("curve_r",)),
+        Q("effective_potential_curve/effective_potential", r"V_\mathrm{eff}", "J",
+          "effective potential V + L^2/(2 mu r^2)", ("curve_r",)),
+        Q("effective_potential_curve/circular_radius", "r_c", "m",
+          "radius of the circular orbit at this angular momentum"),
+        Q("effective_potential_curve/circular_energy", "E_c", "J",
+          "energy of the circular orbit at this angular momentum"),
+        # the Kepler problem's checks (V = -k/r, bound)
+        Q("kepler_orbit/x", "x", "m", "one orbit of the exact ellipse, x", ("orbit_sample",),
+          optional=True),
+        Q("kepler_orbit/y", "y", "m", "one orbit of the exact ellipse, y", ("orbit_sample",),
+          optional=True),
+        Q("eccentricity_vector", r"\mathbf{A}/(\mu k)", "1", "eccentricity vector", ("xy",),
+          optional=True),
+        Q("kepler_position_error", r"|\mathbf{r} - \mathbf{r}_\mathrm{Kepler}|", "m",
+          "distance to the solution of Kepler's equation", ("t",), optional=True),
+        Q("kepler_position_error_max", r"\max|\mathbf{r} - \mathbf{r}_\mathrm{Kepler}|", "m",
+          "largest distance to the solution of Kepler's equation", optional=True),
+        Q("kepler_velocity_error_max", r"\max|\mathbf{v} - \mathbf{v}_\mathrm{Kepler}|", "m/s",
+          "largest velocity difference to the solution of Kepler's equation", optional=True),
+        Q("lrl_eccentricity_error", r"|\mathbf{A}|/(\mu k) - e", "1",
+          "change of the LRL vector's length", ("t",), optional=True),
+        Q("lrl_eccentricity_drift", r"\max||\mathbf{A}|/(\mu k) - e|", "1",
+          "largest change of the LRL vector's length", optional=True),
+        Q("period_measured", r"T_\mathrm{meas}", "s",
+          "period measured from pericentre passages", optional=True),
+        Q("semi_major_axis_measured", r"a_\mathrm{meas}", "m",
+          "semi-major axis (r_min + r_max)/2 measured", optional=True),
+        Q("period_measured_note", "", "", "why the period was not measured", kind="str",
+          optional=True),
+        # the apsidal angle (other potentials, bound)
+        Q("apsidal_angle_exact", r"\Delta\varphi", "rad", "apsidal angle by quadrature",
+          optional=True),
+        Q("apsidal_angle_near_circular", r"\pi/\sqrt{2 - n}", "rad",
+          "near-circular limit of the apsidal angle", optional=True),
+        Q("apsidal_angle_closed_form", r"\pi/\sqrt{1 - 2\mu\epsilon/L^2}", "rad",
+          "closed-form apsidal angle of V = -k/r - epsilon/r^2", optional=True),
+        Q("apsidal_angle_family/eccentricity", "e", "1",
+          "eccentricities of the apsidal-angle curve", ("family_e",), optional=True),
+        Q("apsidal_angle_family/angle", r"\Delta\varphi", "rad",
+          "exact apsidal angle against eccentricity at this L", ("family_e",), optional=True),
+        Q("apsidal_angle_note", "", "", "why the apsidal angle was not measured", kind="str",
+          optional=True),
+        Q("apsidal_angle_measured", r"\Delta\varphi_\mathrm{meas}", "rad",
+          "apsidal angle measured from the run", optional=True),
+        Q("pericentre_times", r"t_p", "s", "times of the pericentre passages",
+          ("pericentre",), optional=True),
+        Q("pericentre_positions/x", "x", "m", "pericentre passages, x", ("pericentre",),
+          optional=True),
+        Q("pericentre_positions/y", "y", "m", "pericentre passages, y", ("pericentre",),
+          optional=True),
+    ),
+)

@@ -1,0 +1,47 @@
+"""``fput`` config: the chain's size and stiffness, its initial state, presets."""
+
+from __future__ import annotations
+
+from pydantic import Field, model_validator
+
+from ...config import Positive, Real, RunConfig, Strict
+from ...scene.base import SceneConfig
+
+#: the largest number of stiff springs a config may ask for (2m masses)
+MAX_STIFF_SPRINGS = 50
+
+
+class Params(Strict):
+    m: int = Field(3, ge=1, le=MAX_STIFF_SPRINGS,
+                   description="number of stiff springs (2m masses)")
+    omega: Positive = Field(50.0, description="frequency ω of the stiff springs (dimensionless)")
+
+
+class Initial(Strict):
+    q: list[Real] | None = Field(None, description="initial positions q_1 … q_2m (default: "
+                                                   "GNI §I.5.1 data)")
+    p: list[Real] | None = Field(None, description="initial momenta p_1 … p_2m (default: "
+                                                   "GNI §I.5.1 data)")
+
+
+class FputConfig(SceneConfig):
+    params: Params = Params()
+    initial: Initial = Initial()
+    run: RunConfig
+
+    @model_validator(mode="after")
+    def _lengths(self):
+        n = 2 * self.params.m
+        for key in ("q", "p"):
+            values = getattr(self.initial, key)
+            if values is not None and len(values) != n:
+                raise ValueError(f"initial.{key}: must have 2m = {n} entries for params.m = "
+                                 f"{self.params.m} (got {len(values)})")
+        return self
+
+
+#: the classic cases, one line each (explicit keys override)
+PRESETS = {
+    "gni": {"params": {"m": 3, "omega": 50.0},
+            "run": {"t_end": 200.0, "samples": 4001}},
+}

@@ -1,0 +1,437 @@
+"""``heavy_top`` report: Fig. 4.3 and the nutation locus, f(u) and its roots, ℘, the
+effective potential, θ(t) against the closed form, steady precession, the sleeping-top
+sweep, the conserved quantities, and a family's bands and loci."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ...lazy import lazy_module
+from ...scene.base import Section
+from ...scene.content import SectionContent, Table, fmt, fmt_err, member_text
+from ...scene.report import Report, kept_members
+from .config import BAND_CASES, MIN_SAMPLES_PER_PERIOD
+from .locus import FIG43_ELEVATION_DEG, locus_stretch
+from .results import SCHEMA
+
+plots = lazy_module("reportgen.kinds.heavy_top.plots")
+
+FORMULATION_TEXT = {
+    "reduced": "Lagrange's reduction: the nutation w = 1 − cos θ (ẅ = g′(w)/2, a polynomial) "
+               "and the quadratures φ, ψ; the body attitude follows from θ, φ, ψ",
+    "spin_free": "the frame that follows the axis without spinning (a quaternion and "
+                 "its angular velocity ⊥ the axis), turned by ω3 t",
+}
+
+
+#: swept config keys -> the declared result holding the member's value (axis labels)
+SWEPT_RESULTS = {"initial.theta": "theta0", "initial.theta_dot": "theta_dot0",
+                 "initial.phi_dot": "phi_dot0", "initial.omega3": "omega3",
+                 "band.omega3": "omega3", "band.theta_min": "band/theta_min",
+                 "band.theta_max": "band/theta_max"}
+
+
+class HeavyTopReport(Report):
+    """The heavy top's sections, drawn from the archive alone."""
+
+    schema = SCHEMA
+    family_sections = (
+        Section("nutation_family", "Nutation band and case across the family",
+                description="Each member's turning circles and case against the swept "
+                            "value; dashed: where the case changes between neighbours."),
+        Section("loci_family", "Nutation loci of the kept members",
+                description="The path of the symmetry axis of each kept member."),
+    )
+    sections = (
+        Section("fig4_3", "Fig. 4.3: loops, waves and cusps on one band", integrates=True),
+        Section("nutation_locus", "Nutation locus of the symmetry axis", integrates=True),
+        Section("cubic", "The cubic f(u), its roots, nutation period and precession"),
+        Section("weierstrass", "u(t) through Weierstrass's ℘ (exercise 4.10)"),
+        Section("effective_potential", "Effective potential"),
+        Section("time_series", "θ(t) and φ̇(t) against the closed form", integrates=True),
+        Section("steady_precession", "Steady precession"),
+        Section("sleeping_sweep", "The sleeping top across its threshold"),
+        Section("invariants", "Conserved quantities", integrates=True),
+        Section("error_vs_runtime", "Error against run time", integrates=True),
+    )
+
+    @classmethod
+    def default_sections(cls, data):
+        names = [s.name for s in cls.sections]
+        a = data.analysis
+        band = a.get("band")
+        if band is None or band["case"] != "all":
+            names.remove("fig4_3")
+        else:  # Fig. 4.3 shows the three loci; the sections that follow describe loops
+            for name in ("nutation_locus", "effective_potential", "time_series"):
+                names.remove(name)
+        if "weierstrass" not in a or "sleeping_sweep" in a:
+            names.remove("weierstrass")  # no nutation, or a scene about the threshold
+        initial = data.config.get("initial") or {}
+        if a["case"] != "steady" and initial.get("steady") is None:
+            names.remove("steady_precession")
+        if "sleeping_sweep" not in a:
+            names.remove("sleeping_sweep")
+        if a["case"] == "sleeping" and "effective_potential" in names:
+            names.remove("effective_potential")  # V'(θ) is flat-infinite at θ = 0 with b = a
+        return names
+
+    @classmethod
+    def headline(cls, data):
+        p = data.config.params
+        a = data.analysis
+        band = a.get("band")
+        facts = [("parameters", f"I1 = {fmt(p.I1)} kg m², I3 = {fmt(p.I3)} kg m², "
+                                f"M g l = {fmt(p.Mgl)} J")]
+        if band is not None:
+            facts.append(("band asked for", f"θmin = {fmt(band['theta_min'])} rad, θmax = "
+                          f"{fmt(band['theta_max'])} rad, case = {band['case']}"))
+            for name in [n for n in (*BAND_CASES, "main") if n in band["runs"]]:
+                run = band["runs"][name]
+                label = "released on θmin" if name == "main" else f"{name}: released on θmin"
+                facts.append((label, f"θ̇0 = 0, φ̇0 = {fmt(run['phi_dot0'])} rad/s, ω3 = "
+                                     f"{fmt(run['omega3'])} rad/s → {run['case']}, θ1 − θmin = "
+                              f"{fmt_err(run['theta1'] - band['theta_min'])}, θ2 − θmax = "
+                              f"{fmt_err(run['theta2'] - band['theta_max'])}"))
+            if band["case"] == "all":
+                facts.append(("sections below Fig. 4.3", "the loops run (/runs/main is "
+                                                         "/runs/loops)"))
+        else:
+            facts.append(("initial state", f"θ0 = {fmt(a['theta0'])} rad, θ̇0 = "
+                          f"{fmt(a['theta_dot0'])} rad/s, φ̇0 = {fmt(a['phi_dot0'])} rad/s, "
+                          f"ω3 = {fmt(a['omega3'])} rad/s"))
+        facts.append(("case", f"{a['case']} (a = {fmt(a['a'])}, b = {fmt(a['b'])}, "
+                              f"b/a = {fmt(a['b_over_a'])}; u1 = {fmt(a['u1'])}, "
+                              f"u2 = {fmt(a['u2'])})"))
+        if math.isfinite(a["nutation_period"]):
+            extra = " (small-oscillation limit, k² = 0)" if a["case"] in ("steady",
+                                                                          "sleeping") else ""
+            facts.append(("nutation period", f"{fmt(a['nutation_period'], 14)} s{extra}"))
+        if math.isfinite(a["precession_per_period"]):
+            facts.append(("precession per nutation period",
+                          f"{fmt(a['precession_per_period'], 14)} rad"))
+        if "weierstrass_max_difference" in a:
+            facts.append(("℘ form against sn² form", "max |u℘ − u_sn²| = "
+                          f"{fmt_err(a['weierstrass_max_difference'])} on the output grid"))
+        facts.append(("sleeping-top threshold", f"ω3 = 2√(I1 M g l)/I3 = "
+                      f"{fmt(a['sleeping_threshold_omega3'])} rad/s (10.50)"))
+        formulation = data.runs["main"].attrs.get("formulation")
+        if formulation in FORMULATION_TEXT:  # archives before it was stored: spin-free
+            facts.append(("integrated", f"{FORMULATION_TEXT[formulation]} "
+                                        f"({data.runs['main'].attrs.get('formulation_reason')})"))
+        return facts
+
+    @classmethod
+    def section_fig4_3(cls, data):
+        """The three band runs as Fig. 4.3 is printed, and a table of what each achieved."""
+        band = data.analysis["band"]
+        loci, labels, azimuths = [], [], []
+        for letter, name in zip("abc", BAND_CASES, strict=True):
+            run, summary = data.runs[name], band["runs"][name]
+            stop = int(summary["locus_stop"])
+            loci.append(np.column_stack([run["axis_x"], run["axis_y"], run["axis_z"]])[:stop])
+            labels.append((f"({letter}) {summary['case']}",
+                           f"ω3 = {summary['omega3']:.4g} rad/s, dφ/dt(0) = "
+                           f"{summary['phi_dot0']:.3g} rad/s"))
+            azimuths.append(summary["view_azimuth"])
+        fig = plots.fig43(loci, theta1=band["theta_min"], theta2=band["theta_max"],
+                          labels=labels, azimuths=azimuths,
+                          elevation=math.radians(FIG43_ELEVATION_DEG))
+        rows = []
+        for name in BAND_CASES:
+            r = band["runs"][name]
+            roots = max(abs(r["theta1"] - band["theta_min"]), abs(r["theta2"] - band["theta_max"]))
+            span = max(abs(r["theta_min_measured"] - band["theta_min"]),
+                       abs(r["theta_max_measured"] - band["theta_max"]))
+            rows.append([f"{name} ({r['case']})", fmt(r["omega3"], 5), fmt(r["phi_dot0"], 5),
+                         f"{fmt(r['phi_dot_upper'], 3)} / {fmt(r['phi_dot_lower'], 3)}",
+                         f"{fmt_err(roots)} / {fmt_err(span)}", fmt(r["nutation_period"], 5),
+                         fmt(r["precession_per_period"], 5),
+                         fmt_err(r["weierstrass_max_difference"])])
+        table = Table(
+            caption=f"The three runs on θ ∈ [{fmt(band['theta_min'])}, {fmt(band['theta_max'])}] "
+                    f"rad: the case the solved release gives (classified from b/a and u1, u2), "
+                    f"φ̇ = (b − a cos θ)/sin²θ on the "
+                    f"two circles, how far the roots of f(u) and the extremes of the integrated "
+                    f"θ(t) are from the band (rad), and the ℘ form against the sn² form. "
+                    f"{band['possible_spins'][0].upper()}{band['possible_spins'][1:]}.",
+            header=["run (case)", "ω3 [rad/s]", "φ̇0 [rad/s]", "φ̇ on θ1 / θ2 [rad/s]",
+                    "band error: roots / run", "T [s]", "Δφ [rad]", "max |u℘ − u_sn²|"],
+            rows=rows)
+        periods = ", ".join(f"{band['runs'][n]['locus_periods']}" for n in BAND_CASES)
+        return SectionContent(
+            figures=[cls.figure("fig4_3", fig,
+                                f"The symmetry axis on the unit sphere between the turning "
+                                f"circles θ1 = {fmt(band['theta_min'])} rad and θ2 = "
+                                f"{fmt(band['theta_max'])} rad, seen from "
+                                f"{FIG43_ELEVATION_DEG:g}° above the horizon; dashed: "
+                                f"behind the sphere. Each locus starts on the "
+                                f"upper circle (dot) and runs {periods} nutation periods "
+                                f"(loops, waves, cusps).")],
+            tables=[table])
+
+    @classmethod
+    def section_nutation_family(cls, data):
+        sweep = data.sweep
+        a, ok = sweep.analysis, sweep.ok
+        path, x = next(iter(sweep.values.items()))
+        case = np.asarray(sweep.labels.get("case", np.full(sweep.size, "")), dtype=str)
+        threshold = a.get("sleeping_threshold_omega3")
+        swept_omega3 = path == "initial.omega3"
+        fig = plots.nutation_family(
+            x[ok], theta1=a["theta1"][ok], theta2=a["theta2"][ok], case=case[ok],
+            xlabel=cls.label(SWEPT_RESULTS[path]) if path in SWEPT_RESULTS else path,
+            precession=a["precession_per_period"][ok] if "precession_per_period" in a else None,
+            growth=a["sleeping_growth_rate"][ok] if "sleeping_growth_rate" in a else None,
+            threshold=float(np.nanmedian(threshold[ok])) if threshold is not None
+            and swept_omega3 else None)
+        names, counts = np.unique(case[ok], return_counts=True)
+        boundaries = plots._case_boundaries(x[ok], case[ok])
+        facts = [("cases", ", ".join(f"{n} {c}" for n, c in zip(names, counts, strict=True)))]
+        if boundaries:
+            facts.append(("case changes", "; ".join(f"{left} → {right} near {path} = "
+                                                   f"{fmt(at, 5)}" for at, left, right
+                                                   in boundaries)))
+        return SectionContent(figures=[cls.figure(
+            "nutation_family", fig, f"Turning circles θ1 (▼) and θ2 (▲) of each member against "
+            f"{path}, by case; the band between them shaded.")], facts=facts)
+
+    @classmethod
+    def section_loci_family(cls, data):
+        sweep = data.sweep
+        members = kept_members(data)
+        loci, theta1, theta2, labels, azimuths = [], [], [], [], []
+        a = sweep.analysis
+        case = sweep.labels.get("case", np.full(sweep.size, ""))
+        for i, name in members:
+            run = data.runs[name]
+            period = a["nutation_period"][i]
+            if not (np.isfinite(period) and period > 0):  # no nutation: the whole run
+                period = math.inf
+            stop, _, azimuth = locus_stretch(run, period, a["precession_per_period"][i])
+            loci.append(np.column_stack([run["axis_x"], run["axis_y"], run["axis_z"]])[:stop])
+            theta1.append(a["theta1"][i])
+            theta2.append(a["theta2"][i])
+            azimuths.append(azimuth)
+            labels.append((str(case[i]) or f"member {i}", member_text(sweep, i, short=True)))
+        fig = plots.loci_family(loci, theta1=theta1, theta2=theta2, labels=labels,
+                                azimuths=azimuths,
+                                elevation=math.radians(FIG43_ELEVATION_DEG))
+        return SectionContent(figures=[cls.figure(
+            "loci_family", fig, "The symmetry axis of each kept member on the unit sphere, "
+            "with its own turning circles θ1, θ2 (a few nutation periods from the release; "
+            "dashed: behind the sphere).")])
+
+    @classmethod
+    def section_nutation_locus(cls, data):
+        run = data.runs["main"]
+        a = data.analysis
+        axis = np.column_stack([run["axis_x"], run["axis_y"], run["axis_z"]])
+        fig = plots.nutation_locus(axis, run["theta"], theta1=a["theta1"], theta2=a["theta2"])
+        label = {"loops": "b/a inside (u1, u2): φ̇ changes sign, the axis loops (Fig. 4.3a)",
+                 "waves": "b/a outside [u1, u2]: φ̇ keeps its sign, the axis waves (Fig. 4.3b)",
+                 "cusps": "b/a = u2: φ̇ = 0 on the upper circle, cusps (Fig. 4.3c)",
+                 "steady": "u1 = u2: no nutation, steady precession on one circle",
+                 "sleeping": "the sleeping top: the axis stays vertical"}[a["case"]]
+        return SectionContent(
+            figures=[cls.figure("nutation_locus", fig,
+                                f"Path of the symmetry axis; dashed: the turning circles "
+                                f"θ1 = arccos u2 and θ2 = arccos u1. Case: {label}.")],
+            facts=[("case", a["case"]), ("θ1, θ2", f"{fmt(a['theta1'])} rad, "
+                                                   f"{fmt(a['theta2'])} rad")])
+
+    @classmethod
+    def section_cubic(cls, data):
+        a = data.analysis
+        cc = a["cubic_curve"]
+        if cc["variable"] == "w":
+            # near the vertical the interval is invisible on [−1, 1]: drawn against w = 1 − u
+            fig = plots.cubic(cc["x"], cc["f"], u1=cc["root1"], u2=cc["root2"], u3=cc["root3"],
+                              b_over_a=cc["ratio"], u0=cc["start"],
+                              xlabel="1 − u = 1 − cos θ  (near the vertical)",
+                              names=("1 − u2", "1 − u1", "1 − u3"), ratio_label="1 − b/a")
+        else:
+            fig = plots.cubic(cc["x"], cc["f"], u1=cc["root1"], u2=cc["root2"], u3=cc["root3"],
+                              b_over_a=cc["ratio"], u0=cc["start"])
+        rows = [
+            ["a = I3 ω3/I1 (10.25)", fmt(a["a"], 14), "1/s"],
+            ["b = p_φ/I1 (10.25)", fmt(a["b"], 14), "1/s"],
+            ["α = 2E'/I1 (10.30)", fmt(a["alpha"], 14), "1/s²"],
+            ["β = 2Mgl/I1 (10.30)", fmt(a["beta"], 14), "1/s²"],
+            ["u1, 1 − u1", f"{fmt(a['u1'], 14)}, {fmt(a['one_minus_u1'], 14)}", ""],
+            ["u2, 1 − u2", f"{fmt(a['u2'], 14)}, {fmt(a['one_minus_u2'], 14)}", ""],
+            ["u3", fmt(a["u3"], 14), ""],
+            ["k² = (u2 − u1)/(u3 − u1)", fmt(a["k2"], 14), ""],
+        ]
+        table = Table(caption="Constants of the motion and the roots of f(u)",
+                      header=["quantity", "value", "unit"], rows=rows)
+        per = []
+        for name, closed, quad, meas, unit in (
+                ("nutation period T", "nutation_period", "nutation_period_quadrature",
+                 "nutation_period_measured", "s"),
+                ("precession per period Δφ", "precession_per_period", "precession_quadrature",
+                 "precession_measured", "rad")):
+            ref = a[closed]
+            per.append([name + f" [{unit}]", fmt(ref, 14), fmt(a[quad], 14),
+                        fmt_err(abs(a[quad] / ref - 1)) if ref else "—", fmt(a[meas], 14),
+                        fmt_err(abs(a[meas] / ref - 1)) if ref else "—"])
+        table2 = Table(caption="Closed form (Carlson R_F, R_J) against quadrature of "
+                               "∮du/√f(u) and against the integrated trajectory",
+                       header=["quantity", "closed form", "quadrature", "rel. diff.",
+                               "measured", "rel. diff."], rows=per)
+        notes = []
+        if a["case"] in ("steady", "sleeping"):
+            notes.append("u1 = u2: f(u) has a double root, there is no nutation. The period "
+                         "shown is the small-oscillation limit k² → 0, 2π/√(β(u3 − u1)); "
+                         "nothing is measured.")
+        if a["case"] == "sleeping" and not a["sleeping_stable"]:
+            notes.append("Unstable sleeping top (u3 ≤ 1): no small-oscillation period (NaN).")
+        sens = a.get("period_sensitivity", math.nan)
+        if math.isfinite(sens) and sens > 1e-6:
+            notes.append(f"Ill-conditioned: an energy error as small as this run's own drift "
+                         f"changes the nutation period by {fmt_err(sens)} (relative). The "
+                         f"axis passes close to the vertical, where the roots near u = 1 are "
+                         f"set by differences of order θ² in E′ and p_φ; the measured values "
+                         f"can agree with the closed form only to about this level.")
+        if (not math.isfinite(a["nutation_period_measured"])
+                and a["case"] not in ("steady", "sleeping")):
+            notes.append(f"No measured period: the run covers fewer than two nutation periods "
+                         f"or stores fewer than {MIN_SAMPLES_PER_PERIOD} samples per "
+                         f"period.")
+        facts = [("sensitivity of T to an energy error of the run's drift",
+                  fmt_err(sens))] if math.isfinite(sens) else []
+        return SectionContent(
+            facts=facts,
+            figures=[cls.figure("f_of_u", fig, "f(u) = (1 − u²)(α − βu) − (b − au)² (10.31): "
+                                "the motion is confined to u1 ≤ u ≤ u2 where f ≥ 0; "
+                                "u3 > 1 is unphysical. Dashed: b/a, where φ̇ = 0.")],
+            tables=[table, table2], notes=notes)
+
+    @classmethod
+    def section_weierstrass(cls, data):
+        a = data.analysis
+        wp = a.get("weierstrass")
+        if wp is None:
+            return SectionContent(notes=["No nutation (u1 = u2): the cubic has a double root "
+                                         "and ℘ degenerates; nothing to show."])
+        fig = plots.weierstrass_rectangle(wp["omega"], wp["omega_prime"], wp["x0"], wp["t_end"])
+        rows = [
+            ["u = λ℘ + μ: λ = 4/β", fmt(wp["scale"], 14), ""],
+            ["μ = (u1 + u2 + u3)/3", fmt(wp["shift"], 14), ""],
+            ["g2 = 2(e1² + e2² + e3²)", fmt(wp["g2"], 14), "1/s⁴"],
+            ["g3 = 4 e1 e2 e3", fmt(wp["g3"], 14), "1/s⁶"],
+            ["e1 = ℘(ω) = β(u3 − μ)/4", fmt(wp["e1"], 14), "1/s²"],
+            ["e2 = ℘(ω + ω′) = β(u2 − μ)/4", fmt(wp["e2"], 14), "1/s²"],
+            ["e3 = ℘(ω′) = β(u1 − μ)/4", fmt(wp["e3"], 14), "1/s²"],
+            ["ω (real half-period)", fmt(wp["omega"], 14), "s"],
+            ["ω′/i (imaginary half-period)", fmt(wp["omega_prime"], 14), "s"],
+            ["x0: z(0) = x0 + ω′", fmt(wp["x0"], 14), "s"],
+            ["nome q = exp(iπω′/ω)", fmt(wp["nome"], 6), ""],
+        ]
+        table = Table(caption="Invariants, roots and half-periods of ℘ for this top",
+                      header=["quantity", "value", "unit"], rows=rows)
+        return SectionContent(
+            facts=[("max |u℘(t) − u_sn²(t)| on the output grid", fmt_err(wp["max_difference"])),
+                   ("2ω against 4K(k²)/√(β(u3 − u1))",
+                    fmt_err(abs(wp["period"] / a["nutation_period"] - 1.0)))],
+            figures=[cls.figure(
+                "weierstrass", fig,
+                "The period rectangle of ℘ with corners 0, 2ω, 2ω + 2ω′, 2ω′ (double poles of "
+                "℘ at the corners); ℘ is real on its edges and middle lines. The motion is the "
+                "line z = x0 + t + ω′, along which ℘ runs between e3 (u = u1, lower circle) and "
+                "e2 (u = u2, upper circle), one nutation period per 2ω. u℘(t) is stored on the "
+                "output grid as /runs/main/reference/cos_theta_weierstrass.")],
+            tables=[table])
+
+    @classmethod
+    def section_effective_potential(cls, data):
+        a = data.analysis
+        ep = a.get("effective_potential")
+        if ep is None:
+            return SectionContent(notes=["The sleeping top stays on the vertical, where "
+                                         "V'(θ) is not defined: nothing to draw."])
+        if ep["minus_Mgl"]:
+            fig = plots.effective_potential(ep["theta"], ep["V"], energy=ep["energy"],
+                                            theta1=a["theta1"], theta2=a["theta2"],
+                                            ylabel="V'(θ) − Mgl [J]")
+        else:
+            fig = plots.effective_potential(ep["theta"], ep["V"], energy=ep["energy"],
+                                            theta1=a["theta1"], theta2=a["theta2"])
+        return SectionContent(figures=[cls.figure(
+            "effective_potential", fig,
+            "V'(θ) = Mgl cos θ + I1 (b − a cos θ)²/(2 sin²θ) (10.28) and the energy E' = "
+            "E − I3ω3²/2: θ oscillates between the turning angles θ1 and θ2 where E' = V'.")])
+
+    @classmethod
+    def section_time_series(cls, data):
+        run = data.runs["main"]
+        a = data.analysis
+        err = a["cos_theta_error"]
+        relative = err["relative_to_width"]
+        fig = plots.time_series(run.t, run["theta"], run.reference["theta"], run["phi_dot"],
+                                err["difference"], theta1=a["theta1"], theta2=a["theta2"],
+                                error_label="|Δcos θ| / (u2 − u1)" if relative
+                                else "|cos θ − closed form|")
+        return SectionContent(
+            figures=[cls.figure("time_series", fig,
+                                "θ(t) of the integrated attitude against the closed form "
+                                "cos θ = u1 + (u2 − u1) sn²(λt + τ0 | k²), λ = ½√(β(u3 − u1)); "
+                                "φ̇(t) = (b − a cos θ)/sin²θ (10.26); and the difference in "
+                                "cos θ.")],
+            facts=[("max |cos θ − closed form|", fmt_err(a["u_max_error"]))])
+
+    @classmethod
+    def section_steady_precession(cls, data):
+        a = data.analysis
+        sr = a["steady_rates"]
+        fig = plots.steady_rates(sr["omega3"], sr["slow"], sr["fast"],
+                                 omega3_min=sr["omega3_min"],
+                                 omega3_config=data.analysis["omega3"],
+                                 rate_config=a["phi_dot0"], rate_measured=a["mean_phi_dot"])
+        table = Table(caption="Steady precession at θ0 (10.45)",
+                      header=["root", "φ̇ [rad/s]"],
+                      rows=[["slow  2Mgl/(I3ω3 + √D)", fmt(a["steady_rate_slow"], 14)],
+                            ["fast  (I3ω3 + √D)/(2 I1 cos θ0)", fmt(a["steady_rate_fast"], 14)],
+                            ["mean φ̇ of the integration", fmt(a["mean_phi_dot"], 14)]])
+        return SectionContent(
+            figures=[cls.figure("steady_rates", fig,
+                                "The two steady precession rates φ̇ = [I3ω3 ± √(I3²ω3² − "
+                                "4I1Mgl cos θ0)]/(2I1 cos θ0) (10.45) against the spin; they "
+                                "exist only for I3²ω3² ≥ 4I1Mgl cos θ0 (10.46).")],
+            tables=[table])
+
+    @classmethod
+    def section_sleeping_sweep(cls, data):
+        sw = data.analysis.get("sleeping_sweep")
+        if sw is None:
+            return SectionContent(notes=["No sweep: the config has no [sleeping] table."])
+        fig = plots.sleeping_sweep(sw["t"], sw["theta"], sw["omega3_over_threshold"],
+                                   theta_max=sw["theta_max"])
+        rows = [[fmt(float(x)), fmt(float(w)),
+                 "stable" if x > 1 else ("marginal" if x == 1 else "unstable"),
+                 fmt(float(g)), fmt_err(float(m))]
+                for x, w, g, m in zip(sw["omega3_over_threshold"], sw["omega3"],
+                                      sw["growth_rate"], sw["theta_max"], strict=True)]
+        table = Table(caption=f"Tops started at a tilt of {fmt(sw['tilt'])} rad at rest "
+                              f"(threshold ω3 = {fmt(data.analysis['sleeping_threshold_omega3'])}"
+                              f" rad/s)",
+                      header=["ω3 / threshold", "ω3 [rad/s]", "(10.50)",
+                              "linear growth rate ½√(2β − a²) [1/s]", "largest tilt [rad]"],
+                      rows=rows)
+        return SectionContent(
+            figures=[cls.figure("sleeping_sweep", fig,
+                                "Below ω3² = 4I1Mgl/I3² (10.50) a small tilt grows "
+                                "exponentially to order one; above it the tilt stays of the "
+                                "order of its initial value.")],
+            tables=[table])
+
+    @classmethod
+    def section_invariants(cls, data):
+        return cls.invariants_section(
+            data, labels={"energy": "energy E", "p_phi": "p_φ = L·ẑ", "p_psi": "p_ψ = I3 ω3"},
+            caption="Drift of E, p_φ and p_ψ relative to their natural sizes." + (
+                " The reduced equations hold p_φ and p_ψ constant by construction (only "
+                "round-off shows): here the energy's drift measures the integration error."
+                if data.runs["main"].attrs.get("formulation") == "reduced" else ""))

@@ -1,0 +1,121 @@
+"""``inertia`` report: the tensor and its principal axes with the inertia ellipsoid, the
+parallel-axis shift and the stability table (:func:`stability_table_section`, shared with
+``rigid_body``'s report)."""
+
+from __future__ import annotations
+
+from ...lazy import lazy_module
+from ...scene.base import Section
+from ...scene.content import SectionContent, Table, fmt, fmt_err
+from ...scene.report import Report
+from .results import SCHEMA
+
+plots = lazy_module("reportgen.plots.rigid_body")
+
+
+class InertiaReport(Report):
+    """The inertia kind's sections, drawn from the archive alone."""
+
+    schema = SCHEMA
+    sections = (
+        Section("tensor", "Inertia tensor and principal axes"),
+        Section("parallel_axis", "Parallel-axis shift"),
+        Section("stability", "Stability of free spin about each principal axis"),
+    )
+
+    @classmethod
+    def default_sections(cls, data):
+        names = [s.name for s in cls.sections]
+        if "parallel_axis" not in data.analysis:
+            names.remove("parallel_axis")
+        return names
+
+    @classmethod
+    def headline(cls, data):
+        a = data.analysis
+        m = a["principal_moments"]
+        verdicts = [a["axis_stability"][f"axis_{k + 1}"]["verdict"] for k in range(3)]
+        return [("body", a["shape"]),
+                ("principal moments", ", ".join(f"{fmt(x)}" for x in m) + " kg m²"),
+                ("spin stability", ", ".join(f"I{k + 1}: {v}" for k, v in enumerate(verdicts)))]
+
+    @classmethod
+    def section_tensor(cls, data):
+        a = data.analysis
+        T, m, ax = a["tensor"], a["principal_moments"], a["principal_axes"]
+        tensor = Table(caption="Inertia tensor about the centre of mass, lab frame [kg m²]",
+                       header=["", "x", "y", "z"],
+                       rows=[[c] + [fmt(float(v)) for v in T[i]] for i, c in
+                             enumerate("xyz")])
+        principal = Table(caption="Principal moments (ascending) and axes (lab-frame unit "
+                                  "vectors) from diagonalization",
+                          header=["axis", "moment [kg m²]", "direction"],
+                          rows=[[f"{k + 1}", fmt(float(m[k]), 12),
+                                 "(" + ", ".join(f"{float(v):+.6f}" for v in ax[:, k]) + ")"]
+                                for k in range(3)])
+        ell = a["inertia_ellipsoid"]
+        pts = a.get("points")
+        fig = plots.inertia_ellipsoid(m, ax, ell["surface"], ell["semi_axes"],
+                                      points=pts["positions"] if pts else None,
+                                      masses=pts["masses"] if pts else None)
+        notes = []
+        if "closed_form" in a:
+            cf = a["closed_form"]
+            notes.append(f"Closed form: {cf['source']}; largest relative difference of the "
+                         f"diagonalized moments: {fmt_err(cf['max_relative_difference'])}.")
+        return SectionContent(
+            figures=[cls.figure("inertia_ellipsoid", fig,
+                                "Inertia ellipsoid Σ I_k x_k² = 1 (semi-axes 1/√I_k) with the "
+                                "principal axes; points shown where the body is a point set.")],
+            tables=[tensor, principal], notes=notes)
+
+    @classmethod
+    def section_parallel_axis(cls, data):
+        p = data.analysis["parallel_axis"]
+        T = p["tensor"]
+        return SectionContent(tables=[
+            Table(caption=f"Tensor about ({', '.join(fmt(float(x)) for x in p['about'])}) by "
+                          "(8.49): I = I_cm + M(d² 1 − d dᵀ) [kg m²]",
+                  header=["", "x", "y", "z"],
+                  rows=[[c] + [fmt(float(v)) for v in T[i]] for i, c in enumerate("xyz")]),
+            Table(caption="Principal moments and axes about that point",
+                  header=["axis", "moment [kg m²]", "direction"],
+                  rows=[[f"{k + 1}", fmt(float(p["principal_moments"][k]), 12),
+                         "(" + ", ".join(f"{float(v):+.6f}" for v in p["principal_axes"][:, k])
+                         + ")"] for k in range(3)])])
+
+    @classmethod
+    def section_stability(cls, data):
+        return stability_table_section(data.analysis)
+
+
+def stability_table_section(analysis: dict) -> SectionContent:
+    """Table of the linear stability of free rotation about each principal axis, from an
+    archive's ``analysis`` alone (shared by ``inertia`` and ``rigid_body``).
+
+    Reads ``axis_stability/axis_<k>`` (verdict, growth_rate, oscillation_frequency and,
+    from ``rigid_body``, growth_rate_jacobian), ``principal_moments`` and, when the rates
+    are for a given spin rather than per unit spin, ``spin`` [rad/s].
+    """
+    stability = analysis["axis_stability"]
+    moments = analysis["principal_moments"]
+    spin = analysis.get("spin")
+    rows = []
+    unit = "1/s" if spin is not None else "× Ω"
+    for k in range(3):
+        s = stability[f"axis_{k + 1}"]
+        rate = s["growth_rate"] if s["verdict"] == "unstable" else s["oscillation_frequency"]
+        what = "growth rate" if s["verdict"] == "unstable" else "wobble frequency"
+        row = [f"{k + 1}", fmt(float(moments[k])), s["verdict"], f"{what}: {fmt(float(rate))}"
+               f" {unit}"]
+        if "growth_rate_jacobian" in s:
+            row.append(fmt(float(s["growth_rate_jacobian"])))
+        rows.append(row)
+    header = ["axis", "moment [kg m²]", "verdict", "rate (10.12)–(10.14)"]
+    if rows and len(rows[0]) == 5:
+        header.append("max Re λ of the Jacobian [1/s]")
+    return SectionContent(tables=[Table(
+        caption="Free rotation about each principal axis, linearized (10.12)–(10.14)"
+                + ("" if spin is None else f" at spin Ω = {fmt(spin)} rad/s")
+                + ": unstable about the intermediate axis with growth Ω√((I2−I1)(I3−I2)/(I1 I3))",
+        header=header, rows=rows)])

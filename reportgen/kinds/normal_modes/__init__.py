@@ -1,0 +1,30 @@
+r"""``normal_modes``: small oscillations about a stable equilibrium (lecture notes ch. 5, §5.1).
+
+The generalized eigenproblem A η = ω² M η for a system given as matrices, as a
+molecule (atoms, bond stretches, angle bends; Fig. 5.1), as a chain of masses
+and springs or as coupled pendula.  Rigid-body zero modes are identified and
+projected out, vibrations counted (3n − 6 or 3n − 5) and classified, mode
+shapes drawn.  Nothing is integrated unless ``[evolve]`` asks for a time
+evolution, which is then done two ways: modal superposition (exact) and direct
+integration of M q̈ + A q = 0.
+
+Atom indices in ``[[bonds]]`` and ``[[angles]]`` are zero-based.
+"""
+
+from __future__ import annotations
+
+from .config import PRESETS, NormalModesConfig
+from .report import NormalModesReport
+from .simulation import NormalModesSimulation
+
+
+class NormalModesScene(NormalModesSimulation, NormalModesReport):
+    kind = "normal_modes"
+    order = 80
+    summary = ("small oscillations A η = ω² M η of [[atoms]] with [[bonds]] and [[angles]] "
+               "(zero-based atom indices), or top-level M and A matrices, a [chain] or "
+               "[pendula]; rigid-body zero modes, 3n−6/3n−5 vibrations, mode shapes; "
+               "[evolve] (displacement, t_end) adds a time evolution")
+    Config = NormalModesConfig
+    presets = PRESETS
+    faces = frozenset({"simulation", "report"})

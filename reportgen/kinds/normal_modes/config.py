@@ -1,0 +1,266 @@
+"""``normal_modes`` config: the system (a molecule, M and A, a chain or coupled pendula),
+the optional time evolution, presets.
+
+Atom indices in ``[[bonds]]`` and ``[[angles]]`` are zero-based.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Literal
+
+import numpy as np
+from pydantic import Field, model_validator
+
+from ...config import Positive, Real, Strict
+from ...lazy import lazy_module
+from ...scene.base import SceneConfig
+
+core = lazy_module("reportgen.core.normal_modes")
+geometry = lazy_module("reportgen.core.molecule_geometry")  # no scipy: validation uses it
+
+#: ω_max / ω_min (non-zero) at or above which direct integration is treated as stiff
+STIFF_RATIO = 1e3
+#: mode-shape panels drawn for a chain, row of pendula or matrix system (the lowest modes)
+SHAPES_SHOWN = 8
+
+
+class Atom(Strict):
+    element: str | None = Field(None, description="chemical symbol; sets the mass if `mass` "
+                                                    "is not given [u]")
+    mass: Positive | None = Field(None, description="mass (overrides the element's) [u or kg]")
+    position: list[Real] = Field(description="equilibrium position [x, y, z] [Å or m]")
+
+
+class Bond(Strict):
+    atoms: list[int] = Field(description="[i, j], zero-based atom indices")
+    k: Positive = Field(description="stretch constant, V = ½ k (r − r0)²")
+
+
+class Angle(Strict):
+    atoms: list[int] = Field(description="[i, j, l], zero-based, j the vertex")
+    k: Positive = Field(description="bend constant, V = ½ k (θ − θ0)² [energy/rad²]")
+
+
+class Chain(Strict):
+    n: int = Field(ge=1, le=400, description="number of masses N")
+    m: Positive = Field(1.0, description="mass of each bead")
+    k: Positive = Field(1.0, description="spring constant of each spring")
+    ends: Literal["fixed", "free"] = Field("fixed", description="fixed (walls) or free ends")
+
+
+class Pendula(Strict):
+    n: int = Field(2, ge=1, le=400, description="number of pendula")
+    m: Positive = Field(1.0, description="bob mass [kg]")
+    l: Positive = Field(1.0, description="length [m]")
+    g: Positive = Field(9.81, description="gravitational acceleration [m/s²]")
+    k: Positive = Field(description="coupling spring between neighbouring bobs [N/m]")
+
+
+class Evolve(Strict):
+    displacement: list[Real] | list[list[Real]] = Field(
+        description="initial displacement from equilibrium: one number per coordinate, or "
+                    "[dx, dy, dz] per atom")
+    velocity: list[Real] | list[list[Real]] | None = Field(
+        None, description="initial velocity (same shape; default at rest)")
+    t_end: Positive = Field(description="end time of the evolution")
+
+
+def flat_values(value) -> list[float] | None:
+    if value is None:
+        return None
+    if value and isinstance(value[0], list):
+        return [float(x) for row in value for x in row]
+    return [float(x) for x in value]
+
+
+def system_of(config) -> str:
+    """Which way ``config`` (the validated config, or an archive's resolved one) gives the
+    system: molecule, chain, pendula or matrices."""
+    return ("molecule" if config.atoms else "chain" if config.chain is not None
+            else "pendula" if config.pendula is not None else "matrices")
+
+
+class NormalModesConfig(SceneConfig):
+    atoms: list[Atom] = Field([], description="the molecule's atoms (zero-based indices)")
+    bonds: list[Bond] = []
+    angles: list[Angle] = []
+    M: list[list[Real]] | None = Field(None, description="kinetic (mass) matrix, symmetric "
+                                                         "positive definite")
+    A: list[list[Real]] | None = Field(None, description="potential Hessian at equilibrium")
+    chain: Chain | None = None
+    pendula: Pendula | None = None
+    evolve: Evolve | None = None
+
+    @model_validator(mode="before")
+    @classmethod
+    def _run_from_evolve(cls, data: Any):
+        """[run] settings of the evolution: [evolve].t_end plus an optional [run] table."""
+        if not isinstance(data, dict):
+            return data
+        evolve, run = data.get("evolve"), data.get("run")
+        if isinstance(evolve, dict) and "t_end" in evolve and (run is None or isinstance(run, dict)):
+            run = dict(run or {})
+            run.setdefault("t_end", evolve["t_end"])
+            data = {**data, "run": run}
+        return data
+
+    @model_validator(mode="after")
+    def _physics(self):
+        sources = [name for name, present in (
+            ("atoms", bool(self.atoms)), ("M/A", self.M is not None or self.A is not None),
+            ("chain", self.chain is not None), ("pendula", self.pendula is not None)) if present]
+        if len(sources) != 1:
+            raise ValueError("atoms / M and A / chain / pendula: give exactly one system "
+                             f"(got {', '.join(sources) or 'none'})")
+        if (self.bonds or self.angles) and not self.atoms:
+            raise ValueError("bonds / angles: need [[atoms]]")
+        if self.run is not None and self.evolve is None:
+            raise ValueError("run: a normal-mode scene integrates only a time evolution; "
+                             "[run] needs an [evolve] table")
+        if self.evolve is not None and self.run.t_end != self.evolve.t_end:
+            raise ValueError(f"run.t_end: must equal evolve.t_end (got {self.run.t_end} and "
+                             f"{self.evolve.t_end}); give it once, in [evolve]")
+        if self.atoms:
+            self._check_molecule()
+        elif sources == ["M/A"]:
+            self._check_matrices()
+        if self.evolve is not None:
+            n = self.n_coordinates
+            for key in ("displacement", "velocity"):
+                value = getattr(self.evolve, key)
+                if value is None:
+                    continue
+                nested = bool(value) and isinstance(value[0], list)
+                if nested and (not self.atoms or any(len(r) != 3 for r in value)
+                               or len(value) != len(self.atoms)):
+                    raise ValueError(f"evolve.{key}: nested form needs one [dx, dy, dz] per atom "
+                                     f"({len(self.atoms)} atoms)")
+                if len(flat_values(value)) != n:
+                    raise ValueError(f"evolve.{key}: expected {n} numbers (one per coordinate), "
+                                     f"got {len(flat_values(value))}")
+            if not any(flat_values(self.evolve.displacement)) and not any(
+                    flat_values(self.evolve.velocity) or [0.0]):
+                raise ValueError("evolve.displacement: all zero and no velocity: nothing moves")
+        return self
+
+    @property
+    def n_coordinates(self) -> int:
+        if self.atoms:
+            return 3 * len(self.atoms)
+        if self.chain is not None:
+            return self.chain.n
+        if self.pendula is not None:
+            return self.pendula.n
+        return len(self.M)
+
+    def _check_molecule(self):
+        n = len(self.atoms)
+        if n < 2:
+            raise ValueError(f"atoms: need at least 2 atoms (got {n})")
+        for a, atom in enumerate(self.atoms):
+            if len(atom.position) != 3:
+                raise ValueError(f"atoms[{a}].position: must be [x, y, z] "
+                                 f"(got {len(atom.position)} numbers)")
+            if atom.mass is None:
+                if atom.element is None:
+                    raise ValueError(f"atoms[{a}]: give `mass` or `element`")
+                if atom.element not in geometry.ELEMENT_MASSES:
+                    raise ValueError(f"atoms[{a}].element: unknown element {atom.element!r} "
+                                     f"(known: {', '.join(geometry.ELEMENT_MASSES)}; or give `mass`)")
+        x = np.array([a.position for a in self.atoms], dtype=float)
+        size = max(float(np.max(np.ptp(x, axis=0))), 1e-300)
+        for a in range(n):
+            for b in range(a):
+                if np.linalg.norm(x[a] - x[b]) <= 1e-9 * size:
+                    raise ValueError(f"atoms[{a}].position: same position as atoms[{b}]")
+        seen = set()
+        for i, bond in enumerate(self.bonds):
+            self._check_indices(f"bonds[{i}].atoms", bond.atoms, 2, n)
+            key = frozenset(bond.atoms)
+            if key in seen:
+                raise ValueError(f"bonds[{i}].atoms: bond {bond.atoms} given twice")
+            seen.add(key)
+        seen = set()
+        for i, angle in enumerate(self.angles):
+            self._check_indices(f"angles[{i}].atoms", angle.atoms, 3, n)
+            a, j, b = angle.atoms
+            key = (j, frozenset((a, b)))
+            if key in seen:
+                raise ValueError(f"angles[{i}].atoms: angle {angle.atoms} given twice")
+            seen.add(key)
+            if geometry.bond_angle(x, a, j, b) < 1e-6:
+                raise ValueError(f"angles[{i}].atoms: θ0 = 0 (atoms {a} and {b} on the same ray "
+                                 f"from vertex {j}); the bend is undefined")
+
+    @staticmethod
+    def _check_indices(key: str, idx: list[int], count: int, n: int):
+        if len(idx) != count:
+            raise ValueError(f"{key}: needs {count} atom indices (got {len(idx)})")
+        for i in idx:
+            if not 0 <= i < n:
+                raise ValueError(f"{key}: index {i} out of range ({n} atoms; indices are "
+                                 "zero-based)")
+        if len(set(idx)) != count:
+            raise ValueError(f"{key}: repeated atom index in {idx}")
+
+    def _check_matrices(self):
+        if self.M is None or self.A is None:
+            raise ValueError("M / A: give both matrices")
+        mats = {}
+        for key in ("M", "A"):
+            rows = getattr(self, key)
+            n = len(rows)
+            if n == 0 or any(len(r) != n for r in rows):
+                raise ValueError(f"{key}: must be a square matrix (list of equal-length rows)")
+            mat = np.array(rows, dtype=float)
+            if not np.allclose(mat, mat.T, rtol=1e-12, atol=1e-12 * np.max(np.abs(mat))):
+                i, j = np.unravel_index(np.argmax(np.abs(mat - mat.T)), mat.shape)
+                raise ValueError(f"{key}: not symmetric ({key}[{i}][{j}] = {mat[i, j]} ≠ "
+                                 f"{key}[{j}][{i}] = {mat[j, i]})")
+            mats[key] = mat
+        if mats["M"].shape != mats["A"].shape:
+            raise ValueError(f"M / A: sizes differ ({len(self.M)} and {len(self.A)})")
+        d = np.linalg.eigvalsh(mats["M"])
+        if d.min() <= 0:
+            raise ValueError(f"M: not positive definite (smallest eigenvalue {d.min():.6g}); "
+                             "kinetic energy must be positive")
+        w = np.linalg.eigvalsh(np.linalg.solve(np.linalg.cholesky(mats["M"]),
+                                               np.linalg.solve(np.linalg.cholesky(mats["M"]),
+                                                               mats["A"]).T))
+        if w.min() < -core.ZERO_TOL * max(float(np.abs(w).max()), 1e-300):
+            raise ValueError(f"A: unstable equilibrium, ω² = {w.min():.6g} < 0 (A must be "
+                             "positive semidefinite: the equilibrium must be a minimum of V)")
+
+
+# --------------------------------------------------------------------------- presets
+_CO2 = {  # r(C=O) = 1.16 Å; k in mdyn/Å, k_θ in mdyn·Å/rad² (valence force field)
+    "title": "CO₂: a linear triatomic molecule (Fig. 5.1)",
+    "atoms": [{"element": "O", "position": [-1.16, 0.0, 0.0]},
+              {"element": "C", "position": [0.0, 0.0, 0.0]},
+              {"element": "O", "position": [1.16, 0.0, 0.0]}],
+    "bonds": [{"atoms": [0, 1], "k": 16.0}, {"atoms": [1, 2], "k": 16.0}],
+    "angles": [{"atoms": [0, 1, 2], "k": 0.57}],
+}
+_HALF = math.radians(104.5) / 2
+_H2O = {  # r(O–H) = 0.9572 Å, ∠HOH = 104.5°
+    "title": "H₂O: a bent triatomic molecule",
+    "atoms": [{"element": "H", "position": [-0.9572 * math.sin(_HALF), 0.9572 * math.cos(_HALF),
+                                            0.0]},
+              {"element": "O", "position": [0.0, 0.0, 0.0]},
+              {"element": "H", "position": [0.9572 * math.sin(_HALF), 0.9572 * math.cos(_HALF),
+                                            0.0]}],
+    "bonds": [{"atoms": [0, 1], "k": 8.45}, {"atoms": [1, 2], "k": 8.45}],
+    "angles": [{"atoms": [0, 1, 2], "k": 0.76}],
+}
+
+
+#: the classic cases, one line each (explicit keys override)
+PRESETS = {
+    "co2": _CO2,
+    "h2o": _H2O,
+    "chain": {"title": "Chain of equal masses between fixed walls",
+              "chain": {"n": 6, "m": 1.0, "k": 1.0, "ends": "fixed"}},
+    "coupled_pendula": {"title": "Two pendula coupled by a spring",
+                        "pendula": {"n": 2, "m": 1.0, "l": 1.0, "g": 9.81, "k": 0.5}},
+}

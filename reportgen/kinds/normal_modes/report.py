@@ -1,0 +1,273 @@
+"""``normal_modes`` report: the spectrum, the mode shapes, the counting of the modes and
+the time evolution, drawn from the archive alone."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ...lazy import lazy_module
+from ...scene.base import Section
+from ...scene.content import SectionContent, Table, fmt, fmt_err
+from ...scene.report import Report
+from ...scene.schema import ResultsSchema, unit_text
+from .config import SHAPES_SHOWN, STIFF_RATIO, system_of
+from .results import SCHEMA, schema_for
+
+plots = lazy_module("reportgen.kinds.normal_modes.plots")
+common_plots = lazy_module("reportgen.plots.common")
+
+
+class NormalModesReport(Report):
+    """The normal modes' sections; units follow the system's (:func:`schema_for`)."""
+
+    schema = SCHEMA
+    family_sections = (
+        Section("frequencies_family", "Eigenfrequencies across the family",
+                description="Each member's eigenfrequencies against the swept value, with "
+                            "the closed form where the system has one."),
+    )
+    sections = (
+        Section("spectrum", "Frequency spectrum",
+                description="eigenfrequencies ω of A η = ω² M η, ascending, with their types"),
+        Section("mode_shapes", "Mode shapes",
+                description="displacement pattern of every vibration, with phase snapshots"),
+        Section("counting", "Counting the modes",
+                description="rigid-body zero modes and the 3n−6 / 3n−5 vibrations"),
+        Section("evolution", "Time evolution: modal superposition against integration",
+                integrates=True),
+        Section("error_vs_runtime", "Error against run time", integrates=True),
+    )
+
+    @classmethod
+    def section_frequencies_family(cls, data):
+        sweep = data.sweep
+        path, x = next(iter(sweep.values.items()))
+        a, ok = sweep.analysis, sweep.ok
+
+        def spectrum(name):
+            cols = sorted((int(k.rsplit("_", 1)[1]), k) for k in a
+                          if k.rsplit("_", 1)[0] == name and k.rsplit("_", 1)[1].isdigit())
+            return [a[k][ok] for _, k in cols]
+
+        numeric, exact = spectrum("frequencies"), spectrum("frequencies_exact")
+        fig = common_plots.family_lines(x[ok], numeric, reference=exact or None,
+                                        xlabel=path, ylabel=cls._schema(data).label("frequencies"),
+                                        label="ω", reference_label="closed form")
+        facts = [("modes", str(len(numeric)))]
+        if exact:
+            worst = max(float(np.max(np.abs(n / e - 1))) for n, e in zip(numeric, exact,
+                                                                         strict=True))
+            facts.append(("max relative difference to the closed form", fmt_err(worst)))
+        return SectionContent(figures=[cls.figure(
+            "frequencies_family", fig, f"Eigenfrequencies ω_j of every member against {path}"
+            + ("; dashed: the closed form." if exact else "."))], facts=facts)
+
+    @classmethod
+    def default_sections(cls, data):
+        names = [s.name for s in cls.sections]
+        if data.analysis["source"] != "molecule":
+            names.remove("counting")
+        if "main" not in data.runs:
+            names = [n for n in names if n not in ("evolution", "error_vs_runtime")]
+        return names
+
+    @staticmethod
+    def _schema(data) -> ResultsSchema:
+        """The declared results in the units of this archive's system."""
+        return schema_for(system_of(data.config))
+
+    @staticmethod
+    def _vib(data):
+        a = data.analysis
+        z = int(a["n_zero_modes"])
+        return z, np.asarray(a["frequencies"])[z:], list(a["mode_type"])[z:]
+
+    @classmethod
+    def headline(cls, data):
+        a = data.analysis
+        z, w, types = cls._vib(data)
+        out = [("system", cls._describe(a)),
+               ("vibrations", f"{int(a['n_vibrational'])} of {int(a['n_dof'])} coordinates "
+                              f"({z} zero modes)")]
+        if w.size:
+            out.append(("frequencies ω", ", ".join(fmt(x, 6) for x in w[:8]) +
+                        (" …" if w.size > 8 else "")))
+        if "closed_form_max_rel_error" in a:
+            out.append(("max relative error against the closed form",
+                        fmt_err(a["closed_form_max_rel_error"])))
+        if "evolution_max_error" in a:
+            out.append(("evolution: max |q_direct − q_modal|", fmt_err(a["evolution_max_error"])))
+            if a.get("stiff"):
+                out.append(("stiffness", a["stiff_reason"]))
+        return out
+
+    @staticmethod
+    def _describe(a) -> str:
+        src = a["source"]
+        if src == "molecule":
+            n = len(a["masses"])
+            return (f"{'linear' if a['linear'] else 'non-linear'} molecule, {n} atoms, "
+                    f"{len(a['bonds'])} bonds, {len(a['angles'])} angles")
+        if src == "chain":
+            return f"chain of {int(a['n_dof'])} masses"
+        if src == "pendula":
+            return f"{int(a['n_dof'])} coupled pendula"
+        return f"M and A given ({int(a['n_dof'])} coordinates)"
+
+    @classmethod
+    def section_spectrum(cls, data):
+        a = data.analysis
+        z, w, types = cls._vib(data)
+        groups = np.asarray(a["degenerate_group"])[z:]
+        exact = a.get("frequencies_exact")
+        fig = plots.spectrum(w, types, groups, exact=None if exact is None else
+                             np.asarray(exact)[z:], unit=cls._omega_unit(data))
+        rows = []
+        w2 = np.asarray(a["omega_squared"])[z:]
+        for i, (wi, t) in enumerate(zip(w, types, strict=True)):
+            g = int(np.sum(groups == groups[i]))
+            row = [str(z + i + 1), fmt(wi, 10), fmt(w2[i], 10), t, str(g)]
+            if exact is not None:
+                ex = float(np.asarray(exact)[z + i])
+                row += [fmt(ex, 10), fmt_err(abs(wi - ex) / ex if ex else abs(wi))]
+            rows.append(row)
+        header = ["mode", "ω", "ω²", "type", "degeneracy"]
+        if exact is not None:
+            header += ["closed form", "relative error"]
+        facts = [("eigenproblem", "A η = ω² M η (scipy.linalg.eigh on the pair), ηᵀ M η = 1"),
+                 ("textbook three steps (diagonalize M, unit mass, diagonalize A′): max |Δω²|/ω²_max",
+                  fmt_err(a["three_step_max_difference"])),
+                 ("max |ηᵀ M η − 1|", fmt_err(a["orthonormality_error"]))]
+        if w.size > 1:
+            facts.append(("ω_max / ω_min", fmt(a["stiffness_ratio"], 6)))
+        if exact is not None:
+            facts.append(("closed form", str(a["closed_form_source"])))
+        return SectionContent(
+            figures=[cls.figure("spectrum", fig, "Vibrational frequencies; bar height is the "
+                                "degeneracy" + ("; hollow circles: closed form." if exact is not
+                                                None else "."))],
+            tables=[Table("Vibrational modes (zero modes omitted), ascending ω", header, rows)],
+            facts=facts)
+
+    @classmethod
+    def _omega_unit(cls, data) -> str:
+        """The frequencies' unit as printed: rad/s for a system given in SI, else per
+        time unit of the config's own units."""
+        return unit_text(cls._schema(data).result("frequencies").unit)
+
+    @classmethod
+    def _titles(cls, data):
+        z, w, types = cls._vib(data)
+        return [f"ω{z + i + 1} = {fmt(wi, 5)}: {t}" for i, (wi, t) in
+                enumerate(zip(w, types, strict=True))]
+
+    @classmethod
+    def section_mode_shapes(cls, data):
+        a = data.analysis
+        z, w, _ = cls._vib(data)
+        modes = np.asarray(a["modes"])[:, z:]
+        titles = cls._titles(data)
+        figs = []
+        src = a["source"]
+        if src == "molecule":
+            pos = np.asarray(a["drawing"]["positions"])
+            disps = list(np.asarray(a["drawing"]["displacements"]))
+            bonds = [tuple(b) for b in np.asarray(a["bonds"]).tolist()]
+            elems = list(a["elements"])
+            fig = plots.molecule_modes(pos[:, :2], a["masses"], elems, bonds, disps, titles)
+            figs.append(cls.figure("modes", fig, "Each vibration at equilibrium: arrows are the "
+                                   "mass-normalized displacement η (scaled to be visible); faint "
+                                   "atoms the extreme phases ωt = 0, π; ⊙/⊗ motion toward/away "
+                                   "from the viewer."))
+            shown = min(len(disps), 6)
+            snap = plots.molecule_snapshots(pos, a["masses"], elems, bonds, disps[:shown],
+                                            [f"ω{z + i + 1} = {fmt(w[i], 4)}"
+                                             for i in range(shown)])
+            figs.append(cls.figure("snapshots", snap, "Phase snapshots over half a period: "
+                                   "x(t) = x₀ + η cos ωt for ωt from 0 to π (faint: equilibrium)."))
+        elif src in ("chain", "pendula"):
+            shown = min(modes.shape[1], SHAPES_SHOWN)
+            waves = a.get("standing_waves")
+            exact = None if waves is None else (np.asarray(waves["s"]),
+                                                np.asarray(waves["amplitude"])[:, :shown])
+            fig = plots.chain_modes(modes[:, :shown], titles[:shown],
+                                    coordinate="q" if src == "chain" else "φ",
+                                    exact_shapes=exact)
+            cap = ("Mode shapes: amplitude of each " + ("mass" if src == "chain" else "pendulum") +
+                   (" (dashed: the standing wave sin(jsπ/(N+1)))." if exact is not None else "."))
+            if shown < modes.shape[1]:
+                cap += f" The {shown} lowest of {modes.shape[1]} modes are shown."
+            figs.append(cls.figure("modes", fig, cap))
+        else:
+            shown = min(modes.shape[1], SHAPES_SHOWN)
+            fig = plots.matrix_modes(modes[:, :shown], titles[:shown], list(a["coordinate_names"]))
+            figs.append(cls.figure("modes", fig, "Components of each mode η (normalized to the "
+                                   "largest)."))
+        return SectionContent(figures=figs)
+
+    @classmethod
+    def section_counting(cls, data):
+        a = data.analysis
+        n_atoms = len(a["masses"])
+        linear = bool(a["linear"])
+        z = int(a["n_zero_modes"])
+        rows = [["atoms n", str(n_atoms), ""],
+                ["coordinates 3n", str(3 * n_atoms), ""],
+                ["rigid translations", str(int(a["n_rigid_translations"])), "3"],
+                ["rigid rotations (rank of ω × r)", str(int(a["n_rigid_rotations"])),
+                 "2 (linear)" if linear else "3"],
+                ["zero modes found", str(z), str(int(a["expected_zero_modes"]))],
+                ["vibrations", str(int(a["n_vibrational"])),
+                 f"3n − {int(a['expected_zero_modes'])} = {int(a['expected_vibrational'])}"]]
+        if linear:
+            rows += [["longitudinal vibrations", str(int(a["n_longitudinal"])),
+                      f"n − 1 = {int(a['expected_longitudinal'])}"],
+                     ["transverse vibrations", str(int(a["n_transverse"])),
+                      f"2(n − 2) = {int(a['expected_transverse'])}"]]
+        notes = []
+        if int(a["n_floppy"]):
+            notes.append(f"{int(a['n_floppy'])} internal mode(s) have ω = 0: the force field "
+                         "does not hold the shape (add bonds or angles).")
+        return SectionContent(
+            tables=[Table("Counting: found against expected", ["quantity", "found", "expected"],
+                          rows)],
+            facts=[("max ‖A v‖ / (‖A‖ ‖v‖) over the rigid-body vectors",
+                    fmt_err(a["rigid_residual"])),
+                   ("symmetry operations found", str(int(a["n_symmetry_operations"])))],
+            notes=notes)
+
+    @classmethod
+    def section_error_vs_runtime(cls, data):
+        content = super().section_error_vs_runtime(data)
+        a = data.analysis
+        if a.get("stiff"):  # what the diagram shows only a stiff scene needs said
+            content.notes.insert(0, (
+                f"This scene is stiff (ω_max/ω_min = {a['stiffness_ratio']:.3g} ≥ "
+                f"{STIFF_RATIO:g}): explicit methods cannot step past the stability bound "
+                "set by the fastest mode, however loose the tolerance; implicit methods "
+                "(Gauss–Legendre, Radau) stay stable at any step, and at large steps their "
+                "error is the small amplitude of the unresolved fast mode."))
+        return content
+
+    @classmethod
+    def section_evolution(cls, data):
+        a = data.analysis
+        run = data.runs["main"]
+        n = int(a["n_dof"])
+        q_ref = np.column_stack([run.reference[c] for c in run.columns[:n]])
+        amp = np.max(np.abs(q_ref), axis=0)
+        show = [int(i) for i in np.argsort(-amp, kind="stable")[:min(3, n)] if amp[i] > 0]
+        show.sort()
+        unit = {"pendula": " [rad]", "molecule": " [length unit]"}.get(a["source"], "")
+        names = [run.columns[i].replace("phi", "φ") + unit for i in show]
+        fig = plots.evolution(run.t, run.y[:, show], q_ref[:, show], names,
+                              time_unit=unit_text(cls._schema(data).time.unit))
+        facts = [("method", f"{run.attrs.get('method')} ({run.attrs.get('method_reason', '')})"),
+                 ("max |q_direct − q_modal|", fmt_err(a["evolution_max_error"])),
+                 ("largest amplitude", fmt(a["evolution_amplitude"], 6)),
+                 ("stiffness", str(a["stiff_reason"]))]
+        return SectionContent(
+            figures=[cls.figure("evolution", fig, "Coordinates with the largest amplitude: direct "
+                                "integration of M q̈ + A q = 0 against the exact modal "
+                                "superposition; bottom: their largest difference.")],
+            facts=facts)

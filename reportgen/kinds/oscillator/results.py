@@ -1,0 +1,45 @@
+"""What an ``oscillator`` run stores: every result once, with its symbol and unit."""
+
+from __future__ import annotations
+
+from ...scene.schema import Quantity as Q
+from ...scene.schema import ResultsSchema
+
+SCHEMA = ResultsSchema(
+    columns=(
+        Q("q", "q", "m", "coordinate", ("t",)),
+        Q("p", "p", "kg m/s", "momentum", ("t",)),
+        # the swapped run integrates K(Q, P) = H(-P, Q): Q = p, P = -q (6.9)
+        Q("Q", "Q", "kg m/s", "new coordinate of the swap F1 = q Q (Q = p)", ("t",)),
+        Q("P", "P", "m", "new momentum of the swap F1 = q Q (P = -q)", ("t",)),
+    ),
+    invariants=(
+        Q("energy", "E", "J", "energy", ("t",)),
+    ),
+    analysis=(
+        Q("omega", r"\omega", "rad/s", "angular frequency"),
+        Q("period", "T", "s", "period 2 pi/omega"),
+        Q("energy", "E", "J", "energy of the initial state"),
+        Q("q_max_error", r"\max|q - q_\mathrm{exact}|", "m",
+          "largest coordinate error over the run"),
+        Q("p_max_error", r"\max|p - p_\mathrm{exact}|", "kg m/s",
+          "largest momentum error over the run"),
+        # mixes a momentum and a coordinate difference: the larger of the two SI numbers
+        Q("swap_max_difference", r"\max|(Q, P) - (p, -q)|", "1",
+          "larger of max|Q - p| (kg m/s) and max|P + q| (m): the integrated K orbit "
+          "against the image of the H orbit"),
+        Q("hj_energy", "E", "J", "Hamilton-Jacobi constant E at t = 0"),
+        Q("hj_beta", r"\beta", "s", "Hamilton-Jacobi constant beta = dS/dE at t = 0"),
+        Q("hj_beta_drift", r"\max|\beta(t) - \beta(0)|", "s",
+          "largest drift of beta along the integrated trajectory"),
+        Q("hj_q_max_difference", r"\max|q_\mathrm{HJ} - q|", "m",
+          "largest difference between the Hamilton-Jacobi solution and the integration"),
+        Q("poisson_bracket_QP", r"\{Q, P\}", "1", "Poisson bracket of the new pair"),
+        Q("hamilton_jacobi/energy", "E", "J",
+          "E evaluated along the integrated trajectory", ("t",)),
+        Q("hamilton_jacobi/beta", r"\beta", "s",
+          "beta evaluated along the integrated trajectory", ("t",)),
+        Q("hamilton_jacobi/q", r"q_\mathrm{HJ}", "m",
+          "Hamilton-Jacobi solution q(t) (7.38)", ("t",)),
+    ),
+)

@@ -1,0 +1,117 @@
+"""``oscillator`` simulation: Hamilton's equations against the closed form, the swapped
+Hamiltonian K(Q, P) = H(−P, Q) integrated, and the Hamilton–Jacobi constants along the
+integrated trajectory."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ...lazy import lazy_module
+from ...results import AuditCase, Check, Results
+from ...scene.simulation import Simulation
+from .config import OscillatorConfig
+from .results import SCHEMA
+
+core = lazy_module("reportgen.core.models.oscillator")
+
+
+class OscillatorSimulation(Simulation):
+    """H = p²/2m + m ω² q²/2 integrated, swapped (6.6–6.11) and solved by
+    Hamilton–Jacobi (7.33–7.38)."""
+
+    schema = SCHEMA
+    config: OscillatorConfig
+
+    @classmethod
+    def audit_cases(cls):
+        def case(name, m, omega, t_end, what, samples=2001):
+            return AuditCase(name=name, what=what, methods=("dop853", "yoshida8", "gauss6"),
+                             config={"kind": "oscillator", "title": name,
+                                     "params": {"m": m, "omega": omega},
+                                     "initial": {"q": 1.0, "p": 0.0},
+                                     "run": {"t_end": t_end, "samples": samples}})
+
+        return [
+            case("oscillator, 10⁴ periods at ω = 10⁴", 1.0, 1e4, 2 * math.pi,
+                 "fast oscillation sampled far below its period; long run", samples=20001),
+            case("oscillator with m = 1e-20 kg", 1e-20, 1.0, 50.0,
+                 "momentum scale 1e-20: absolute tolerances must not swamp it"),
+        ]
+
+    def closed_form(self, t):
+        """q(t), p(t) in closed form."""
+        p, ini = self.config.params, self.config.initial
+        return core.exact_solution(t, ini.q, ini.p, p.m, p.omega)
+
+    def models(self) -> list:
+        """The Hamilton model of H and the model of K(Q, P) = H(−P, Q) (the swapped run)."""
+        prm = self.config.params
+        return [core.hamilton_model(prm.m, prm.omega), core.swapped_model(prm.m, prm.omega)]
+
+    def simulate(self, progress=None) -> Results:
+        prm, ini, run = self.config.params, self.config.initial, self.config.run
+        t = np.linspace(0.0, run.t_end, run.samples)
+        n_periods = run.t_end * prm.omega / (2 * math.pi)
+        y0 = np.array([ini.q, ini.p])
+        e0 = float(core.energy(ini.q, ini.p, prm.m, prm.omega))
+
+        def invariants(_t, y):
+            return {"energy": core.energy(y[:, 0], y[:, 1], prm.m, prm.omega)}
+
+        def swapped_invariants(_t, y):  # K(Q, P) = H(q, p)
+            return {"energy": core.energy(-y[:, 1], y[:, 0], prm.m, prm.omega)}
+
+        results = Results()
+        model, swapped_model = self.models()
+        main = self.integrate(model, y0, t, invariants=invariants, progress=progress,
+                              n_periods=n_periods, invariant_scales={"energy": e0})
+        results.runs["main"] = main
+        q_ex, p_ex = self.closed_form(t)
+        main.reference = {"q": q_ex, "p": p_ex}
+        main.attrs["reference_label"] = "closed form"
+        Q0, P0 = core.swap(ini.q, ini.p)
+        swapped = self.integrate(swapped_model, np.array([Q0, P0]), t,
+                                 invariants=swapped_invariants, n_periods=n_periods,
+                                 invariant_scales={"energy": e0})
+        results.runs["swapped"] = swapped
+
+        # the image (Q, P) = (p, −q) of the integrated H orbit: what integrating K must give
+        Q, P = core.swap(main["q"], main["p"])
+        swapped.reference = {"Q": Q, "P": P}
+        swapped.attrs["reference_label"] = "(p, −q) of the integrated H orbit"
+        e, beta = core.hamilton_jacobi_constants(main["q"], main["p"], t, prm.m, prm.omega)
+        q_hj, p_hj = core.hamilton_jacobi_solution(t, e[0], beta[0], prm.m, prm.omega)
+        results.analysis.update({
+            "omega": prm.omega,
+            "period": 2 * math.pi / prm.omega,
+            "energy": e0,
+            "q_max_error": float(np.max(np.abs(main["q"] - q_ex))),
+            "p_max_error": float(np.max(np.abs(main["p"] - p_ex))),
+            "swap_max_difference": float(max(np.max(np.abs(swapped["Q"] - Q)),
+                                             np.max(np.abs(swapped["P"] - P)))),
+            "hj_energy": float(e[0]),
+            "hj_beta": float(beta[0]),
+            "hj_beta_drift": float(np.max(np.abs(beta - beta[0]))),
+            "hj_q_max_difference": float(np.max(np.abs(main["q"] - q_hj))),
+            "poisson_bracket_QP": 1.0,  # {Q, P}_(q,p) = ∂Q/∂q ∂P/∂p − ∂Q/∂p ∂P/∂q = 0 − (1)(−1)
+            # along the integrated trajectory, on the main run's grid: the new canonical pair
+            # (E, β) and q(t) of the Hamilton–Jacobi solution (7.38) from their initial values
+            "hamilton_jacobi": {"energy": e, "beta": beta, "q": q_hj},
+        })
+        # errors relative to the amplitudes: q or p itself passes through zero
+        q_amp, p_amp = math.sqrt(2 * e0 / (prm.m * prm.omega**2)), math.sqrt(2 * prm.m * e0)
+        results.checks.append(Check("q(t_end)", float(main["q"][-1]), float(q_ex[-1]), "m",
+                                    "closed form q0 cos ωt + p0/(mω) sin ωt", scale=q_amp))
+        results.checks.append(Check("p(t_end)", float(main["p"][-1]), float(p_ex[-1]), "kg·m/s",
+                                    "closed form p0 cos ωt − mωq0 sin ωt", scale=p_amp))
+        results.checks.append(Check("Q(t_end) from integrating K", float(swapped["Q"][-1]),
+                                    float(Q[-1]), "kg·m/s", "Q = p of the integrated H (6.9)",
+                                    scale=p_amp))
+        results.checks.append(Check("q(t_end) Hamilton–Jacobi", float(q_hj[-1]),
+                                    float(main["q"][-1]), "m", "integration of H (7.38)",
+                                    scale=q_amp))
+        self.study(results, model, y0, np.linspace(0.0, run.t_end, 201),
+                   reference=lambda ts: np.column_stack(self.closed_form(ts)))
+        return results

@@ -1,0 +1,74 @@
+"""``pendulum`` config: parameters, initial state, the boundary-value problem, presets."""
+
+from __future__ import annotations
+
+import math
+
+from pydantic import Field, model_validator
+
+from ...config import Positive, Real, RunConfig, Strict
+from ...lazy import lazy_module
+from ...scene.base import SceneConfig
+
+theory = lazy_module("reportgen.core.pendulum_theory")  # no numerics: validation uses it
+
+#: crossings are located reliably only with this many samples per period
+MIN_SAMPLES_PER_PERIOD = 16
+
+
+class Params(Strict):
+    g: Positive = Field(description="gravitational acceleration [m/s^2]")
+    l: Positive = Field(description="length of the pendulum [m]")
+    m: Positive = Field(1.0, description="bob mass [kg]")
+
+
+class Initial(Strict):
+    theta: Real = Field(description="initial angle from the downward vertical [rad]")
+    theta_dot: Real = Field(0.0, description="initial angular velocity [rad/s]")
+
+
+class Boundary(Strict):
+    """``[boundary]``: the linearised boundary-value problem (1.21)."""
+
+    theta0: Real = Field(description="θ(0) [rad]")
+    theta1: Real = Field(description="θ(T) [rad]")
+    T: Positive = Field(description="end time of the boundary-value problem [s]")
+
+
+class PendulumConfig(SceneConfig):
+    params: Params
+    initial: Initial
+    run: RunConfig
+    boundary: Boundary | None = None
+
+    @model_validator(mode="after")
+    def _physics(self):
+        omega0 = math.sqrt(self.params.g / self.params.l)
+        m1 = theory.complementary_parameter(self.initial.theta, self.initial.theta_dot, omega0)
+        if m1 == 0.0:
+            raise ValueError(
+                "initial.theta / initial.theta_dot: the state lies exactly on the separatrix "
+                "(k = 1, infinite period)"
+            )
+        if self.boundary is not None:
+            s = math.sin(omega0 * self.boundary.T)
+            if abs(s) < 1e-8:
+                raise ValueError(
+                    f"boundary.T: T = {self.boundary.T} is a multiple of π/ω0 = "
+                    f"{math.pi / omega0:.6g} s (a conjugate point: the linear boundary-value "
+                    "problem has no unique solution)"
+                )
+        return self
+
+
+#: the classic cases, one line each (explicit keys override)
+PRESETS = {
+    "small_angle": {"params": {"g": 9.81, "l": 1.0}, "initial": {"theta": 0.1},
+                    "run": {"t_end": 20.0}},
+    "large_amplitude": {"params": {"g": 9.81, "l": 1.0}, "initial": {"theta": 2.5},
+                        "run": {"t_end": 30.0}},
+    "near_separatrix": {"params": {"g": 9.81, "l": 1.0},
+                        "initial": {"theta": math.pi - 1e-3}, "run": {"t_end": 40.0}},
+    "rotation": {"params": {"g": 9.81, "l": 1.0},
+                 "initial": {"theta": 0.0, "theta_dot": 7.0}, "run": {"t_end": 10.0}},
+}

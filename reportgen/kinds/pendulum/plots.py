@@ -1,0 +1,111 @@
+"""Pendulum figures: phase portrait, period against amplitude, boundary-value solution."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ...plots.common import envelope
+from ...plots.style import (
+    CONTEXT,
+    HIGHLIGHT,
+    REFERENCE,
+    SEPARATRIX,
+    member_markers,
+    new_figure,
+    new_figure_grid,
+)
+
+
+def phase_portrait(theta, theta_dot, *, grid_theta, grid_theta_dot, energy, levels,
+                   separatrix, ax=None):
+    """Given level sets of the phase-plane energy, with the separatrix and the scene's orbit.
+
+    ``energy`` (shape (len(grid_theta_dot), len(grid_theta))) is drawn at ``levels``
+    and at ``separatrix``; the orbit (``theta``, ``theta_dot``, wrapped to (−π, π]) on top.
+    """
+    fig, ax = new_figure(ax, figsize=(6.8, 4.4))
+    wrapped = np.mod(np.asarray(theta) + math.pi, 2 * math.pi) - math.pi
+    TH, THD = np.meshgrid(grid_theta, grid_theta_dot)
+    ax.contour(TH, THD, energy, levels=np.sort(levels), colors=CONTEXT, linewidths=0.8)
+    ax.contour(TH, THD, energy, levels=[separatrix], colors=SEPARATRIX, linewidths=1.6)
+    # break the orbit where it wraps so no line crosses the plot
+    jumps = np.nonzero(np.abs(np.diff(wrapped)) > math.pi)[0] + 1
+    for seg_t, seg_v in zip(np.split(wrapped, jumps), np.split(theta_dot, jumps), strict=True):
+        ax.plot(seg_t, seg_v, color=HIGHLIGHT, linewidth=2.0)
+    ax.plot([], [], color=SEPARATRIX, label="separatrix E = m g l")
+    ax.plot([], [], color=CONTEXT, label="librations / rotations")
+    ax.plot([], [], color=HIGHLIGHT, linewidth=2.0, label="this scene")
+    ax.set_xlim(-math.pi, math.pi)
+    ax.set_xticks([-math.pi, -math.pi / 2, 0, math.pi / 2, math.pi],
+                  ["−π", "−π/2", "0", "π/2", "π"])
+    ax.set_xlabel("θ [rad]")
+    ax.set_ylabel("θ̇ [rad/s]")
+    ax.legend(loc="upper right", fontsize=8)
+    return fig
+
+
+def period_against_amplitude(*, curve_amplitude, curve_period, small_angle_period,
+                             amplitude=None, period=None, period_measured=None, ax=None):
+    """The given period curve T(θ0) (the exact 4 K(sin²(θ0/2)) / ω0 over 0 < θ0 < π), with
+    the small-angle period and this scene's point."""
+    fig, ax = new_figure(ax)
+    ax.plot(curve_amplitude, curve_period, color=REFERENCE, label="exact 4K(k)√(l/g)")
+    ax.axhline(small_angle_period, color=CONTEXT, linestyle="--", label="small angle 2π√(l/g)")
+    if amplitude is not None and period is not None:
+        ax.plot([amplitude], [period], "o", color=REFERENCE, markersize=9,
+                markerfacecolor="none", label="this scene, exact")
+    if amplitude is not None and period_measured is not None:
+        ax.plot([amplitude], [period_measured], "x", color=HIGHLIGHT, markersize=9,
+                label="this scene, measured")
+    ax.set_xlim(0, math.pi)
+    ax.set_ylim(0, min(float(np.max(curve_period)), 4 * small_angle_period))
+    ax.set_xticks([0, math.pi / 4, math.pi / 2, 3 * math.pi / 4, math.pi],
+                  ["0", "π/4", "π/2", "3π/4", "π"])
+    ax.set_xlabel("amplitude θ0 [rad]")
+    ax.set_ylabel("period T [s]")
+    ax.legend(loc="upper left")
+    return fig
+
+
+def boundary_value(t, theta_exact, theta_numeric, theta_nonlinear, *, ax=None):
+    fig, ax = new_figure(ax)
+    ax.plot(t, theta_exact, color=REFERENCE, label="linear, closed form (1.21)")
+    ax.plot(t, theta_numeric, color=HIGHLIGHT, linestyle=(0, (4, 3)), label="linear, numerical")
+    if np.all(np.isfinite(theta_nonlinear)):
+        ax.plot(t, theta_nonlinear, color=CONTEXT, linestyle=":", label="nonlinear, numerical")
+    ax.plot([t[0], t[-1]], [theta_exact[0], theta_exact[-1]], "o", color="black",
+            label="boundary values")
+    ax.set_xlabel("time t [s]")
+    ax.set_ylabel("θ [rad]")
+    ax.legend(loc="best")
+    return fig
+
+
+def period_family(amplitude, measured, exact, *, curve=None, small_angle=None):
+    """A sweep's periods against amplitude: members (markers, or a line when dense), the
+    exact curve and the small-angle period; below, the relative error of each member."""
+    fig, (ax, ax_err) = new_figure_grid(2, 1, figsize=(6.4, 5.6), sharex=True)
+    ax, ax_err = ax[0], ax_err[0]
+    order = np.argsort(amplitude)
+    x, y = np.asarray(amplitude)[order], np.asarray(measured)[order]
+    if curve is not None:
+        ax.plot(curve["amplitude"], curve["period"], color=REFERENCE, lw=2.5,
+                label="exact 4K(k)√(l/g)")
+    else:
+        ax.plot(x, np.asarray(exact)[order], color=REFERENCE, lw=2.5, label="exact 4K(k)√(l/g)")
+    dense = x.size > 80
+    # a dense family is drawn as per-bin extremes (envelope): the same pixels, bounded size
+    ax.plot(*envelope(x, y), "-" if dense else "o", color=HIGHLIGHT, ms=3.5, lw=1.2,
+            label=f"integrated ({x.size} members)")
+    if small_angle is not None and np.size(small_angle):
+        sa = np.asarray(small_angle)[order]
+        ax.plot(*envelope(x, sa), "--", color=CONTEXT, label="small-angle 2π√(l/g)")
+    ax.set_ylabel("period T [s]")
+    ax.legend(loc="upper left")
+    rel = np.maximum(np.abs(y / np.asarray(exact)[order] - 1), 1e-17)
+    ax_err.semilogy(*envelope(x, rel), color=HIGHLIGHT, **member_markers(dense))
+    ax_err.set_ylabel("|T − T_exact| / T_exact")
+    ax_err.set_xlabel("amplitude θ0 [rad]")
+    return fig

@@ -1,0 +1,161 @@
+"""``pendulum`` report: angle against time, the phase portrait, the period against
+amplitude (and across a family), the boundary-value problem and the energy."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ...lazy import lazy_module
+from ...scene.base import Section
+from ...scene.content import SectionContent, Table, fmt, fmt_err
+from ...scene.report import Report
+from .config import MIN_SAMPLES_PER_PERIOD
+from .results import SCHEMA
+
+common_plots = lazy_module("reportgen.plots.common")
+plots = lazy_module("reportgen.kinds.pendulum.plots")
+
+
+class PendulumReport(Report):
+    """The pendulum's sections, drawn from the archive alone."""
+
+    schema = SCHEMA
+    sections = (
+        Section("time_series", "Angle against time", integrates=True),
+        Section("phase_portrait", "Phase portrait", integrates=True),
+        Section("period", "Period against amplitude"),
+        Section("boundary_value", "Boundary-value problem and its action"),
+        Section("energy", "Energy conservation", integrates=True),
+        Section("error_vs_runtime", "Error against run time", integrates=True),
+    )
+
+    family_sections = (
+        Section("period_family", "Period against amplitude across the family",
+                description="Each member's period, integrated, against the exact period."),
+    )
+
+    @classmethod
+    def default_sections(cls, data):
+        names = [s.name for s in cls.sections]
+        if "boundary_value" not in data.analysis:
+            names.remove("boundary_value")
+        return names
+
+    @classmethod
+    def headline(cls, data):
+        p, ini = data.config.params, data.config.initial
+        a = data.analysis
+        return [
+            ("parameters", f"g = {fmt(p.g)} m/s², l = {fmt(p.l)} m, m = {fmt(p.m)} kg"),
+            ("initial state", f"θ0 = {fmt(ini.theta)} rad, θ̇0 = {fmt(ini.theta_dot)} rad/s"),
+            ("motion", f"{a['motion']}, k = {fmt(a['k'])}"),
+            ("period", f"{fmt(a['period'], 14)} s exact; small-angle 2π/ω0 = "
+                       f"{fmt(a['period_small_angle'])} s"),
+            ("max |θ − θ_exact|", f"{fmt_err(a['theta_max_error'])} rad over the run"),
+        ]
+
+    @classmethod
+    def section_time_series(cls, data):
+        run = data.runs["main"]
+        th_ex, thd_ex = run.reference["theta"], run.reference["theta_dot"]
+        small = data.analysis.get("small_angle_solution")
+        fig = common_plots.timeseries_against_reference(
+            run.t, {"theta": run["theta"], "theta_dot": run["theta_dot"]},
+            {"theta": th_ex, "theta_dot": thd_ex},
+            ylabels={"theta": "θ [rad]", "theta_dot": "θ̇ [rad/s]"},
+            reference_label=run.attrs["reference_label"],
+            extra={"theta": small["theta"], "theta_dot": small["theta_dot"]}
+            if small is not None else None,
+        )
+        err = common_plots.error_against_time(
+            run.t, {"|θ − θ_exact| [rad]": run["theta"] - th_ex,
+                    "|θ̇ − θ̇_exact| [rad/s]": run["theta_dot"] - thd_ex},
+            ylabel="absolute error")
+        return SectionContent(figures=[
+            cls.figure("timeseries", fig, "θ(t) and θ̇(t) integrated, against the exact "
+                       "elliptic-function solution and the small-angle solution (1.19)."),
+            cls.figure("error", err, "Error of the integration against the exact solution."),
+        ])
+
+    @classmethod
+    def section_phase_portrait(cls, data):
+        run = data.runs["main"]
+        grid = data.analysis["phase_portrait"]
+        fig = plots.phase_portrait(run["theta"], run["theta_dot"], grid_theta=grid["theta"],
+                                   grid_theta_dot=grid["theta_dot"], energy=grid["energy"],
+                                   levels=grid["levels"], separatrix=grid["separatrix"])
+        return SectionContent(figures=[cls.figure(
+            "phase", fig, "Phase portrait: librations (closed curves), the separatrix "
+            "E = m g l through (±π, 0), and rotations; this scene's orbit highlighted.")])
+
+    @classmethod
+    def section_period(cls, data):
+        a = data.analysis
+        libration = a["motion"] == "libration"
+        curve = a["period_curve"]
+        fig = plots.period_against_amplitude(
+            curve_amplitude=curve["amplitude"], curve_period=curve["period"],
+            small_angle_period=a["period_small_angle"],
+            amplitude=a["amplitude"] if libration else None, period=a["period"],
+            period_measured=a["period_measured"] if libration else None)
+        facts = [("exact period", f"{fmt(a['period'], 14)} s"),
+                 ("measured from θ(t)", f"{fmt(a['period_measured'], 14)} s"),
+                 ("relative difference", fmt_err(abs(a['period_measured'] / a['period'] - 1)))]
+        notes = [] if libration else [
+            "This scene rotates; its period is the time of one full turn, 2K(1/k²)/(k ω0)."]
+        if not math.isfinite(a["period_measured"]):
+            notes.append(f"No measured period: the run covers fewer than two periods or stores "
+                         f"fewer than {MIN_SAMPLES_PER_PERIOD} samples per period.")
+        return SectionContent(figures=[cls.figure(
+            "period", fig, "Period against amplitude: exact 4K(k)√(l/g), k = sin(θ0/2), "
+            "against the small-angle period 2π√(l/g).")], facts=facts, notes=notes)
+
+    @classmethod
+    def section_period_family(cls, data):
+        sweep = data.sweep
+        a = sweep.analysis
+        theta = sweep.values.get("initial.theta")
+        x = np.abs(theta) if theta is not None else np.full(sweep.size, data.config.initial.theta)
+        ok = sweep.ok & np.isfinite(a.get("period_measured", np.full(sweep.size, np.nan)))
+        curve = data.analysis.get("period_curve")
+        fig = plots.period_family(x[ok], a["period_measured"][ok], a["period"][ok],
+                                  curve=curve, small_angle=a["period_small_angle"][ok])
+        rel = np.abs(a["period_measured"][ok] / a["period"][ok] - 1)
+        facts = [("members with a period", f"{int(ok.sum())} of {sweep.size}"),
+                 ("max relative error of the period", fmt_err(float(np.max(rel)))
+                  if rel.size else "—"),
+                 ("tolerance of the runs", f"rtol {data.config.run.rtol:g}, "
+                                           f"atol {data.config.run.atol:g}")]
+        return SectionContent(figures=[cls.figure(
+            "period_family", fig, "Each member's period, the time between its first two upward "
+            "crossings of θ = 0 on the integrator's dense output, against the exact "
+            "4K(k)√(l/g), k = sin(θ0/2) (DLMF 19.2.8, 22.19.4), and the small-angle period "
+            "2π√(l/g); below, the relative error.")], facts=facts)
+
+    @classmethod
+    def section_boundary_value(cls, data):
+        bvp = data.analysis["boundary_value"]
+        fig = plots.boundary_value(bvp["t"], bvp["theta_exact"], bvp["theta_numeric"],
+                                   bvp["theta_nonlinear"])
+        b = data.config.boundary
+        table = Table(
+            caption="Action S = ∫ L dt (2.4) along the boundary-value solution",
+            header=["solution", "action [J·s]", "rel. error vs closed form"],
+            rows=[["linear, closed form (2.4)", fmt(bvp["action_exact"], 14), "—"],
+                  ["linear, solve_bvp + Simpson quadrature", fmt(bvp["action_numeric"], 14),
+                   fmt_err(abs(bvp["action_numeric"] / bvp["action_exact"] - 1))],
+                  ["nonlinear pendulum, solve_bvp", fmt(bvp["action_nonlinear"], 14),
+                   "(different problem)"]])
+        return SectionContent(
+            figures=[cls.figure("bvp", fig, f"θ(0) = {fmt(b.theta0)} rad, θ(T) = "
+                                f"{fmt(b.theta1)} rad, T = {fmt(b.T)} s: the linearised "
+                                "solution (1.21) in closed form and numerically, and the "
+                                "nonlinear pendulum's solution with the same ends.")],
+            tables=[table])
+
+    @classmethod
+    def section_energy(cls, data):
+        return cls.invariants_section(data, labels={"energy": "energy E"},
+                                      caption="Energy drift relative to m g l.")

@@ -1,0 +1,228 @@
+"""``rigid_body`` report: ω against the exact solution, the polhodes on the L-sphere and
+the inertia ellipsoid, Poinsot's construction, the stability table with the flips, the
+symmetric precession, the splitting integrator and the invariants."""
+
+from __future__ import annotations
+
+import math
+
+from ...lazy import lazy_module
+from ...scene.base import Section
+from ...scene.content import SectionContent, Table, fmt, fmt_err
+from ...scene.report import Report
+from ..inertia.report import stability_table_section
+from .results import SCHEMA
+
+common_plots = lazy_module("reportgen.plots.common")
+plots = lazy_module("reportgen.plots.rigid_body")
+
+#: the invariants as named in tables and the main run's drift figure
+INVARIANT_NAMES = {"twice_energy": "2T", "L_squared": "L² (body frame)",
+                   "L_x": "L_x (space)", "L_y": "L_y (space)", "L_z": "L_z (space)",
+                   "quaternion_norm": "|q|"}
+
+
+class RigidBodyReport(Report):
+    """The rigid body's sections, drawn from the archive alone."""
+
+    schema = SCHEMA
+    sections = (
+        Section("omega", "Angular velocity against the exact solution", integrates=True),
+        Section("polhodes", "Polhodes on the angular-momentum sphere", integrates=True),
+        Section("polhode_ellipsoid", "Polhodes on the inertia ellipsoid", integrates=True),
+        Section("herpolhode", "Poinsot's construction: the inertia ellipsoid rolls on the "
+                              "invariable plane", integrates=True),
+        Section("stability", "Stability of rotation about the principal axes", integrates=True),
+        Section("symmetric_precession", "Precession of the symmetric body", integrates=True),
+        Section("geometric_integrator", "Splitting integrator (free rotations about the axes)",
+                integrates=True),
+        Section("invariants", "Conserved quantities", integrates=True),
+        Section("error_vs_runtime", "Error against run time", integrates=True),
+    )
+
+    @classmethod
+    def default_sections(cls, data):
+        names = [s.name for s in cls.sections]
+        if "symmetric" not in data.analysis:
+            names.remove("symmetric_precession")
+        if data.analysis.get("spherical", False):
+            # every direction is a principal axis: ω is constant, no polhodes to draw
+            for name in ("polhodes", "polhode_ellipsoid", "herpolhode"):
+                names.remove(name)
+        if "splitting" not in data.runs:
+            names.remove("geometric_integrator")
+        return names
+
+    @classmethod
+    def headline(cls, data):
+        a = data.analysis
+        I, w = a["principal_moments"], a["omega_initial"]
+        st = a["axis_stability"]
+        facts = [
+            ("principal moments", f"I1 = {fmt(I[0])}, I2 = {fmt(I[1])}, I3 = {fmt(I[2])} kg m²"),
+            ("initial ω (body)", "(" + ", ".join(fmt(float(x)) for x in w) + ") rad/s"
+             + (" after the impulse" if data.config.get("impulse") is not None else "")),
+            ("axis stability", ", ".join(f"{k[-1]}: {v['verdict']}" for k, v in st.items())),
+            ("max |ω − ω_exact|", f"{fmt_err(a['omega_max_error'])} rad/s ({a['reference']})"),
+            ("max ||q| − 1|", f"{fmt_err(a['quaternion_norm_max_deviation'])} (integrator "
+                              "output; archived attitude renormalized)"),
+        ]
+        if "elliptic" in a:
+            facts.append(("branch", f"{a['elliptic']['branch']}, m = {fmt(a['elliptic']['m'])}"))
+        return facts
+
+    @classmethod
+    def section_omega(cls, data):
+        run = data.runs["main"]
+        names = ["omega_1", "omega_2", "omega_3"]
+        exact = run.reference
+        fig = common_plots.timeseries_against_reference(
+            run.t, {n: run[n] for n in names}, {n: exact[n] for n in names},
+            ylabels={n: f"ω{k + 1} [rad/s]" for k, n in enumerate(names)},
+            reference_label=data.analysis["reference"])
+        err = common_plots.error_against_time(
+            run.t, {f"|ω{k + 1} − exact|": run[n] - exact[n] for k, n in enumerate(names)},
+            ylabel="absolute error [rad/s]")
+        return SectionContent(figures=[
+            cls.figure("omega", fig, "Body-frame angular velocity integrated (Euler's equations "
+                       "(10.5)) against the exact solution."),
+            cls.figure("omega_error", err, "Error of ω against the exact solution.")],
+            facts=[("max |ω − ω_exact|", f"{fmt_err(data.analysis['omega_max_error'])} rad/s")])
+
+    @classmethod
+    def section_polhodes(cls, data):
+        p = data.analysis["polhodes"]
+        fig = plots.polhodes(p["family"], p["separatrices"], p["track"])
+        return SectionContent(figures=[cls.figure(
+            "polhodes", fig, "Polhodes: the body-frame L on the sphere |L| = const cut by the "
+            "energy ellipsoid Σ L_k²/I_k = 2E. Grey: a family of energies; orange: the "
+            "separatrices through the intermediate axis; red: this scene.")])
+
+    @classmethod
+    def section_polhode_ellipsoid(cls, data):
+        p = data.analysis.get("polhode_ellipsoid")
+        if p is None:
+            return SectionContent(notes=["The polhodes on the inertia ellipsoid were not "
+                                         "computed for this archive (a spherical body, or the "
+                                         "section was not asked for when it was simulated)."])
+        run = data.runs["main"]
+        fig = plots.polhodes_on_ellipsoid(p["surface"], p["semi_axes"], p["family"],
+                                          p["separatrices"], run.y[:, :3])
+        side = int(p["circled_axis"])
+        facts = [("2T, L²", f"{fmt(float(p['twice_energy']))} J, "
+                            f"{fmt(float(p['L_squared']))} (kg m²/s)²"),
+                 ("(L² − 2T·I_mid)/(2T·I_mid)",
+                  f"{fmt(float(p['separatrix_offset']), 4)}: "
+                  + (f"the polhode circles axis {side}" if side else "on the separatrix"))]
+        return SectionContent(
+            figures=[cls.figure(
+                "polhode_ellipsoid", fig,
+                "Polhodes on the energy ellipsoid ω·Iω = 2T (the inertia ellipsoid scaled by "
+                "√(2T)), body frame: each is its intersection with ω·I²ω = L². Grey: a ladder "
+                "of L² between 2T·I_min and 2T·I_max; orange: the separatrices L² = 2T·I_mid; "
+                "red: ω of this scene as integrated.")],
+            facts=facts)
+
+    @classmethod
+    def section_herpolhode(cls, data):
+        c = data.analysis.get("poinsot")
+        if c is None:
+            return SectionContent(notes=["Poinsot's construction was not computed for this "
+                                         "archive (a spherical body, or the section was not "
+                                         "asked for when it was simulated)."])
+        radius = c.get("herpolhode_radius")
+        fig = plots.poinsot(c["surface"], c["axes"], c["polhode"], c["herpolhode"],
+                            float(c["plane_height"]),
+                            circle_radius=None if radius is None else float(radius))
+        d = float(c["plane_distance"])
+        facts = [("invariable plane at √(2T)/|L|", f"{fmt(d)} 1/√(kg m²)"),
+                 ("tip of x off the plane", f"{fmt_err(float(c['plane_distance_max_error']))}"
+                                            " 1/√(kg m²) at most over the run")]
+        if radius is not None:
+            facts.append(("herpolhode radius (symmetric body)",
+                          f"{fmt(float(radius))} 1/√(kg m²) closed form; the run deviates by "
+                          f"{fmt_err(float(c['herpolhode_radius_max_error']))} at most"))
+        t = data.runs["main"].t
+        caption = ("Poinsot's construction, x = ω/√(2T) [1/√(kg m²)], seen with L pointing "
+                   "down: the inertia ellipsoid x·Ix = 1 at t = "
+                   f"{fmt(float(t[int(c['contact_index'])]), 4)} s, resting on the invariable "
+                   "plane at the tip of x; red, the polhode on the body; light blue, the herpolhode "
+                   "the contact point has traced on the plane since t = 0 (right: the plane "
+                   "seen along L).")
+        if radius is not None:
+            caption += " Dashed: the closed-form circle of the symmetric body."
+        return SectionContent(figures=[cls.figure("poinsot", fig, caption)], facts=facts)
+
+    @classmethod
+    def section_stability(cls, data):
+        a = data.analysis
+        content = stability_table_section(a)
+        if "flip" in a:
+            f = a["flip"]
+            run = data.runs["main"]
+            k = int(f["axis"]) - 1
+            fig = plots.flips(run.t, run.y[:, :3], envelope=f["growth_envelope"])
+            content.figures.append(cls.figure(
+                "flips", fig, f"Dzhanibekov effect: spin started close to the intermediate axis "
+                f"{k + 1}; the perturbation grows at γ = {fmt(f['growth_rate'])} 1/s and the "
+                "body flips over, again and again."))
+            content.facts += [
+                ("flips observed", str(len(f["flip_times"]))),
+                ("time between flips", f"{fmt(f['half_period_measured'])} s measured; "
+                                       f"2K(m)/λ = {fmt(f['half_period_exact'])} s exact")]
+        return content
+
+    @classmethod
+    def section_symmetric_precession(cls, data):
+        s = data.analysis["symmetric"]
+        return SectionContent(facts=[
+            ("symmetry axis", str(s["axis"])),
+            ("Ω (10.10)", f"{fmt(s['Omega'], 12)} rad/s"),
+            ("Ω measured (slope of the phase of ω⊥)", f"{fmt(s['Omega_measured'], 12)} rad/s"),
+            ("|ω⊥|", f"{fmt(s['omega_perp'])} rad/s (constant)"),
+            ("precession of the figure axis about L, |L|/I⊥", f"{fmt(s['space_precession_rate'])}"
+                                                                " rad/s")])
+
+    @classmethod
+    def section_geometric_integrator(cls, data):
+        if "splitting" not in data.runs:
+            return SectionContent(notes=["The splitting integrator was not run for this "
+                                         "archive (the section was not asked for when it "
+                                         "was simulated)."])
+        split = data.runs["splitting"]
+        a = data.analysis
+        exact = split.reference
+        names = ["omega_1", "omega_2", "omega_3"]
+        fig = common_plots.error_against_time(
+            split.t, {f"|ω{k + 1} − exact|": split[n] - exact[n] for k, n in enumerate(names)},
+            ylabel="absolute error [rad/s]")
+        scales = {q: split.attrs[f"scale_{q}"] for q in split.invariants}
+        # relative drifts: each invariant by its declared symbol, without a unit
+        symbols = {q: cls.schema.invariant(q).math for q in split.invariants}
+        inv = common_plots.invariant_drift(split.t, split.invariants, scales=scales,
+                                           labels=symbols)
+        rows = [[INVARIANT_NAMES.get(name, name),
+                 fmt_err(float(split.attrs.get(f"drift_{name}", math.nan))),
+                 fmt_err(float(data.runs["main"].attrs.get(f"drift_{name}", math.nan)))]
+                for name in split.invariants]
+        return SectionContent(
+            figures=[cls.figure("splitting_error", fig,
+                                f"Error of the {split.attrs['method']} axis splitting "
+                                f"(h = {fmt(split.attrs['h'])} s) against the exact solution."),
+                     cls.figure("splitting_invariants", inv, "Invariants under the splitting: "
+                                "L² and the space-frame L are kept to round-off, the energy "
+                                "error stays bounded.")],
+            tables=[Table(caption="Max relative drift of each invariant",
+                          header=["quantity", "splitting", f"main run "
+                                  f"({data.runs['main'].attrs['method']})"], rows=rows)],
+            facts=[("max |ω − ω_exact| (splitting)", f"{fmt_err(a['splitting_omega_max_error'])}"
+                    f" rad/s in {float(split.attrs['wall_time_s']) * 1e3:.3g} ms, "
+                    f"{int(split.attrs['nsteps'])} steps")])
+
+    @classmethod
+    def section_invariants(cls, data):
+        return cls.invariants_section(
+            data,
+            labels=INVARIANT_NAMES,
+            caption="Drift of 2T, L² and the space-frame L, relative to their natural scales; "
+                    "|q| as integrated (the archived attitude is renormalized afterwards).")

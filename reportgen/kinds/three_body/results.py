@@ -1,0 +1,80 @@
+"""What a ``three_body`` run stores: every result once, with its symbol and unit.
+
+The kind works in the config's units (G = 1 for the figure-eight and the Pythagorean
+problem; AU, years and solar masses for Sun–Earth–Moon): lengths, times, masses and the
+conserved quantities are numbers in those units, declared "1".
+"""
+
+from __future__ import annotations
+
+from ...scene.schema import Quantity as Q
+from ...scene.schema import ResultsSchema
+
+_XYZ = "xyz"
+
+
+def _columns() -> tuple[Q, ...]:
+    pos = tuple(Q(f"{c}{b}", f"{c}_{b}", "1", f"{c} coordinate of body {b}", ("t",))
+                for b in (1, 2, 3) for c in _XYZ)
+    vel = tuple(Q(f"v{c}{b}", f"v_{{{c},{b}}}", "1", f"{c} velocity of body {b}", ("t",))
+                for b in (1, 2, 3) for c in _XYZ)
+    return pos + vel
+
+
+SCHEMA = ResultsSchema(
+    time=Q("t", "t", "1", "time (scaled units)", ("t",)),
+    columns=_columns(),
+    invariants=(
+        Q("energy", "E", "1", "total energy", ("t",)),
+        *(Q(f"momentum_{c}", f"P_{c}", "1", f"total momentum ({c})", ("t",))
+          for c in _XYZ),
+        *(Q(f"angular_momentum_{c}", f"L_{c}", "1", f"total angular momentum ({c})",
+            ("t",)) for c in _XYZ),
+    ),
+    analysis=(
+        Q("hierarchical", "", "", "whether the masses make a hierarchical triple (planet and "
+          "moon)", kind="bool"),
+        Q("energy_error_max", r"\max|E(t) - E(0)|/|E(0)|", "1",
+          "largest relative energy error over the run"),
+        Q("energy_tolerance", "", "1", "relative energy error above which the run is "
+          "flagged unstable"),
+        Q("pair_distances/r12", "r_{12}", "1", "distance between bodies 1 and 2", ("t",)),
+        Q("pair_distances/r13", "r_{13}", "1", "distance between bodies 1 and 3", ("t",)),
+        Q("pair_distances/r23", "r_{23}", "1", "distance between bodies 2 and 3", ("t",)),
+        Q("min_pair_distance", r"r_\mathrm{min}", "1", "smallest stored pair distance"),
+        Q("min_pair_distance_time", r"t_\mathrm{min}", "1",
+          "time of the smallest stored pair distance"),
+        # a periodic orbit (config key ``period``)
+        Q("period", "T", "1", "known period of the orbit (config)", optional=True),
+        Q("return_position_error", r"\max|r_i(T) - r_i(0)|", "1",
+          "largest position error after one period", optional=True),
+        Q("return_velocity_error", r"\max|v_i(T) - v_i(0)|", "1",
+          "largest velocity error after one period", optional=True),
+        # a hierarchical triple
+        Q("mass_ratios/m2_m1", "m_2/m_1", "1", "mass ratio of body 2 to body 1", optional=True),
+        Q("mass_ratios/m3_m1", "m_3/m_1", "1", "mass ratio of body 3 to body 1", optional=True),
+        Q("moon_relative_position", r"\mathbf{r}_3 - \mathbf{r}_2", "1",
+          "body 3 relative to body 2", ("t", "xyz"), optional=True),
+        Q("moon_inclination", "i", "rad", "inclination of body 3's osculating orbit about "
+          "body 2", optional=True),
+        Q("moon_semi_major_axis", "a", "1", "semi-major axis of body 3's osculating orbit "
+          "about body 2", optional=True),
+        Q("moon_kepler_period", r"T_\mathrm{Kepler}", "1",
+          "two-body Kepler period of body 3 about body 2", optional=True),
+        Q("moon_period_measured", r"T_\mathrm{sid}", "1",
+          "sidereal period of body 3 about body 2, measured from the run", optional=True),
+        Q("moon_reference_error", r"|\Delta r|", "1", "body 3 about body 2 at t_end against "
+          "a DOP853 run at rtol 1e-14", optional=True),
+        Q("jacobi_kinetic_identity_error", r"\max|T_J - T_C|/T", "1",
+          "largest relative difference of the Jacobi and Cartesian kinetic energies (3.33)",
+          optional=True),
+        Q("jacobi_masses", r"(M, \mu_1, \mu_2)", "1", "Jacobi masses (3.33)", ("jacobi",),
+          optional=True),
+        Q("jacobi_coordinates/rho1", r"\rho_1", "1", "Jacobi coordinate rho1 = r2 - r1 (3.32)",
+          ("t", "xyz"), optional=True),
+        Q("jacobi_coordinates/rho2", r"\rho_2", "1", "Jacobi coordinate rho2: body 3 from "
+          "the inner pair's centre of mass (3.32)", ("t", "xyz"), optional=True),
+        Q("earth_eccentricity", "e", "1", "initial osculating eccentricity of body 2 about "
+          "body 1", optional=True),
+    ),
+)

@@ -1,0 +1,278 @@
+"""Declared results: every stored quantity of a kind, once, with its symbol and unit.
+
+A kind declares what its simulation stores (``kinds/<kind>/results.py``) as
+:class:`Quantity` objects gathered in a :class:`ResultsSchema`.  The declaration is the
+one source of
+
+* the archive's CF attributes on every dataset (``units``, ``long_name``, ``symbol``),
+  so that xarray shows them;
+* the check at write time: a result the schema does not declare, a declared result
+  that is missing, or one of the wrong shape is an error when the archive is written,
+  not when a figure is drawn (:meth:`ResultsSchema.problems`);
+* axis labels, table headers and captions (:meth:`Quantity.label`,
+  :meth:`Quantity.text`): "$\\dot\\theta$ [rad/s]", never a config key.
+
+Units are written as pint and UDUNITS read them ("rad/s", "kg m^2/s", "1" for a
+dimensionless number, "" for text); :func:`unit_text` gives the typeset form ("kg m²/s").
+"""
+
+from __future__ import annotations
+
+import difflib
+import re
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+#: the value types a quantity may have
+VALUE_TYPES = ("float", "int", "bool", "str")
+
+_SUPERSCRIPT = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
+
+
+def unit_text(unit: str) -> str:
+    """A unit as printed on a page: ``kg m^2/s`` -> ``kg m²/s``; "1" -> "dimensionless"."""
+    if unit in ("1", ""):
+        return "dimensionless" if unit == "1" else ""
+    return re.sub(r"\^(-?\d+)", lambda m: m.group(1).translate(_SUPERSCRIPT),
+                  unit).replace("*", " ")
+
+
+@dataclass(frozen=True)
+class Quantity:
+    """One stored result.
+
+    Parameters
+    ----------
+    name : str
+        Its path below ``/analysis`` ("period", "phase_portrait/theta"), or a run
+        column or invariant name.
+    symbol : str
+        TeX without dollars (``r"\\dot{\\theta}"``); "" when the quantity has none.
+    unit : str
+        pint/UDUNITS text ("rad/s"); "1" dimensionless; "" for text and flags.
+    description : str
+        One line, lower case: the CF ``long_name``.
+    dims : tuple of str
+        Names of its dimensions; () for a scalar.  A dimension ``t`` must have the
+        main run's number of samples; other names must agree within one archive.
+    kind : str
+        "float", "int", "bool" or "str".
+    optional : bool
+        Stored only in some cases (a boundary-value problem when one is configured).
+    """
+
+    name: str
+    symbol: str
+    unit: str
+    description: str
+    dims: tuple[str, ...] = ()
+    kind: str = "float"
+    optional: bool = False
+
+    def __post_init__(self):
+        if self.kind not in VALUE_TYPES:
+            raise ValueError(f"quantity {self.name!r}: kind must be one of {VALUE_TYPES}")
+
+    @property
+    def math(self) -> str:
+        """The symbol for a figure's mathtext, or the description if none.  A time
+        derivative ``\\dot{x}`` is written ``dx/dt`` there: with text kept as text in the
+        SVG, the dot accent is a combining character that the PDF engine draws as a dotted
+        circle."""
+        if not self.symbol:
+            return self.description
+        symbol = re.sub(r"\\dot\{([^{}]*)\}", r"\\mathrm{d}\1/\\mathrm{d}t", self.symbol)
+        return f"${symbol}$"
+
+    def label(self, unit: str | None = None) -> str:
+        """Axis label: symbol and unit, "$\\dot{\\theta}$ [rad/s]" (``unit`` overrides)."""
+        text = unit_text(self.unit if unit is None else unit)
+        return f"{self.math} [{text}]" if text else self.math
+
+    @property
+    def cf_attrs(self) -> dict[str, str]:
+        """The CF attributes written on its dataset."""
+        return {"units": self.unit, "long_name": self.description, "symbol": self.symbol}
+
+    def with_name(self, name: str) -> Quantity:
+        return Quantity(name, self.symbol, self.unit, self.description, self.dims,
+                        self.kind, self.optional)
+
+
+#: the time axis of every run
+TIME = Quantity("t", "t", "s", "time", ("t",))
+
+#: results the shared machinery stores for every kind (sweeps, the study's horizon)
+COMMON = (
+    Quantity("study_t_end", "t_{study}", "s", "end of the error-against-run-time study's "
+             "integration", optional=True),
+    Quantity("sweep_members", "M", "1", "members of the sweep", kind="int", optional=True),
+    Quantity("sweep_ok", "", "1", "members of the sweep that ended ok", kind="int",
+             optional=True),
+    Quantity("sweep_members_per_s", "", "1/s", "members run per second of wall time",
+             optional=True),
+)
+
+
+@dataclass(frozen=True)
+class ResultsSchema:
+    """What a kind stores: run columns, invariants and ``/analysis`` results.
+
+    ``columns`` and ``invariants`` apply to every run of the kind (``/runs/<name>``);
+    ``analysis`` to ``/analysis``, nested groups by "/" in the name.  ``time`` is the
+    runs' time axis (seconds unless the kind works in scaled units).
+    """
+
+    columns: tuple[Quantity, ...] = ()
+    invariants: tuple[Quantity, ...] = ()
+    analysis: tuple[Quantity, ...] = ()
+    time: Quantity = TIME
+    #: analysis groups whose members the kind does not declare one by one (a
+    #: user-named observable, say): name -> the quantity each member is
+    open_groups: Mapping[str, Quantity] = field(default_factory=dict)
+
+    def __post_init__(self):
+        seen: set[str] = set()
+        for q in self.analysis:
+            if q.name in seen:
+                raise ValueError(f"result {q.name!r} declared twice")
+            seen.add(q.name)
+
+    # ------------------------------------------------------------ look-ups
+    @property
+    def all_analysis(self) -> dict[str, Quantity]:
+        return {q.name: q for q in (*COMMON, *self.analysis)}
+
+    def column(self, name: str) -> Quantity:
+        return _find(name, self.columns, "run column")
+
+    def invariant(self, name: str) -> Quantity:
+        return _find(name, self.invariants, "invariant")
+
+    def result(self, name: str) -> Quantity:
+        """The declared ``/analysis`` result ``name`` (KeyError with a suggestion)."""
+        found = self.all_analysis.get(name)
+        if found is not None:
+            return found
+        group, _, member = name.rpartition("/")
+        if group in self.open_groups:
+            return self.open_groups[group].with_name(name)
+        spread = re.fullmatch(r"(.+)_(\d+)", name)  # a sweep's frequencies_2: element 2
+        if spread and spread.group(1) in self.all_analysis:
+            q = self.all_analysis[spread.group(1)]
+            return Quantity(name, f"{{{q.symbol}}}_{{{spread.group(2)}}}" if q.symbol else "",
+                            q.unit, f"{q.description}, element {spread.group(2)}")
+        return _find(name, tuple(self.all_analysis.values()), "result")
+
+    def quantity(self, name: str) -> Quantity:
+        """A column, invariant, the time or a result by name (that order)."""
+        if name == self.time.name:
+            return self.time
+        for group in (self.columns, self.invariants):
+            for q in group:
+                if q.name == name:
+                    return q
+        return self.result(name)
+
+    def label(self, name: str) -> str:
+        return self.quantity(name).label()
+
+    def merged(self, other: ResultsSchema) -> ResultsSchema:
+        """This schema with ``other``'s declarations added (a family's, say)."""
+        return ResultsSchema(columns=_union(self.columns, other.columns),
+                             invariants=_union(self.invariants, other.invariants),
+                             analysis=_union(self.analysis, other.analysis), time=self.time,
+                             open_groups={**self.open_groups, **other.open_groups})
+
+    # --------------------------------------------------------------- checks
+    def problems(self, results) -> list[str]:
+        """Every way ``results`` (:class:`~reportgen.scene.results.Results`) departs from
+        the declaration: undeclared or missing results, wrong kinds and shapes."""
+        out: list[str] = []
+        sizes: dict[str, int] = {}
+        main = results.runs.get("main")
+        if main is not None:
+            sizes["t"] = len(main.t)
+        flat = dict(flatten(results.analysis))
+        declared = self.all_analysis
+        for name, value in flat.items():
+            q = declared.get(name)
+            if q is None:
+                group = name.rpartition("/")[0]
+                if group in self.open_groups:
+                    q = self.open_groups[group].with_name(name)
+                else:
+                    close = difflib.get_close_matches(name, declared, n=1)
+                    hint = f" (did you mean {close[0]!r}?)" if close else ""
+                    out.append(f"/analysis/{name}: not a declared result{hint}")
+                    continue
+            out.extend(_value_problems(f"/analysis/{name}", q, value, sizes))
+        family = getattr(results, "sweep", None) is not None  # /analysis: the family's
+        for name, q in declared.items():
+            if not family and not q.optional and name not in flat:
+                out.append(f"/analysis/{name}: declared result missing")
+        columns = {q.name for q in self.columns}
+        invariants = {q.name for q in self.invariants}
+        for run_name, run in results.runs.items():
+            for c in run.columns:
+                if c not in columns:
+                    out.append(f"/runs/{run_name}: column {c!r} not declared")
+            for c in run.invariants:
+                if c not in invariants:
+                    out.append(f"/runs/{run_name}/invariants/{c}: not declared")
+            for c in run.reference:
+                if c not in columns:
+                    out.append(f"/runs/{run_name}/reference/{c}: not a declared column")
+        return out
+
+
+def _value_problems(where: str, q: Quantity, value: Any, sizes: dict[str, int]) -> list[str]:
+    if q.kind == "str":
+        ok = isinstance(value, str) or (isinstance(value, (list, tuple, np.ndarray)) and q.dims
+                                        and all(isinstance(v, str) for v in np.ravel(value)))
+        return [] if ok else [f"{where}: expected text, got {type(value).__name__}"]
+    if isinstance(value, str):
+        return [f"{where}: expected a {q.kind} number, got text {value[:40]!r}"]
+    arr = np.asarray(value)
+    if arr.dtype == object or arr.dtype.kind not in "biuf":
+        return [f"{where}: expected {q.kind} values, got dtype {arr.dtype}"]
+    if q.kind == "float" and arr.dtype.kind not in "biuf":
+        return [f"{where}: expected float values, got dtype {arr.dtype}"]
+    if q.kind in ("int", "bool") and arr.dtype.kind == "f":
+        return [f"{where}: expected {q.kind} values, got floats"]
+    if arr.ndim != len(q.dims):
+        return [f"{where}: expected {len(q.dims)} dimension(s) {q.dims}, got shape {arr.shape}"]
+    out = []
+    for dim, n in zip(q.dims, arr.shape, strict=True):
+        if dim in sizes and sizes[dim] != n and not dim.endswith("*"):
+            out.append(f"{where}: dimension {dim!r} has {n} points, expected {sizes[dim]}")
+        sizes.setdefault(dim, n)
+    return out
+
+
+def flatten(mapping: Mapping[str, Any], prefix: str = "") -> Iterable[tuple[str, Any]]:
+    """(path, leaf) of a nested results mapping, groups joined by "/"."""
+    for key, value in mapping.items():
+        path = f"{prefix}{key}"
+        if isinstance(value, Mapping):
+            yield from flatten(value, path + "/")
+        else:
+            yield path, value
+
+
+def _find(name: str, quantities: tuple[Quantity, ...], what: str) -> Quantity:
+    for q in quantities:
+        if q.name == name:
+            return q
+    names = [q.name for q in quantities]
+    close = difflib.get_close_matches(name, names, n=1)
+    hint = f"; did you mean {close[0]!r}?" if close else ""
+    raise KeyError(f"{name!r} is not a declared {what}{hint}")
+
+
+def _union(a: tuple[Quantity, ...], b: tuple[Quantity, ...]) -> tuple[Quantity, ...]:
+    names = {q.name for q in a}
+    return a + tuple(q for q in b if q.name not in names)
