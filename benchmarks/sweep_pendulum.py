@@ -8,7 +8,7 @@ period is the time between the first two upward zero crossings of theta, compare
 T = 4 K(k) sqrt(l / g), k = sin(theta0 / 2) (DLMF 19.2.8, 22.19(i); scipy's ellipk
 takes m = k^2).
 
-* ours: ``reportgen.core.ensemble.pendulum_periods`` (one compiled call per block of
+* ours: ``reportgen.kinds.pendulum.ensemble.pendulum_periods`` (one compiled call per block of
   members, a compiled loop on each of numba's threads), after a warm-up call that compiles it or
   loads it from numba's cache;
 * scipy: the loop a user would write, ``solve_ivp(f, ..., method="DOP853", rtol=1e-10,
@@ -33,7 +33,8 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.special import ellipk
 
-from reportgen.core.ensemble import OK, pendulum_periods
+from reportgen.core.ensemble import OK
+from reportgen.kinds.pendulum.ensemble import pendulum_periods
 
 G, L = 9.81, 1.0
 THETA0 = np.linspace(0.01, 3.1, 2000)

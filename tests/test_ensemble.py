@@ -1,4 +1,5 @@
-"""Compiled ensembles (``reportgen.core.ensemble``) against closed forms and our single run.
+"""Compiled ensembles (``reportgen.core.ensemble``, and the pendulum kind's periods built on
+it, ``reportgen.kinds.pendulum.ensemble``) against closed forms and our single run.
 
 Closed forms used:
 * Pendulum period from rest at theta0: T = 4 K(k) sqrt(l / g), k = sin(theta0 / 2)
@@ -20,13 +21,12 @@ from reportgen.core import ensemble
 from reportgen.core.ensemble import (
     MAXSTEPS,
     NONFINITE,
-    NOT_LIBRATING,
     OK,
-    pendulum_periods,
     run_ensemble,
 )
 from reportgen.core.integrators import integrate
 from reportgen.core.models import oscillator, pendulum
+from reportgen.kinds.pendulum.ensemble import NO_PERIOD, NOT_LIBRATING, pendulum_periods
 
 G, L = 9.81, 1.0
 RESULT_FIELDS = ("y_end", "t_final", "status", "counters", "events", "n_events", "y_store")
@@ -217,10 +217,11 @@ def test_status_names_cover_codes():
     codes = {v for k, v in vars(ensemble).items() if k.isupper() and isinstance(v, int)
              and k not in ("EPS",)}
     assert codes <= set(ensemble.STATUS_NAMES)
+    assert {NOT_LIBRATING, NO_PERIOD} <= set(ensemble.STATUS_NAMES)
 
 
 def _child_periods(queue):
-    from reportgen.core.ensemble import pendulum_periods as periods
+    from reportgen.kinds.pendulum.ensemble import pendulum_periods as periods
 
     queue.put(periods(np.array([0.5, 1.0]), 9.81, 1.0)[0].tolist())
 

@@ -618,3 +618,29 @@ def test_wide_states_run_the_vectorized_twin_with_the_same_steps():
     assert wide.status == shared.status == "ok"
     assert (wide.nfev, wide.nsteps) == (shared.nfev, shared.nsteps)
     assert np.array_equal(wide.y, shared.y)
+
+
+def test_generated_code_goes_through_the_registered_store(tmp_path):
+    """core does no file I/O of its own: generated modules come from the registered code
+    store (reportgen.core.codegen), by default a file store on the user cache."""
+    from reportgen.core import codegen
+
+    class Recording:
+        def __init__(self, inner):
+            self.inner, self.kinds = inner, []
+
+        def load(self, source, kind, version):
+            self.kinds.append(kind)
+            return self.inner.load(source, kind, version)
+
+    store = Recording(codegen.FileCodeStore(tmp_path))
+    previous = codegen.set_store(store)
+    try:
+        module = codegen.load_module("ANSWER = 42\n", "probe", "1")
+    finally:
+        codegen.set_store(previous)
+    assert module.ANSWER == 42 and store.kinds == ["probe"]
+    assert [p.name for p in (tmp_path / "probe").iterdir()] == [
+        codegen.module_name("ANSWER = 42\n", "probe", "1") + ".py"]
+    with pytest.raises(TypeError, match="load"):
+        codegen.set_store(object())

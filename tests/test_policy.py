@@ -22,10 +22,13 @@ from reportgen.core.integrators import (
     MethodMismatch,
     RunStatus,
     SolverSpec,
+    Status,
     choose_auto,
     solve,
 )
+from reportgen.core.integrators.base import STATUS_OF_CODE
 from reportgen.core.integrators.policy import LONG_RUN_PERIODS, STIFF_FALLBACK
+from reportgen.core.integrators.status import POLICY_STATUSES
 from reportgen.core.model import OdeModel
 from reportgen.core.models import pendulum
 
@@ -88,14 +91,22 @@ def test_every_method_name_is_a_valid_spec():
         assert spec(name).method == name
 
 
-def test_run_status_values_and_verdicts():
-    assert {s.value for s in RunStatus} == {"ok", "stiff", "max_steps", "nonfinite", "failed",
-                                            "switched"}
-    verdicts = {s: s.verdict for s in RunStatus}
+def test_run_status_is_the_one_vocabulary_and_the_policy_archives_six_of_it():
+    assert RunStatus is Status
+    assert {s.value for s in POLICY_STATUSES} == {"ok", "stiff", "max_steps", "nonfinite",
+                                                  "failed", "switched"}
+    # every integrator outcome maps into the archived six; the others archive as FAILED
+    assert {STATUS_OF_CODE[s] for s in Status} <= POLICY_STATUSES
+    assert STATUS_OF_CODE[Status.STEP_UNDERFLOW] is RunStatus.FAILED
+    verdicts = {s: s.verdict for s in POLICY_STATUSES}
     assert {s for s, v in verdicts.items() if v == "ok"} == {RunStatus.OK, RunStatus.SWITCHED}
     assert {s for s, v in verdicts.items() if v == "unstable"} == {RunStatus.STIFF}
     assert {s for s, v in verdicts.items() if v == "failed"} == {
         RunStatus.MAX_STEPS, RunStatus.NONFINITE, RunStatus.FAILED}
+    # every failure of the whole vocabulary is judged failed
+    assert {s for s in Status if s.verdict == "ok"} == {Status.OK, Status.SWITCHED}
+    # the archived spellings of clean runs are unchanged
+    assert RunStatus.OK == "ok" and RunStatus.SWITCHED == "switched"
 
 
 # ------------------------------------------------------------------ automatic choice

@@ -262,7 +262,7 @@ def test_driver_codes_are_the_enums():
             compiled.NEWTON, compiled.BAD_STEP) == tuple(s.code for s in (
                 Status.OK, Status.NONFINITE, Status.STEP_UNDERFLOW, Status.MAX_STEPS,
                 Status.NEWTON, Status.BAD_STEP))
-    assert all(type(c) is int for c in (compiled.OK, compiled.UNDERFLOW, ensemble.NO_PERIOD))
+    assert all(type(c) is int for c in (compiled.OK, compiled.UNDERFLOW, ensemble.UNDERFLOW))
     assert {Status.from_code(s.code) for s in Status} == set(Status)
     assert SolveCode is Status
 
@@ -270,15 +270,13 @@ def test_driver_codes_are_the_enums():
 def test_ensemble_names_are_the_enums_spellings():
     assert ensemble.STATUS_NAMES == {s.code: s.value for s in Status}
     assert ensemble.STATUS_NAMES[ensemble.UNDERFLOW] == "step_underflow" == SolveCode.STEP_UNDERFLOW
-    assert ensemble.STATUS_NAMES.get(int(np.int64(ensemble.NOT_LIBRATING))) == "not_librating"
+    assert ensemble.STATUS_NAMES.get(int(np.int64(Status.NOT_LIBRATING.code))) == "not_librating"
 
 
 def test_the_policy_archives_a_subset_of_the_vocabulary():
-    assert {s.value for s in RunStatus} == {s.value for s in POLICY_STATUSES}
+    assert RunStatus is Status
     for s in Status:
-        assert STATUS_OF_CODE[s] is RunStatus(s.policy)
+        assert STATUS_OF_CODE[s] is s.policy
         assert s.policy is (s if s in POLICY_STATUSES else Status.FAILED)
-    for s in RunStatus:
-        assert s.verdict == Status(s).verdict and s == Status(s)
     assert STATUS_OF_CODE[Status.STEP_UNDERFLOW] is RunStatus.FAILED
     assert RunStatus.MAX_STEPS == Status.MAX_STEPS == "max_steps"

@@ -302,8 +302,8 @@ def module_source(system: FormulaSystem) -> str:
 
 
 def load_module(source: str):
-    """Import the generated ``source`` (:func:`reportgen.core.codegen.load_module`, under
-    ``$XDG_CACHE_HOME/reportgen/formula``), memoized per process."""
+    """Import the generated ``source`` (:func:`reportgen.core.codegen.load_module`: the
+    code store's, by default a file under ``$XDG_CACHE_HOME/reportgen/formula``)."""
     return codegen.load_module(source, "formula", CODE_VERSION)
 
 

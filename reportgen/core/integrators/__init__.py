@@ -11,7 +11,8 @@ Public API::
     solve_fictitious_time(model, y0, t_eval, t_index, spec, reason, section=None)
         -> PolicyResult   # a regularized model, outputs at physical t (t_index None: a
                           # model in its own time); a section's crossings located on the steps
-    Status (the one status vocabulary; SolveCode is it), RunStatus (the policy's subset),
+    Status (the one status vocabulary; SolveCode and RunStatus are it: the policy archives
+    its subset POLICY_STATUSES),
     MethodMismatch, Solution
 """
 

@@ -13,10 +13,14 @@ import numpy as np
 from .compiled import (
     EPS,
     MAXSTEPS,
+    NONFINITE,
     OK,
     accept_step,
     all_finite,
+    copy_into,
+    crosses,
     initial_step,
+    interpolant_root,
     overflow_or_inf,
     step_factor,
     stop_status,
@@ -193,3 +197,227 @@ def dop853_adaptive(rhs, t_eval, i0, i1, Y, y, y_old, K, F, state, counters, par
     state[3] = 1.0 if rejected else 0.0
     state[4] = 1.0 if dense_ready else 0.0
     return status
+
+
+@numba.njit(cache=True)
+def dop853_member(rhs, y0, p, t0, t_end, rtol, atol, max_steps, comp, direction, terminal,
+                  events, t_eval, Y, store, y_end, counters):
+    """Integrate one member from ``y0`` at ``t0`` to ``t_end`` with DOP853.
+
+    The steps are :func:`dop853_adaptive`'s with ``t_eval = [t0, ..., t_end]``: same
+    initial step, error norm, controller and interpolant, so the states agree to the bit.
+    After each accepted step (t_old, t]:
+
+    * a zero crossing of ``y[comp]`` in ``direction`` (:func:`.compiled.crosses`) is
+      located on the step's interpolant (:func:`.compiled.interpolant_root`) and its time
+      appended to ``events`` until it is full (``terminal``: the member then stops);
+    * if ``store``, the outputs ``Y[j]`` at ``t_eval[j]`` in (t_old, t] are filled.
+
+    The interpolant's three extra stages are computed only for steps that need them.
+
+    Parameters
+    ----------
+    p : (k,) the member's parameters (copied: callbacks get whole arrays).
+    events : (max_events,) crossing times, written in order.
+    t_eval, Y : (N,), (N, d) output grid in [t0, t_end] and its states (if ``store``).
+    y_end : (d,) out: the state at ``t_end``; the last accepted state if the member
+        stopped early (terminal events) or failed.
+    counters : int64[3] out: (nfev, accepted steps, rejected steps), accumulated.
+
+    Returns
+    -------
+    (status, number of events, time of ``y_end``)
+    """
+    d = y0.size
+    n_out = t_eval.size if store else 0
+    max_events = events.size
+    y = np.empty(d)
+    y_old = np.empty(d)
+    y_new = np.empty(d)
+    f_new = np.empty(d)
+    ytmp = np.empty(d)
+    ftmp = np.empty(d)
+    params = np.empty(p.size)
+    K = np.zeros((16, d))
+    F = np.zeros((7, d))
+    copy_into(y, y0)
+    copy_into(params, p)
+    copy_into(y_end, y0)
+    t = t0
+    if not all_finite(y):
+        return NONFINITE, 0, t
+    rhs(t, y, params, f_new)
+    for i in range(d):
+        K[12, i] = f_new[i]
+    counters[0] += 1
+    if not all_finite(f_new):
+        return NONFINITE, 0, t
+    h = initial_step(rhs, t, y, f_new, params, np.int64(8), rtol, atol, t_end - t0)
+    counters[0] += 1
+    t_old = t
+    rejected = False
+    err_exp = -0.125
+    err = 0.0
+    n_ev = 0
+    j = 0
+    while j < n_out and t_eval[j] <= t:  # outputs at t0
+        for i in range(d):
+            Y[j, i] = y[i]
+        j += 1
+    status = OK
+    while t < t_end:
+        if counters[1] + counters[2] >= max_steps:
+            status = MAXSTEPS
+            break
+        if not (10.0 * EPS * max(abs(t), 1e-300) <= h < math.inf):
+            status = stop_status(t + h, err)
+            break
+        for i in range(d):
+            K[0, i] = K[12, i]
+        for i in range(d):
+            ytmp[i] = y[i] + h * (0.05260015195876773 * K[0, i])
+        rhs(t + 0.05260015195876773 * h, ytmp, params, ftmp)
+        for i in range(d):
+            K[1, i] = ftmp[i]
+        for i in range(d):
+            ytmp[i] = y[i] + h * (0.0197250569845379 * K[0, i] + 0.0591751709536137 * K[1, i])
+        rhs(t + 0.0789002279381516 * h, ytmp, params, ftmp)
+        for i in range(d):
+            K[2, i] = ftmp[i]
+        for i in range(d):
+            ytmp[i] = y[i] + h * (0.02958758547680685 * K[0, i] + 0.08876275643042054 * K[2, i])
+        rhs(t + 0.1183503419072274 * h, ytmp, params, ftmp)
+        for i in range(d):
+            K[3, i] = ftmp[i]
+        for i in range(d):
+            ytmp[i] = y[i] + h * (0.2413651341592667 * K[0, i] + -0.8845494793282861 * K[2, i] + 0.924834003261792 * K[3, i])
+        rhs(t + 0.2816496580927726 * h, ytmp, params, ftmp)
+        for i in range(d):
+            K[4, i] = ftmp[i]
+        for i in range(d):
+            ytmp[i] = y[i] + h * (0.037037037037037035 * K[0, i] + 0.17082860872947386 * K[3, i] + 0.12546768756682242 * K[4, i])
+        rhs(t + 0.3333333333333333 * h, ytmp, params, ftmp)
+        for i in range(d):
+            K[5, i] = ftmp[i]
+        for i in range(d):
+            ytmp[i] = y[i] + h * (0.037109375 * K[0, i] + 0.17025221101954405 * K[3, i] + 0.06021653898045596 * K[4, i] + -0.017578125 * K[5, i])
+        rhs(t + 0.25 * h, ytmp, params, ftmp)
+        for i in range(d):
+            K[6, i] = ftmp[i]
+        for i in range(d):
+            ytmp[i] = y[i] + h * (0.03709200011850479 * K[0, i] + 0.17038392571223998 * K[3, i] + 0.10726203044637328 * K[4, i] + -0.015319437748624402 * K[5, i] + 0.008273789163814023 * K[6, i])
+        rhs(t + 0.3076923076923077 * h, ytmp, params, ftmp)
+        for i in range(d):
+            K[7, i] = ftmp[i]
+        for i in range(d):
+            ytmp[i] = y[i] + h * (0.6241109587160757 * K[0, i] + -3.3608926294469414 * K[3, i] + -0.868219346841726 * K[4, i] + 27.59209969944671 * K[5, i] + 20.154067550477894 * K[6, i] + -43.48988418106996 * K[7, i])
+        rhs(t + 0.6512820512820513 * h, ytmp, params, ftmp)
+        for i in range(d):
+            K[8, i] = ftmp[i]
+        for i in range(d):
+            ytmp[i] = y[i] + h * (0.47766253643826434 * K[0, i] + -2.4881146199716677 * K[3, i] + -0.590290826836843 * K[4, i] + 21.230051448181193 * K[5, i] + 15.279233632882423 * K[6, i] + -33.28821096898486 * K[7, i] + -0.020331201708508627 * K[8, i])
+        rhs(t + 0.6 * h, ytmp, params, ftmp)
+        for i in range(d):
+            K[9, i] = ftmp[i]
+        for i in range(d):
+            ytmp[i] = y[i] + h * (-0.9371424300859873 * K[0, i] + 5.186372428844064 * K[3, i] + 1.0914373489967295 * K[4, i] + -8.149787010746927 * K[5, i] + -18.52006565999696 * K[6, i] + 22.739487099350505 * K[7, i] + 2.4936055526796523 * K[8, i] + -3.0467644718982196 * K[9, i])
+        rhs(t + 0.8571428571428571 * h, ytmp, params, ftmp)
+        for i in range(d):
+            K[10, i] = ftmp[i]
+        for i in range(d):
+            ytmp[i] = y[i] + h * (2.273310147516538 * K[0, i] + -10.53449546673725 * K[3, i] + -2.0008720582248625 * K[4, i] + -17.9589318631188 * K[5, i] + 27.94888452941996 * K[6, i] + -2.8589982771350235 * K[7, i] + -8.87285693353063 * K[8, i] + 12.360567175794303 * K[9, i] + 0.6433927460157636 * K[10, i])
+        rhs(t + 1.0 * h, ytmp, params, ftmp)
+        for i in range(d):
+            K[11, i] = ftmp[i]
+        for i in range(d):
+            y_new[i] = y[i] + h * (0.054293734116568765 * K[0, i] + 4.450312892752409 * K[5, i] + 1.8915178993145003 * K[6, i] + -5.801203960010585 * K[7, i] + 0.3111643669578199 * K[8, i] + -0.1521609496625161 * K[9, i] + 0.20136540080403034 * K[10, i] + 0.04471061572777259 * K[11, i])
+        t_new = t + h
+        rhs(t_new, y_new, params, f_new)
+        counters[0] += 12
+        e5n = 0.0
+        e3n = 0.0
+        probe = 0.0
+        for i in range(d):
+            scale = atol + max(abs(y[i]), abs(y_new[i])) * rtol
+            probe += y_new[i] * 0.0
+            e5 = (0.0 * f_new[i] + 0.01312004499419488 * K[0, i] + -1.2251564463762044 * K[5, i] + -0.4957589496572502 * K[6, i] + 1.6643771824549864 * K[7, i] + -0.35032884874997366 * K[8, i] + 0.3341791187130175 * K[9, i] + 0.08192320648511571 * K[10, i] + -0.022355307863886294 * K[11, i]) / scale
+            e3 = (0.0 * f_new[i] + -0.18980075407240762 * K[0, i] + 4.450312892752409 * K[5, i] + 1.8915178993145003 * K[6, i] + -5.801203960010585 * K[7, i] + -0.4226823213237919 * K[8, i] + -0.1521609496625161 * K[9, i] + 0.20136540080403034 * K[10, i] + 0.02265179219836082 * K[11, i]) / scale
+            e5n += e5 * e5
+            e3n += e3 * e3
+        if e5n == 0.0 and e3n == 0.0:
+            err = 0.0
+        else:
+            err = h * e5n / math.sqrt((e5n + 0.01 * e3n) * d)
+        if not (math.isfinite(err) and probe == 0.0 and all_finite(f_new)):
+            err = overflow_or_inf(probe, f_new)
+        factor = step_factor(err, err_exp, rejected)
+        h *= factor
+        if err >= 1.0:
+            counters[2] += 1
+            rejected = True
+            continue
+        rejected = False
+        counters[1] += 1
+        t_old = t
+        accept_step(12, y_old, y, y_new, K, f_new)
+        t = t_new
+        hit = n_ev < max_events and crosses(y_old[comp], y[comp], direction)
+        if hit or t > t_end or (j < n_out and t_eval[j] < t):
+            hd = t - t_old
+            for i in range(d):
+                ytmp[i] = y_old[i] + hd * (0.056167502283047954 * K[0, i] + 0.25350021021662483 * K[6, i] + -0.2462390374708025 * K[7, i] + -0.12419142326381637 * K[8, i] + 0.15329179827876568 * K[9, i] + 0.00820105229563469 * K[10, i] + 0.007567897660545699 * K[11, i] + -0.008298 * K[12, i])
+            rhs(t_old + 0.1 * hd, ytmp, params, ftmp)
+            for i in range(d):
+                K[13, i] = ftmp[i]
+            for i in range(d):
+                ytmp[i] = y_old[i] + hd * (0.03183464816350214 * K[0, i] + 0.028300909672366776 * K[5, i] + 0.053541988307438566 * K[6, i] + -0.05492374857139099 * K[7, i] + -0.00010834732869724932 * K[10, i] + 0.0003825710908356584 * K[11, i] + -0.00034046500868740456 * K[12, i] + 0.1413124436746325 * K[13, i])
+            rhs(t_old + 0.2 * hd, ytmp, params, ftmp)
+            for i in range(d):
+                K[14, i] = ftmp[i]
+            for i in range(d):
+                ytmp[i] = y_old[i] + hd * (-0.42889630158379194 * K[0, i] + -4.697621415361164 * K[5, i] + 7.683421196062599 * K[6, i] + 4.06898981839711 * K[7, i] + 0.3567271874552811 * K[8, i] + -0.0013990241651590145 * K[12, i] + 2.9475147891527724 * K[13, i] + -9.15095847217987 * K[14, i])
+            rhs(t_old + 0.7777777777777778 * hd, ytmp, params, ftmp)
+            for i in range(d):
+                K[15, i] = ftmp[i]
+            for i in range(d):
+                dy = y[i] - y_old[i]
+                F[0, i] = dy
+                F[1, i] = hd * K[0, i] - dy
+                F[2, i] = 2.0 * dy - hd * (K[12, i] + K[0, i])
+                F[3, i] = hd * (-8.428938276109013 * K[0, i] + 0.5667149535193777 * K[5, i] + -3.0689499459498917 * K[6, i] + 2.38466765651207 * K[7, i] + 2.117034582445028 * K[8, i] + -0.871391583777973 * K[9, i] + 2.2404374302607883 * K[10, i] + 0.6315787787694688 * K[11, i] + -0.08899033645133331 * K[12, i] + 18.148505520854727 * K[13, i] + -9.194632392478356 * K[14, i] + -4.436036387594894 * K[15, i])
+                F[4, i] = hd * (10.427508642579134 * K[0, i] + 242.28349177525817 * K[5, i] + 165.20045171727028 * K[6, i] + -374.5467547226902 * K[7, i] + -22.113666853125306 * K[8, i] + 7.733432668472264 * K[9, i] + -30.674084731089398 * K[10, i] + -9.332130526430229 * K[11, i] + 15.697238121770845 * K[12, i] + -31.139403219565178 * K[13, i] + -9.35292435884448 * K[14, i] + 35.81684148639408 * K[15, i])
+                F[5, i] = hd * (19.985053242002433 * K[0, i] + -387.0373087493518 * K[5, i] + -189.17813819516758 * K[6, i] + 527.8081592054236 * K[7, i] + -11.57390253995963 * K[8, i] + 6.8812326946963 * K[9, i] + -1.0006050966910838 * K[10, i] + 0.7777137798053443 * K[11, i] + -2.778205752353508 * K[12, i] + -60.19669523126412 * K[13, i] + 84.32040550667716 * K[14, i] + 11.99229113618279 * K[15, i])
+                F[6, i] = hd * (-25.69393346270375 * K[0, i] + -154.18974869023643 * K[5, i] + -231.5293791760455 * K[6, i] + 357.6391179106141 * K[7, i] + 93.40532418362432 * K[8, i] + -37.45832313645163 * K[9, i] + 104.0996495089623 * K[10, i] + 29.8402934266605 * K[11, i] + -43.53345659001114 * K[12, i] + 96.32455395918828 * K[13, i] + -39.17726167561544 * K[14, i] + -149.72683625798564 * K[15, i])
+            counters[0] += 3
+        if hit:
+            xr = interpolant_root(F, y_old, comp, y_old[comp], y[comp])
+            t_ev = t_old + xr * (t - t_old)
+            if t_ev <= t_end:
+                events[n_ev] = t_ev
+                n_ev += 1
+        while j < n_out and t_eval[j] <= t:
+            if t_eval[j] == t:
+                for i in range(d):
+                    Y[j, i] = y[i]
+            else:
+                x = (t_eval[j] - t_old) / (t - t_old)
+                x1 = 1.0 - x
+                for i in range(d):
+                    Y[j, i] = x * (F[0, i] + x1 * (F[1, i] + x * (F[2, i] + x1 * (
+                        F[3, i] + x * (F[4, i] + x1 * (F[5, i] + x * F[6, i])))))) + y_old[i]
+            j += 1
+        if terminal and 0 < max_events == n_ev and t < t_end:
+            copy_into(y_end, y)
+            return OK, n_ev, t
+    if status != OK:
+        copy_into(y_end, y)
+        return status, n_ev, t
+    if t == t_end:
+        copy_into(y_end, y)
+    else:
+        x = (t_end - t_old) / (t - t_old)
+        x1 = 1.0 - x
+        for i in range(d):
+            y_end[i] = x * (F[0, i] + x1 * (F[1, i] + x * (F[2, i] + x1 * (
+                F[3, i] + x * (F[4, i] + x1 * (F[5, i] + x * F[6, i])))))) + y_old[i]
+    return OK, n_ev, t_end

@@ -17,12 +17,11 @@ Subclass contract
 
 from __future__ import annotations
 
-import enum
 from dataclasses import dataclass
 
 import numpy as np
 
-from .status import POLICY_STATUSES, Status
+from .status import Status
 
 
 class MethodMismatch(Exception):
@@ -98,8 +97,9 @@ class Method:
     symplectic: bool = False
     implicit: bool = False
     needs_separable: bool = False
-    #: integrates only the pure inverse-square force: the model declares
-    #: ``extra["kepler_gm"]`` = GM (:func:`reportgen.core.models.kepler.model`)
+    #: integrates only the pure inverse-square force: the model carries its Levi-Civita
+    #: regularization, ``extra["levi_civita"]`` (an object with ``gm`` and the
+    #: transformation's functions; the Kepler model offers one)
     needs_kepler: bool = False
     symmetric: bool = False
     #: a scipy solver run for comparison in the study (not offered by ``auto``)
@@ -113,7 +113,7 @@ class Method:
                 f"method '{self.name}' needs a separable Hamiltonian H = T(p) + V(q); "
                 f"model '{model.name}' has none"
             )
-        if self.needs_kepler and "kepler_gm" not in model.extra:
+        if self.needs_kepler and "levi_civita" not in model.extra:
             raise MethodMismatch(
                 f"method '{self.name}' needs the pure inverse-square force V = −k/r (its "
                 f"regularization holds for no other); model '{model.name}' is not one"
@@ -142,31 +142,12 @@ class Run:
         raise NotImplementedError
 
 
-class RunStatus(enum.StrEnum):
-    """What the policy made of one run (archived as the run attr ``solver_status``): the
-    members of :class:`.status.Status` it names (:data:`.status.POLICY_STATUSES`), with
-    their spellings and verdicts; every other failure is archived as FAILED."""
-
-    OK = Status.OK
-    #: a method named explicitly looks stiff (kept, flagged)
-    STIFF = Status.STIFF
-    #: the step budget ran out
-    MAX_STEPS = Status.MAX_STEPS
-    #: the state (or every trial step) became NaN or inf
-    NONFINITE = Status.NONFINITE
-    #: any other integrator failure (step-size underflow, Newton, scipy)
-    FAILED = Status.FAILED
-    #: the automatic choice met stiffness and used an implicit method: it looked stiff and
-    #: was redone with the fallback, or the model was marked stiff in advance
-    SWITCHED = Status.SWITCHED
-
-    @property
-    def verdict(self) -> str:
-        """The run's archived ``status``: ``"ok"``, ``"unstable"`` or ``"failed"``."""
-        return Status(self).verdict
-
-
-assert {s.value for s in RunStatus} == {s.value for s in POLICY_STATUSES}
+#: What the policy made of one run (archived as the run attr ``solver_status``): the one
+#: vocabulary, :class:`.status.Status`.  The policy gives only the members of
+#: :data:`.status.POLICY_STATUSES` (OK, STIFF, MAX_STEPS, NONFINITE, FAILED, SWITCHED):
+#: every other failure is archived as FAILED (:attr:`.status.Status.policy`).  Verdicts:
+#: ok/switched -> "ok", stiff -> "unstable", every failure -> "failed".
+RunStatus = Status
 
 #: integrator outcome -> policy status (before the stiffness checks)
-STATUS_OF_CODE = {s: RunStatus(s.policy) for s in Status}
+STATUS_OF_CODE = {s: s.policy for s in Status}

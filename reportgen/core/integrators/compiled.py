@@ -267,6 +267,50 @@ def dop853_component(F, y_old, i, x):
     return acc + y_old[i], dacc
 
 
+@numba.njit(cache=True, inline="always")
+def crosses(g0, g1, direction):
+    """Whether a component going from g0 to g1 over a step crosses zero in ``direction``.
+
+    Up (+1): g0 < 0 <= g1; down (-1): g0 > 0 >= g1; 0: either.  A value exactly zero at
+    the end of one step counts there and not again at the start of the next.
+    """
+    if direction >= 0 and g0 < 0.0 <= g1:
+        return True
+    return direction <= 0 and g0 > 0.0 >= g1
+
+
+@numba.njit(cache=True)
+def interpolant_root(F, y_old, i, g0, g1):
+    """Where component ``i`` of the step's interpolant vanishes, as x in [0, 1].
+
+    g0 (nonzero) and g1 are the component at the step's ends, of opposite signs or
+    g1 = 0.  Newton's method from the secant guess, kept inside the bracket that it
+    shrinks, with bisection whenever a Newton step would leave it; it stops when a
+    step moves x by less than 4 eps, i.e. the crossing time is the interpolant's root
+    to ~1e-15 of the step (HNW I, II.6).
+    """
+    if g1 == 0.0:
+        return 1.0
+    lo = 0.0
+    hi = 1.0
+    x = g0 / (g0 - g1)
+    for _ in range(100):
+        v, dv = dop853_component(F, y_old, i, x)
+        if v == 0.0:
+            return x
+        if (v < 0.0) == (g0 < 0.0):
+            lo = x
+        else:
+            hi = x
+        x_new = x - v / dv if dv != 0.0 else -1.0  # -1: outside, bisect
+        if not (lo < x_new < hi):
+            x_new = 0.5 * (lo + hi)
+        if abs(x_new - x) <= 4.0 * EPS or hi - lo <= 4.0 * EPS:
+            return x_new
+        x = x_new
+    return x
+
+
 @numba.njit(cache=True)
 def dop853_dense_coefficients(nst, P, h, y_old, y_new, K, F):
     """The coefficients F of the 7th-order interpolant (K has the three extra stages)."""

@@ -41,7 +41,7 @@ OSCILLATORY_STIFF = "gauss6"
 OSCILLATORY_STEP = 0.5
 DEFAULT_MAX_STEPS = 10_000_000
 #: Kepler orbits at least this eccentric go to ``levi_civita`` (a model offering
-#: ``extra["kepler_gm"]``, a bound orbit).  Measured (10 orbits, 4001 outputs, error
+#: ``extra["levi_civita"]``, a bound orbit).  Measured (10 orbits, 4001 outputs, error
 #: against Kepler's equation): from e = 0.9 on, DOP853 at no tolerance reaches the
 #: error levi_civita has at rtol 1e-12 (DOP853's floor 1.1e-11 at e = 0.9, 9.7e-12 at
 #: 0.95, 5.2e-10 at 0.99 against 8.4e-13, 1.3e-12, 1.6e-12), and its energy drifts
@@ -132,7 +132,7 @@ def choose_auto(model, rtol: float, n_periods: float | None = None,
     """``method = "auto"``: (method name, one-sentence reason) from the model's structure.
 
     Decision (from benchmarks/bench_pendulum.py, see benchmarks/README.md): stiff ->
-    scipy Radau; a bound Kepler orbit (the model offers ``kepler_gm``; ``y0`` given) with
+    scipy Radau; a bound Kepler orbit (the model offers ``levi_civita``; ``y0`` given) with
     e >= ``REGULARIZE_ECCENTRICITY`` -> ``levi_civita``; otherwise DOP853 with dense
     output, which reaches a given accuracy fastest over short and moderate runs; for
     long runs (``n_periods`` >= ``LONG_RUN_PERIODS``) of a separable Hamiltonian a
@@ -172,14 +172,12 @@ def choose_auto(model, rtol: float, n_periods: float | None = None,
 def _bound_kepler_eccentricity(model, y0) -> float | None:
     """e of the bound Kepler orbit through ``y0`` (None: not Kepler, not bound, no y0, or
     ``y0`` at the centre or not finite)."""
-    if y0 is None or "kepler_gm" not in model.extra:
+    if y0 is None or "levi_civita" not in model.extra:
         return None
-    from ..models.kepler import orbital_elements
-
     x, y, vx, vy = (float(v) for v in y0)
     if not (math.hypot(x, y) > 0.0 and math.isfinite(vx) and math.isfinite(vy)):
         return None  # no orbit through the centre (1/r): the run reports what happens
-    elements = orbital_elements(x, y, vx, vy, float(model.extra["kepler_gm"]))
+    elements = model.extra["levi_civita"].orbital_elements((x, y, vx, vy))
     return elements["eccentricity"] if elements["bound"] else None
 
 

@@ -1,8 +1,9 @@
 r"""``levi_civita``: the Kepler problem integrated in Levi-Civita variables.
 
-For the pure inverse-square force (a model declaring ``extra["kepler_gm"]`` = GM, see
-:func:`reportgen.core.models.kepler.model`) the orbit is carried to the regularized
-harmonic oscillator (LC) of :mod:`reportgen.core.models.kepler_regularized`, integrated
+For the pure inverse-square force the model carries its Levi-Civita regularization
+(``extra["levi_civita"]``: GM and the transformation, which the Kepler model offers; this
+module names no model) and the orbit is carried to the regularized harmonic oscillator
+(LC) it defines, integrated
 there with ``gauss6`` at a step uniform in the fictitious time s (dt/ds = r: uniform in
 eccentric anomaly, so the physical step shrinks ∝ r at pericentre and a highly eccentric
 orbit costs no more than a circle), and brought back to the requested physical times:
@@ -14,10 +15,10 @@ orbit costs no more than a circle), and brought back to the requested physical t
    over any number of orbits.
 2. Output, two passes: t(s) is a state component.  The first run stores the state every
    ds; the s of each requested t is found by Newton's method on the quintic Hermite
-   interpolant of t(s) (:func:`~.kepler_regularized.fictitious_times`, error O(ds⁶)).
+   interpolant of t(s) (the transform's ``fictitious_times``, error O(ds⁶)).
    The second run steps (≤ ds) straight to those s, so every output is a gauss6 state,
    not an interpolated one, and a Taylor step of Δs ~ 1e-12 puts it at t exactly
-   (:func:`~.kepler_regularized.shift_to_times`).
+   (the transform's ``shift_to_times``).
 3. Energy, angular momentum and the LRL vector are quadratic invariants of (LC) (the
    oscillator's energy, its angular momentum w × w' and its Fradkin tensor), which Gauss
    collocation conserves exactly: they stay at round-off at every output.  The phase
@@ -62,17 +63,16 @@ def steps_per_orbit(rtol: float, eccentricity: float) -> int:
     return max(MIN_STEPS_PER_ORBIT, math.ceil((STEP_CONSTANT * speed / rtol) ** (1.0 / 6.0)))
 
 
-def _bound_orbit(method: str, model, y0) -> tuple[float, float]:
-    """(GM, specific energy h) of the Kepler orbit from ``y0``; a ValueError naming
-    ``method`` unless it is bound (h < 0), which both regularizations need."""
-    from ..models import kepler_regularized as lc
-
-    gm = float(model.extra["kepler_gm"])
-    energy = lc.specific_energy(*y0, gm)
+def _bound_orbit(method: str, model, y0):
+    """(the model's Levi-Civita transform, specific energy h of the Kepler orbit from
+    ``y0``); a ValueError naming ``method`` unless it is bound (h < 0), which both
+    regularizations need."""
+    lc = model.extra["levi_civita"]
+    energy = lc.specific_energy(y0)
     if not energy < 0.0:
         raise ValueError(f"y0: method '{method}' needs a bound orbit (specific energy "
                          f"< 0), got {energy:.6g}")
-    return gm, energy
+    return lc, energy
 
 
 def _gauss6(reg, state, s, ds, progress=None) -> Solution:
@@ -99,19 +99,15 @@ class LeviCivita(Method):
     compiled = False
 
     def solve(self, model, y0, t_eval, rtol, atol, progress=None) -> Solution:
-        # imported here: listing the methods imports no numba (see integrators/__init__)
-        from ..models import kepler
-        from ..models import kepler_regularized as lc
-
-        gm, energy = _bound_orbit(self.name, model, y0)
-        elements = kepler.orbital_elements(*y0, gm)
+        lc, energy = _bound_orbit(self.name, model, y0)
+        elements = lc.orbital_elements(y0)
         n_orbit = steps_per_orbit(rtol, elements["eccentricity"])
-        ds = lc.orbit_fictitious_period(energy) / n_orbit
+        ds = lc.fictitious_period(energy) / n_orbit
         reg = lc.model(energy)
         state0 = lc.to_regularized(*y0, t=float(t_eval[0]))
         t0 = time.perf_counter()
-        s_out, first = self._fictitious_times(reg, state0, t_eval, ds, elements, n_orbit,
-                                              progress)
+        s_out, first = self._fictitious_times(lc, reg, state0, t_eval, ds, elements,
+                                              n_orbit, progress)
         if not first.ok:
             return self._solution(t_eval, np.full((t_eval.size, 4), np.nan), first, [first],
                                   time.perf_counter() - t0, rtol, atol)
@@ -126,12 +122,10 @@ class LeviCivita(Method):
                               rtol, atol)
 
     @staticmethod
-    def _fictitious_times(reg, state0, t_eval, ds, elements, n_orbit, progress):
+    def _fictitious_times(lc, reg, state0, t_eval, ds, elements, n_orbit, progress):
         """First pass: (LC) every ``ds`` from ``state0`` until t passes ``t_eval[-1]``, in
-        chunks; the s of each output (:func:`~.kepler_regularized.fictitious_times`) and
-        the last chunk's run (with every chunk's counters added)."""
-        from ..models import kepler_regularized as lc
-
+        chunks; the s of each output (``lc.fictitious_times``, ``lc`` the model's
+        transform) and the last chunk's run (with every chunk's counters added)."""
         # t(s) − t0 ≥ T (s/s_orbit − e/π) (Kepler's equation, E ∝ s): steps to t_end
         span = float(t_eval[-1] - t_eval[0])
         needed = math.ceil((span / elements["period"] + elements["eccentricity"] / math.pi)
@@ -189,13 +183,12 @@ class LeviCivitaDop853(Method):
     compiled = False
 
     def solve(self, model, y0, t_eval, rtol, atol, progress=None) -> Solution:
-        from ..models import kepler_regularized as lc
         from .fictitious_time import integrate_fictitious_time
 
         start = time.perf_counter()
         y0 = np.asarray(y0, dtype=np.float64)
         t_eval = np.ascontiguousarray(t_eval, dtype=np.float64)
-        _, energy = _bound_orbit(self.name, model, y0)
+        lc, energy = _bound_orbit(self.name, model, y0)
         sol = integrate_fictitious_time(lc.model(energy), lc.to_regularized(*y0, t=float(
             t_eval[0])), t_eval, 4, rtol, atol, progress=progress)
         x, y, vx, vy, _ = lc.from_regularized(sol.y)

@@ -9,10 +9,11 @@ evaluation) this driver takes the same steps, bit for bit, in 75 instead of 135 
 model asks for it (``OdeModel.specialize``); the lecture pack's heavy tops share one.
 
 The driver is the generic one's text (:mod:`._gen_dop853`) with ``rhs`` imported by
-name, written under ``$XDG_CACHE_HOME/reportgen/drivers`` (:mod:`reportgen.core.codegen`)
-so numba caches it.  numba does not notice when an inlined function changes, so the
-text carries a hash of the model's module and of :mod:`.compiled`: an edited model
-writes a new driver instead of loading a stale one.
+name, loaded through core's code store (:func:`reportgen.core.codegen.load_module`; by
+default a file under ``$XDG_CACHE_HOME/reportgen/drivers``) so numba caches it. numba
+does not notice when an inlined function changes, so the text carries a hash of the
+model's module and of :mod:`.compiled`: an edited model writes a new driver instead of
+loading a stale one.
 """
 
 from __future__ import annotations

@@ -3,7 +3,8 @@
 Every :class:`Status` member is spelled three ways, all defined here and nowhere else:
 
 * its value, a string (``"step_underflow"``): :attr:`.base.Solution.code`, the solver
-  policy's ``solver_status`` (:class:`.base.RunStatus`, the subset the policy archives),
+  policy's ``solver_status`` (:data:`.base.RunStatus` is this enum; the policy archives
+  only :data:`POLICY_STATUSES`),
   the sweep's per-member status (:data:`reportgen.core.ensemble.STATUS_NAMES`);
 * its integer :attr:`~Status.code`: what a compiled driver returns.  The drivers use the
   plain ``int`` constants :mod:`.compiled` makes from these (``compiled.UNDERFLOW =
@@ -41,17 +42,17 @@ class Status(enum.StrEnum):
     MAX_STEPS = "max_steps", 3, "failed"
     #: the Newton iteration of an implicit method did not converge
     NEWTON = "newton", 4, "failed"
-    #: :func:`reportgen.core.ensemble.pendulum_periods`: theta0 outside (0, pi), g / l not
-    #: positive, or not finite
+    #: a period measured on an ensemble (a kind's sweep): the member cannot oscillate
+    #: (initial state or parameters outside the libration region, or not finite)
     NOT_LIBRATING = "not_librating", 5, "failed"
-    #: :func:`reportgen.core.ensemble.pendulum_periods`: fewer than two upward crossings
+    #: a period measured on an ensemble: fewer than two crossings before the horizon
     NO_PERIOD = "no_period", 6, "failed"
     #: a fixed-step kernel was given a step it cannot take: h not positive and finite, or
     #: more than ``compiled.MAX_FIXED_STEPS`` steps in one output interval
     BAD_STEP = "bad_step", 7, "failed"
     #: a peer (scipy) solver reported failure
     SOLVER_ERROR = "solver_error", 8, "failed"
-    # the solver policy's outcomes (:class:`.base.RunStatus`)
+    # the solver policy's own outcomes (:data:`.base.RunStatus` is this enum)
     #: a method named explicitly looks stiff (kept, flagged)
     STIFF = "stiff", 9, "unstable"
     #: the automatic choice met stiffness and used an implicit method
@@ -81,7 +82,7 @@ class Status(enum.StrEnum):
         return _BY_CODE[int(code)]
 
 
-#: the statuses the solver policy archives as ``solver_status`` (:class:`.base.RunStatus`)
+#: the statuses the solver policy archives as ``solver_status`` (:func:`.policy.solve`)
 POLICY_STATUSES = frozenset({Status.OK, Status.STIFF, Status.MAX_STEPS, Status.NONFINITE,
                              Status.FAILED, Status.SWITCHED})
 _BY_CODE = {s.code: s for s in Status}

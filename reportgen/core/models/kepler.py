@@ -71,8 +71,13 @@ def kick(q, params, out):
 
 def model(k: float, mu: float, n: float = 1.0, epsilon: float = 0.0) -> OdeModel:
     """Relative motion r̈ = −∇V(r)/μ for V = −k/rⁿ − ε/r², state (x, y, vx, vy)."""
-    # the inverse-square force offers GM = k/μ to the Levi-Civita method (levi_civita)
-    extra = {"kepler_gm": k / mu} if n == 1.0 and epsilon == 0.0 else {}
+    # the inverse-square force offers its Levi-Civita regularization (GM = k/μ) to the
+    # regularized methods (levi_civita, levi_civita_dop853)
+    extra = {}
+    if n == 1.0 and epsilon == 0.0:
+        from .kepler_regularized import LeviCivitaTransform
+
+        extra["levi_civita"] = LeviCivitaTransform(k / mu)
     return OdeModel(name="central force", columns=("x", "y", "vx", "vy"), rhs=rhs,
                     params=np.array([k * n / mu, float(n), 2.0 * epsilon / mu]),
                     separable=Separable(n=2, drift=drift, kick=kick), extra=extra)

@@ -170,3 +170,36 @@ def shift_to_times(Y: np.ndarray, t_out: np.ndarray, h: float) -> np.ndarray:
     out = Y + delta * F + 0.5 * delta * delta * G
     out[:, 4] = t_out
     return out
+
+
+class LeviCivitaTransform:
+    """The Levi-Civita regularization of one Kepler problem (GM = ``gm``): what the
+    regularized methods (:mod:`reportgen.core.integrators.regularized`) need, carried by
+    the model that offers it (``OdeModel.extra["levi_civita"]``,
+    :func:`reportgen.core.models.kepler.model`), so the integrators name no model module.
+    """
+
+    def __init__(self, gm: float):
+        self.gm = float(gm)
+
+    def __repr__(self) -> str:
+        return f"LeviCivitaTransform(gm={self.gm!r})"
+
+    def specific_energy(self, y0) -> float:
+        """h of the orbit through the Cartesian state ``y0`` = (x, y, ẋ, ẏ)."""
+        return specific_energy(*y0, self.gm)
+
+    def orbital_elements(self, y0) -> dict:
+        """:func:`reportgen.core.models.kepler.orbital_elements` of the orbit through ``y0``."""
+        from .kepler import orbital_elements
+
+        return orbital_elements(*(float(v) for v in y0), self.gm)
+
+    #: (LC) at energy h; its fictitious period; the transformation both ways; the s of
+    #: physical times on stored states; the final shift of states to their times
+    model = staticmethod(model)
+    fictitious_period = staticmethod(orbit_fictitious_period)
+    to_regularized = staticmethod(to_regularized)
+    from_regularized = staticmethod(from_regularized)
+    fictitious_times = staticmethod(fictitious_times)
+    shift_to_times = staticmethod(shift_to_times)

@@ -181,14 +181,14 @@ class PendulumSimulation(Simulation):
     # ------------------------------------------------------------------ sweeps
     def sweep_block(self, lo, hi, values):
         """Members released from rest run as one compiled ensemble
-        (:func:`reportgen.core.ensemble.pendulum_periods`): each member's period is the
+        (:func:`.ensemble.pendulum_periods`): each member's period is the
         time between its first two upward crossings of θ = 0, against the exact
         4K(k)√(l/g).  Other sweeps run member by member."""
         p, ini, run = self.config.params, self.config.initial, self.config.run
         if not self._ensemble_sweep():
             return super().sweep_block(lo, hi, values)
-        from ...core import ensemble
         from ...sweep import SweepBlock
+        from . import ensemble
 
         n = hi - lo
         theta = values.get("initial.theta", np.full(n, ini.theta))
@@ -211,7 +211,7 @@ class PendulumSimulation(Simulation):
     def sweep_warm_up(self) -> None:
         """One member through the compiled ensemble (compiles it on an empty cache)."""
         if self._ensemble_sweep():
-            from ...core import ensemble
+            from . import ensemble
 
             ensemble.pendulum_periods(np.array([0.5]), 1.0, 1.0, rtol=self.config.run.rtol,
                                       atol=self.config.run.atol)
