@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from reportgen.bench import long_time_energy
+from reportgen.commands.bench import long_time_energy
 from reportgen.core.integrators import integrate
 from reportgen.core.models import pendulum
 from reportgen.core.study import matched_error_speedup, work_precision

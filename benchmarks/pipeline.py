@@ -1,4 +1,4 @@
-"""The edit loop, measured whole (see :mod:`reportgen.bench_pipeline`; also
+"""The edit loop, measured whole (see :mod:`reportgen.commands.bench_pipeline`; also
 ``reportgen bench --pipeline``).
 
 Run from the repository root::
@@ -15,7 +15,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from reportgen.bench_pipeline import REPO, measure  # noqa: E402
+from reportgen.commands.bench_pipeline import REPO, measure  # noqa: E402
 
 
 def main() -> int:

@@ -55,7 +55,7 @@ store = 5
 
 def ours(repeats: int) -> tuple[float, float]:
     """(median wall time of ``reportgen run``, max period error read from the archive)."""
-    from reportgen.archive import read_archive
+    from reportgen.archive.store import read_archive
 
     with tempfile.TemporaryDirectory(prefix="reportgen-sweep-") as tmp:
         config = Path(tmp) / "pendulum_period_sweep.toml"

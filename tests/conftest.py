@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from reportgen.cli import main
+from reportgen.commands.cli import main
 
 REPO = Path(__file__).resolve().parent.parent
 
@@ -50,7 +50,7 @@ def without_study(path: Path, target: Path) -> Path:
     only (what a test of the report's drawing needs, at a fraction of the cost)."""
     import tomllib
 
-    from reportgen.config import to_toml
+    from reportgen.scene.config import to_toml
 
     data = tomllib.loads(path.read_text(encoding="utf-8"))
     if isinstance(data.get("run"), dict):
@@ -64,7 +64,7 @@ def cli_without_core(*args) -> subprocess.CompletedProcess:
     """`reportgen args` in a fresh process in which ``reportgen.core`` cannot be imported:
     whatever it does, it does from an archive alone."""
     code = ("import sys; sys.modules['reportgen.core'] = None\n"
-            "from reportgen.cli import main\n"
+            "from reportgen.commands.cli import main\n"
             f"raise SystemExit(main({[str(a) for a in args]!r}))")
     return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                           timeout=300)

@@ -9,7 +9,7 @@ import pytest
 from PIL import Image
 
 from conftest import cli_without_core, without_study
-from reportgen.plots.motion import MOTIONS, frame_samples
+from reportgen.rendering.plots.motion import MOTIONS, frame_samples
 
 REPO = Path(__file__).resolve().parent.parent
 #: one shipped scene per kind that has a motion
@@ -22,7 +22,7 @@ ONE_PER_KIND = {
 
 
 def _run_without_study(stem: str, root: Path) -> Path:
-    from reportgen.pipeline import run_scene
+    from reportgen.pipeline.stages import run_scene
 
     config = without_study(REPO / "configs" / f"{stem}.toml", root / f"{stem}.toml")
     outcome = run_scene(str(config), str(root / "out"))
@@ -78,7 +78,7 @@ def test_gif_and_mp4_frame_count_rate_and_duration(tmp_path, cli):
 def test_the_bob_is_where_the_archive_says(tmp_path, cli):
     """Frame k shows the pendulum at θ of sample frame_samples(N, frames)[k]: the red bob's
     centroid in the left panel, seen from the pivot, points along (sin θ, −cos θ)."""
-    from reportgen.archive import read_archive
+    from reportgen.archive.store import read_archive
 
     archive = _run_without_study("pendulum_large", tmp_path)
     code, _, err = cli("animate", archive, "--fps", "10", "--duration", "3", "--dpi", "60",

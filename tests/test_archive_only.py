@@ -18,8 +18,8 @@ from pathlib import Path
 import pytest
 
 from conftest import without_study
-from reportgen.config import to_toml
-from reportgen.pipeline import run_scene
+from reportgen.pipeline.stages import run_scene
+from reportgen.scene.config import to_toml
 
 REPO = Path(__file__).resolve().parent.parent
 SHIPPED = sorted((REPO / "configs").glob("*.toml"))
@@ -28,7 +28,7 @@ BLOCKED_REPORT = """
 import sys
 sys.modules["reportgen.core"] = None
 from pathlib import Path
-from reportgen.report import build_report
+from reportgen.rendering.report import build_report
 build_report(Path(sys.argv[1]), formats=("html",), out_dir=Path(sys.argv[2]))
 assert not [m for m in sys.modules if m.startswith("reportgen.core.")], "core was imported"
 """

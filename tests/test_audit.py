@@ -8,13 +8,13 @@ import numpy as np
 
 import stiff_model
 from conftest import pendulum_text
-from reportgen.audit import MethodRun, builtin_cases, run_audit, verdict
-from reportgen.audit_archive import read_audit
-from reportgen.config import parse_config_text
+from reportgen.archive.audit import read_audit
+from reportgen.commands.audit import MethodRun, builtin_cases, run_audit, verdict
 from reportgen.core.integrators import METHODS, RunStatus, integrate
 from reportgen.core.integrators.policy import STIFF_FALLBACK
 from reportgen.core.integrators.stability import stiffness_ratio
 from reportgen.kinds import KINDS, load_scene
+from reportgen.scene.config import parse_config_text
 
 
 def _scene(method="auto"):
@@ -86,7 +86,7 @@ def test_every_builtin_case_is_a_valid_config():
     cases = builtin_cases()
     assert {c.config["kind"] for c in cases} >= {"pendulum", "oscillator"}
     for case in cases:
-        from reportgen.audit import _scene_for
+        from reportgen.commands.audit import _scene_for
 
         scene = _scene_for(case.config, "case")
         assert scene.kind in KINDS and case.what

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from conftest import pendulum_text
-from reportgen.archive import read_archive
-from reportgen.pipeline import run_batch
+from reportgen.archive.store import read_archive
+from reportgen.pipeline.stages import run_batch
 
 distributed = pytest.importorskip("distributed")
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from reportgen.bench_nbody import MASSES, initial_state, pythagorean_against_rebound
+from reportgen.commands.bench_nbody import MASSES, initial_state, pythagorean_against_rebound
 from reportgen.core.integrators import integrate
 from reportgen.core.models import nbody
 from reportgen.core.models import three_body_ks as ks

@@ -14,7 +14,7 @@ import pytest
 from matplotlib import image as mpimg
 
 from conftest import pendulum_text
-from reportgen.pipeline import run_batch
+from reportgen.pipeline.stages import run_batch
 
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 PDFTOPPM = shutil.which("pdftoppm")

@@ -12,9 +12,9 @@ import pytest
 from pydantic import BaseModel
 from pydantic.fields import FieldInfo
 
-from reportgen.config import ReportConfig, RunConfig
 from reportgen.kinds import KINDS
 from reportgen.scene.catalogue import describe_kinds
+from reportgen.scene.config import ReportConfig, RunConfig
 
 SHARED = (RunConfig, ReportConfig)  # described once, after the kinds
 

@@ -15,9 +15,9 @@ import textwrap
 import numpy as np
 import pytest
 
-from reportgen.config import ConfigError, parse_config_text
 from reportgen.core.models import kepler as core
 from reportgen.kinds import load_scene
+from reportgen.scene.config import ConfigError, parse_config_text
 
 KEPLER_E07 = "x = 0.3\ny = 0.0\nvx = 0.0\nvy = 2.3804761428476167"
 RUN_E07 = "t_end = 62.83185307179586\nsamples = 4001\nrtol = 1e-13\natol = 1e-15"
@@ -184,7 +184,7 @@ def test_unbound_orbit_has_no_period():
 
 def test_report_sections_from_the_archive(write_config, cli, tmp_path):
     # an unbound orbit has no Kepler checks and no apsides: decided from the archive alone
-    from reportgen.archive import read_archive
+    from reportgen.archive.store import read_archive
     from reportgen.kinds.central_force import CentralForceScene
 
     cfg = write_config("hyp", text(initial="x = 1.0\ny = 0.0\nvx = 0.0\nvy = 1.6",

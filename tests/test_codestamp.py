@@ -1,4 +1,4 @@
-"""Stage keys from the import graph: reportgen.codestamp.module_files / code_hash."""
+"""Stage keys from the import graph: reportgen.pipeline.codestamp.module_files / code_hash."""
 
 from __future__ import annotations
 
@@ -10,8 +10,8 @@ from pathlib import Path
 
 import pytest
 
-from reportgen import codestamp
-from reportgen.codestamp import PACKAGE, code_hash, files_hash, module_files
+from reportgen.pipeline import codestamp
+from reportgen.pipeline.codestamp import PACKAGE, code_hash, files_hash, module_files
 
 #: a package shaped like reportgen after the kinds restructuring
 SOURCES = {
@@ -359,8 +359,8 @@ def test_scanner_reads_every_module_of_the_package_like_the_parser():
 
 
 def test_the_real_package():
-    cli = module_files(["reportgen.cli"])
-    assert PACKAGE / "cli.py" in cli and PACKAGE / "__init__.py" in cli
+    cli = module_files(["reportgen.commands.cli"])
+    assert PACKAGE / "commands" / "cli.py" in cli and PACKAGE / "__init__.py" in cli
     core = PACKAGE / "core"
     integrators = module_files(["reportgen.core.integrators"])
     print("\n".join(str(path.relative_to(PACKAGE)) for path in integrators))

@@ -7,8 +7,8 @@ import math
 import pytest
 
 from conftest import REPO, pendulum_text
-from reportgen.config import ConfigError, read_config
 from reportgen.kinds import load_scene
+from reportgen.scene.config import ConfigError, read_config
 
 
 def problems(path):

@@ -8,8 +8,8 @@ from pathlib import Path
 
 import pytest
 
-from reportgen import equations
-from reportgen.pdf import prepare_html
+from reportgen.rendering import equations
+from reportgen.rendering.pdf import prepare_html
 
 KINDS = Path(__file__).resolve().parent.parent / "reportgen" / "kinds"
 FILTER = re.compile(r"\{% filter eq %\}(.*?)\{% endfilter", re.S)

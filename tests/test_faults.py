@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 
 from conftest import pendulum_text
-from reportgen.archive import read_archive, verify_checksums
+from reportgen.archive.store import read_archive, verify_checksums
 
 KILLS = int(os.environ.get("REPORTGEN_KILLS", "20"))
 

@@ -11,13 +11,13 @@ import pytest
 from PIL import Image
 
 from conftest import cli_without_core, pendulum_text
-from reportgen.export import parse_size
+from reportgen.rendering.export import parse_size
 
 
 @pytest.fixture(scope="module")
 def archive(tmp_path_factory):
     """One small pendulum run (HTML only, no study), shared by the tests below."""
-    from reportgen.cli import main
+    from reportgen.commands.cli import main
 
     root = tmp_path_factory.mktemp("figures")
     config = root / "pend.toml"

@@ -6,10 +6,10 @@ import h5py
 import numpy as np
 import pytest
 
-from reportgen.config import ConfigError, parse_config_text
 from reportgen.core.integrators import integrate
 from reportgen.core.models import fput as core
 from reportgen.kinds import load_scene
+from reportgen.scene.config import ConfigError, parse_config_text
 
 OMEGA = 50.0
 M = 3

@@ -20,8 +20,8 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from reportgen.config import ConfigError, parse_config_text, read_config, to_toml
 from reportgen.kinds import KINDS, load_scene
+from reportgen.scene.config import ConfigError, parse_config_text, read_config, to_toml
 
 REPO = Path(__file__).resolve().parent.parent
 LABEL = Path("fuzz/scene.toml")  # the file name every problem line must start with
@@ -224,7 +224,7 @@ def broken(draw):
 
 
 def _validate_cli(path: Path) -> tuple[int, str, str]:
-    from reportgen.cli import main
+    from reportgen.commands.cli import main
 
     out, err = io.StringIO(), io.StringIO()
     with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):

@@ -32,10 +32,10 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from reportgen.config import parse_config_text, to_toml
 from reportgen.core import formula
 from reportgen.core.expressions import parse_expression
 from reportgen.kinds import load_scene
+from reportgen.scene.config import parse_config_text, to_toml
 
 REPO = Path(__file__).resolve().parent.parent
 HAND_RTOL = HAND_ATOL = 1e-13  # the hand integrations' tolerances (scipy DOP853)

@@ -20,13 +20,13 @@ import pytest
 from scipy import integrate as sp_integrate
 from scipy import special
 
-from reportgen.archive import read_archive
-from reportgen.config import ConfigError, parse_config_text
+from reportgen.archive.store import read_archive
 from reportgen.core import heavy_top_kinematics as kinematics
 from reportgen.core import heavy_top_theory as theory
 from reportgen.core.integrators import integrate
 from reportgen.core.models import heavy_top as model_core
 from reportgen.kinds import load_scene
+from reportgen.scene.config import ConfigError, parse_config_text
 
 I1, I3, MGL = 1.0, 0.5, 1.0  # the SPEC example top; sleeping threshold ω3 = 4 rad/s
 
@@ -445,9 +445,9 @@ def test_bench_textbook_row_reaches_the_euler_angle_scripts_theta_error():
     # reportgen bench: scipy DOP853 on the Euler-angle equations against our run (the
     # reduced form here) at the loosest rtol reaching its θ error (both against the
     # closed form).
-    from reportgen.bench import heavy_top_textbook
-    from reportgen.config import parse_config_text
+    from reportgen.commands.bench import heavy_top_textbook
     from reportgen.kinds.heavy_top import HeavyTopScene
+    from reportgen.scene.config import parse_config_text
 
     scene = HeavyTopScene.from_source(parse_config_text(
         'kind = "heavy_top"\ntitle = "t"\n[params]\nI1 = 1.3\nI3 = 0.45\nMgl = 0.9\n'

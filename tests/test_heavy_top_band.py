@@ -20,10 +20,10 @@ import h5py
 import numpy as np
 import pytest
 
-from reportgen.archive import read_archive
-from reportgen.config import ConfigError, parse_config_text
+from reportgen.archive.store import read_archive
 from reportgen.core import heavy_top_theory as theory
 from reportgen.kinds import load_scene
+from reportgen.scene.config import ConfigError, parse_config_text
 
 REPO = Path(__file__).resolve().parent.parent
 I1, I3, MGL = 1.0, 0.5, 1.0
@@ -294,7 +294,7 @@ def test_sleeping_scene_shows_weierstrass_only_when_asked():
     # the 1e-6 tilt below the threshold falls to θ2 ≈ 1.59 rad and back: ℘ describes it
     assert a["theta2"] > 1.5 and a["weierstrass_max_difference"] <= 1e-10
     # the scene is about the threshold: its report shows ℘ only when asked
-    from reportgen.archive import ArchiveData, ConfigView
+    from reportgen.archive.store import ArchiveData, ConfigView
 
     data = ArchiveData(path=Path("x.h5"), attrs={}, config_text="", provenance={},
                        analysis=a, runs=results.runs,

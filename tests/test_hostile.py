@@ -25,7 +25,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from conftest import pendulum_text
-from reportgen.cli import main
+from reportgen.commands.cli import main
 
 EXIT_CODES = {0, 1, 2}
 SECRET = "SECRET-7d1f0c-NOT-FOR-REPORTS"
@@ -309,7 +309,7 @@ def test_huge_declared_array_stays_small(base, tmp_path):
     assert archive.stat().st_size < 2_000_000
     code = textwrap.dedent(f"""
         import sys
-        from reportgen.cli import main
+        from reportgen.commands.cli import main
         codes = [main(["inspect", {str(archive)!r}]),
                  main(["report", {str(archive)!r}, "--format", "html"])]
         # VmHWM: this process's own peak (ru_maxrss keeps the forking parent's across exec)
@@ -501,16 +501,16 @@ def test_read_only_out_simulated(current_out, monkeypatch):
 
 def test_disk_full_writing_the_index(current_out, monkeypatch):
     cfg, out = current_out
-    import reportgen.report
+    import reportgen.rendering.report
 
-    real = reportgen.report.atomic_write
+    real = reportgen.rendering.report.atomic_write
 
     def full(path, data):
         if Path(path).name == "index.html":
             raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(path))
         real(path, data)
 
-    monkeypatch.setattr(reportgen.report, "atomic_write", full)
+    monkeypatch.setattr(reportgen.rendering.report, "atomic_write", full)
     code, _, err = _run_cli("run", cfg, "--out", out, "--jobs", "1")
     _clean(code, err, {2})
     assert "index.html" in err and "No space left" in err

@@ -103,7 +103,7 @@ def test_core_imports_nothing_above_it():
 def test_the_graph_sees_imports():
     """The checker itself: known edges are found (so a broken parser cannot pass)."""
     graph = _graph()
-    assert "reportgen.archive" in graph["reportgen.report"]
+    assert "reportgen.archive.store" in graph["reportgen.rendering.report"]
     assert "reportgen.scene.base" in graph["reportgen.kinds"]
     assert "reportgen.core.integrators" in graph["reportgen.scene.simulation"]
 
@@ -118,7 +118,7 @@ def test_the_graph_sees_imports():
 def test_light_commands_import_only_what_they_use(args, absent):
     """--help, kinds and validate stay fast: the heavy libraries load only where used
     (validate may import the bare ``scipy`` package, whose submodules load on use)."""
-    code = ("import sys\nfrom reportgen.cli import main\ntry:\n    main(sys.argv[1:])\n"
+    code = ("import sys\nfrom reportgen.commands.cli import main\ntry:\n    main(sys.argv[1:])\n"
             "except SystemExit:\n    pass\n"
             "print('MODULES: ' + ' '.join(sorted(m for m in sys.modules if '.' not in m or "
             "m.startswith(('reportgen.core', 'scipy.')))))")

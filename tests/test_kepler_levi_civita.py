@@ -18,12 +18,12 @@ import textwrap
 import numpy as np
 import pytest
 
-from reportgen.config import parse_config_text
 from reportgen.core.integrators import MethodMismatch, choose_auto, integrate
 from reportgen.core.integrators.policy import REGULARIZE_ECCENTRICITY
 from reportgen.core.integrators.regularized import STEP_CONSTANT, steps_per_orbit
 from reportgen.core.models import kepler
 from reportgen.kinds import load_scene
+from reportgen.scene.config import parse_config_text
 
 GM = 1.0
 MODEL = kepler.model(k=1.0, mu=1.0)  # GM = k/μ = 1

@@ -19,8 +19,8 @@ from pathlib import Path
 
 import pytest
 
-from reportgen import codestamp
 from reportgen.kinds import KINDS
+from reportgen.pipeline import codestamp
 
 KINDS_DIR = Path(codestamp.PACKAGE) / "kinds"
 PACKAGED = [k for k, cls in KINDS.items() if cls.template_path() is not None]

@@ -41,7 +41,7 @@ class FreeOscillationScene(FreeSimulation, FreeReport):
     "config.py": '''
 from pydantic import Field
 
-from ...config import Positive, Real, RunConfig, Strict
+from ...scene.config import Positive, Real, RunConfig, Strict
 from ...scene.base import SceneConfig
 
 
@@ -74,7 +74,7 @@ SCHEMA = ResultsSchema(
 import numpy as np
 
 from ...lazy import lazy_module
-from ...results import Check, Results
+from ...scene.results import Check, Results
 from ...scene.simulation import Simulation
 from .results import SCHEMA
 
@@ -107,7 +107,7 @@ from ...scene.content import SectionContent, fmt
 from ...scene.report import Report
 from .results import SCHEMA
 
-style = lazy_module("reportgen.plots.style")
+style = lazy_module("reportgen.rendering.plots.style")
 
 
 class FreeReport(Report):
@@ -226,7 +226,7 @@ def test_a_kind_is_one_package_and_a_quantity_one_declaration(tmp_path):
 
     blocked = subprocess.run(
         [sys.executable, "-c", "import sys; sys.modules['reportgen.core'] = None; "
-         "from reportgen.cli import main; sys.exit(main(['report', sys.argv[1], "
+         "from reportgen.commands.cli import main; sys.exit(main(['report', sys.argv[1], "
          "'--format', 'html']))", str(folder / "run.h5")],
         capture_output=True, text=True, env=env, cwd=tmp_path, timeout=600)
     assert blocked.returncode == 0, blocked.stderr
@@ -235,8 +235,8 @@ def test_a_kind_is_one_package_and_a_quantity_one_declaration(tmp_path):
 def test_an_undeclared_result_is_refused_at_write_time(tmp_path):
     """The simulation stores a quantity nobody declared: the archive is not written and
     the error names the result (not a figure that fails to draw later)."""
-    from reportgen.archive import ResultsError, write_archive
-    from reportgen.results import Results
+    from reportgen.archive.store import ResultsError, write_archive
+    from reportgen.scene.results import Results
     from reportgen.scene.schema import Quantity, ResultsSchema
 
     schema = ResultsSchema(analysis=(Quantity("period", "T", "s", "period"),))

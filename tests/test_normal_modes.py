@@ -8,9 +8,9 @@ import h5py
 import numpy as np
 import pytest
 
-from reportgen.config import ConfigError, parse_config_text
 from reportgen.core import normal_modes as core
 from reportgen.kinds import load_scene
+from reportgen.scene.config import ConfigError, parse_config_text
 
 M_O, M_C, M_H = core.ELEMENT_MASSES["O"], core.ELEMENT_MASSES["C"], core.ELEMENT_MASSES["H"]
 
@@ -424,7 +424,7 @@ study = false
 
 
 def test_audit_case_is_reported_stiff():
-    from reportgen.audit import audit_case
+    from reportgen.commands.audit import audit_case
     from reportgen.kinds.normal_modes import NormalModesScene
 
     result = audit_case(NormalModesScene.audit_cases()[0])
@@ -436,7 +436,7 @@ def test_only_a_stiff_scene_is_told_about_stiffness_next_to_its_diagram(write_co
                                                                          tmp_path):
     """The work-precision section explains the stability bound of explicit methods only
     where the scene is stiff (a report leaves out what its scene does not need)."""
-    from reportgen.archive import read_archive
+    from reportgen.archive.store import read_archive
     from reportgen.kinds.normal_modes import NormalModesScene
 
     cfg = write_config("stiff", STIFF.format(t_end=4.0, study="true"))

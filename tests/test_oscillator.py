@@ -7,10 +7,10 @@ import math
 import numpy as np
 import pytest
 
-from reportgen.archive import read_archive, write_archive
-from reportgen.config import ConfigError, parse_config_text
+from reportgen.archive.store import read_archive, write_archive
 from reportgen.core.models import oscillator as core
 from reportgen.kinds import load_scene
+from reportgen.scene.config import ConfigError, parse_config_text
 
 TEXT = """
 kind = "oscillator"

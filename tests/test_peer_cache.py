@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 
 from conftest import pendulum_text
-from reportgen.cache import NO_CACHE_ENV, PeerCache
 from reportgen.core.models import pendulum
 from reportgen.core.study import work_precision
+from reportgen.pipeline.cache import NO_CACHE_ENV, PeerCache
 
 G, L, THETA0 = 9.81, 1.0, 1.0
 TOLERANCES = (1e-6, 1e-8)

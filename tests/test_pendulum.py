@@ -14,10 +14,10 @@ import pytest
 from scipy import special
 
 from conftest import pendulum_text
-from reportgen.archive import read_archive, write_archive
-from reportgen.config import parse_config_text
+from reportgen.archive.store import read_archive, write_archive
 from reportgen.core.models import pendulum as core
 from reportgen.kinds import load_scene
+from reportgen.scene.config import parse_config_text
 
 
 def simulate(text):
@@ -92,7 +92,7 @@ def test_boundary_value_action_against_closed_form():
 
 
 def test_conjugate_point_is_rejected():
-    from reportgen.config import ConfigError
+    from reportgen.scene.config import ConfigError
 
     T = math.pi / math.sqrt(9.81)  # sin(ω T) = 0: no unique linear solution
     with pytest.raises(ConfigError, match="boundary.T"):

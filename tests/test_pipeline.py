@@ -12,10 +12,10 @@ import pytest
 from pypdf import PdfReader
 
 from conftest import pendulum_text
-from reportgen import archive as archive_mod
-from reportgen.archive import read_archive
+from reportgen.archive import store as archive_mod
+from reportgen.archive.store import read_archive
 from reportgen.kinds.pendulum import PendulumScene
-from reportgen.pipeline import run_batch
+from reportgen.pipeline.stages import run_batch
 
 OSCILLATOR = """
 kind = "oscillator"
@@ -92,7 +92,7 @@ def test_config_text_archived_exactly(batch):
 
 def test_archive_round_trip(tmp_path):
     scene = PendulumScene.from_source(
-        __import__("reportgen.config", fromlist=["x"]).parse_config_text(pendulum_text()))
+        __import__("reportgen.scene.config", fromlist=["x"]).parse_config_text(pendulum_text()))
     results = scene.simulate()
     path = tmp_path / "run.h5"
     archive_mod.write_archive(path, kind="pendulum", title="t", scene="s",

@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 from report_content import content
 
-from reportgen.pipeline import run_scene
+from reportgen.pipeline.stages import run_scene
 
 HERE = Path(__file__).resolve().parent
 STORED = HERE / "data" / "report_content_pendulum_small.json"

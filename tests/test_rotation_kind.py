@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from scipy.linalg import expm
 
-from reportgen.archive import read_archive
+from reportgen.archive.store import read_archive
 
 SHIPPED = "configs/rotation_exercises.toml"
 
@@ -33,7 +33,7 @@ def circle_fit_residual(points: np.ndarray) -> float:
 
 @pytest.fixture(scope="module")
 def shipped(tmp_path_factory):
-    from reportgen.pipeline import run_scene
+    from reportgen.pipeline.stages import run_scene
 
     out = tmp_path_factory.mktemp("rotation")
     outcome = run_scene(SHIPPED, str(out), formats=("html",))
@@ -262,7 +262,7 @@ def test_a_check_above_1e_12_fails_the_scene(tmp_path, write_config, monkeypatch
     """The checks can fail: a matrix exponential off by 1e-9 flags the scene as failed,
     naming the check (exit status 1 from `reportgen run`)."""
     from reportgen.core import rotations
-    from reportgen.pipeline import run_scene
+    from reportgen.pipeline.stages import run_scene
 
     exact = rotations.expm_by_diagonalization
     monkeypatch.setattr(rotations, "expm_by_diagonalization", lambda M: exact(M) + 1e-9)

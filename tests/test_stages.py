@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 from conftest import pendulum_text
-from reportgen.archive import ArchiveError, read_archive, summarize
-from reportgen.pipeline import run_scene
+from reportgen.archive.store import ArchiveError, read_archive, summarize
+from reportgen.pipeline.stages import run_scene
 
 FIXTURE = Path(__file__).resolve().parent / "data" / "archive_v1_pendulum.h5"
 
@@ -138,8 +138,8 @@ def test_unreadable_newer_format_is_named(tmp_path):
 def test_physics_key_covers_what_simulate_computes_and_nothing_else():
     """Title and section order do not change the simulate key; asking for a section whose
     data is computed only on request (the study, rigid_body's geometric integrator) does."""
-    from reportgen.config import parse_config_text
     from reportgen.kinds import load_scene
+    from reportgen.scene.config import parse_config_text
 
     def key(title="A body", t_end=10.0, sections=None):
         text = (f'kind = "rigid_body"\ntitle = "{title}"\n[params]\nI1 = 1.0\nI2 = 2.0\n'
@@ -161,7 +161,7 @@ def test_physics_key_covers_what_simulate_computes_and_nothing_else():
 def test_figures_in_parallel_and_pdf_worker_give_the_same_report(write_config, tmp_path):
     """The edit loop's single scene draws its figures in forked processes and renders its
     PDF in a worker that imported WeasyPrint early: same files as drawing in one process."""
-    from reportgen.report import FigureHelper, PdfWorker, build_report
+    from reportgen.rendering.report import FigureHelper, PdfWorker, build_report
 
     path = write_config("pend", pendulum_text(t_end=4.0, samples=401))
     out = tmp_path / "out"
@@ -199,9 +199,9 @@ def test_edit_loop_worker_started_only_for_one_edited_scene(write_config, tmp_pa
     """``reportgen run`` forks the PDF worker before validating only when one config is
     newer than its report; an unused worker is stopped at once; the PDF's slim figure
     copies are kept for the next render."""
-    from reportgen.layout import edited_count
-    from reportgen.pdf import PdfWorker, edit_loop_worker
-    from reportgen.pipeline import run_batch
+    from reportgen.pipeline.layout import edited_count
+    from reportgen.pipeline.stages import run_batch
+    from reportgen.rendering.pdf import PdfWorker, edit_loop_worker
 
     a = write_config("a", pendulum_text(t_end=2.0, samples=201))
     b = write_config("b", pendulum_text(t_end=3.0, samples=201))
@@ -237,7 +237,7 @@ def test_edit_loop_worker_started_only_for_one_edited_scene(write_config, tmp_pa
 def test_gallery_follows_an_edited_archive(write_config, tmp_path):
     """The index's entries are kept in out/.gallery.json; an archive that changed (a title
     edit re-stamps it) is read again, the others are not."""
-    from reportgen.pipeline import run_batch
+    from reportgen.pipeline.stages import run_batch
 
     a = write_config("a", pendulum_text(title="First title", t_end=2.0, samples=201))
     write_config("b", pendulum_text(title="Other", t_end=2.0, samples=201))
@@ -270,8 +270,8 @@ def test_code_stamps_follow_the_code_each_stage_imports(tmp_path):
     depend on where the checkout is."""
     import shutil
 
-    from reportgen import codestamp
     from reportgen.kinds import KINDS
+    from reportgen.pipeline import codestamp
 
     pendulum, other = KINDS["pendulum"], KINDS["inertia"]
 
@@ -303,7 +303,7 @@ def test_code_stamps_follow_the_code_each_stage_imports(tmp_path):
         "simulate"}
     assert edited("declared", "kinds/pendulum/results.py") == {("pendulum", "simulate"),
                                                                ("pendulum", "draw")}
-    assert edited("cli", "cli.py") == set()
+    assert edited("cli", "commands/cli.py") == set()
 
 
 def test_caption_edit_rerenders_that_kind_only(write_config, tmp_path, monkeypatch):

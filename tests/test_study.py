@@ -61,7 +61,7 @@ def test_method_labels_keep_their_typography_through_the_archive_table(study, tm
     # "Gauss–Legendre"): they must fit the field and come back as written.
     import h5py
 
-    from reportgen.h5io import read_table, table
+    from reportgen.archive.h5io import read_table, table
 
     assert METHODS["verlet"].label.startswith("Störmer–Verlet")
     width = study.to_records().dtype["label"].itemsize

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from matplotlib.colors import to_rgb
 
-from reportgen.plots import style
+from reportgen.rendering.plots import style
 
 PLOTS = Path(style.__file__).parent
 
@@ -83,7 +83,7 @@ def test_the_work_precision_legend_fits_the_figure_and_tells_every_method_apart(
     methods share colour, marker and line style (past the palette's 7 colours the
     markers and the line change)."""
     from reportgen.core.integrators import METHODS
-    from reportgen.plots.common import work_precision
+    from reportgen.rendering.plots.common import work_precision
 
     names = [n for n, m in METHODS.items() if (m.compiled or m.peer)
              and (studied == "all" or not m.needs_kepler)

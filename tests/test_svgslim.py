@@ -1,4 +1,4 @@
-"""reportgen.svgslim: the lighter SVG the PDF engine gets is the same picture."""
+"""reportgen.rendering.svgslim: the lighter SVG the PDF engine gets is the same picture."""
 
 from __future__ import annotations
 
@@ -11,8 +11,8 @@ import xml.etree.ElementTree as ET
 import matplotlib
 import pytest
 
-from reportgen.plots.style import new_figure
-from reportgen.svgslim import (
+from reportgen.rendering.plots.style import new_figure
+from reportgen.rendering.svgslim import (
     inline_svgs_as_images,
     prune_cache,
     slim_cached,
@@ -192,7 +192,7 @@ def test_images_written_to_a_folder(tmp_path):
 
 def test_pdf_figure_text_stays_selectable(tmp_path):
     pypdf = pytest.importorskip("pypdf")
-    from reportgen.report import write_pdf
+    from reportgen.rendering.report import write_pdf
 
     svg = _matplotlib_svg(log=True)
     html = (f"<html><head><style>figure img.svg-figure {{ max-width: 100%; }}</style></head>"
@@ -228,7 +228,7 @@ def test_a_dense_family_costs_the_pdf_four_vertices_per_member():
     from scipy import special
 
     from reportgen.kinds.pendulum.plots import period_family
-    from reportgen.report import figure_bytes
+    from reportgen.rendering.report import figure_bytes
 
     amplitude = np.linspace(0.01, 3.1, 2000)
     exact = 4 * special.ellipk(np.sin(amplitude / 2) ** 2) / math.sqrt(9.81)

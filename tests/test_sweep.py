@@ -9,12 +9,12 @@ import numpy as np
 import pytest
 
 from conftest import pendulum_text
-from reportgen.archive import read_archive
-from reportgen.config import ConfigError, parse_config_text
+from reportgen.archive.store import read_archive
 from reportgen.kinds import load_scene
-from reportgen.pipeline import run_scene
+from reportgen.pipeline.stages import run_scene
+from reportgen.pipeline.sweep import SweepBlock, parse_sweep, partial_folder
+from reportgen.scene.config import ConfigError, parse_config_text
 from reportgen.scene.content import fmt
-from reportgen.sweep import SweepBlock, parse_sweep, partial_folder
 
 OSCILLATOR = """
 kind = "oscillator"
@@ -183,7 +183,7 @@ def test_sweep_is_part_of_the_physics_key(write_config):
 def test_member_block_failures_are_the_members_own():
     """A member whose config is invalid inside the grid (not at a corner) gets its own
     status; the others have results."""
-    from reportgen.sweep import generic_block
+    from reportgen.pipeline.sweep import generic_block
 
     def make(assignments):
         if assignments["x"] == 2.0:
@@ -191,7 +191,7 @@ def test_member_block_failures_are_the_members_own():
 
         class Member:
             def simulate(self):
-                from reportgen.results import Results
+                from reportgen.scene.results import Results
                 return Results(analysis={"double": 2 * assignments["x"], "text": "no"})
         return Member()
 
@@ -350,7 +350,7 @@ def test_every_broken_key_of_a_shipped_sweep_is_named(name, tmp_path, cli):
 
     from test_fuzz_config import _without_none
 
-    from reportgen.config import read_config, to_toml
+    from reportgen.scene.config import read_config, to_toml
 
     path = Path(__file__).resolve().parent.parent / "configs" / f"{name}.toml"
     doc = _without_none(load_scene(read_config(path)).resolved_config())

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import re
 
-from reportgen.report import table_cell
+from reportgen.rendering.report import table_cell
 
 
 def test_cell_wraps_only_before_a_parenthesis():
@@ -18,7 +18,7 @@ def test_cell_text_is_escaped():
 
 
 def test_the_stylesheet_lets_such_cells_wrap():
-    from reportgen.layout import template_dir
+    from reportgen.pipeline.layout import template_dir
 
     css = (template_dir() / "style.css.j2").read_text()
     assert re.search(r"td\.num\.wrap\s*\{\s*white-space:\s*normal", css)

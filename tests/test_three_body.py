@@ -10,10 +10,10 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from reportgen.config import ConfigError, parse_config_text
 from reportgen.core.models import nbody as core
 from reportgen.kinds import load_scene
 from reportgen.kinds.three_body import ThreeBodyScene
+from reportgen.scene.config import ConfigError, parse_config_text
 
 
 def simulate(text):

@@ -8,12 +8,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from reportgen.config import ConfigError, parse_config_text
 from reportgen.core.integrators import integrate
 from reportgen.core.integrators.fictitious_time import integrate_fictitious_time
 from reportgen.core.models import two_center as cart
 from reportgen.core.models import two_center_regularized as reg
 from reportgen.kinds import load_scene
+from reportgen.scene.config import ConfigError, parse_config_text
 
 MU, A = 1.0, 1.0
 SATELLITE = (0.0, 1.6, 1.05, 0.0)  # configs/two_center_satellite.toml: ≥ 0.89 a from a centre

@@ -12,15 +12,15 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from reportgen.archive import read_archive
-from reportgen.config import ConfigError, parse_config_text
+from reportgen.archive.store import read_archive
 from reportgen.core.integrators import integrate
 from reportgen.core.integrators.fictitious_time import integrate_fictitious_time
 from reportgen.core.models import two_center, two_center_regularized
 from reportgen.kinds import load_scene
 from reportgen.kinds.two_center import TwoCenterScene
-from reportgen.pipeline import run_scene
-from reportgen.sweep import partial_folder
+from reportgen.pipeline.stages import run_scene
+from reportgen.pipeline.sweep import partial_folder
+from reportgen.scene.config import ConfigError, parse_config_text
 
 MU = A = 1.0
 ENERGY = -0.5

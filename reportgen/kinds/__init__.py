@@ -14,8 +14,8 @@ from __future__ import annotations
 import importlib
 import pkgutil
 
-from ..config import ConfigError, SourceConfig
 from ..scene.base import REGISTRY, Scene
+from ..scene.config import ConfigError, SourceConfig
 
 
 def _discover() -> dict[str, type[Scene]]:

@@ -8,7 +8,7 @@ Its ``__init__.py`` joins the two faces into one class with a ``kind``; defining
 class registers the kind.  The pipeline never special-cases a kind.
 
 The stage keys are computed from the code each face imports
-(:func:`reportgen.codestamp.code_hash`): the simulate key from the simulation's modules
+(:func:`reportgen.pipeline.codestamp.code_hash`): the simulate key from the simulation's modules
 and the config's, the figures key from the report's.  So a caption edit re-renders that
 kind's reports and simulates nothing.
 """
@@ -26,9 +26,10 @@ from typing import Any, ClassVar
 from pydantic import Field, ValidationError
 
 from .. import __version__
-from .. import sweep as _sweep
-from ..codestamp import code_hash, files_hash
-from ..config import (
+from ..pipeline import sweep as _sweep
+from ..pipeline.codestamp import code_hash, files_hash
+from ..pipeline.layout import template_dir
+from .config import (
     ConfigError,
     ReportConfig,
     RunConfig,
@@ -37,7 +38,6 @@ from ..config import (
     deep_merge,
     format_validation_error,
 )
-from ..layout import template_dir
 from .schema import ResultsSchema
 
 #: config tables that never change the numbers: not part of the simulate key
@@ -298,7 +298,8 @@ class Scene:
 
 
 #: the shared modules that render every kind's report (besides the kind's own report code)
-RENDERING_MODULES = ("reportgen.report", "reportgen.pdf", "reportgen.svgslim")
+RENDERING_MODULES = ("reportgen.rendering.report", "reportgen.rendering.pdf",
+                     "reportgen.rendering.svgslim")
 
 
 def _faces(cls: type, face: str) -> list[str]:

@@ -17,8 +17,8 @@ import typing
 from pydantic import BaseModel
 from pydantic.fields import FieldInfo
 
-from ..config import ReportConfig, RunConfig
 from ..kinds import KINDS
+from .config import ReportConfig, RunConfig
 
 #: tables described once, at the end, rather than under every kind
 _SHARED_TABLES = {RunConfig: "run", ReportConfig: "report"}

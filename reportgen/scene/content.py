@@ -38,7 +38,7 @@ class SectionContent:
     tables: list[Table] = field(default_factory=list)
     facts: list[tuple[str, str]] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
-    #: displayed equations: (what it is, TeX), typeset by the report (reportgen.equations)
+    #: displayed equations: (what it is, TeX), typeset by the report (reportgen.rendering.equations)
     equations: list[tuple[str, str]] = field(default_factory=list)
 
 

@@ -1,7 +1,7 @@
 """The report face of a kind: archive -> sections, figures, tables and prose.
 
 A kind's ``report.py`` subclasses :class:`Report`.  Its methods are classmethods taking
-the :class:`~reportgen.archive.ArchiveData` alone: they never import ``reportgen.core``
+the :class:`~reportgen.archive.store.ArchiveData` alone: they never import ``reportgen.core``
 or evaluate physics, so ``reportgen report`` works with core unimportable and gives
 byte-identical figures (``tests/test_archive_only.py``).  The subclass contract:
 
@@ -31,9 +31,9 @@ from .schema import unit_text
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
-    from ..archive import ArchiveData
+    from ..archive.store import ArchiveData
 
-_common_plots = lazy_module("reportgen.plots.common")
+_common_plots = lazy_module("reportgen.rendering.plots.common")
 
 
 class Report(Scene):
@@ -116,7 +116,7 @@ class Report(Scene):
     def section_sweep_results(cls, data: ArchiveData) -> SectionContent:
         """Every scalar result against the first swept key (a line per value of the
         others, at most six), and the members without a result."""
-        from ..plots import common as common_plots
+        from ..rendering.plots import common as common_plots
 
         sweep = data.sweep
         swept = list(sweep.values.values())
@@ -148,7 +148,7 @@ class Report(Scene):
     @classmethod
     def section_sweep_members(cls, data: ArchiveData) -> SectionContent:
         """The kept members' first coordinate against time, one line each."""
-        from ..plots import common as common_plots
+        from ..rendering.plots import common as common_plots
 
         members = kept_members(data)
         runs = {name: data.runs[name] for _, name in members}

@@ -2,7 +2,7 @@
 
 A kind's ``simulation.py`` subclasses :class:`Simulation`.  The subclass contract:
 
-1. ``simulate(progress)`` -> :class:`~reportgen.results.Results`; use :meth:`integrate`
+1. ``simulate(progress)`` -> :class:`~reportgen.scene.results.Results`; use :meth:`integrate`
    for trajectories (method choice, timing, invariants and the stability verdict done
    one way everywhere), :meth:`study` for the error-against-run-time study and
    :meth:`reference_run` for a reference trajectory where no closed form exists.  Put
@@ -10,7 +10,7 @@ A kind's ``simulation.py`` subclasses :class:`Simulation`.  The subclass contrac
    a figure shows in ``Results.analysis``.
 2. ``schema``: the kind's declared results (:class:`~reportgen.scene.schema.ResultsSchema`,
    in ``results.py``); what ``simulate`` returns must match it, or the archive is not
-   written (:func:`reportgen.archive.write_archive`).  :meth:`results_schema` may
+   written (:func:`reportgen.archive.store.write_archive`).  :meth:`results_schema` may
    refine it per config (user-named coordinates).
 3. ``models()`` (optional): the models the run will integrate, so ``validate`` rejects a
    method that cannot integrate them before anything runs.
@@ -29,12 +29,12 @@ from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 
-from .. import sweep as _sweep
-from ..cache import default_cache
-from ..config import ConfigError, SourceConfig
 from ..lazy import lazy_module
-from ..results import AuditCase, Check, Results, RunRecord
+from ..pipeline import sweep as _sweep
+from ..pipeline.cache import default_cache
 from .base import ProgressFn, Scene
+from .config import ConfigError, SourceConfig
+from .results import AuditCase, Check, Results, RunRecord
 from .schema import ResultsSchema
 
 if TYPE_CHECKING:
@@ -148,7 +148,7 @@ class Simulation(Scene):
     def simulate_sweep(self, folder, progress: ProgressFn | None = None,
                        submit: _sweep.Submit | None = None) -> Results:
         """The sweep: every member's scalar results (resumable, block by block, see
-        :mod:`reportgen.sweep`; with ``submit``, the blocks run on a Dask cluster) and the
+        :mod:`reportgen.pipeline.sweep`; with ``submit``, the blocks run on a Dask cluster) and the
         whole run of the ``store`` members."""
         import time
 
@@ -300,7 +300,7 @@ class Simulation(Scene):
               progress: ProgressFn | None = None, reference_kind: str = "exact") -> None:
         """Fill ``results.study`` with the error-against-run-time study, if this run wants
         it (:meth:`wants_study`).  scipy peers' rows come from the user cache when it
-        holds this problem (:mod:`reportgen.cache`); ours are measured every time.
+        holds this problem (:mod:`reportgen.pipeline.cache`); ours are measured every time.
         ``reference_kind`` says what a given ``reference`` is (default: a closed form)."""
         if not self.wants_study():
             return

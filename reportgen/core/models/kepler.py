@@ -77,7 +77,7 @@ def model(k: float, mu: float, n: float = 1.0, epsilon: float = 0.0) -> OdeModel
     if n == 1.0 and epsilon == 0.0:
         from .kepler_regularized import LeviCivitaTransform
 
-        extra["levi_civita"] = LeviCivitaTransform(k / mu)
+        extra["levi_civita"] = LeviCivitaTransform(k / mu, orbital_elements)
     return OdeModel(name="central force", columns=("x", "y", "vx", "vy"), rhs=rhs,
                     params=np.array([k * n / mu, float(n), 2.0 * epsilon / mu]),
                     separable=Separable(n=2, drift=drift, kick=kick), extra=extra)

@@ -177,10 +177,14 @@ class LeviCivitaTransform:
     regularized methods (:mod:`reportgen.core.integrators.regularized`) need, carried by
     the model that offers it (``OdeModel.extra["levi_civita"]``,
     :func:`reportgen.core.models.kepler.model`), so the integrators name no model module.
+    ``elements(x, y, vx, vy, gm)`` gives the orbit's elements (the Kepler model's own
+    :func:`~reportgen.core.models.kepler.orbital_elements`, passed in so that this module
+    does not import the Cartesian model that imports it).
     """
 
-    def __init__(self, gm: float):
+    def __init__(self, gm: float, elements):
         self.gm = float(gm)
+        self._elements = elements
 
     def __repr__(self) -> str:
         return f"LeviCivitaTransform(gm={self.gm!r})"
@@ -191,9 +195,7 @@ class LeviCivitaTransform:
 
     def orbital_elements(self, y0) -> dict:
         """:func:`reportgen.core.models.kepler.orbital_elements` of the orbit through ``y0``."""
-        from .kepler import orbital_elements
-
-        return orbital_elements(*(float(v) for v in y0), self.gm)
+        return self._elements(*(float(v) for v in y0), self.gm)
 
     #: (LC) at energy h; its fictitious period; the transformation both ways; the s of
     #: physical times on stored states; the final shift of states to their times

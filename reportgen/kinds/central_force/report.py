@@ -12,8 +12,8 @@ from ...scene.content import SectionContent, Table, fmt, fmt_err
 from ...scene.report import Report
 from .results import SCHEMA
 
-plots = lazy_module("reportgen.plots.gravitation")
-common_plots = lazy_module("reportgen.plots.common")
+plots = lazy_module("reportgen.rendering.plots.gravitation")
+common_plots = lazy_module("reportgen.rendering.plots.common")
 
 
 class CentralForceReport(Report):

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from pydantic import Field, model_validator
 
-from ...config import Positive, Real, RunConfig, Strict
 from ...scene.base import SceneConfig
+from ...scene.config import Positive, Real, RunConfig, Strict
 
 #: the largest number of stiff springs a config may ask for (2m masses)
 MAX_STIFF_SPRINGS = 50

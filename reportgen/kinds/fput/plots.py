@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...plots.style import CONTEXT, RC, REFERENCE, new_figure_grid
+from ...rendering.plots.style import CONTEXT, RC, REFERENCE, new_figure_grid
 
 #: colours of I_1, I_2, … (the style's cycle without its first colour, which is I's)
 _COLOURS = RC["axes.prop_cycle"].by_key()["color"][1:]

@@ -12,9 +12,9 @@ from typing import Literal
 import numpy as np
 from pydantic import Field, model_validator
 
-from ...config import Real, RunConfig, Strict
 from ...lazy import lazy_module
 from ...scene.base import SceneConfig
+from ...scene.config import Real, RunConfig, Strict
 
 expressions = lazy_module("reportgen.core.expressions")  # no SymPy: validation uses it
 

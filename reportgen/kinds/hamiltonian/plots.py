@@ -6,8 +6,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...plots.common import envelope
-from ...plots.style import CONTEXT, HIGHLIGHT, PALETTE, dots, new_figure, new_figure_grid
+from ...rendering.plots.common import envelope
+from ...rendering.plots.style import CONTEXT, HIGHLIGHT, PALETTE, dots, new_figure, new_figure_grid
 
 
 def coordinates(t, series: dict[str, np.ndarray], *, labels: dict[str, str] | None = None):

@@ -13,9 +13,9 @@ from ...scene.report import Report, section_colours, section_point_notes
 from .config import JACOBI_SAMPLES, STUDY_STEPS, family_energy
 from .results import SCHEMA
 
-common_plots = lazy_module("reportgen.plots.common")
+common_plots = lazy_module("reportgen.rendering.plots.common")
 plots = lazy_module("reportgen.kinds.hamiltonian.plots")
-section_plots = lazy_module("reportgen.plots.sections")
+section_plots = lazy_module("reportgen.rendering.plots.sections")
 
 
 class HamiltonianReport(Report):

@@ -8,11 +8,11 @@ from __future__ import annotations
 import numpy as np
 
 from ...lazy import lazy_module
-from ...results import Check, Results
+from ...pipeline.sweep import PointSet
 from ...scene.content import member_text
+from ...scene.results import Check, Results
 from ...scene.schema import ResultsSchema
 from ...scene.simulation import Simulation
-from ...sweep import PointSet
 from .analysis import HamiltonianAnalysis
 from .config import STUDY_STEPS, HamiltonianConfig, _PresetFormulas, family_energy
 from .results import SCHEMA, schema_for
@@ -57,7 +57,7 @@ class HamiltonianSimulation(HamiltonianAnalysis, Simulation):
                     cfg.system.coordinates, H=cfg.system.H, L=cfg.system.L,
                     observables=cfg.observables, params=cfg.params)
             except formula.FormulaError as exc:
-                from ...config import ConfigError
+                from ...scene.config import ConfigError
 
                 raise ConfigError([f"{self.source.label}: key '{exc.key}': {exc.detail}"]) \
                     from None
@@ -103,7 +103,7 @@ class HamiltonianSimulation(HamiltonianAnalysis, Simulation):
 
         lo, hi = 0.0, 1.0
         if h(lo) > 0:
-            from ...config import ConfigError
+            from ...scene.config import ConfigError
 
             raise ConfigError([f"{self.source.label}: initial.energy: {energy} is below the "
                                f"energy with {unknown.name} = 0 ({h(lo) + energy:.10g}); no "
@@ -230,7 +230,7 @@ class HamiltonianSimulation(HamiltonianAnalysis, Simulation):
         ∂F/∂t; where K has a closed form, K integrated from (Q0, P0) against the image."""
         import sympy
 
-        from ...config import ConfigError
+        from ...scene.config import ConfigError
 
         cfg, a, n = self.config.transform, results.analysis, system.n
         numbers = {system.param_symbols[k]: v for k, v in system.params.items()}
@@ -273,7 +273,7 @@ class HamiltonianSimulation(HamiltonianAnalysis, Simulation):
     def _hamilton_jacobi(self, a: dict, system, main) -> None:
         """The preset's quadrature solution against the run, and its separated constants
         along the run."""
-        from ...config import ConfigError
+        from ...scene.config import ConfigError
 
         kind = self.config.hamilton_jacobi.separation
         prm = system.params

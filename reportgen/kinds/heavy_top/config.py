@@ -8,9 +8,9 @@ from typing import Literal, NamedTuple
 
 from pydantic import Field, model_validator
 
-from ...config import Positive, Real, RunConfig, Strict
 from ...lazy import lazy_module
 from ...scene.base import SceneConfig
+from ...scene.config import Positive, Real, RunConfig, Strict
 
 theory = lazy_module("reportgen.core.heavy_top_theory")  # validation solves for the band
 

@@ -9,7 +9,14 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.figure import Figure
 
-from ...plots.style import CONTEXT, HIGHLIGHT, REFERENCE, SEPARATRIX, new_figure, new_figure_grid
+from ...rendering.plots.style import (
+    CONTEXT,
+    HIGHLIGHT,
+    REFERENCE,
+    SEPARATRIX,
+    new_figure,
+    new_figure_grid,
+)
 
 
 def _circle_on_sphere(theta, n=361):

@@ -9,10 +9,10 @@ import math
 
 import numpy as np
 
-from ...config import ConfigError
 from ...lazy import lazy_module
-from ...results import AuditCase, Check, Results, RunRecord
+from ...scene.config import ConfigError
 from ...scene.content import fmt_err
+from ...scene.results import AuditCase, Check, Results, RunRecord
 from ...scene.simulation import Simulation
 from .config import (
     BAND_CASES,

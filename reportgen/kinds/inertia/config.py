@@ -13,9 +13,9 @@ from typing import Annotated, Literal
 import numpy as np
 from pydantic import Field, model_validator
 
-from ...config import Positive, Real, Strict
 from ...lazy import lazy_module
 from ...scene.base import SceneConfig
+from ...scene.config import Positive, Real, Strict
 from ...scene.content import fmt
 
 core = lazy_module("reportgen.core.inertia")

@@ -10,7 +10,7 @@ from ...scene.content import SectionContent, Table, fmt, fmt_err
 from ...scene.report import Report
 from .results import SCHEMA
 
-plots = lazy_module("reportgen.plots.rigid_body")
+plots = lazy_module("reportgen.rendering.plots.rigid_body")
 
 
 class InertiaReport(Report):

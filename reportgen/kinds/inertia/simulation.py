@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...lazy import lazy_module
-from ...results import Check, Results
+from ...scene.results import Check, Results
 from ...scene.simulation import Simulation
 from .config import InertiaConfig
 from .results import SCHEMA

@@ -12,9 +12,9 @@ from typing import Any, Literal
 import numpy as np
 from pydantic import Field, model_validator
 
-from ...config import Positive, Real, Strict
 from ...lazy import lazy_module
 from ...scene.base import SceneConfig
+from ...scene.config import Positive, Real, Strict
 
 core = lazy_module("reportgen.core.normal_modes")
 geometry = lazy_module("reportgen.core.molecule_geometry")  # no scipy: validation uses it

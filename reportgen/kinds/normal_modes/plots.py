@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from ...plots.style import (
+from ...rendering.plots.style import (
     ATOM_COLOURS,
     BLUE,
     CONTEXT,

@@ -14,7 +14,7 @@ from .config import SHAPES_SHOWN, STIFF_RATIO, system_of
 from .results import SCHEMA, schema_for
 
 plots = lazy_module("reportgen.kinds.normal_modes.plots")
-common_plots = lazy_module("reportgen.plots.common")
+common_plots = lazy_module("reportgen.rendering.plots.common")
 
 
 class NormalModesReport(Report):

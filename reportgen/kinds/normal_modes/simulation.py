@@ -10,7 +10,7 @@ import math
 import numpy as np
 
 from ...lazy import lazy_module
-from ...results import AuditCase, Check, Results
+from ...scene.results import AuditCase, Check, Results
 from ...scene.schema import ResultsSchema, unit_text
 from ...scene.simulation import Simulation
 from .config import SHAPES_SHOWN, STIFF_RATIO, NormalModesConfig, flat_values, system_of

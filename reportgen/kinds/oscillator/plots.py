@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...plots.style import CONTEXT, HIGHLIGHT, REFERENCE, new_figure_grid
+from ...rendering.plots.style import CONTEXT, HIGHLIGHT, REFERENCE, new_figure_grid
 
 
 def swap_phase_planes(q, p, Q_int, P_int, Q_map, P_map):

@@ -12,7 +12,7 @@ from ...scene.content import SectionContent, fmt, fmt_err
 from ...scene.report import Report
 from .results import SCHEMA
 
-common_plots = lazy_module("reportgen.plots.common")
+common_plots = lazy_module("reportgen.rendering.plots.common")
 plots = lazy_module("reportgen.kinds.oscillator.plots")
 
 

@@ -9,7 +9,7 @@ import math
 import numpy as np
 
 from ...lazy import lazy_module
-from ...results import AuditCase, Check, Results
+from ...scene.results import AuditCase, Check, Results
 from ...scene.simulation import Simulation
 from .config import OscillatorConfig
 from .results import SCHEMA

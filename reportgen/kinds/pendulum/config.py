@@ -6,9 +6,9 @@ import math
 
 from pydantic import Field, model_validator
 
-from ...config import Positive, Real, RunConfig, Strict
 from ...lazy import lazy_module
 from ...scene.base import SceneConfig
+from ...scene.config import Positive, Real, RunConfig, Strict
 
 theory = lazy_module("reportgen.core.pendulum_theory")  # no numerics: validation uses it
 

@@ -6,8 +6,8 @@ import math
 
 import numpy as np
 
-from ...plots.common import envelope
-from ...plots.style import (
+from ...rendering.plots.common import envelope
+from ...rendering.plots.style import (
     CONTEXT,
     HIGHLIGHT,
     REFERENCE,

@@ -14,7 +14,7 @@ from ...scene.report import Report
 from .config import MIN_SAMPLES_PER_PERIOD
 from .results import SCHEMA
 
-common_plots = lazy_module("reportgen.plots.common")
+common_plots = lazy_module("reportgen.rendering.plots.common")
 plots = lazy_module("reportgen.kinds.pendulum.plots")
 
 

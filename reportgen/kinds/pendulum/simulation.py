@@ -9,8 +9,8 @@ import math
 import numpy as np
 
 from ...lazy import lazy_module
-from ...results import AuditCase, Check, Results
 from ...scene.content import member_text
+from ...scene.results import AuditCase, Check, Results
 from ...scene.simulation import Simulation
 from .config import MIN_SAMPLES_PER_PERIOD, PendulumConfig
 from .results import SCHEMA
@@ -187,7 +187,7 @@ class PendulumSimulation(Simulation):
         p, ini, run = self.config.params, self.config.initial, self.config.run
         if not self._ensemble_sweep():
             return super().sweep_block(lo, hi, values)
-        from ...sweep import SweepBlock
+        from ...pipeline.sweep import SweepBlock
         from . import ensemble
 
         n = hi - lo

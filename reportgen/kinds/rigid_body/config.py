@@ -9,9 +9,9 @@ from typing import Literal
 import numpy as np
 from pydantic import Field, model_validator
 
-from ...config import Positive, Real, RunConfig, Strict
 from ...lazy import lazy_module
 from ...scene.base import SceneConfig
+from ...scene.config import Positive, Real, RunConfig, Strict
 from ..inertia.config import Shape
 
 inertia_core = lazy_module("reportgen.core.inertia")

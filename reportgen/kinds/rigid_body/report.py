@@ -13,8 +13,8 @@ from ...scene.report import Report
 from ..inertia.report import stability_table_section
 from .results import SCHEMA
 
-common_plots = lazy_module("reportgen.plots.common")
-plots = lazy_module("reportgen.plots.rigid_body")
+common_plots = lazy_module("reportgen.rendering.plots.common")
+plots = lazy_module("reportgen.rendering.plots.rigid_body")
 
 #: the invariants as named in tables and the main run's drift figure
 INVARIANT_NAMES = {"twice_energy": "2T", "L_squared": "L² (body frame)",

@@ -9,9 +9,9 @@ from typing import Literal
 import numpy as np
 from pydantic import Field, model_validator
 
-from ...config import Positive, Real, Strict
 from ...lazy import lazy_module
 from ...scene.base import SceneConfig
+from ...scene.config import Positive, Real, Strict
 
 rotations = lazy_module("reportgen.core.rotations")  # an SU(2) element from its table
 

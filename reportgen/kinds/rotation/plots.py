@@ -9,8 +9,8 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.figure import Figure
 
-from ...plots.rigid_body import AXIS_COLOURS
-from ...plots.style import CONTEXT, HIGHLIGHT, REFERENCE, SEPARATRIX, legend_below, new_figure
+from ...rendering.plots.rigid_body import AXIS_COLOURS
+from ...rendering.plots.style import CONTEXT, HIGHLIGHT, REFERENCE, SEPARATRIX, legend_below, new_figure
 
 #: Euler-angle convention names as printed
 CONVENTION = {"zxz": "z-x-z", "zyz": "z-y-z"}

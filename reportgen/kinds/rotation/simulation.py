@@ -8,7 +8,7 @@ import math
 import numpy as np
 
 from ...lazy import lazy_module
-from ...results import Check, Results
+from ...scene.results import Check, Results
 from ...scene.simulation import Simulation
 from .config import SECTION_TABLE, RotationConfig
 from .results import NOT_CHECKS, SCHEMA, TOLERANCE

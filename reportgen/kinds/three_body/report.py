@@ -13,7 +13,7 @@ from ...scene.content import SectionContent, Table, fmt, fmt_err
 from ...scene.report import Report
 from .results import SCHEMA
 
-plots = lazy_module("reportgen.plots.gravitation")
+plots = lazy_module("reportgen.rendering.plots.gravitation")
 
 
 class ThreeBodyReport(Report):

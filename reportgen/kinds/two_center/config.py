@@ -8,8 +8,8 @@ from typing import Literal
 
 from pydantic import Field, model_validator
 
-from ...config import Positive, Real, RunConfig, Strict
 from ...scene.base import SceneConfig
+from ...scene.config import Positive, Real, RunConfig, Strict
 
 #: ``formulation = "auto"`` regularizes a bound orbit whose region of motion (7.59) comes
 #: within CLOSE_APPROACH·a of a centre.  Measured at rtol 1e-12 (μ = a = 1, outputs

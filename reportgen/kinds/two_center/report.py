@@ -13,8 +13,8 @@ from ...scene.content import SectionContent, fmt, fmt_err
 from ...scene.report import Report, section_colours, section_point_notes
 from .results import SCHEMA
 
-plots = lazy_module("reportgen.plots.gravitation")
-section_plots = lazy_module("reportgen.plots.sections")
+plots = lazy_module("reportgen.rendering.plots.gravitation")
+section_plots = lazy_module("reportgen.rendering.plots.sections")
 
 FAMILY_TEXT = {
     "satellite": "satellite orbit: encircles both centres (β ≤ 0, η free in [−1, 1], "

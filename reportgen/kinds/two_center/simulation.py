@@ -8,12 +8,12 @@ import math
 
 import numpy as np
 
-from ...config import ConfigError
 from ...lazy import lazy_module
-from ...results import Check, Results
+from ...pipeline.sweep import PointSet
+from ...scene.config import ConfigError
 from ...scene.content import fmt, member_text
+from ...scene.results import Check, Results
 from ...scene.simulation import Simulation
-from ...sweep import PointSet
 from .config import CLOSE_APPROACH, TwoCenterConfig
 from .results import SCHEMA
 

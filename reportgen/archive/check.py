@@ -2,8 +2,8 @@
 
 An archive is a file from anywhere: mailed by a colleague, downloaded, or damaged.
 :func:`check_archive` looks at an open archive before anything reads its data, and raises
-:class:`~reportgen.h5io.ArchiveError` (``"<path>: <what>"``) for anything the readers
-(:func:`reportgen.archive.read_archive`, ``reportgen inspect``, the report, figures and
+:class:`~reportgen.archive.h5io.ArchiveError` (``"<path>: <what>"``) for anything the readers
+(:func:`reportgen.archive.store.read_archive`, ``reportgen inspect``, the report, figures and
 animations) could not take at face value:
 
 * **links**: only hard links (no soft link, no link into another file, no external raw

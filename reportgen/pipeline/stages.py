@@ -18,7 +18,7 @@ from multiprocessing import get_context
 from pathlib import Path
 from urllib.parse import quote
 
-from .archive import (
+from ..archive.store import (
     FORMAT_VERSION,
     Identity,
     gallery_entry,
@@ -26,8 +26,11 @@ from .archive import (
     stored_identity,
     write_archive,
 )
-from .config import ConfigError, read_config
-from .errors import UsageError  # noqa: F401 - part of this module's interface
+from ..errors import UsageError  # noqa: F401 - part of this module's interface
+from ..kinds import load_scene
+from ..scene.base import Scene
+from ..scene.config import ConfigError, read_config
+from ..scene.results import STATUSES, worst_status
 from .forked import JobProcess, kill_children, run_child, serve
 from .fsutil import (
     atomic_write,
@@ -38,10 +41,7 @@ from .fsutil import (
     remove_stale_temps,
     temp_name,
 )
-from .kinds import load_scene
 from .layout import collect_configs, figure_manifest, printable, report_stamp, scene_name
-from .results import STATUSES, worst_status
-from .scene.base import Scene
 
 
 @dataclass
@@ -130,9 +130,9 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
     figures   keyed by the physics key, the chosen sections and the version
     report    HTML/PDF from the archive and the figures, when either changed
 
-    ``pdf_worker`` (a :class:`reportgen.pdf.PdfWorker`, owned by the caller) renders
+    ``pdf_worker`` (a :class:`reportgen.rendering.pdf.PdfWorker`, owned by the caller) renders
     the PDF; without one, a scene drawing with ``draw_jobs > 1`` starts its own.
-    ``sweep_submit``: where a sweep's member blocks run (:data:`reportgen.sweep.Submit`;
+    ``sweep_submit``: where a sweep's member blocks run (:data:`reportgen.pipeline.sweep.Submit`;
     default: here).
     """
     path = Path(config_path)
@@ -156,7 +156,7 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
         outcome.kind, outcome.title = scene.kind, scene.title
         wanted = _formats(scene, formats)
         if pdf_worker is None and draw_jobs > 1 and "pdf" in wanted:
-            from .pdf import PdfWorker
+            from ..rendering.pdf import PdfWorker
 
             pdf_worker = own_worker = PdfWorker()  # imports WeasyPrint while this simulates
         remove_stale_temps(folder)
@@ -166,7 +166,7 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
         if (force or stored is None or stored.physics_key != key
                 or stored.format_version < FORMAT_VERSION):
             if draw_jobs > 1:
-                from .report import FigureHelper
+                from ..rendering.report import FigureHelper
 
                 helper = FigureHelper()  # warms up its drawing while this simulates
             t0 = time.perf_counter()
@@ -194,7 +194,7 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
             outcome.stage_s["restamp"] = time.perf_counter() - t0
         identity = stored_identity(archive)
         if force or not _report_current(folder, identity, wanted, scene):
-            from .report import build_report  # matplotlib and jinja2 only when drawing
+            from ..rendering.report import build_report  # matplotlib and jinja2 only when drawing
 
             build_report(archive, formats=wanted, force_figures=force, timings=outcome.stage_s,
                          jobs=draw_jobs, pdf_worker=pdf_worker, figure_helper=helper)
@@ -281,8 +281,8 @@ def run_batch(paths: list[str], out_root: str = "output", jobs: int | None = Non
 
     Scenes run in-process (``jobs == 1``), in a local pool of ``jobs`` processes,
     or on the Dask distributed scheduler at ``scheduler``.  ``pdf_worker``: a
-    :class:`reportgen.pdf.PdfWorker` the caller started (``reportgen run`` does, on the
-    hint of :func:`reportgen.pdf.edit_loop_worker`, before its heavy imports) and closes;
+    :class:`reportgen.rendering.pdf.PdfWorker` the caller started (``reportgen run`` does, on the
+    hint of :func:`reportgen.rendering.pdf.edit_loop_worker`, before its heavy imports) and closes;
     it renders the PDF of a single scene to do.
     """
     scenes = validate_all(collect_configs(paths))
@@ -384,14 +384,15 @@ def _preload(scenes, formats) -> None:
 
     ctx = get_context("fork")
     groups = (("dop853", "verlet"), ("rk45", "rk4", "gauss4"))
-    from .core.integrators.driver import warm_up
+    from ..core.integrators.driver import warm_up
 
     helpers = [ctx.Process(target=run_child, args=(os.getpid(), warm_up, group), daemon=True)
                for group in groups]
     for helper in helpers:
         helper.start()
     modules = ["reportgen.core.study", "scipy.integrate", "scipy.special", "scipy.optimize",
-               "reportgen.report", "reportgen.plots.style", "reportgen.plots.common",
+               "reportgen.rendering.report", "reportgen.rendering.plots.style",
+               "reportgen.rendering.plots.common",
                "matplotlib.backends.backend_svg"]
     if any("pdf" in _formats(scene, formats) for scene in scenes):
         modules.append("weasyprint")
@@ -618,7 +619,7 @@ def _run_on_dask(scenes, out_root, force, formats, scheduler, progress,
 def sweep_block_portable(config_text: str, lo: int, hi: int, values: dict) -> object:
     """Members ``lo:hi`` of the sweep of the config ``config_text``: the task a Dask
     worker runs for one block (:meth:`reportgen.scene.simulation.Simulation.sweep_block`)."""
-    from .config import parse_config_text
+    from ..scene.config import parse_config_text
 
     return load_scene(parse_config_text(config_text)).sweep_block(lo, hi, values)
 
@@ -635,7 +636,7 @@ def _dask_blocks(client, scene: Scene):
 def write_index(out_root: str, outcomes: list[Outcome] = ()) -> Path:
     """``index.html``: a gallery of every scene archive in ``out_root`` (not only this
     batch's), plus the scenes of this batch that failed before writing one."""
-    from .report import build_index  # matplotlib and jinja2 only when drawing
+    from ..rendering.report import build_index  # matplotlib and jinja2 only when drawing
 
     root = Path(out_root)
     entries = []
@@ -662,7 +663,7 @@ GALLERY_CACHE = ".gallery.json"
 
 
 def _gallery_entries(root: Path) -> dict[Path, dict]:
-    """:func:`reportgen.archive.gallery_entry` of every ``*/run.h5`` under ``root``,
+    """:func:`reportgen.archive.store.gallery_entry` of every ``*/run.h5`` under ``root``,
     from ``root/.gallery.json`` where an archive is unchanged since it was read."""
     cache = root / GALLERY_CACHE
     try:
@@ -694,7 +695,7 @@ def _gallery_entries(root: Path) -> dict[Path, dict]:
 
 def _first_figure(folder: Path) -> str | None:
     """The first figure of a scene's report (a link relative to the output folder), if
-    drawn; from the figures' manifest, validated (:func:`reportgen.layout.figure_manifest`)."""
+    drawn; from the figures' manifest, validated (:func:`reportgen.pipeline.layout.figure_manifest`)."""
     stored = figure_manifest(folder)
     for section in stored["sections"] if stored is not None else ():
         for fig in section["figures"]:
@@ -716,7 +717,7 @@ _ENTRY_TEXT = ("kind", "title", "status", "message", "headline", "created")
 
 def _valid_entry(entry) -> bool:
     """Whether ``entry`` (read back from ``.gallery.json``) is what
-    :func:`reportgen.archive.gallery_entry` gives: else the archive is read again."""
+    :func:`reportgen.archive.store.gallery_entry` gives: else the archive is read again."""
     return (isinstance(entry, dict) and {*_ENTRY_TEXT, "wall_time_s"} <= set(entry)
             and all(isinstance(entry[k], str) for k in _ENTRY_TEXT)
             and (entry["wall_time_s"] is None

@@ -12,14 +12,14 @@ from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
-from .errors import ConfigError, ReportError, UsageError
+from ..errors import ConfigError, ReportError, UsageError
 
 #: the report formats
 FORMATS = ("html", "pdf")
 
 TEMPLATE_DIRS = (
-    Path(__file__).resolve().parent / "templates",  # installed wheel
-    Path(__file__).resolve().parent.parent / "templates",  # source checkout
+    Path(__file__).resolve().parent.parent / "templates",  # installed wheel
+    Path(__file__).resolve().parent.parent.parent / "templates",  # source checkout
 )
 
 

@@ -36,7 +36,7 @@ import tempfile
 import time
 from pathlib import Path
 
-REPO = Path(__file__).resolve().parent.parent
+REPO = Path(__file__).resolve().parents[2]
 TARGETS = {"cold": 60.0, "warm": 2.0, "title edit": 2.0, "physics edit": 5.0,
            "title edit (watch)": 2.0, "physics edit (watch)": 5.0,
            "--help": 0.5, "validate": 1.0}
@@ -85,7 +85,7 @@ def _edit(path: Path, pattern: str, replace) -> None:
 
 
 def _stages(config: Path, out: Path, env: dict[str, str]) -> dict[str, float]:
-    code = ("import json, sys\nfrom reportgen.pipeline import run_scene\n"
+    code = ("import json, sys\nfrom reportgen.pipeline.stages import run_scene\n"
             "o = run_scene(sys.argv[1], sys.argv[2], force=True)\n"
             "print(json.dumps(o.stage_s))")
     proc = subprocess.run([sys.executable, "-c", code, str(config), str(out)], env=env,

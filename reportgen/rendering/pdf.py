@@ -13,10 +13,10 @@ from __future__ import annotations
 import tempfile
 from pathlib import Path
 
-from .errors import ReportError
-from .forked import JobProcess, serve
-from .fsutil import atomic_write
-from .layout import edited_count
+from ..errors import ReportError
+from ..pipeline.forked import JobProcess, serve
+from ..pipeline.fsutil import atomic_write
+from ..pipeline.layout import edited_count
 
 __all__ = ["write_pdf", "PdfWorker", "edit_loop_worker"]
 
@@ -170,7 +170,7 @@ def _warm_up() -> None:
     one does not."""
     import base64
 
-    from .layout import template_dir
+    from ..pipeline.layout import template_dir
 
     css = (template_dir() / "style.css.j2").read_text(encoding="utf-8")  # no template syntax
     svg = base64.b64encode(_WARM_UP_SVG.encode("utf-8")).decode("ascii")

@@ -18,7 +18,7 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
-from .errors import ConfigError, UsageError
+from ..errors import ConfigError, UsageError
 from .layout import collect_configs, printable
 
 
@@ -43,7 +43,7 @@ def watch(paths: list[str], out_root: str = "output", jobs: int | None = None,
     """Run the batch, then again whenever a config under ``paths`` changes, appears or
     goes, until interrupted (Ctrl-C, SIGTERM, SIGHUP: child processes are stopped at
     once) or ``stop()`` is true.  Each batch holds the output folder's lock while it runs
-    (:func:`reportgen.fsutil.output_lock`).  Returns the exit status."""
+    (:func:`reportgen.pipeline.fsutil.output_lock`).  Returns the exit status."""
     from .forked import children_stop_with_me
 
     with children_stop_with_me():
@@ -51,8 +51,8 @@ def watch(paths: list[str], out_root: str = "output", jobs: int | None = None,
 
 
 def _watch(paths, out_root, jobs, formats, interval, stream, stop) -> int:
-    from .pdf import PdfWorker
-    from .pipeline import _preload, run_batch
+    from ..rendering.pdf import PdfWorker
+    from .stages import _preload, run_batch
 
     wants_pdf = formats is None or "pdf" in formats
     worker: PdfWorker | None = None

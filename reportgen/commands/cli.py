@@ -11,10 +11,10 @@ import os
 import sys
 from pathlib import Path
 
-from . import __version__
-from .cache import NO_CACHE_ENV, PeerCache
-from .errors import ConfigError, UsageError
-from .layout import FORMATS, collect_configs, printable
+from .. import __version__
+from ..errors import ConfigError, UsageError
+from ..pipeline.cache import NO_CACHE_ENV, PeerCache
+from ..pipeline.layout import FORMATS, collect_configs, printable
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
 
@@ -201,7 +201,7 @@ def main(argv: list[str] | None = None) -> int:
     folder is status 2, a signal 128 + its number (SIGTERM, SIGHUP and Ctrl-C stop the
     command's child processes first), an unexpected error 1 (its traceback with
     ``REPORTGEN_DEBUG=1``)."""
-    from .forked import Terminated, children_stop_with_me
+    from ..pipeline.forked import Terminated, children_stop_with_me
 
     args = build_parser().parse_args(argv)
     try:
@@ -284,7 +284,7 @@ def _unusable(archive, exc: Exception) -> int:
 
 
 def cmd_run(args) -> int:
-    from .pdf import edit_loop_worker
+    from ..rendering.pdf import edit_loop_worker
 
     if args.no_cache:
         os.environ[NO_CACHE_ENV] = "1"  # inherited by the scene processes
@@ -296,7 +296,7 @@ def cmd_run(args) -> int:
     worker = edit_loop_worker(configs, args.out, args.format, args.jobs, args.force,
                               args.scheduler)
     try:
-        from .pipeline import batch_status, run_batch
+        from ..pipeline.stages import batch_status, run_batch
 
         outcomes = run_batch(configs, out_root=args.out, jobs=args.jobs, formats=args.format,
                              force=args.force, scheduler=args.scheduler,
@@ -316,7 +316,7 @@ def cmd_run(args) -> int:
 
 
 def cmd_watch(args) -> int:
-    from .watch import watch
+    from ..pipeline.watch import watch
 
     try:
         collect_configs(args.paths)
@@ -327,9 +327,9 @@ def cmd_watch(args) -> int:
 
 
 def cmd_report(args) -> int:
-    from .archive import ArchiveError
-    from .fsutil import links_out
-    from .report import ReportError, build_report
+    from ..archive.store import ArchiveError
+    from ..pipeline.fsutil import links_out
+    from ..rendering.report import ReportError, build_report
 
     code = EXIT_OK
     for archive in args.archives:
@@ -359,9 +359,9 @@ def cmd_report(args) -> int:
 
 
 def cmd_figures(args) -> int:
-    from .archive import ArchiveError
-    from .export import export_figures, parse_formats, parse_size
-    from .report import ReportError
+    from ..archive.store import ArchiveError
+    from ..rendering.export import export_figures, parse_formats, parse_size
+    from ..rendering.report import ReportError
 
     try:
         size, formats = parse_size(args.size), parse_formats(args.format)
@@ -401,11 +401,11 @@ def _archive_of(path: Path, root: Path) -> Path | None:
         raise UsageError(f"{path}: no such file")
     if path.suffix.lower() != ".toml":
         return path
-    from .archive import FORMAT_VERSION, stored_identity
-    from .config import read_config
-    from .fsutil import output_folder, output_lock
-    from .kinds import load_scene
-    from .pipeline import run_scene
+    from ..archive.store import FORMAT_VERSION, stored_identity
+    from ..kinds import load_scene
+    from ..pipeline.fsutil import output_folder, output_lock
+    from ..pipeline.stages import run_scene
+    from ..scene.config import read_config
 
     scene = load_scene(read_config(path))  # a ConfigError is exit 2, via main
     archive = root / path.stem / "run.h5"
@@ -423,8 +423,8 @@ def _archive_of(path: Path, root: Path) -> Path | None:
 
 
 def cmd_animate(args) -> int:
-    from .animate import animate, parse_formats, plan_frames, terminal_progress
-    from .archive import ArchiveError
+    from ..archive.store import ArchiveError
+    from ..rendering.animate import animate, parse_formats, plan_frames, terminal_progress
 
     archive = Path(args.archive)
     try:
@@ -455,7 +455,7 @@ def cmd_animate(args) -> int:
 
 
 def cmd_inspect(args) -> int:
-    from .archive import ArchiveError, summarize
+    from ..archive.store import ArchiveError, summarize
 
     archive = Path(args.archive)
     problems: list[str] = []
@@ -471,14 +471,14 @@ def cmd_inspect(args) -> int:
 
 
 def cmd_kinds(args) -> int:
-    from .scene.catalogue import describe_kinds
+    from ..scene.catalogue import describe_kinds
 
     _say(describe_kinds())
     return EXIT_OK
 
 
 def cmd_validate(args) -> int:
-    from .pipeline import UsageError, collect_configs, validate_all
+    from ..pipeline.stages import UsageError, collect_configs, validate_all
 
     try:
         scenes = validate_all(collect_configs(args.paths))
@@ -497,8 +497,8 @@ def cmd_validate(args) -> int:
 
 
 def cmd_bench(args) -> int:
+    from ..pipeline.stages import UsageError
     from .bench import run_bench
-    from .pipeline import UsageError
 
     if args.pipeline:
         from pathlib import Path
@@ -528,8 +528,8 @@ def cmd_bench(args) -> int:
 
 
 def cmd_audit(args) -> int:
+    from ..pipeline.stages import UsageError
     from .audit import run_audit
-    from .pipeline import UsageError
 
     try:
         return run_audit(args.paths, out_dir=args.out, formats=args.format)

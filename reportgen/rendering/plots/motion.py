@@ -17,7 +17,7 @@ import numpy as np
 from matplotlib.figure import Figure
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
-from ..kinds.normal_modes.plots import _atom_sizes, _scaled
+from ...kinds.normal_modes.plots import _atom_sizes, _scaled
 from .style import (
     ATOM_COLOURS,
     CONTEXT,

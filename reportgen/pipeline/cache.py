@@ -19,7 +19,7 @@ import os
 from pathlib import Path
 from typing import Any
 
-from . import cache_root
+from .. import cache_root
 from .fsutil import atomic_write
 
 #: set to a non-empty value to bypass the cache (what ``--no-cache`` does)

@@ -10,9 +10,9 @@ from typing import Any
 import h5py
 import numpy as np
 
-from . import __version__
-from .config import to_toml
-from .fsutil import install, temp_name
+from .. import __version__
+from ..pipeline.fsutil import install, temp_name
+from ..scene.config import to_toml
 from .h5io import (
     STR,
     ArchiveError,

@@ -23,13 +23,13 @@ from pathlib import Path
 
 import numpy as np
 
-from .audit_archive import write_audit
-from .config import ConfigError, SourceConfig, parse_config_text, to_toml
-from .kinds import KINDS, load_scene
-from .lazy import lazy_module
-from .pipeline import collect_configs, validate_all
-from .report import build_audit_report
-from .results import AuditCase
+from ..archive.audit import write_audit
+from ..kinds import KINDS, load_scene
+from ..lazy import lazy_module
+from ..pipeline.stages import collect_configs, validate_all
+from ..rendering.report import build_audit_report
+from ..scene.config import ConfigError, SourceConfig, parse_config_text, to_toml
+from ..scene.results import AuditCase
 
 _policy = lazy_module("reportgen.core.integrators.policy")
 

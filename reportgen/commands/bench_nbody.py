@@ -20,7 +20,7 @@ import builtins
 
 import numpy as np
 
-from .timing import best_time
+from ..pipeline.timing import best_time
 
 G = 1.0
 MASSES = (3.0, 4.0, 5.0)
@@ -45,7 +45,7 @@ def _timed(run, repeats=3):
 
 
 def _energy_errors(y):
-    from .core.models import nbody
+    from ..core.models import nbody
 
     e0 = nbody.energy(initial_state(), G, MASSES)[0]
     return np.abs(nbody.energy(y, G, MASSES) / e0 - 1.0)
@@ -59,8 +59,8 @@ def _row(method, y, final, wall, outputs_note=""):
 
 
 def cartesian_run(t, rtol):
-    from .core.integrators import integrate
-    from .core.models import nbody
+    from ..core.integrators import integrate
+    from ..core.models import nbody
 
     sol = integrate(nbody.model(G, MASSES), initial_state(), t, method="dop853", rtol=rtol,
                     atol=rtol * 1e-2)
@@ -69,8 +69,8 @@ def cartesian_run(t, rtol):
 
 def ks_physical_time_run(t, rtol):
     """KS pair in physical time: outputs at the times ``t``; Cartesian states (N, 18)."""
-    from .core.integrators import integrate
-    from .core.models import three_body_ks as ks
+    from ..core.integrators import integrate
+    from ..core.models import three_body_ks as ks
 
     reg = ks.model(G, MASSES, CLOSE_PAIR, fictitious_time=False)
     z0 = ks.to_regularized(initial_state(), G, MASSES, CLOSE_PAIR, t=t[0])
@@ -87,8 +87,8 @@ def ks_fictitious_time_run(t_end, rtol, n_per_chunk=100, ds=None):
     Returns (Cartesian states at the outputs, final Cartesian state at ``t_end``, the
     physical times of the outputs).
     """
-    from .core.integrators import integrate
-    from .core.models import three_body_ks as ks
+    from ..core.integrators import integrate
+    from ..core.models import three_body_ks as ks
 
     reg = ks.model(G, MASSES, CLOSE_PAIR)
     z = ks.to_regularized(initial_state(), G, MASSES, CLOSE_PAIR)

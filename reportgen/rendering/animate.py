@@ -1,6 +1,6 @@
 """``reportgen animate``: the motion of a scene as a GIF (and an MP4 where ffmpeg is there).
 
-Drawn from the archive alone (:mod:`reportgen.plots.motion`): frames are spread evenly
+Drawn from the archive alone (:mod:`reportgen.rendering.plots.motion`): frames are spread evenly
 over the archived run, ``fps * duration`` of them (at least :data:`MIN_FRAMES`).  GIF
 frames are written by Pillow with one palette made from the first frame, so colours do
 not flicker; MP4 (H.264) by the ffmpeg of ``imageio-ffmpeg`` (the ``video`` extra).  The
@@ -14,8 +14,8 @@ import sys
 from collections.abc import Callable
 from pathlib import Path
 
-from .errors import UsageError
-from .fsutil import atomic_write
+from ..errors import UsageError
+from ..pipeline.fsutil import atomic_write
 
 MIN_FRAMES = 30
 ANIMATION_FORMATS = ("gif", "mp4")
@@ -65,7 +65,7 @@ def animate(archive: Path, out_dir: Path, *, fps: float = 15.0, duration: float 
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from PIL import Image
 
-    from .archive import read_archive
+    from ..archive.store import read_archive
     from .plots.motion import MOTIONS
 
     frames = plan_frames(fps, duration)

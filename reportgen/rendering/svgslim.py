@@ -43,7 +43,7 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 from xml.sax.saxutils import escape, quoteattr
 
-from .fsutil import atomic_write
+from ..pipeline.fsutil import atomic_write
 
 __all__ = ["slim_svg", "slim_cached", "warm_cache", "prune_cache", "inline_svgs_as_images"]
 
@@ -669,7 +669,7 @@ def inline_svgs_as_images(html_text: str, slim: bool = True, decimals: int = 2,
         nonlocal count
         svg = match.group(0)
         head = svg[:svg.find(">")]
-        # an inline equation (reportgen.equations) keeps its baseline: its vertical-align
+        # an inline equation (reportgen.rendering.equations) keeps its baseline: its vertical-align
         lowered = _VERTICAL_ALIGN.search(head)
         tag = (f'<img class="svg-eq" alt="" style="{lowered.group(0)}"' if lowered
                else '<img class="svg-figure" alt=""')

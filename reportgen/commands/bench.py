@@ -19,8 +19,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .config import ConfigError
-from .timing import best_time
+from ..pipeline.timing import best_time
+from ..scene.config import ConfigError
 
 BASELINE, BASELINE_RTOL = "scipy_dop853", 1e-10
 
@@ -37,7 +37,7 @@ def study_rows(records: np.ndarray) -> list[dict]:
 
 def scene_bench(scene, print=builtins.print) -> dict | None:
     """Run one scene with its study on and print the matched-error speed ratio."""
-    from .core.study import FINE_TOLERANCES, matched_error_speedup
+    from ..core.study import FINE_TOLERANCES, matched_error_speedup
 
     if scene.config.run is None:
         print(f"{scene.source.name}: integrates nothing; skipped")
@@ -130,10 +130,10 @@ def heavy_top_textbook(scene, print=builtins.print, samples: int = 201) -> dict:
     min of repeats after a warm-up."""
     from scipy.integrate import solve_ivp
 
-    from .core import heavy_top_kinematics as kinematics
-    from .core import heavy_top_theory as theory
-    from .core.integrators import integrate
-    from .core.models import heavy_top as model_core
+    from ..core import heavy_top_kinematics as kinematics
+    from ..core import heavy_top_theory as theory
+    from ..core.integrators import integrate
+    from ..core.models import heavy_top as model_core
 
     p, t_end = scene.config.params, scene.config.run.t_end
     start = next(iter(scene.starts.values()))
@@ -195,8 +195,8 @@ def long_time_energy(n_periods=1_000_000, steps_per_period=100, n_out=2000, meth
     Output points are spaced a non-integer number of periods apart so they see
     every phase of the bounded energy oscillation.
     """
-    from .core.integrators import integrate
-    from .core.models import pendulum
+    from ..core.integrators import integrate
+    from ..core.models import pendulum
 
     g, l, theta0 = 9.81, 1.0, 1.0
     model = pendulum.model(g, l)
@@ -230,8 +230,8 @@ def kepler_against_rebound(e=0.9, orbits=1000, outputs=1001, target=1e-13,
 
     GM = 1, a = 1, started at pericentre; the energy is checked at ``outputs`` times.
     """
-    from .core.integrators import integrate
-    from .core.models import kepler
+    from ..core.integrators import integrate
+    from ..core.models import kepler
 
     period = 2 * math.pi
     y0 = np.array([1 - e, 0.0, 0.0, math.sqrt((1 + e) / (1 - e))])
@@ -252,7 +252,7 @@ def kepler_against_rebound(e=0.9, orbits=1000, outputs=1001, target=1e-13,
         rows.append({"method": f"{method} rtol {rtol:.0e}", "error": float(
             np.max(np.abs(energy / e0 - 1))), "wall_time_s": best})
     # Levi-Civita regularized Kepler with Gauss-Legendre 6 (energy: a quadratic invariant)
-    from .core.models import kepler_regularized as lc
+    from ..core.models import kepler_regularized as lc
 
     state0 = lc.to_regularized(*y0)
     h_energy = float(e0)
@@ -311,8 +311,8 @@ def kepler_against_rebound(e=0.9, orbits=1000, outputs=1001, target=1e-13,
 
 
 def _plot_long_run(periods, rel_error, method, out_dir: Path) -> Path:
-    from .fsutil import atomic_write
-    from .plots.style import new_figure
+    from ..pipeline.fsutil import atomic_write
+    from ..rendering.plots.style import new_figure
 
     fig, ax = new_figure(figsize=(7.0, 3.6))
     ax.semilogy(periods, np.maximum(rel_error, 1e-18), ".", markersize=2, rasterized=True)
@@ -331,7 +331,7 @@ def _plot_long_run(periods, rel_error, method, out_dir: Path) -> Path:
 
 
 def default_paths() -> list[str]:
-    for candidate in (Path.cwd() / "configs", Path(__file__).resolve().parent.parent / "configs"):
+    for candidate in (Path.cwd() / "configs", Path(__file__).resolve().parents[2] / "configs"):
         if candidate.is_dir():
             return [str(candidate)]
     return []
@@ -339,7 +339,7 @@ def default_paths() -> list[str]:
 
 def run_bench(paths: list[str], out_dir: str = "output/bench", long_run: bool = True,
               print=builtins.print) -> int:
-    from .pipeline import UsageError, collect_configs, validate_all
+    from ..pipeline.stages import UsageError, collect_configs, validate_all
 
     paths = paths or default_paths()
     if not paths:

@@ -1,6 +1,6 @@
 """What a scene run produces, in memory: the same shape the archive stores.
 
-``Results`` is written by :mod:`reportgen.archive` and read back into the same
+``Results`` is written by :mod:`reportgen.archive.store` and read back into the same
 classes, so the report step sees exactly what a fresh run saw.
 """
 
@@ -110,7 +110,7 @@ class Results:
     status: str = "ok"
     message: str = ""
     wall_time_s: float = 0.0
-    #: a sweep's family (:class:`reportgen.sweep.SweepData`): ``/sweep``
+    #: a sweep's family (:class:`reportgen.pipeline.sweep.SweepData`): ``/sweep``
     sweep: Any = None
 
     def flag(self, status: str, message: str) -> None:

@@ -16,7 +16,7 @@ import numpy as np
 
 STR = h5py.string_dtype("utf-8")
 
-#: the archive format (see :mod:`reportgen.archive`)
+#: the archive format (see :mod:`reportgen.archive.store`)
 FORMAT = "reportgen"
 FORMAT_VERSION = 2
 #: oldest format this reader opens (1: no dimension scales, no resolved config)

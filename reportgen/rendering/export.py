@@ -23,8 +23,8 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
-from .errors import UsageError
-from .fsutil import atomic_write
+from ..errors import UsageError
+from ..pipeline.fsutil import atomic_write
 
 EXPORT_FORMATS = ("png", "svg", "pdf")
 DEFAULT_DPI = 200
@@ -109,7 +109,7 @@ def export_figures(archive: Path, out_dir: Path, *, size: Size = SIZES["report"]
     ``only``: shell patterns (``nutation*``) a figure id must match, if any are given.
     Returns the files written, in the report's order.  Each file is written atomically.
     """
-    from .archive import read_archive
+    from ..archive.store import read_archive
     from .plots import style  # noqa: F401 - the figure style, before anything draws
     from .report import figure_bytes, kind_of_archive
 

@@ -49,7 +49,7 @@ from typing import Any
 
 import numpy as np
 
-from .config import ConfigError, _short
+from ..scene.config import ConfigError, _short
 from .fsutil import temp_name
 
 __all__ = ["SweepSpec", "SweepData", "PointSet", "parse_sweep", "run_sweep", "member_data"]
