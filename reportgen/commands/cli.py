@@ -64,6 +64,22 @@ def _positive(option: str, what: str = "a positive number"):
     return parse
 
 
+#: wall-clock seconds one scene of ``reportgen run`` may take (``--time-limit``; 0: none)
+DEFAULT_TIME_LIMIT = 600.0
+
+
+def _time_limit(text: str) -> float:
+    """``--time-limit``: seconds per scene, 0 for no limit."""
+    try:
+        value = float(text)
+    except ValueError:
+        value = -1.0
+    if not 0 <= value < float("inf"):
+        raise argparse.ArgumentTypeError(f"--time-limit must be a number of seconds ≥ 0 "
+                                         f"(0: no limit) (got {text!r})")
+    return value
+
+
 def _seconds(option: str):
     """An argparse type: a positive, finite number of seconds for ``option``."""
     return _positive(option, "a positive number of seconds")
@@ -96,8 +112,10 @@ def build_parser() -> argparse.ArgumentParser:
                      help="measure scipy peers again instead of using the user cache")
     run.add_argument("--scheduler", default=None, metavar="ADDR",
                      help="Dask distributed scheduler address (needs the 'dask' extra)")
-    run.add_argument("--time-limit", type=_seconds("--time-limit"), default=None, metavar="SECONDS",
-                     help="stop a scene that runs longer than this (default: no limit)")
+    run.add_argument("--time-limit", type=_time_limit, default=None,
+                     metavar="SECONDS",
+                     help=f"stop a scene that runs longer than this; its earlier archive is "
+                          f"kept (default: {DEFAULT_TIME_LIMIT:g}; 0: no limit)")
 
     wat = _batch_parser(sub, "watch", "run, then run again whenever a config changes "
                                       "(the edit loop, kept warm)")
@@ -300,7 +318,9 @@ def cmd_run(args) -> int:
 
         outcomes = run_batch(configs, out_root=args.out, jobs=args.jobs, formats=args.format,
                              force=args.force, scheduler=args.scheduler,
-                             time_limit=args.time_limit, pdf_worker=worker)
+                             time_limit=(DEFAULT_TIME_LIMIT if args.time_limit is None
+                                         else args.time_limit or None),
+                             in_process_limit=args.time_limit is None, pdf_worker=worker)
     except UsageError as exc:
         return _usage(str(exc))
     finally:

@@ -33,7 +33,14 @@ import numpy as np
 import sympy
 
 from . import codegen, mechanics
-from .expressions import RESERVED, ExpressionError, parse_expression
+from .expressions import (
+    MAX_CONSTANTS,
+    MAX_OBSERVABLES,
+    ExpressionError,
+    alias_problem,
+    name_problem,
+    parse_expression,
+)
 
 #: bump when the generated code changes
 CODE_VERSION = "2"
@@ -113,9 +120,17 @@ class FormulaSystem:
 
 
 def _check_name(key: str, name: str) -> None:
-    if not name.isidentifier() or name.startswith("_") or name in RESERVED:
-        raise FormulaError(key, f"{name!r} is not a usable name (an identifier not starting "
-                                f"with _ and not one of {', '.join(sorted(RESERVED))})")
+    problem = name_problem(name)
+    if problem is not None:
+        raise FormulaError(key, f"not a usable name: {problem}")
+
+
+def _check_real(key: str, expr: sympy.Expr) -> None:
+    """A derived formula with a non-real or infinite constant in it (``log(0*x)``) would print
+    ``inf`` or a complex number into the generated code: refused."""
+    if expr.has(sympy.I, sympy.zoo, sympy.oo, sympy.nan):
+        raise FormulaError(key, "has a part that is not a finite real number (such as "
+                                "sqrt(-1), log(0) or 1/0)")
 
 
 def build_system(coordinates, *, H: str | None = None, L: str | None = None,
@@ -130,6 +145,15 @@ def build_system(coordinates, *, H: str | None = None, L: str | None = None,
     coordinates = list(coordinates)
     for c in coordinates:
         _check_name("system.coordinates", c)
+    problem = alias_problem(coordinates)
+    if problem is not None:
+        raise FormulaError("system.coordinates", problem)
+    if len(params) > MAX_CONSTANTS:
+        raise FormulaError("params", f"at most {MAX_CONSTANTS} named constants "
+                                     f"(got {len(params)})")
+    if len(observables or {}) > MAX_OBSERVABLES:
+        raise FormulaError("observables", f"at most {MAX_OBSERVABLES} observables "
+                                          f"(got {len(observables)})")
     try:
         space = mechanics.PhaseSpace.of(coordinates)
     except ValueError as exc:
@@ -170,6 +194,7 @@ def build_system(coordinates, *, H: str | None = None, L: str | None = None,
         except ValueError as exc:
             raise FormulaError("system.L", str(exc)) from None
         H_expr = legendre_result.H
+    _check_real("system.H" if H is not None else "system.L", H_expr)
     try:
         hamilton = mechanics.hamiltonian_system(space, H_expr, param_symbols.values())
     except ValueError as exc:
@@ -185,6 +210,7 @@ def build_system(coordinates, *, H: str | None = None, L: str | None = None,
                                     "momentum, velocity, constant or H")
         symbols = {**space.symbols_for_h(), **{v.name: v for v in space.qdot}}
         obs[name] = parse(key, text, symbols).subs(to_qp)
+        _check_real(key, obs[name])
     return FormulaSystem(space, params, param_symbols, H_expr, L_expr, legendre_result,
                          hamilton, obs)
 

@@ -276,14 +276,16 @@ class Progress:
 def run_batch(paths: list[str], out_root: str = "output", jobs: int | None = None,
               formats: tuple[str, ...] | None = None, force: bool = False,
               scheduler: str | None = None, time_limit: float | None = None,
-              stream=None, pdf_worker=None) -> list[Outcome]:
+              stream=None, pdf_worker=None, in_process_limit: bool = False) -> list[Outcome]:
     """Validate all, run all, write ``index.html``.
 
     Scenes run in-process (``jobs == 1``), in a local pool of ``jobs`` processes,
     or on the Dask distributed scheduler at ``scheduler``.  ``pdf_worker``: a
     :class:`reportgen.rendering.pdf.PdfWorker` the caller started (``reportgen run`` does, on the
     hint of :func:`reportgen.rendering.pdf.edit_loop_worker`, before its heavy imports) and closes;
-    it renders the PDF of a single scene to do.
+    it renders the PDF of a single scene to do.  ``time_limit``: seconds per scene (None:
+    none); with ``in_process_limit`` (``reportgen run``'s default limit) a single scene to
+    do still runs in this process, stopped by an alarm.
     """
     scenes = validate_all(collect_configs(paths))
     progress = Progress(len(scenes), stream)
@@ -294,7 +296,7 @@ def run_batch(paths: list[str], out_root: str = "output", jobs: int | None = Non
                                     time_limit)
         else:
             outcomes = _run_locally(scenes, out_root, force, formats, jobs, progress,
-                                    time_limit, pdf_worker)
+                                    time_limit, pdf_worker, in_process_limit)
         order = {s.source.name: i for i, s in enumerate(scenes)}
         outcomes.sort(key=lambda o: order[o.name])
         try:
@@ -321,11 +323,13 @@ def _split_current(scenes, out_root, force, formats, progress) -> tuple[list[Out
 
 
 def _run_locally(scenes, out_root, force, formats, jobs, progress,
-                 time_limit: float | None = None, pdf_worker=None) -> list[Outcome]:
+                 time_limit: float | None = None, pdf_worker=None,
+                 in_process_limit: bool = False) -> list[Outcome]:
     """Scenes whose archive and reports are current are answered here, without a worker.
 
     One scene left to do (the edit loop's case) runs in this process when no time limit
-    is set (its PDF rendered by ``pdf_worker`` if one was started); more run in forked
+    is set, or only the default one (``in_process_limit``: stopped by an alarm); its PDF
+    is rendered by ``pdf_worker`` if one was started.  More run in forked
     processes, at most ``jobs`` at once, forked after the heavy libraries are imported
     here (:func:`_preload`), so no scene pays for them.
     """
@@ -336,20 +340,69 @@ def _run_locally(scenes, out_root, force, formats, jobs, progress,
         return outcomes
     requested = jobs
     jobs = max(1, min(jobs or os.cpu_count() or 1, len(todo)))
-    if jobs == 1 and time_limit is None:
+    import threading
+
+    # the default limit (``in_process_limit``) keeps a single scene in this process, stopped
+    # by an alarm; a limit the user set runs scenes in workers, killed when over it
+    in_process = jobs == 1 and (time_limit is None or (
+        in_process_limit and len(todo) == 1
+        and threading.current_thread() is threading.main_thread()))
+    if in_process:
         # the edit loop's one scene: its figures are drawn by as many processes as allowed
         draw_jobs = max(1, requested or os.cpu_count() or 1) if len(todo) == 1 else 1
         for scene in todo:
-            outcome = run_scene(str(scene.source.path), out_root, force, formats,
-                                progress=progress.within(scene.source.name),
-                                draw_jobs=draw_jobs,
-                                pdf_worker=pdf_worker if len(todo) == 1 else None)
+            try:
+                with _alarm(time_limit):
+                    outcome = run_scene(str(scene.source.path), out_root, force, formats,
+                                        progress=progress.within(scene.source.name),
+                                        draw_jobs=draw_jobs,
+                                        pdf_worker=pdf_worker if len(todo) == 1 else None)
+            except _TimeLimit:
+                outcome = Outcome(name=scene.source.name, kind=scene.kind, title=scene.title,
+                                  status="failed", message=_time_limit_message(time_limit))
             progress.scene_done(outcome)
             outcomes.append(outcome)
         return outcomes
     _preload(todo, formats)
     return outcomes + _run_in_processes(_interleave_kinds(todo), out_root, force, formats,
                                         jobs, progress, time_limit)
+
+
+class _TimeLimit(BaseException):
+    """A scene run in this process went over its time limit (raised by SIGALRM)."""
+
+
+def _time_limit_message(time_limit: float) -> str:
+    return (f"time limit of {time_limit:g} s exceeded: the scene was stopped (--time-limit; "
+            "0 for none) and any earlier archive kept")
+
+
+class _alarm:
+    """Raise :class:`_TimeLimit` in the main thread after ``seconds`` (None: never).  The
+    scene's archive and reports are renamed into place only when complete, so stopping it
+    anywhere keeps the earlier ones; compiled code is stopped when it returns to Python."""
+
+    def __init__(self, seconds: float | None):
+        self.seconds = seconds
+
+    def __enter__(self):
+        import signal
+
+        if self.seconds is not None:
+            def expired(signum, frame):
+                raise _TimeLimit
+
+            self.previous = signal.signal(signal.SIGALRM, expired)
+            signal.setitimer(signal.ITIMER_REAL, self.seconds)
+        return self
+
+    def __exit__(self, *exc):
+        import signal
+
+        if self.seconds is not None:
+            signal.setitimer(signal.ITIMER_REAL, 0)
+            signal.signal(signal.SIGALRM, self.previous)
+        return False
 
 
 def _interleave_kinds(scenes: list[Scene]) -> list[Scene]:
@@ -494,8 +547,7 @@ def _run_in_processes(scenes, out_root, force, formats, jobs, progress, time_lim
                     worker.stop(graceful=False)
                     workers.remove(worker)
                 elif time_limit is not None and time.monotonic() - worker.started > time_limit:
-                    outcome = failed(scene, f"time limit of {time_limit:g} s exceeded; the "
-                                            "scene was stopped and any earlier archive kept")
+                    outcome = failed(scene, _time_limit_message(time_limit))
                     worker.stop(graceful=False)
                     workers.remove(worker)
                 if outcome is not None:

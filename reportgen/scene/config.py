@@ -120,13 +120,40 @@ def read_config(path: Path) -> SourceConfig:
     return parse_config_text(text, path)
 
 
+#: deepest nesting of tables and arrays a config may have (the deepest kind needs ~4)
+MAX_CONFIG_NESTING = 32
+
+
 def parse_config_text(text: str, path: Path | None = None) -> SourceConfig:
+    """Parse TOML text; invalid TOML and nesting deeper than :data:`MAX_CONFIG_NESTING`
+    (``x = [[[[...]]]]``, which would exhaust the recursion of the parser or of later
+    validation) are ConfigErrors."""
     label = printable(str(path)) if path is not None else "<archive config>"
+    too_deep = ConfigError([f"{label}: config nesting too deep (tables and arrays nested "
+                            f"more than {MAX_CONFIG_NESTING} levels)"])
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise ConfigError([f"{label}: invalid TOML: {exc}"]) from None
+    except RecursionError:
+        raise too_deep from None
+    if _nesting(data) > MAX_CONFIG_NESTING:
+        raise too_deep
     return SourceConfig(path=path, text=text, data=data)
+
+
+def _nesting(value) -> int:
+    """How deeply tables and arrays nest in ``value`` (walked without recursion)."""
+    deepest, stack = 0, [(value, 0)]
+    while stack:
+        item, depth = stack.pop()
+        if isinstance(item, dict | list):
+            deepest = max(deepest, depth + 1)
+            if deepest > MAX_CONFIG_NESTING:
+                return deepest
+            stack.extend((v, depth + 1) for v in (item.values() if isinstance(item, dict)
+                                                  else item))
+    return deepest
 
 
 def deep_merge(base: dict, override: dict) -> dict:

@@ -41,7 +41,15 @@ def _reserved() -> frozenset[str]:
 
 
 def _usable(name: str) -> bool:
-    return name.isidentifier() and not name.startswith("_") and name not in _reserved()
+    return expressions.name_problem(name) is None and name not in _reserved()
+
+
+def _name_rule(name) -> str:
+    """Why ``name`` is not usable, as a rule."""
+    problem = expressions.name_problem(name)
+    if problem is None:
+        problem = f"{name!r} is reserved (H, energy)"
+    return f"not a usable name: {problem}"
 
 
 class System(Strict):
@@ -128,19 +136,28 @@ class HamiltonianConfig(SceneConfig):
         if (sys_.H is None) == (sys_.L is None):
             raise _problem("system", "give exactly one of H and L")
         coords = sys_.coordinates
-        rule = (f"must be an identifier not starting with _ and not one of "
-                f"{', '.join(sorted(_reserved()))}")
         for c in coords:
             if not _usable(c):
-                raise _problem("system.coordinates", rule, c)
+                raise _problem("system.coordinates", _name_rule(c))
         if len(set(coords)) != len(coords):
             raise _problem("system.coordinates", "names must not repeat", coords)
+        alias = expressions.alias_problem(coords)
+        if alias is not None:
+            raise _problem("system.coordinates", f"aliased names: {alias}")
+        if len(self.params) > expressions.MAX_CONSTANTS:
+            raise _problem("params", f"at most {expressions.MAX_CONSTANTS} named constants "
+                                     f"(got {len(self.params)})")
+        if len(self.observables) > expressions.MAX_OBSERVABLES:
+            raise _problem("observables", f"at most {expressions.MAX_OBSERVABLES} observables "
+                                          f"(got {len(self.observables)})")
         momenta = [f"p_{c}" for c in coords]
         velocities = [f"{c}_dot" for c in coords]
         state = set(coords) | set(momenta) | set(velocities)
         for name, value in self.params.items():
-            if not _usable(name) or name in state:
-                raise _problem(f"params.{name}", "a constant's name " + rule + " and not a "
+            if not _usable(name):
+                raise _problem(f"params.{name}", _name_rule(name))
+            if name in state:
+                raise _problem(f"params.{name}", "a constant may not take the name of a "
                                "coordinate, momentum or velocity", value)
         constants = list(self.params)
         used: set[str] = set()
@@ -156,9 +173,11 @@ class HamiltonianConfig(SceneConfig):
         else:
             check("system.L", sys_.L, coords + velocities + ["t"] + constants)
         for name, text in self.observables.items():
-            if not _usable(name) or name in state or name in self.params:
-                raise _problem(f"observables.{name}", "an observable's name " + rule + " and "
-                               "not a coordinate, momentum, velocity or constant", text)
+            if not _usable(name):
+                raise _problem(f"observables.{name}", _name_rule(name))
+            if name in state or name in self.params:
+                raise _problem(f"observables.{name}", "an observable may not take the name of "
+                               "a coordinate, momentum, velocity or constant", text)
             check(f"observables.{name}", text, coords + momenta + velocities + ["t"]
                   + constants)
         speeds = momenta if sys_.H is not None else velocities

@@ -35,6 +35,8 @@ class HamiltonianSimulation(HamiltonianAnalysis, Simulation):
 
     #: grid points per axis of H on the surface of section (its allowed region's edge)
     SECTION_GRID = 301
+    #: the left-out momentum or velocity of ``initial.energy`` is sought in [0, this]
+    ENERGY_SEARCH_MAX = 1e12
 
     def results_schema(self) -> ResultsSchema:
         """The schema with this config's columns, invariants and observables, each
@@ -66,6 +68,13 @@ class HamiltonianSimulation(HamiltonianAnalysis, Simulation):
     def models(self) -> list:
         return [formula.compiled_model(self.system(), name=self.source.name)]
 
+    def build_models(self) -> None:
+        """As every kind's, and with ``initial.energy`` the left-out momentum or velocity
+        solved, so that an energy no state reaches is refused before anything runs."""
+        super().build_models()
+        if "energy" in self.config.initial:
+            self.initial_state()
+
     def initial_state(self) -> np.ndarray:
         """(q0, p0); for L the momenta p = ∂L/∂q̇ at (q0, q̇0, 0); with ``energy`` the left-out
         momentum or velocity solved (the root ≥ 0 of H = energy)."""
@@ -94,22 +103,39 @@ class HamiltonianSimulation(HamiltonianAnalysis, Simulation):
         space = system.space
         target = system.H if system.L is None else self._energy_function()
 
-        def h(value):
+        def energy_at(value):
             vals = {s: ini.get(s.name, 0.0) for s in space.q + space.p + space.qdot}
             vals[unknown] = value
             vals[space.t] = 0.0
             vals.update({system.param_symbols[k]: v for k, v in system.params.items()})
-            return float(numeric.evaluate(target, vals)) - energy
+            return float(np.ravel(numeric.evaluate(target, vals))[0])
 
+        def h(value):
+            return energy_at(value) - energy
+
+        from ...scene.config import ConfigError
+
+        where = f"{self.source.label}: key 'initial.energy'"
         lo, hi = 0.0, 1.0
-        if h(lo) > 0:
-            from ...scene.config import ConfigError
-
-            raise ConfigError([f"{self.source.label}: initial.energy: {energy} is below the "
-                               f"energy with {unknown.name} = 0 ({h(lo) + energy:.10g}); no "
-                               "state on that energy surface"])
-        while h(hi) < 0 and hi < 1e12:
+        low = energy_at(lo)
+        if not np.isfinite(low):
+            raise ConfigError([f"{where}: the energy with {unknown.name} = 0 is not finite "
+                               f"({low}); no state to start from"])
+        if low > energy:
+            raise ConfigError([f"{where}: {energy:.10g} is below the energy with "
+                               f"{unknown.name} = 0 ({low:.10g}); no state on that energy "
+                               "surface"])
+        highest, reached = low, lo
+        while True:
+            top = energy_at(hi)
+            if not np.isfinite(top) or top >= energy or hi >= self.ENERGY_SEARCH_MAX:
+                break
+            highest, reached = max(highest, top), hi
             hi *= 2
+        if not (np.isfinite(top) and top >= energy):
+            raise ConfigError([f"{where}: {energy:.10g} is not reachable: with "
+                               f"{unknown.name} from 0 to {reached:.3g} the energy ranges over "
+                               f"[{low:.10g}, {highest:.10g}]"])
         return brentq(h, lo, hi, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=500)
 
     def _energy_function(self):
@@ -156,11 +182,11 @@ class HamiltonianSimulation(HamiltonianAnalysis, Simulation):
         a["angles"] = angles
         scales = {}
         vals0 = system.values(y0[None, :], np.array([0.0]))
-        h0 = float(numeric.evaluate(H, vals0)[0])
+        h0 = float(np.ravel(numeric.evaluate(H, vals0))[0])  # a scalar if constant
         if h_conserved:
             # the energy's scale: the largest of |H0| and its parts at p = 0 and the rest, so
             # that a zero-energy orbit is measured against its kinetic and potential energy
-            v0 = float(numeric.evaluate(H.subs({p: 0 for p in space.p}), vals0)[0])
+            v0 = float(np.ravel(numeric.evaluate(H.subs({p: 0 for p in space.p}), vals0))[0])
             scales["H"] = max(abs(h0), abs(v0), abs(h0 - v0), 1e-300)
         main = self.integrate(model, y0, t, invariants=quantities, progress=progress,
                               invariant_scales=scales or None)

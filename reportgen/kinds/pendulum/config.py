@@ -14,6 +14,11 @@ theory = lazy_module("reportgen.core.pendulum_theory")  # no numerics: validatio
 
 #: crossings are located reliably only with this many samples per period
 MIN_SAMPLES_PER_PERIOD = 16
+#: most periods (of small oscillation, or of rotation at the initial rate) one run may
+#: span: at ~100 steps a period, more would take days (and rounding swamps the phase)
+MAX_PERIODS = 1e9
+#: largest energy scale m·g·l [J]: beyond it squares of energies overflow float64
+MAX_ENERGY_SCALE = 1e150
 
 
 class Params(Strict):
@@ -43,7 +48,24 @@ class PendulumConfig(SceneConfig):
 
     @model_validator(mode="after")
     def _physics(self):
-        omega0 = math.sqrt(self.params.g / self.params.l)
+        p, t_end = self.params, self.run.t_end
+        scale = p.m * p.g * p.l
+        if not scale <= MAX_ENERGY_SCALE:
+            raise ValueError(f"params.g / params.l / params.m: the energy scale m·g·l = "
+                             f"{scale:.3g} J is above {MAX_ENERGY_SCALE:.0e} J (float64 "
+                             "overflows in its squares)")
+        omega0 = math.sqrt(p.g / p.l)
+        periods = t_end * omega0 / (2 * math.pi)
+        if not periods <= MAX_PERIODS:
+            raise ValueError(f"params.g / params.l: ω0 = √(g/l) = {omega0:.3g} rad/s makes "
+                             f"run.t_end = {t_end:g} s span {periods:.3g} periods of small "
+                             f"oscillation; at most {MAX_PERIODS:.0e} can be integrated (lower "
+                             "g or t_end, or raise l)")
+        turns = t_end * abs(self.initial.theta_dot) / (2 * math.pi)
+        if not turns <= MAX_PERIODS:
+            raise ValueError(f"initial.theta_dot: {self.initial.theta_dot:.3g} rad/s makes "
+                             f"run.t_end = {t_end:g} s span {turns:.3g} turns; at most "
+                             f"{MAX_PERIODS:.0e} can be integrated")
         m1 = theory.complementary_parameter(self.initial.theta, self.initial.theta_dot, omega0)
         if m1 == 0.0:
             raise ValueError(

@@ -68,7 +68,7 @@ class ThreeBodyReport(Report):
     @classmethod
     def section_orbits(cls, data):
         pos = cls._positions(data.runs["main"])
-        names, unit = data.config.names, data.config.length_unit
+        names, unit = _plain(data.config.names), _plain(data.config.length_unit)
         fig = plots.three_body_orbits(pos, labels=names, length_unit=unit)
         figures = [cls.figure("orbits", fig, "Tracks of the three bodies projected on the "
                               "x–y plane.")]
@@ -83,14 +83,15 @@ class ThreeBodyReport(Report):
         a = data.analysis
         names, unit = data.config.names, data.config.length_unit
         rel = np.asarray(a["moon_relative_position"])
-        fig = plots.relative_track(rel[:, 0], rel[:, 1], label=f"{names[2]} − {names[1]}",
-                                   centre_label=names[1], length_unit=unit)
+        shown = _plain(names)
+        fig = plots.relative_track(rel[:, 0], rel[:, 1], label=f"{shown[2]} − {shown[1]}",
+                                   centre_label=shown[1], length_unit=_plain(unit))
         jac = a["jacobi_coordinates"]
         rho1, rho2 = np.asarray(jac["rho1"]), np.asarray(jac["rho2"])
         fig2 = plots.three_body_orbits(
             np.stack([rho1, rho2, np.zeros_like(rho1)], axis=1)[:, :2],
             labels=["ρ1 = r2 − r1", "ρ2 = r3 − (m1 r1 + m2 r2)/(m1 + m2)"],
-            length_unit=unit)
+            length_unit=_plain(unit))
         M, mu1, mu2 = np.asarray(a["jacobi_masses"])
         ratios = a["mass_ratios"]
         facts = [("mass ratios (3.35)", f"m2/m1 = {fmt(ratios['m2_m1'])}, "
@@ -127,11 +128,11 @@ class ThreeBodyReport(Report):
     def section_encounters(cls, data):
         run, a = data.runs["main"], data.analysis
         d = a["pair_distances"]
-        n = data.config.names
+        n = _plain(data.config.names)
         fig = plots.closest_approach(run.t, {f"{n[0]}–{n[1]}": d["r12"],
                                              f"{n[0]}–{n[2]}": d["r13"],
                                              f"{n[1]}–{n[2]}": d["r23"]},
-                                     time_unit=data.config.time_unit)
+                                     time_unit=_plain(data.config.time_unit))
         return SectionContent(
             figures=[cls.figure("pair_distances", fig, "Distances between the bodies (log "
                                 "scale); close encounters are the deep minima, sampled at the "
@@ -145,3 +146,11 @@ class ThreeBodyReport(Report):
         return cls.invariants_section(data, labels=labels, caption=(
             "Drift of energy (relative to the initial potential energy), total momentum and "
             "angular momentum (relative to natural momentum scales)."))
+
+
+def _plain(text):
+    """Config text (body names, units) for matplotlib: ``$`` escaped, so that a name is
+    drawn as written and never parsed as mathtext (``$\\frac{`` would not parse)."""
+    if isinstance(text, str):
+        return text.replace("$", r"\$")
+    return [_plain(t) for t in text]

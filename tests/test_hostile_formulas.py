@@ -1,0 +1,194 @@
+"""Issue 35, items 5-7: aliased and non-normalized names, formula size limits, user errors
+that used to crash, nested TOML, and the default wall-clock limit of a batch."""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import textwrap
+
+import pytest
+
+from reportgen.commands.cli import main
+from reportgen.core import expressions
+
+
+def _cli(*args) -> tuple[int, str]:
+    err = io.StringIO()
+    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(err):
+        code = main([str(a) for a in args])
+    return code, err.getvalue()
+
+
+def _hamiltonian(system: str, initial: str, extra: str = "") -> str:
+    return textwrap.dedent(f"""
+        kind = "hamiltonian"
+        [run]
+        t_end = 1.0
+        samples = 11
+        study = false
+        [system]
+        {system}
+        [initial]
+        {initial}
+        {extra}
+        """)
+
+
+def _refused(tmp_path, text: str, *needles: str) -> str:
+    cfg = tmp_path / "scene.toml"
+    cfg.write_text(text, encoding="utf-8")
+    code, err = _cli("validate", cfg)
+    assert code == 2, err
+    lines = [line for line in err.splitlines() if line.strip()]
+    assert len(lines) == 1 and "Traceback" not in err, err
+    for needle in needles:
+        assert needle in lines[0], lines[0]
+    return lines[0]
+
+
+# ------------------------------------------------------------------ item 5: names
+@pytest.mark.parametrize("system, initial, what", [
+    ('coordinates = ["x", "p_x"]\nH = "p_x**2/2 + p_p_x**2/2 + x**2/2"',
+     "x = 1.0\np_x = 0.0\np_p_x = 0.0", "momentum of 'x'"),
+    ('coordinates = ["x", "x_dot"]\nL = "x_dot**2/2 - x**2/2"',
+     "x = 1.0\nx_dot = 0.0\nx_dot_dot = 0.0", "velocity of 'x'"),
+])
+def test_aliased_coordinates_are_refused(tmp_path, system, initial, what):
+    _refused(tmp_path, _hamiltonian(system, initial), "system.coordinates", what)
+
+
+def test_full_width_name_in_a_formula_is_refused(tmp_path):
+    _refused(tmp_path, _hamiltonian('coordinates = ["x"]\nH = "p_x**2/2 + ｘ**2/2"',
+                                    "x = 1.0\np_x = 0.0"), "system.H", "'ｘ'", "'x'", "NFKC")
+
+
+@pytest.mark.parametrize("name, why", [("ｑ", "NFKC"), ("lambda", "keyword"),
+                                       ("I", "reserved"), ("sin", "reserved")])
+def test_unusable_coordinate_names(tmp_path, name, why):
+    _refused(tmp_path, _hamiltonian(f'coordinates = ["{name}"]\nH = "p_{name}**2/2"',
+                                    f"\"{name}\" = 1.0\n\"p_{name}\" = 0.0"), "system.coordinates", why)
+
+
+def test_full_width_constant_name_is_refused(tmp_path):
+    _refused(tmp_path, _hamiltonian('coordinates = ["x"]\nH = "p_x**2/2 + x**2/2"',
+                                    "x = 1.0\np_x = 0.0", "[params]\n\"ｋ\" = 1.0"),
+             "params.", "NFKC")
+
+
+# ------------------------------------------------------------------ item 6: limits
+@pytest.mark.parametrize("H", ["p_x**2/2 + x**64**64", "p_x**2/2 + ((x**64)**64)**64",
+                               "(x + p_x + 1)**64", "p_x**2/2 + x**40"])
+def test_formula_degree_is_bounded(tmp_path, H):
+    _refused(tmp_path, _hamiltonian(f'coordinates = ["x"]\nH = "{H}"', "x = 0.1\np_x = 0.0"),
+             "system.H", f"total degree above {expressions.MAX_DEGREE}")
+
+
+def test_formula_node_count_is_bounded(tmp_path):
+    group = "(" + " + ".join(["x*p_x"] * 30) + ")"
+    H = " + ".join([group] * 4)
+    assert len(H) < expressions.MAX_LENGTH
+    _refused(tmp_path, _hamiltonian(f'coordinates = ["x"]\nH = "{H}"', "x = 0.1\np_x = 0.0"),
+             "system.H", f"larger than {expressions.MAX_NODES} nodes")
+
+
+def test_too_many_observables(tmp_path):
+    obs = "\n".join(f'o{i} = "x*{i}"' for i in range(300))
+    _refused(tmp_path, _hamiltonian('coordinates = ["x"]\nH = "p_x**2/2 + x**2/2"',
+                                    "x = 0.1\np_x = 0.0", "[observables]\n" + obs),
+             "observables", f"at most {expressions.MAX_OBSERVABLES}")
+
+
+# ------------------------------------------------------------------ item 7: user errors
+@pytest.mark.parametrize("piece", ["sqrt(-1)", "log(0)", "acos(2)", "(-1)**0.5"])
+def test_non_real_constants_refused_at_validation(tmp_path, piece):
+    _refused(tmp_path, _hamiltonian(f'coordinates = ["x"]\nH = "p_x**2/2 + x**2/2 + {piece}*x"',
+                                    "x = 0.1\np_x = 0.0"), "system.H", "finite real")
+
+
+def test_unreachable_energy_is_refused(tmp_path):
+    _refused(tmp_path, _hamiltonian('coordinates = ["x"]\nH = "p_x**2/2 - exp(-p_x**2)"',
+                                    "x = 0.0\nenergy = 1e30"), "initial.energy",
+             "not reachable", "[-1,")
+
+
+def test_pendulum_with_absurd_gravity_is_refused(tmp_path):
+    _refused(tmp_path, textwrap.dedent("""
+        kind = "pendulum"
+        [params]
+        g = 1e300
+        l = 1.0
+        [initial]
+        theta = 1.0
+        [run]
+        t_end = 1.0
+        """), "params.g", "energy scale")
+    _refused(tmp_path, textwrap.dedent("""
+        kind = "pendulum"
+        [params]
+        g = 1e20
+        l = 1.0
+        [initial]
+        theta = 1.0
+        [run]
+        t_end = 1.0
+        """), "params.g", "periods")
+
+
+@pytest.mark.parametrize("depth", [40, 10000])
+def test_deeply_nested_toml(tmp_path, depth):
+    _refused(tmp_path, 'kind = "pendulum"\nx = ' + "[" * depth + "]" * depth,
+             "config nesting too deep")
+
+
+def test_free_particle_runs(tmp_path):
+    cfg = tmp_path / "free.toml"
+    cfg.write_text(_hamiltonian('coordinates = ["x"]\nH = "p_x**2/2"', "x = 0.0\np_x = 1.0"))
+    code, err = _cli("run", cfg, "--out", tmp_path / "o", "--jobs", 1, "--format", "html")
+    assert code == 0, err
+
+
+def test_three_body_names_are_text(tmp_path):
+    cfg = tmp_path / "tb.toml"
+    cfg.write_text(textwrap.dedent(r"""
+        kind = "three_body"
+        preset = "figure_eight"
+        names = ["$\\frac{", "$", "a $b"]
+        [run]
+        t_end = 1.0
+        study = false
+        """))
+    code, err = _cli("run", cfg, "--out", tmp_path / "o", "--jobs", 1, "--format", "html")
+    assert code == 0, err
+
+
+# ------------------------------------------------------------------ the default time limit
+def test_default_time_limit_stops_a_scene_in_process(tmp_path):
+    from reportgen.pipeline.stages import run_batch
+
+    cfg = tmp_path / "slow.toml"
+    cfg.write_text(textwrap.dedent("""
+        kind = "pendulum"
+        [params]
+        g = 9.81
+        l = 1.0
+        [initial]
+        theta = 1.0
+        [run]
+        t_end = 1e5
+        method = "scipy_dop853"
+        """))
+    outcomes = run_batch([str(cfg)], out_root=str(tmp_path / "o"), jobs=1, formats=("html",),
+                         time_limit=1.0, in_process_limit=True, stream=io.StringIO())
+    assert outcomes[0].status == "failed"
+    assert "time limit of 1 s exceeded" in outcomes[0].message
+
+
+def test_time_limit_option():
+    from reportgen.commands.cli import DEFAULT_TIME_LIMIT, build_parser
+
+    assert DEFAULT_TIME_LIMIT == 600
+    assert build_parser().parse_args(["run", "x", "--time-limit", "0"]).time_limit == 0
+    with pytest.raises(SystemExit):
+        with contextlib.redirect_stderr(io.StringIO()):
+            build_parser().parse_args(["run", "x", "--time-limit", "-1"])
