@@ -1,4 +1,4 @@
-"""Stage keys from the import graph: reportgen.pipeline.codestamp.module_files / code_hash."""
+"""Stage keys from the import graph: reportgen.support.codestamp.module_files / code_hash."""
 
 from __future__ import annotations
 
@@ -10,8 +10,8 @@ from pathlib import Path
 
 import pytest
 
-from reportgen.pipeline import codestamp
-from reportgen.pipeline.codestamp import PACKAGE, code_hash, files_hash, module_files
+from reportgen.support import codestamp
+from reportgen.support.codestamp import PACKAGE, code_hash, files_hash, module_files
 
 #: a package shaped like reportgen after the kinds restructuring
 SOURCES = {

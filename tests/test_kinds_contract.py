@@ -20,7 +20,7 @@ from pathlib import Path
 import pytest
 
 from reportgen.kinds import KINDS
-from reportgen.pipeline import codestamp
+from reportgen.support import codestamp
 
 KINDS_DIR = Path(codestamp.PACKAGE) / "kinds"
 PACKAGED = [k for k, cls in KINDS.items() if cls.template_path() is not None]

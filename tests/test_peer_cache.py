@@ -11,7 +11,7 @@ import pytest
 from conftest import pendulum_text
 from reportgen.core.models import pendulum
 from reportgen.core.study import work_precision
-from reportgen.pipeline.cache import NO_CACHE_ENV, PeerCache
+from reportgen.support.cache import NO_CACHE_ENV, PeerCache
 
 G, L, THETA0 = 9.81, 1.0, 1.0
 TOLERANCES = (1e-6, 1e-8)

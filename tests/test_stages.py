@@ -199,9 +199,9 @@ def test_edit_loop_worker_started_only_for_one_edited_scene(write_config, tmp_pa
     """``reportgen run`` forks the PDF worker before validating only when one config is
     newer than its report; an unused worker is stopped at once; the PDF's slim figure
     copies are kept for the next render."""
-    from reportgen.pipeline.layout import edited_count
     from reportgen.pipeline.stages import run_batch
     from reportgen.rendering.pdf import PdfWorker, edit_loop_worker
+    from reportgen.support.layout import edited_count
 
     a = write_config("a", pendulum_text(t_end=2.0, samples=201))
     b = write_config("b", pendulum_text(t_end=3.0, samples=201))
@@ -271,7 +271,7 @@ def test_code_stamps_follow_the_code_each_stage_imports(tmp_path):
     import shutil
 
     from reportgen.kinds import KINDS
-    from reportgen.pipeline import codestamp
+    from reportgen.support import codestamp
 
     pendulum, other = KINDS["pendulum"], KINDS["inertia"]
 

@@ -12,9 +12,9 @@ from conftest import pendulum_text
 from reportgen.archive.store import read_archive
 from reportgen.kinds import load_scene
 from reportgen.pipeline.stages import run_scene
-from reportgen.pipeline.sweep import SweepBlock, parse_sweep, partial_folder
 from reportgen.scene.config import ConfigError, parse_config_text
 from reportgen.scene.content import fmt
+from reportgen.scene.sweep import SweepBlock, parse_sweep, partial_folder
 
 OSCILLATOR = """
 kind = "oscillator"
@@ -183,7 +183,7 @@ def test_sweep_is_part_of_the_physics_key(write_config):
 def test_member_block_failures_are_the_members_own():
     """A member whose config is invalid inside the grid (not at a corner) gets its own
     status; the others have results."""
-    from reportgen.pipeline.sweep import generic_block
+    from reportgen.scene.sweep import generic_block
 
     def make(assignments):
         if assignments["x"] == 2.0:

@@ -15,8 +15,8 @@ from reportgen.archive.store import read_archive
 from reportgen.kinds import load_scene
 from reportgen.kinds.hamiltonian import HamiltonianScene
 from reportgen.pipeline.stages import run_scene
-from reportgen.pipeline.sweep import parse_sweep, partial_folder
 from reportgen.scene.config import parse_config_text
+from reportgen.scene.sweep import parse_sweep, partial_folder
 
 ENERGY = 0.125
 #: Hénon & Heiles, Astron. J. 69, 73 (1964), eq. (7), at E = 1/8 (their Fig. 3); p_x is

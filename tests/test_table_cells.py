@@ -18,7 +18,7 @@ def test_cell_text_is_escaped():
 
 
 def test_the_stylesheet_lets_such_cells_wrap():
-    from reportgen.pipeline.layout import template_dir
+    from reportgen.support.layout import template_dir
 
     css = (template_dir() / "style.css.j2").read_text()
     assert re.search(r"td\.num\.wrap\s*\{\s*white-space:\s*normal", css)

@@ -19,8 +19,8 @@ from reportgen.core.models import two_center, two_center_regularized
 from reportgen.kinds import load_scene
 from reportgen.kinds.two_center import TwoCenterScene
 from reportgen.pipeline.stages import run_scene
-from reportgen.pipeline.sweep import partial_folder
 from reportgen.scene.config import ConfigError, parse_config_text
+from reportgen.scene.sweep import partial_folder
 
 MU = A = 1.0
 ENERGY = -0.5

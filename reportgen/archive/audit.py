@@ -11,8 +11,8 @@ import h5py
 import numpy as np
 
 from .. import __version__
-from ..pipeline.fsutil import install, temp_name
 from ..scene.config import to_toml
+from ..support.fsutil import install, temp_name
 from .h5io import (
     STR,
     ArchiveError,

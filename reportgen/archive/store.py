@@ -20,7 +20,7 @@ Layout (``format_version`` 2, see SPEC.md "Archive")::
     /analysis                 attrs (scalars, strings) and datasets (arrays); sub-dicts are groups
     /checks                   table: quantity, value, reference, abs_error, rel_error, unit, source
     /study/error_vs_runtime   table (one row per method x tolerance), attrs reference_kind
-    /sweep                    a family of runs ([sweep], see reportgen.pipeline.sweep), on the
+    /sweep                    a family of runs ([sweep], see reportgen.scene.sweep), on the
                               dimension scale /sweep/member: status, message (M,) strings,
                               values/<config path>, analysis/<result> (M,) float64,
                               labels/<result> (M,) strings; points/<set>/ (only for a
@@ -49,10 +49,10 @@ import h5py
 import numpy as np
 
 from .. import __version__
-from ..pipeline.fsutil import install, temp_name
-from ..pipeline.layout import printable
 from ..scene.results import Check, Results, RunRecord
 from ..scene.schema import Quantity, ResultsSchema
+from ..support.fsutil import install, temp_name
+from ..support.layout import printable
 from .check import STATUSES as _CHECKED_STATUSES
 from .check import check_archive, is_int, is_number
 from .h5io import (  # noqa: F401 - FORMAT* are part of this module's interface
@@ -106,7 +106,7 @@ class ArchiveData:
     checks: list[Check] = field(default_factory=list)
     study: np.ndarray | None = None
     study_attrs: dict[str, Any] = field(default_factory=dict)
-    #: a sweep's family (:class:`reportgen.pipeline.sweep.SweepData`), or None
+    #: a sweep's family (:class:`reportgen.scene.sweep.SweepData`), or None
     sweep: Any = None
 
     @property
@@ -464,7 +464,7 @@ def read_archive(path: Path) -> ArchiveData:
 
 
 def _read_sweep(g: h5py.Group):
-    from ..pipeline.sweep import SweepData
+    from ..scene.sweep import SweepData
 
     attrs = {k: decode(v) for k, v in g.attrs.items()}
     # HDF5 lists a group's members by name; the swept keys keep the config's order
@@ -482,7 +482,7 @@ def _read_sweep(g: h5py.Group):
 
 
 def _read_points(g: h5py.Group):
-    from ..pipeline.sweep import PointSet
+    from ..scene.sweep import PointSet
 
     skip = {"point", "member", "component"}
     return PointSet(columns={k: ds[()] for k, ds in g.items() if k not in skip},

@@ -19,8 +19,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..pipeline.timing import best_time
 from ..scene.config import ConfigError
+from ..support.timing import best_time
 
 BASELINE, BASELINE_RTOL = "scipy_dop853", 1e-10
 
@@ -311,8 +311,8 @@ def kepler_against_rebound(e=0.9, orbits=1000, outputs=1001, target=1e-13,
 
 
 def _plot_long_run(periods, rel_error, method, out_dir: Path) -> Path:
-    from ..pipeline.fsutil import atomic_write
     from ..rendering.plots.style import new_figure
+    from ..support.fsutil import atomic_write
 
     fig, ax = new_figure(figsize=(7.0, 3.6))
     ax.semilogy(periods, np.maximum(rel_error, 1e-18), ".", markersize=2, rasterized=True)

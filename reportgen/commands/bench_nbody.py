@@ -20,7 +20,7 @@ import builtins
 
 import numpy as np
 
-from ..pipeline.timing import best_time
+from ..support.timing import best_time
 
 G = 1.0
 MASSES = (3.0, 4.0, 5.0)

@@ -13,8 +13,8 @@ from pathlib import Path
 
 from .. import __version__
 from ..errors import ConfigError, UsageError
-from ..pipeline.cache import NO_CACHE_ENV, PeerCache
-from ..pipeline.layout import FORMATS, collect_configs, printable
+from ..support.cache import NO_CACHE_ENV, PeerCache
+from ..support.layout import FORMATS, collect_configs, printable
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
 
@@ -219,7 +219,7 @@ def main(argv: list[str] | None = None) -> int:
     folder is status 2, a signal 128 + its number (SIGTERM, SIGHUP and Ctrl-C stop the
     command's child processes first), an unexpected error 1 (its traceback with
     ``REPORTGEN_DEBUG=1``)."""
-    from ..pipeline.forked import Terminated, children_stop_with_me
+    from ..support.forked import Terminated, children_stop_with_me
 
     args = build_parser().parse_args(argv)
     try:
@@ -348,8 +348,8 @@ def cmd_watch(args) -> int:
 
 def cmd_report(args) -> int:
     from ..archive.store import ArchiveError
-    from ..pipeline.fsutil import links_out
     from ..rendering.report import ReportError, build_report
+    from ..support.fsutil import links_out
 
     code = EXIT_OK
     for archive in args.archives:
@@ -423,9 +423,9 @@ def _archive_of(path: Path, root: Path) -> Path | None:
         return path
     from ..archive.store import FORMAT_VERSION, stored_identity
     from ..kinds import load_scene
-    from ..pipeline.fsutil import output_folder, output_lock
     from ..pipeline.stages import run_scene
     from ..scene.config import read_config
+    from ..support.fsutil import output_folder, output_lock
 
     scene = load_scene(read_config(path))  # a ConfigError is exit 2, via main
     archive = root / path.stem / "run.h5"

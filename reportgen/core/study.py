@@ -88,7 +88,7 @@ PEER_ROWS_FORMAT = 2  # 2: measured under a study budget
 
 class RowCache(Protocol):
     """Where measured peer rows are kept between runs (e.g.
-    :class:`reportgen.pipeline.cache.PeerCache`)."""
+    :class:`reportgen.support.cache.PeerCache`)."""
 
     def get(self, key: str) -> list[dict] | None: ...
 

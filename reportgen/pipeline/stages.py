@@ -31,8 +31,8 @@ from ..kinds import load_scene
 from ..scene.base import Scene
 from ..scene.config import ConfigError, read_config
 from ..scene.results import STATUSES, worst_status
-from .forked import JobProcess, kill_children, run_child, serve
-from .fsutil import (
+from ..support.forked import JobProcess, kill_children, run_child, serve
+from ..support.fsutil import (
     atomic_write,
     install,
     links_out,
@@ -41,7 +41,7 @@ from .fsutil import (
     remove_stale_temps,
     temp_name,
 )
-from .layout import collect_configs, figure_manifest, printable, report_stamp, scene_name
+from ..support.layout import collect_configs, figure_manifest, printable, report_stamp, scene_name
 
 
 @dataclass
@@ -132,7 +132,7 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
 
     ``pdf_worker`` (a :class:`reportgen.rendering.pdf.PdfWorker`, owned by the caller) renders
     the PDF; without one, a scene drawing with ``draw_jobs > 1`` starts its own.
-    ``sweep_submit``: where a sweep's member blocks run (:data:`reportgen.pipeline.sweep.Submit`;
+    ``sweep_submit``: where a sweep's member blocks run (:data:`reportgen.scene.sweep.Submit`;
     default: here).
     """
     path = Path(config_path)
@@ -181,7 +181,7 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
                           results=results, resolved_config=scene.resolved_config(),
                           physics_key=key, schema=scene.results_schema())
             if scene.sweep is not None:  # its finished blocks are in the archive now
-                from .sweep import discard_partial
+                from ..scene.sweep import discard_partial
 
                 discard_partial(folder, key)
             outcome.stages.append("simulate")
@@ -747,7 +747,7 @@ def _gallery_entries(root: Path) -> dict[Path, dict]:
 
 def _first_figure(folder: Path) -> str | None:
     """The first figure of a scene's report (a link relative to the output folder), if
-    drawn; from the figures' manifest, validated (:func:`reportgen.pipeline.layout.figure_manifest`)."""
+    drawn; from the figures' manifest, validated (:func:`reportgen.support.layout.figure_manifest`)."""
     stored = figure_manifest(folder)
     for section in stored["sections"] if stored is not None else ():
         for fig in section["figures"]:

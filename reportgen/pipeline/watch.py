@@ -19,7 +19,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from ..errors import ConfigError, UsageError
-from .layout import collect_configs, printable
+from ..support.layout import collect_configs, printable
 
 
 def _snapshot(paths: list[str]) -> dict[Path, int]:
@@ -43,8 +43,8 @@ def watch(paths: list[str], out_root: str = "output", jobs: int | None = None,
     """Run the batch, then again whenever a config under ``paths`` changes, appears or
     goes, until interrupted (Ctrl-C, SIGTERM, SIGHUP: child processes are stopped at
     once) or ``stop()`` is true.  Each batch holds the output folder's lock while it runs
-    (:func:`reportgen.pipeline.fsutil.output_lock`).  Returns the exit status."""
-    from .forked import children_stop_with_me
+    (:func:`reportgen.support.fsutil.output_lock`).  Returns the exit status."""
+    from ..support.forked import children_stop_with_me
 
     with children_stop_with_me():
         return _watch(paths, out_root, jobs, formats, interval, stream or sys.stderr, stop)

@@ -15,7 +15,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from ..errors import UsageError
-from ..pipeline.fsutil import atomic_write
+from ..support.fsutil import atomic_write
 
 MIN_FRAMES = 30
 ANIMATION_FORMATS = ("gif", "mp4")

@@ -35,7 +35,7 @@ _SUPERSAMPLE = 8  # layout measured at 8 x 72 dpi: sizes to 1/8 pt
 def _cache_dir() -> Path | None:
     if os.environ.get("REPORTGEN_NO_EQUATION_CACHE"):
         return None
-    from ..pipeline.cache import cache_root
+    from ..support.cache import cache_root
 
     return cache_root() / "equations"
 
@@ -68,7 +68,7 @@ def equation_svg(tex: str, points: float = EQUATION_POINTS) -> str:
             pass
     svg = _draw(tex, points)
     if folder is not None:
-        from ..pipeline.fsutil import atomic_write
+        from ..support.fsutil import atomic_write
 
         try:
             folder.mkdir(parents=True, exist_ok=True)

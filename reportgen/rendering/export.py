@@ -24,7 +24,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import UsageError
-from ..pipeline.fsutil import atomic_write
+from ..support.fsutil import atomic_write
 
 EXPORT_FORMATS = ("png", "svg", "pdf")
 DEFAULT_DPI = 200

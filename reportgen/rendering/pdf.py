@@ -14,9 +14,9 @@ import tempfile
 from pathlib import Path
 
 from ..errors import ReportError
-from ..pipeline.forked import JobProcess, serve
-from ..pipeline.fsutil import atomic_write
-from ..pipeline.layout import edited_count
+from ..support.forked import JobProcess, serve
+from ..support.fsutil import atomic_write
+from ..support.layout import edited_count
 
 __all__ = ["write_pdf", "PdfWorker", "edit_loop_worker"]
 
@@ -170,7 +170,7 @@ def _warm_up() -> None:
     one does not."""
     import base64
 
-    from ..pipeline.layout import template_dir
+    from ..support.layout import template_dir
 
     css = (template_dir() / "style.css.j2").read_text(encoding="utf-8")  # no template syntax
     svg = base64.b64encode(_WARM_UP_SVG.encode("utf-8")).decode("ascii")

@@ -28,10 +28,10 @@ from ..archive.store import ArchiveData, read_archive
 from ..errors import ReportError
 from ..kinds import get_kind
 from ..lazy import lazy_module
-from ..pipeline.forked import JobProcess, serve
-from ..pipeline.fsutil import atomic_write
-from ..pipeline.layout import template_dir
 from ..scene.content import FigureSpec, SectionContent, fmt, fmt_err
+from ..support.forked import JobProcess, serve
+from ..support.fsutil import atomic_write
+from ..support.layout import template_dir
 from .equations import equation_html
 from .pdf import PdfWorker, write_pdf  # noqa: F401 - part of this module's interface
 
@@ -84,7 +84,7 @@ def _template_cache() -> jinja2.BytecodeCache | None:
     """The templates compiled once per machine (``$XDG_CACHE_HOME/reportgen/jinja``; jinja2
     keys each by its source's checksum): compiling the report's templates again cost every
     report ~0.1 s.  None where the folder cannot be made (a read-only home, say)."""
-    from ..pipeline.cache import cache_root
+    from ..support.cache import cache_root
 
     folder = cache_root() / "jinja"
     try:
@@ -380,11 +380,11 @@ def cached_sections(out_dir: Path, key: str) -> list[dict[str, Any]] | None:
     """The figures stage's stored result if its key is ``key`` and every file is there.
 
     The manifest is read back from the output folder, so it is validated first
-    (:func:`reportgen.pipeline.layout.figure_manifest`: its shape, and every file a figure of its
+    (:func:`reportgen.support.layout.figure_manifest`: its shape, and every file a figure of its
     format inside ``figures/``) and so is every SVG the report would inline
-    (:func:`reportgen.pipeline.layout.svg_safe`); anything else is not reused: the figures are drawn
+    (:func:`reportgen.support.layout.svg_safe`); anything else is not reused: the figures are drawn
     again, over it."""
-    from ..pipeline.layout import figure_manifest, svg_safe
+    from ..support.layout import figure_manifest, svg_safe
 
     stored = figure_manifest(out_dir)
     if stored is None or stored["key"] != key:

@@ -43,7 +43,7 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 from xml.sax.saxutils import escape, quoteattr
 
-from ..pipeline.fsutil import atomic_write
+from ..support.fsutil import atomic_write
 
 __all__ = ["slim_svg", "slim_cached", "warm_cache", "prune_cache", "inline_svgs_as_images"]
 

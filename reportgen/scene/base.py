@@ -8,7 +8,7 @@ Its ``__init__.py`` joins the two faces into one class with a ``kind``; defining
 class registers the kind.  The pipeline never special-cases a kind.
 
 The stage keys are computed from the code each face imports
-(:func:`reportgen.pipeline.codestamp.code_hash`): the simulate key from the simulation's modules
+(:func:`reportgen.support.codestamp.code_hash`): the simulate key from the simulation's modules
 and the config's, the figures key from the report's.  So a caption edit re-renders that
 kind's reports and simulates nothing.
 """
@@ -26,9 +26,9 @@ from typing import Any, ClassVar
 from pydantic import Field, ValidationError
 
 from .. import __version__
-from ..pipeline import sweep as _sweep
-from ..pipeline.codestamp import code_hash, files_hash
-from ..pipeline.layout import template_dir
+from ..support.codestamp import code_hash, files_hash
+from ..support.layout import template_dir
+from . import sweep as _sweep
 from .config import (
     ConfigError,
     ReportConfig,

@@ -23,7 +23,7 @@ from typing import Annotated, Any, Literal
 from pydantic import AfterValidator, BaseModel, ConfigDict, Field, ValidationError
 
 from ..errors import ConfigError  # noqa: F401 - part of this module's interface
-from ..pipeline.layout import printable, scene_name
+from ..support.layout import printable, scene_name
 
 
 class Strict(BaseModel):
@@ -100,7 +100,7 @@ MAX_CONFIG_BYTES = 1_000_000
 
 def read_config(path: Path) -> SourceConfig:
     """Read and parse a TOML file; syntax and encoding problems, a file too large and a
-    file name that cannot name a scene folder (:func:`reportgen.pipeline.layout.scene_name`) are
+    file name that cannot name a scene folder (:func:`reportgen.support.layout.scene_name`) are
     ConfigErrors."""
     path = Path(path)
     scene_name(path)

@@ -110,7 +110,7 @@ class Results:
     status: str = "ok"
     message: str = ""
     wall_time_s: float = 0.0
-    #: a sweep's family (:class:`reportgen.pipeline.sweep.SweepData`): ``/sweep``
+    #: a sweep's family (:class:`reportgen.scene.sweep.SweepData`): ``/sweep``
     sweep: Any = None
 
     def flag(self, status: str, message: str) -> None:

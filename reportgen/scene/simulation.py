@@ -30,8 +30,8 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import numpy as np
 
 from ..lazy import lazy_module
-from ..pipeline import sweep as _sweep
-from ..pipeline.cache import default_cache
+from ..support.cache import default_cache
+from . import sweep as _sweep
 from .base import ProgressFn, Scene
 from .config import ConfigError, SourceConfig
 from .results import AuditCase, Check, Results, RunRecord
@@ -148,7 +148,7 @@ class Simulation(Scene):
     def simulate_sweep(self, folder, progress: ProgressFn | None = None,
                        submit: _sweep.Submit | None = None) -> Results:
         """The sweep: every member's scalar results (resumable, block by block, see
-        :mod:`reportgen.pipeline.sweep`; with ``submit``, the blocks run on a Dask cluster) and the
+        :mod:`reportgen.scene.sweep`; with ``submit``, the blocks run on a Dask cluster) and the
         whole run of the ``store`` members."""
         import time
 
@@ -300,7 +300,7 @@ class Simulation(Scene):
               progress: ProgressFn | None = None, reference_kind: str = "exact") -> None:
         """Fill ``results.study`` with the error-against-run-time study, if this run wants
         it (:meth:`wants_study`).  scipy peers' rows come from the user cache when it
-        holds this problem (:mod:`reportgen.pipeline.cache`); ours are measured every time.
+        holds this problem (:mod:`reportgen.support.cache`); ours are measured every time.
         ``reference_kind`` says what a given ``reference`` is (default: a closed form)."""
         if not self.wants_study():
             return

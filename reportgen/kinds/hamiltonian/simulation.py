@@ -8,11 +8,11 @@ from __future__ import annotations
 import numpy as np
 
 from ...lazy import lazy_module
-from ...pipeline.sweep import PointSet
 from ...scene.content import member_text
 from ...scene.results import Check, Results
 from ...scene.schema import ResultsSchema
 from ...scene.simulation import Simulation
+from ...scene.sweep import PointSet
 from .analysis import HamiltonianAnalysis
 from .config import STUDY_STEPS, HamiltonianConfig, _PresetFormulas, family_energy
 from .results import SCHEMA, schema_for
@@ -73,7 +73,12 @@ class HamiltonianSimulation(HamiltonianAnalysis, Simulation):
         solved, so that an energy no state reaches is refused before anything runs."""
         super().build_models()
         if "energy" in self.config.initial:
-            self.initial_state()
+            ini = dict(self.config.initial)
+            energy = ini.pop("energy")
+            space = self.system().space
+            speeds = space.p if self.system().L is None else space.qdot
+            missing = next(s for s in speeds if s.name not in ini)
+            self._solve_energy(missing, ini, energy, solve=False)
 
     def initial_state(self) -> np.ndarray:
         """(q0, p0); for L the momenta p = ∂L/∂q̇ at (q0, q̇0, 0); with ``energy`` the left-out
@@ -96,9 +101,9 @@ class HamiltonianSimulation(HamiltonianAnalysis, Simulation):
                            for m in system.legendre.momenta])
         return np.concatenate([q0, p0])
 
-    def _solve_energy(self, unknown, ini: dict, energy: float) -> float:
-        from scipy.optimize import brentq
-
+    def _solve_energy(self, unknown, ini: dict, energy: float, solve: bool = True) -> float:
+        """The value of ``unknown`` that gives ``energy`` (ConfigError if none is reached);
+        ``solve=False`` only checks that one is bracketed (``validate``: no scipy.optimize)."""
         system = self.system()
         space = system.space
         target = system.H if system.L is None else self._energy_function()
@@ -136,6 +141,10 @@ class HamiltonianSimulation(HamiltonianAnalysis, Simulation):
             raise ConfigError([f"{where}: {energy:.10g} is not reachable: with "
                                f"{unknown.name} from 0 to {reached:.3g} the energy ranges over "
                                f"[{low:.10g}, {highest:.10g}]"])
+        if not solve:
+            return hi
+        from scipy.optimize import brentq
+
         return brentq(h, lo, hi, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=500)
 
     def _energy_function(self):

@@ -187,7 +187,7 @@ class PendulumSimulation(Simulation):
         p, ini, run = self.config.params, self.config.initial, self.config.run
         if not self._ensemble_sweep():
             return super().sweep_block(lo, hi, values)
-        from ...pipeline.sweep import SweepBlock
+        from ...scene.sweep import SweepBlock
         from . import ensemble
 
         n = hi - lo

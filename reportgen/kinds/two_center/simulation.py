@@ -9,11 +9,11 @@ import math
 import numpy as np
 
 from ...lazy import lazy_module
-from ...pipeline.sweep import PointSet
 from ...scene.config import ConfigError
 from ...scene.content import fmt, member_text
 from ...scene.results import Check, Results
 from ...scene.simulation import Simulation
+from ...scene.sweep import PointSet
 from .config import CLOSE_APPROACH, TwoCenterConfig
 from .results import SCHEMA
 

@@ -49,8 +49,8 @@ from typing import Any
 
 import numpy as np
 
-from ..scene.config import ConfigError, _short
-from .fsutil import temp_name
+from ..support.fsutil import temp_name
+from .config import ConfigError, _short
 
 __all__ = ["SweepSpec", "SweepData", "PointSet", "parse_sweep", "run_sweep", "member_data"]
 
