@@ -105,7 +105,7 @@ def test_the_graph_sees_imports():
     graph = _graph()
     assert "reportgen.archive.store" in graph["reportgen.rendering.report"]
     assert "reportgen.scene.base" in graph["reportgen.kinds"]
-    assert "reportgen.core.integrators" in graph["reportgen.scene.simulation"]
+    assert "reportgen.core.integrators" in graph["reportgen.scene.integration"]
 
 
 @pytest.mark.parametrize(("args", "absent"), [

@@ -75,13 +75,13 @@ import numpy as np
 
 from ...lazy import lazy_module
 from ...scene.results import Check, Results
-from ...scene.simulation import Simulation
+from ...scene.integration import IntegratingSimulation
 from .results import SCHEMA
 
 oscillator = lazy_module("reportgen.core.models.oscillator")
 
 
-class FreeSimulation(Simulation):
+class FreeSimulation(IntegratingSimulation):
     schema = SCHEMA
 
     def simulate(self, progress=None):

@@ -24,58 +24,24 @@ here draws or renders.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 
-from ..lazy import lazy_module
-from ..support.cache import default_cache
 from . import sweep as _sweep
 from .base import ProgressFn, Scene
-from .config import ConfigError, SourceConfig
-from .results import AuditCase, Check, Results, RunRecord
+from .config import SourceConfig
+from .results import AuditCase, Check, Results
 from .schema import ResultsSchema
 
 if TYPE_CHECKING:
     from ..core.model import OdeModel
-
-_integrators = lazy_module("reportgen.core.integrators")
-_stability = lazy_module("reportgen.core.integrators.stability")
-_study = lazy_module("reportgen.core.study")
-
-
-def _solution_attrs(sol) -> dict[str, Any]:
-    """The archived attributes of an integrator Solution."""
-    return {
-        "method": sol.method,
-        "rtol": sol.rtol,
-        "atol": sol.atol,
-        "h": float("nan") if sol.h is None else float(sol.h),
-        "nfev": int(sol.nfev),
-        "nsteps": int(sol.nsteps),
-        "nreject": int(sol.nreject),
-        "wall_time_s": float(sol.wall_time_s),
-        "compile_time_s": float(sol.compile_time_s),
-        "status": sol.status,
-        "message": "" if sol.status == "ok" else sol.message,
-    }
-
 
 
 class Simulation(Scene):
     """Base class of a kind's simulation (see the module docstring for the contract)."""
 
     faces: ClassVar[frozenset[str]] = frozenset({"simulation"})
-
-    @classmethod
-    def _check_run_keys(cls, data: dict) -> list[str]:
-        run = data.get("run")
-        method = run.get("method", "auto") if isinstance(run, dict) else "auto"
-        if isinstance(method, str) and method != "auto" and method not in _integrators.METHODS:
-            return [f"key 'run.method': unknown integrator (got {method!r}; known: auto, "
-                    f"{', '.join(sorted(_integrators.METHODS))})"]
-        return []
 
     def results_schema(self) -> ResultsSchema | None:
         """The results this scene stores.  Default: the kind's ``schema``."""
@@ -185,7 +151,6 @@ class Simulation(Scene):
                              f"{n} {k}" for k, n in counts.items() if k != "ok"))
         return results
 
-
     def models(self) -> list[OdeModel]:
         """The models :meth:`simulate` integrates with the configured ``[run] method``
         (not those it integrates with a method it fixes itself), built as simulate builds
@@ -193,26 +158,9 @@ class Simulation(Scene):
         return []
 
     def build_models(self) -> None:
-        """Construct the models this scene integrates (``validate`` calls it); raise
-        ConfigError when the configured method cannot integrate one.  With ``method =
-        "auto"`` (the policy picks a method that fits) nothing is built: validation then
-        imports no numerics."""
-        run = self.config.run
-        if run is None or run.method == "auto":
-            return
-        models = self.models()
-        method = _integrators.METHODS[run.method]
-        problems: list[str] = []
-        for model in models:
-            try:
-                method.check(model)
-            except _integrators.MethodMismatch as exc:
-                line = f"{self.source.label}: key 'run.method': {exc}"
-                if line not in problems:
-                    problems.append(line)
-        if problems:
-            raise ConfigError(problems)
-
+        """Construct the models this scene integrates, so that ``validate`` refuses what
+        ``run`` would.  Default: nothing (see
+        :meth:`~reportgen.scene.integration.IntegratingSimulation.build_models`)."""
 
     @classmethod
     def audit_cases(cls) -> list[AuditCase]:
@@ -223,93 +171,3 @@ class Simulation(Scene):
     def simulate(self, progress: ProgressFn | None = None) -> Results:
         raise NotImplementedError
 
-    def integrate(
-        self,
-        model: OdeModel,
-        y0: np.ndarray,
-        t_eval: np.ndarray,
-        invariants: Callable[[np.ndarray, np.ndarray], dict[str, np.ndarray]] | None = None,
-        progress: ProgressFn | None = None,
-        n_periods: float | None = None,
-        invariant_scales: dict[str, float] | None = None,
-        method: str | None = None,
-        method_reason: str | None = None,
-        fictitious_time: tuple[int, tuple[str, ...], Callable] | None = None,
-    ) -> RunRecord:
-        """Integrate ``model`` with the configured method and return the archived run.
-
-        ``invariants(t, y)`` gives the conserved quantities, each shape (N,);
-        their drift (relative to ``invariant_scales[name]``, default the
-        invariant's own size) is part of the run's stability verdict.  The scales
-        are archived as run attrs ``scale_<name>``.  ``method`` (with ``method_reason``)
-        overrides the config's method, for a scene whose physics decides it.
-
-        The choice, the stiffness switch and the failure verdict are the solver policy's
-        (:func:`reportgen.core.integrators.solve`); its :class:`RunStatus` is archived as
-        the run attr ``solver_status`` next to the overall ``status``.
-
-        ``fictitious_time`` = (index of the physical time in the state, archived columns,
-        ``convert``) for a regularized ``model`` integrated in its fictitious time
-        (:func:`reportgen.core.integrators.solve_fictitious_time`, outputs at the physical
-        times ``t_eval``); ``convert(states)`` gives the archived (N, len(columns)) array.
-        """
-        run = self.config.run
-        if method is None:
-            method, method_reason = run.method, "named in the config"
-        spec = _integrators.SolverSpec(method=method, rtol=run.rtol, atol=run.atol, h=run.h,
-                                       reason=method_reason or "chosen by the scene")
-        if fictitious_time is not None:
-            time_index, columns, convert = fictitious_time
-            res = _integrators.solve_fictitious_time(model, y0, t_eval, time_index, spec,
-                                                     spec.reason, progress=progress)
-            return self.run_record(res, columns, y=convert(res.solution.y),
-                                   invariants=invariants, invariant_scales=invariant_scales)
-        try:
-            res = _integrators.solve(model, y0, t_eval, spec, n_periods=n_periods,
-                                     progress=progress)
-        except _integrators.MethodMismatch as exc:
-            raise ConfigError([f"{self.source.label}: key 'run.method': {exc}"]) from None
-        return self.run_record(res, model.columns, invariants=invariants,
-                               invariant_scales=invariant_scales)
-
-    def run_record(self, res, columns, y: np.ndarray | None = None,
-                   invariants: Callable[[np.ndarray, np.ndarray], dict[str, np.ndarray]]
-                   | None = None, invariant_scales: dict[str, float] | None = None) -> RunRecord:
-        """The archived run of a solver-policy result (:class:`PolicyResult`): attrs, the
-        invariants and the stability verdict (see :meth:`integrate`).  ``y`` (N, len(columns))
-        replaces the solution's states when the integrated variables are not the archived
-        ones (a regularized formulation, converted back by the scene)."""
-        sol = res.solution
-        y = sol.y if y is None else y
-        inv = invariants(sol.t, y) if invariants is not None else {}
-        attrs = _solution_attrs(sol) | {
-            "method_reason": res.reason, "solver_status": res.status.value,
-            "status": res.status.verdict, "message": res.message}
-        record = RunRecord(t=sol.t, y=y, columns=list(columns), invariants=inv, attrs=attrs)
-        _stability.assess_run(record, rtol=self.config.run.rtol, scales=invariant_scales)
-        for name, scale in (invariant_scales or {}).items():
-            record.attrs[f"scale_{name}"] = float(scale)
-        return record
-
-    def reference_run(self, model: OdeModel, y0: np.ndarray, t_eval: np.ndarray) -> np.ndarray:
-        """An independent reference trajectory, shape (N, d), where no closed form exists:
-        compiled DOP853 at rtol 1e-14 (the recipe the study's references share)."""
-        return _study.reference_run(model, y0, t_eval)
-
-    def study(self, results: Results, model: OdeModel, y0, t_eval, reference=None,
-              progress: ProgressFn | None = None, reference_kind: str = "exact") -> None:
-        """Fill ``results.study`` with the error-against-run-time study, if this run wants
-        it (:meth:`wants_study`).  scipy peers' rows come from the user cache when it
-        holds this problem (:mod:`reportgen.support.cache`); ours are measured every time.
-        ``reference_kind`` says what a given ``reference`` is (default: a closed form)."""
-        if not self.wants_study():
-            return
-        result = _study.work_precision(model, y0, t_eval, reference=reference,
-                                       progress=progress, cache=default_cache(),
-                                       budget_s=self.config.run.study_budget,
-                                       reference_kind=reference_kind,
-                                       our_tolerances=self.study_tolerances)
-        results.study = result.to_records()
-        results.study_attrs = {"reference_kind": result.reference_kind,
-                               "budget_s": float(self.config.run.study_budget),
-                               "over_budget": ",".join(result.over_budget)}

@@ -8,15 +8,15 @@ import math
 import numpy as np
 
 from ...lazy import lazy_module
+from ...scene.integration import IntegratingSimulation
 from ...scene.results import AuditCase, Check, Results
-from ...scene.simulation import Simulation
 from .config import CentralForceConfig
 from .results import SCHEMA
 
 core = lazy_module("reportgen.core.models.kepler")
 
 
-class CentralForceSimulation(Simulation):
+class CentralForceSimulation(IntegratingSimulation):
     """The relative coordinate r = r1 − r2 integrated as one body of reduced mass μ."""
 
     schema = SCHEMA

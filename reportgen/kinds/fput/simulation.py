@@ -12,8 +12,8 @@ import math
 import numpy as np
 
 from ...lazy import lazy_module
+from ...scene.integration import IntegratingSimulation
 from ...scene.results import AuditCase, Check, Results
-from ...scene.simulation import Simulation
 from .config import FputConfig
 from .results import SCHEMA
 
@@ -25,7 +25,7 @@ GNI = "Hairer, Lubich & Wanner, Geometric Numerical Integration, 2nd ed."
 STUDY_SPAN = 20.0
 
 
-class FputSimulation(Simulation):
+class FputSimulation(IntegratingSimulation):
     """2m unit masses, stiff linear springs alternating with soft quartic ones (GNI I.5.1)."""
 
     schema = SCHEMA

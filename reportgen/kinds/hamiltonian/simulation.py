@@ -9,9 +9,9 @@ import numpy as np
 
 from ...lazy import lazy_module
 from ...scene.content import member_text
+from ...scene.integration import IntegratingSimulation
 from ...scene.results import Check, Results
 from ...scene.schema import ResultsSchema
-from ...scene.simulation import Simulation
 from ...scene.sweep import PointSet
 from .analysis import HamiltonianAnalysis
 from .config import STUDY_STEPS, HamiltonianConfig, _PresetFormulas, family_energy
@@ -27,7 +27,7 @@ hamilton_jacobi = lazy_module("reportgen.core.hamilton_jacobi")
 _hj = _PresetFormulas
 
 
-class HamiltonianSimulation(HamiltonianAnalysis, Simulation):
+class HamiltonianSimulation(HamiltonianAnalysis, IntegratingSimulation):
     """A system given as H(q, p, t) or L(q, q̇, t): derived, compiled, integrated, checked."""
 
     schema = SCHEMA

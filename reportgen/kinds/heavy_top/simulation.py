@@ -12,8 +12,8 @@ import numpy as np
 from ...lazy import lazy_module
 from ...scene.config import ConfigError
 from ...scene.content import fmt_err
+from ...scene.integration import IntegratingSimulation
 from ...scene.results import AuditCase, Check, Results, RunRecord
-from ...scene.simulation import Simulation
 from .config import (
     BAND_CASES,
     MIN_SAMPLES_PER_PERIOD,
@@ -32,7 +32,7 @@ kinematics = lazy_module("reportgen.core.heavy_top_kinematics")
 integrators = lazy_module("reportgen.core.integrators")
 
 
-class HeavyTopSimulation(Simulation):
+class HeavyTopSimulation(IntegratingSimulation):
     """The heavy symmetric top integrated and checked against its closed forms."""
 
     schema = SCHEMA

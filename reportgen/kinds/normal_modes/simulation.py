@@ -10,9 +10,9 @@ import math
 import numpy as np
 
 from ...lazy import lazy_module
+from ...scene.integration import IntegratingSimulation
 from ...scene.results import AuditCase, Check, Results
 from ...scene.schema import ResultsSchema, unit_text
-from ...scene.simulation import Simulation
 from .config import SHAPES_SHOWN, STIFF_RATIO, NormalModesConfig, flat_values, system_of
 from .results import SCHEMA, schema_for, units
 
@@ -20,7 +20,7 @@ core = lazy_module("reportgen.core.normal_modes")
 linear_chain = lazy_module("reportgen.core.models.linear_chain")
 
 
-class NormalModesSimulation(Simulation):
+class NormalModesSimulation(IntegratingSimulation):
     """Small oscillations about a stable equilibrium (lecture notes ch. 5, §5.1)."""
 
     schema = SCHEMA

@@ -9,15 +9,15 @@ import math
 import numpy as np
 
 from ...lazy import lazy_module
+from ...scene.integration import IntegratingSimulation
 from ...scene.results import AuditCase, Check, Results
-from ...scene.simulation import Simulation
 from .config import OscillatorConfig
 from .results import SCHEMA
 
 core = lazy_module("reportgen.core.models.oscillator")
 
 
-class OscillatorSimulation(Simulation):
+class OscillatorSimulation(IntegratingSimulation):
     """H = p²/2m + m ω² q²/2 integrated, swapped (6.6–6.11) and solved by
     Hamilton–Jacobi (7.33–7.38)."""
 

@@ -10,8 +10,8 @@ import numpy as np
 
 from ...lazy import lazy_module
 from ...scene.content import member_text
+from ...scene.integration import IntegratingSimulation
 from ...scene.results import AuditCase, Check, Results
-from ...scene.simulation import Simulation
 from .config import MIN_SAMPLES_PER_PERIOD, PendulumConfig
 from .results import SCHEMA
 
@@ -19,7 +19,7 @@ core = lazy_module("reportgen.core.models.pendulum")
 theory = lazy_module("reportgen.core.pendulum_theory")
 
 
-class PendulumSimulation(Simulation):
+class PendulumSimulation(IntegratingSimulation):
     """m l² θ'' + m g l sin θ = 0 integrated and checked against its closed forms."""
 
     schema = SCHEMA

@@ -9,8 +9,8 @@ import math
 import numpy as np
 
 from ...lazy import lazy_module
+from ...scene.integration import IntegratingSimulation
 from ...scene.results import AuditCase, Check, Results, RunRecord
-from ...scene.simulation import Simulation
 from .config import RigidBodyConfig, body_moments
 from .results import SCHEMA
 
@@ -24,7 +24,7 @@ poinsot = lazy_module("reportgen.core.models.rigid_body_poinsot")
 FLIP_ANGLE = 0.2
 
 
-class RigidBodySimulation(Simulation):
+class RigidBodySimulation(IntegratingSimulation):
     """The torque-free rigid body integrated and checked against its closed forms."""
 
     schema = SCHEMA

@@ -9,8 +9,8 @@ import math
 import numpy as np
 
 from ...lazy import lazy_module
+from ...scene.integration import IntegratingSimulation
 from ...scene.results import AuditCase, Check, Results
-from ...scene.simulation import Simulation
 from .config import FIGURE_EIGHT_PERIOD, HIERARCHY_RATIO, ThreeBodyConfig
 from .results import SCHEMA
 
@@ -19,7 +19,7 @@ kepler_core = lazy_module("reportgen.core.models.kepler")
 integrators = lazy_module("reportgen.core.integrators")
 
 
-class ThreeBodySimulation(Simulation):
+class ThreeBodySimulation(IntegratingSimulation):
     """Three bodies under Newtonian gravity, integrated in Cartesian coordinates."""
 
     schema = SCHEMA

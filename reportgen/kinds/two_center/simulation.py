@@ -11,8 +11,8 @@ import numpy as np
 from ...lazy import lazy_module
 from ...scene.config import ConfigError
 from ...scene.content import fmt, member_text
+from ...scene.integration import IntegratingSimulation
 from ...scene.results import Check, Results
-from ...scene.simulation import Simulation
 from ...scene.sweep import PointSet
 from .config import CLOSE_APPROACH, TwoCenterConfig
 from .results import SCHEMA
@@ -22,7 +22,7 @@ regularized = lazy_module("reportgen.core.models.two_center_regularized")
 integrators = lazy_module("reportgen.core.integrators")
 
 
-class TwoCenterSimulation(Simulation):
+class TwoCenterSimulation(IntegratingSimulation):
     """A test particle in the field of two fixed centres, checked against E and C (7.59)."""
 
     schema = SCHEMA
