@@ -111,6 +111,28 @@ def test_index_is_a_gallery_of_the_whole_folder(write_config, tmp_path, cli):
     assert not list(out.glob(".index.html.*"))
 
 
+@pytest.mark.parametrize("scene", ["inertia_cone", "normal_modes_co2"])
+def test_archives_written_before_declared_results_still_render(scene, tmp_path, cli):
+    """Archives written by 0.2.0 before kinds declared their results (no units attrs, no
+    __quantities__; format_version 2) open and render with today's code: every figure the
+    kind draws, from the archive alone."""
+    import shutil
+
+    folder = tmp_path / scene
+    folder.mkdir()
+    archive = folder / "run.h5"
+    shutil.copy(Path(__file__).parent / "data" / f"archive_0.2.0_{scene}.h5", archive)
+    with h5py.File(archive, "r") as f:
+        assert f.attrs["reportgen_version"] == "0.2.0" and "__quantities__" not in f["analysis"].attrs
+    data = read_archive(archive)
+    assert "__quantities__" not in data.analysis
+    code, _, err = cli("report", archive, "--format", "html")
+    assert code == 0, err
+    figures = sorted(p.name for p in (folder / "figures").glob("*.svg"))
+    assert figures and (folder / "report.html").stat().st_size > 10_000
+    assert cli("inspect", archive)[0] == 0
+
+
 def test_fixture_archive_of_format_1_still_opens(tmp_path, cli):
     data = read_archive(FIXTURE)
     assert data.format_version == 1 and data.kind == "pendulum"
