@@ -6,6 +6,7 @@ from __future__ import annotations
 import contextlib
 import io
 import textwrap
+from pathlib import Path
 
 import pytest
 
@@ -192,3 +193,23 @@ def test_time_limit_option():
     with pytest.raises(SystemExit):
         with contextlib.redirect_stderr(io.StringIO()):
             build_parser().parse_args(["run", "x", "--time-limit", "-1"])
+
+
+def test_kepler_at_the_origin_ends_with_a_named_status(tmp_path, cli):
+    """The shipped Cartesian-to-polar Kepler config with the body at the origin: the run
+    ends at once as non-finite (the force is infinite there), the study's scipy peers
+    (Radau raises on the NaN Jacobian) are failed rows, not a crash; exit 1, no error.log."""
+    import h5py
+
+    text = (Path(__file__).resolve().parent.parent / "configs" /
+            "hamiltonian_kepler_polar.toml").read_text(encoding="utf-8")
+    config = tmp_path / "origin.toml"
+    config.write_text(text.replace("x = 1.0", "x = 0.0"), encoding="utf-8")
+    code, _, err = cli("run", config, "--out", tmp_path / "out", "--format", "html",
+                       "--jobs", "1")
+    assert code == 1 and "Traceback" not in err
+    folder = tmp_path / "out" / "origin"
+    assert not (folder / "error.log").exists()
+    with h5py.File(folder / "run.h5", "r") as f:
+        assert f["runs/main"].attrs["solver_status"] == "nonfinite"
+        assert "non-finite" in f.attrs["message"]

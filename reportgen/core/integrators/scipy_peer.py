@@ -48,10 +48,19 @@ class ScipyMethod(Method):
         Y = np.full((N, d), np.nan)
         fun = model.f if time_limit is None else _with_deadline(model.f, time_limit)
         t0 = time.perf_counter()
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", RuntimeWarning)
-            res = _solve_ivp()(fun, (t_eval[0], t_eval[-1]), y0, method=self.scipy_name,
-                               t_eval=t_eval, rtol=rtol_eff, atol=atol, **kwargs)
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", RuntimeWarning)
+                res = _solve_ivp()(fun, (t_eval[0], t_eval[-1]), y0, method=self.scipy_name,
+                                   t_eval=t_eval, rtol=rtol_eff, atol=atol, **kwargs)
+        except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
+            # scipy raises where our drivers stop (a NaN Jacobian in Radau's LU, say): the
+            # run failed, non-finite; it is one row of the study, not the scene's crash
+            return Solution(t=t_eval.copy(), y=Y, method=self.name, rtol=rtol_eff,
+                            atol=float(atol), h=None, nfev=0, nsteps=-1, nreject=-1,
+                            code=SolveCode.NONFINITE,
+                            message=f"{self.label} failed at t = {t_eval[0]:.6g}: {exc}",
+                            wall_time_s=time.perf_counter() - t0, compile_time_s=0.0)
         wall = time.perf_counter() - t0
         n_ok = res.t.size
         if n_ok:

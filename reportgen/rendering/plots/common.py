@@ -50,7 +50,9 @@ def invariant_drift(t, invariants: dict[str, np.ndarray], *, scales=None, time_u
     for name, values in invariants.items():
         values = np.asarray(values)
         scale = scales.get(name) or max(abs(values[0]), np.max(np.abs(values)), 1e-300)
-        ax.plot(*envelope(t, (values - values[0]) / scale), label=labels.get(name, name))
+        with np.errstate(invalid="ignore"):  # a failed run's NaN tail is left out
+            drift = (values - values[0]) / scale
+        ax.plot(*envelope(t, drift), label=labels.get(name, name))
     ax.set_xlabel(f"time t [{time_unit}]")
     ax.set_ylabel("relative drift  (I(t) − I(0)) / |I|")
     ax.ticklabel_format(axis="y", style="sci", scilimits=(-2, 2))
