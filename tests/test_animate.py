@@ -9,7 +9,8 @@ import pytest
 from PIL import Image
 
 from conftest import cli_without_core, without_study
-from reportgen.rendering.plots.motion import MOTIONS, frame_samples
+from reportgen.rendering.animate import animated_kinds
+from reportgen.rendering.plots.motion import frame_samples
 
 REPO = Path(__file__).resolve().parent.parent
 #: one shipped scene per kind that has a motion
@@ -40,7 +41,7 @@ def _gif_frames(path: Path) -> list[np.ndarray]:
 
 
 def test_every_kind_with_motion_has_a_config_here():
-    assert set(ONE_PER_KIND) == set(MOTIONS)
+    assert set(ONE_PER_KIND) == set(animated_kinds())
 
 
 @pytest.mark.parametrize("kind", sorted(ONE_PER_KIND))

@@ -1,6 +1,7 @@
 """``reportgen animate``: the motion of a scene as a GIF (and an MP4 where ffmpeg is there).
 
-Drawn from the archive alone (:mod:`reportgen.rendering.plots.motion`): frames are spread evenly
+Drawn from the archive alone by the kind's ``Report.motion`` (its ``kinds/<kind>/motion.py``,
+with the shared pieces of :mod:`reportgen.rendering.plots.motion`): frames are spread evenly
 over the archived run, ``fps * duration`` of them (at least :data:`MIN_FRAMES`).  GIF
 frames are written by Pillow with one palette made from the first frame, so colours do
 not flicker; MP4 (H.264) by the ffmpeg of ``imageio-ffmpeg`` (the ``video`` extra).  The
@@ -15,6 +16,8 @@ from collections.abc import Callable
 from pathlib import Path
 
 from ..errors import UsageError
+from ..kinds import KINDS, get_kind
+from ..scene.report import Report
 from ..support.fsutil import atomic_write
 
 MIN_FRAMES = 30
@@ -29,6 +32,12 @@ def ffmpeg_available() -> bool:
     except Exception:  # noqa: BLE001 - not installed, or no binary for this platform
         return False
     return True
+
+
+def animated_kinds() -> list[str]:
+    """The kinds whose report overrides :meth:`Report.motion` (those that can animate)."""
+    return sorted(k for k, cls in KINDS.items()
+                  if issubclass(cls, Report) and cls.motion.__func__ is not Report.motion.__func__)
 
 
 def plan_frames(fps: float, duration: float) -> int:
@@ -66,14 +75,17 @@ def animate(archive: Path, out_dir: Path, *, fps: float = 15.0, duration: float 
     from PIL import Image
 
     from ..archive.store import read_archive
-    from .plots.motion import MOTIONS
 
     frames = plan_frames(fps, duration)
     data = read_archive(Path(archive))
-    if data.kind not in MOTIONS:
+    try:
+        kind = get_kind(data.kind)
+    except KeyError:
+        raise UsageError(f"{archive}: kind {data.kind!r} is unknown to this reportgen") from None
+    motion = kind.motion(data, frames)
+    if motion is None:
         raise UsageError(f"{archive}: a {data.kind} scene has no motion to animate "
-                         f"(kinds with one: {', '.join(sorted(MOTIONS))})")
-    motion = MOTIONS[data.kind](data, frames)
+                         f"(kinds with one: {', '.join(animated_kinds())})")
     fig = motion.figure
     canvas = FigureCanvasAgg(fig)
     fig.set_dpi(dpi)

@@ -32,6 +32,7 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
     from ..archive.store import ArchiveData
+    from ..rendering.plots.motion import Motion
 
 _common_plots = lazy_module("reportgen.rendering.plots.common")
 
@@ -84,6 +85,13 @@ class Report(Scene):
     @classmethod
     def headline(cls, data: ArchiveData) -> list[tuple[str, str]]:
         return []
+
+    @classmethod
+    def motion(cls, data: ArchiveData, frames: int) -> Motion | None:
+        """The scene's motion over ``frames`` frames for ``reportgen animate``: a kind that
+        animates returns its ``kinds/<kind>/motion.py``'s :class:`Motion` (imported
+        lazily, so matplotlib loads only to animate).  Default None: nothing to animate."""
+        return None
 
     @staticmethod
     def figure(name: str, figure: Figure, caption: str) -> FigureSpec:

@@ -76,7 +76,7 @@ class PendulumSimulation(IntegratingSimulation):
         return theory.complementary_parameter(ini.theta, ini.theta_dot, self.omega0)
 
     @property
-    def motion(self) -> str:
+    def regime(self) -> str:
         return "libration" if self.m1 > 0.0 else "rotation"
 
     @property
@@ -140,7 +140,7 @@ class PendulumSimulation(IntegratingSimulation):
             "period_small_angle": 2 * math.pi / self.omega0,
             "omega0": self.omega0,
             "k": math.sqrt(self.k2),
-            "motion": self.motion,
+            "motion": self.regime,
             "complementary_parameter": self.m1,
             "reference": self.reference_label,
             "theta_max_error": float(np.max(err)),
