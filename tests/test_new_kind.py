@@ -36,7 +36,6 @@ class FreeOscillationScene(FreeSimulation, FreeReport):
     kind = "free_oscillation"
     summary = "a test kind: q'' = -omega^2 q"
     Config = FreeConfig
-    faces = frozenset({"simulation", "report"})
 ''',
     "config.py": '''
 from pydantic import Field

@@ -7,8 +7,10 @@ become compound tables; nested dicts become groups.
 
 from __future__ import annotations
 
+import json
 import platform
 import sys
+from collections.abc import Callable
 from typing import Any
 
 import h5py
@@ -75,17 +77,31 @@ def attr_value(value):
     return value
 
 
-def write_mapping(group: h5py.Group, mapping: dict[str, Any]) -> None:
-    """Scalars and strings become attrs, arrays datasets, dicts subgroups."""
+def write_mapping(group: h5py.Group, mapping: dict[str, Any],
+                  describe: Callable[[str], dict[str, str]] | None = None,
+                  prefix: str = "") -> None:
+    """Scalars and strings become attrs, arrays datasets, dicts subgroups.
+
+    ``describe(path)`` (path below ``group``, "/"-joined) gives an entry's CF attributes:
+    a dataset carries them, and a group's scalar attrs have theirs in its attr
+    :data:`QUANTITIES_ATTR` (JSON)."""
+    described = {}
     for key, value in mapping.items():
+        path = f"{prefix}{key}"
         if isinstance(value, dict):
-            write_mapping(group.create_group(key), value)
+            write_mapping(group.create_group(key), value, describe, path + "/")
         elif isinstance(value, np.ndarray) or (
             isinstance(value, (list, tuple)) and not all(isinstance(v, str) for v in value)
         ):
-            dataset(group, key, value)
+            ds = dataset(group, key, value)
+            if describe is not None:
+                ds.attrs.update(describe(path))
         else:
             group.attrs[key] = attr_value(value)
+            if describe is not None:
+                described[key] = describe(path)
+    if described:
+        group.attrs[QUANTITIES_ATTR] = json.dumps(described, ensure_ascii=False, sort_keys=True)
 
 
 def table(group: h5py.Group, name: str, records: np.ndarray) -> h5py.Dataset:

@@ -59,7 +59,6 @@ from .h5io import (  # noqa: F401 - FORMAT* are part of this module's interface
     FORMAT,
     FORMAT_VERSION,
     OLDEST_READABLE,
-    QUANTITIES_ATTR,
     STR,
     ArchiveError,
     attr_value,
@@ -69,6 +68,7 @@ from .h5io import (  # noqa: F401 - FORMAT* are part of this module's interface
     read_mapping,
     read_table,
     table,
+    write_mapping,
 )
 
 
@@ -208,7 +208,8 @@ def _write_contents(f: h5py.File, *, kind, title, scene, config_text, config_sha
             continue
         first_name[id(run)] = name
         _write_run(runs.create_group(name), run, schema)
-    _write_analysis(f.create_group("analysis"), results.analysis, schema)
+    write_mapping(f.create_group("analysis"), results.analysis,
+                  describe=lambda name: _quantity(schema.result, name).cf_attrs)
     described(table(f, "checks", _checks_records(results.checks)),
               "headline numbers against their exact or independent references")
     if results.study is not None:
@@ -245,30 +246,6 @@ def _write_config(f: h5py.File, config_text: str, resolved_config: dict) -> None
     described(f.create_dataset("config_resolved", data=_config_json(resolved_config),
                                dtype=STR),
               "the validated config with its preset and defaults, as JSON")
-
-
-def _write_analysis(g: h5py.Group, mapping: dict[str, Any], schema: ResultsSchema,
-                    prefix: str = "") -> None:
-    """``/analysis``: arrays as datasets with their CF attributes, scalars and text as
-    attrs (their units and names in the group attr ``__quantities__``, JSON), dicts as
-    subgroups."""
-    scalars = {}
-    for key, value in mapping.items():
-        name = f"{prefix}{key}"
-        if isinstance(value, dict):
-            _write_analysis(g.create_group(key), value, schema, name + "/")
-        elif isinstance(value, np.ndarray) or (
-            isinstance(value, (list, tuple)) and not all(isinstance(v, str) for v in value)
-        ):
-            q = _quantity(schema.result, name)
-            ds = dataset(g, key, value)
-            ds.attrs.update(q.cf_attrs)
-        else:
-            g.attrs[key] = attr_value(value)
-            q = _quantity(schema.result, name)
-            scalars[key] = q.cf_attrs
-    if scalars:
-        g.attrs[QUANTITIES_ATTR] = json.dumps(scalars, ensure_ascii=False, sort_keys=True)
 
 
 def sweep_units(sweep, path: str) -> str:
@@ -360,8 +337,7 @@ def _write_run(g: h5py.Group, run: RunRecord, schema: ResultsSchema) -> None:
     units = {q.unit for q in columns}
     described(y, "state: " + ", ".join(q.description for q in columns),
               units.pop() if len(units) == 1 else "various")
-    for key in ("units", "long_names", "symbols"):
-        attr = {"units": "unit", "long_names": "description", "symbols": "symbol"}[key]
+    for key, attr in (("units", "unit"), ("long_names", "description"), ("symbols", "symbol")):
         y.attrs[f"column_{key}"] = np.array([getattr(q, attr) for q in columns], dtype=STR)
     y.dims[0].attach_scale(t)
     y.dims[1].attach_scale(component)

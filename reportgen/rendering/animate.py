@@ -35,9 +35,9 @@ def ffmpeg_available() -> bool:
 
 
 def animated_kinds() -> list[str]:
-    """The kinds whose report overrides :meth:`Report.motion` (those that can animate)."""
+    """The kinds that can animate: those with a ``motion.py`` (:meth:`Report.motion_module`)."""
     return sorted(k for k, cls in KINDS.items()
-                  if issubclass(cls, Report) and cls.motion.__func__ is not Report.motion.__func__)
+                  if issubclass(cls, Report) and cls.motion_module() is not None)
 
 
 def plan_frames(fps: float, duration: float) -> int:

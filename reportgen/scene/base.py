@@ -121,6 +121,8 @@ class Scene:
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
+        if "faces" not in cls.__dict__:  # a kind's joined class has both of its bases' faces
+            cls.faces = frozenset().union(*(getattr(b, "faces", ()) for b in cls.__bases__))
         kind = cls.__dict__.get("kind")
         if kind is None:
             return  # an abstract intermediate class
@@ -309,7 +311,6 @@ def _faces(cls: type, face: str) -> list[str]:
     ``__init__`` only composes."""
     mods = []
     for c in cls.__mro__:
-        if c.__dict__.get("faces", getattr(c, "faces", None)) == frozenset({face}) \
-                and c.__module__ not in mods:
+        if getattr(c, "faces", None) == {face} and c.__module__ not in mods:
             mods.append(c.__module__)
     return mods

@@ -18,7 +18,10 @@ byte-identical figures (``tests/test_archive_only.py``).  The subclass contract:
 from __future__ import annotations
 
 import fnmatch
+import importlib
+import importlib.util
 import math
+import sys
 from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
@@ -87,11 +90,20 @@ class Report(Scene):
         return []
 
     @classmethod
+    def motion_module(cls) -> str | None:
+        """The kind's animation module, ``kinds/<kind>/motion.py``, if its package has one
+        (a kind animates by having it, as it registers by existing)."""
+        package = sys.modules[cls.__module__].__package__
+        name = f"{package}.motion"
+        return name if package and importlib.util.find_spec(name) is not None else None
+
+    @classmethod
     def motion(cls, data: ArchiveData, frames: int) -> Motion | None:
-        """The scene's motion over ``frames`` frames for ``reportgen animate``: a kind that
-        animates returns its ``kinds/<kind>/motion.py``'s :class:`Motion` (imported
-        lazily, so matplotlib loads only to animate).  Default None: nothing to animate."""
-        return None
+        """The scene's motion over ``frames`` frames for ``reportgen animate``: what the
+        kind's :meth:`motion_module` draws (imported only now, so matplotlib loads only to
+        animate); None when the kind has nothing to animate."""
+        name = cls.motion_module()
+        return None if name is None else importlib.import_module(name).motion(data, frames)
 
     @staticmethod
     def figure(name: str, figure: Figure, caption: str) -> FigureSpec:

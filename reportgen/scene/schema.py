@@ -19,6 +19,7 @@ dimensionless number, "" for text); :func:`unit_text` gives the typeset form ("k
 from __future__ import annotations
 
 import difflib
+import functools
 import re
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
@@ -142,8 +143,10 @@ class ResultsSchema:
             seen.add(q.name)
 
     # ------------------------------------------------------------ look-ups
-    @property
+    @functools.cached_property
     def all_analysis(self) -> dict[str, Quantity]:
+        """Every ``/analysis`` result by name: the kind's and the shared ones (:data:`COMMON`).
+        Looked up for every dataset written, so built once."""
         return {q.name: q for q in (*COMMON, *self.analysis)}
 
     def column(self, name: str) -> Quantity:
@@ -239,15 +242,13 @@ def _value_problems(where: str, q: Quantity, value: Any, sizes: dict[str, int]) 
     arr = np.asarray(value)
     if arr.dtype == object or arr.dtype.kind not in "biuf":
         return [f"{where}: expected {q.kind} values, got dtype {arr.dtype}"]
-    if q.kind == "float" and arr.dtype.kind not in "biuf":
-        return [f"{where}: expected float values, got dtype {arr.dtype}"]
     if q.kind in ("int", "bool") and arr.dtype.kind == "f":
         return [f"{where}: expected {q.kind} values, got floats"]
     if arr.ndim != len(q.dims):
         return [f"{where}: expected {len(q.dims)} dimension(s) {q.dims}, got shape {arr.shape}"]
     out = []
     for dim, n in zip(q.dims, arr.shape, strict=True):
-        if dim in sizes and sizes[dim] != n and not dim.endswith("*"):
+        if dim in sizes and sizes[dim] != n:
             out.append(f"{where}: dimension {dim!r} has {n} points, expected {sizes[dim]}")
         sizes.setdefault(dim, n)
     return out

@@ -22,4 +22,3 @@ class CentralForceScene(CentralForceSimulation, CentralForceReport):
     summary = "two bodies in a central potential: reduced mass, Noether charge, Kepler checks"
     Config = CentralForceConfig
     presets = PRESETS
-    faces = frozenset({"simulation", "report"})

@@ -14,7 +14,6 @@ from .results import SCHEMA
 
 plots = lazy_module("reportgen.rendering.plots.gravitation")
 common_plots = lazy_module("reportgen.rendering.plots.common")
-animation = lazy_module("reportgen.kinds.central_force.motion")
 
 
 class CentralForceReport(Report):
@@ -36,10 +35,6 @@ class CentralForceReport(Report):
         Section("invariants", "Conserved quantities", integrates=True),
         Section("error_vs_runtime", "Error against run time", integrates=True),
     )
-
-    @classmethod
-    def motion(cls, data, frames):
-        return animation.motion(data, frames)
 
     @classmethod
     def section_kepler_family(cls, data):

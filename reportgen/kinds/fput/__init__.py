@@ -21,4 +21,3 @@ class FputScene(FputSimulation, FputReport):
                "springs, adiabatic invariant (GNI §I.5.1)")
     Config = FputConfig
     presets = PRESETS
-    faces = frozenset({"simulation", "report"})

@@ -10,7 +10,6 @@ from ...scene.report import Report
 from .results import SCHEMA
 
 plots = lazy_module("reportgen.kinds.fput.plots")
-animation = lazy_module("reportgen.kinds.fput.motion")
 
 
 class FputReport(Report):
@@ -24,10 +23,6 @@ class FputReport(Report):
         Section("invariants", "Conservation of energy", integrates=True),
         Section("error_vs_runtime", "Error against run time", integrates=True),
     )
-
-    @classmethod
-    def motion(cls, data, frames):
-        return animation.motion(data, frames)
 
     @classmethod
     def headline(cls, data):

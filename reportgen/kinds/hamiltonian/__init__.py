@@ -25,7 +25,6 @@ class HamiltonianScene(HamiltonianSimulation, HamiltonianReport):
     summary = "any system written as H(q, p, t) or L(q, q̇, t): derived, compiled, checked"
     Config = HamiltonianConfig
     presets = PRESETS
-    faces = frozenset({"simulation", "report"})
 
 
 __all__ = ["HamiltonianScene", "_PresetFormulas"]

@@ -29,4 +29,3 @@ class HeavyTopScene(HeavyTopSimulation, HeavyTopReport):
                "precession, the sleeping top")
     Config = HeavyTopConfig
     presets = PRESETS
-    faces = frozenset({"simulation", "report"})

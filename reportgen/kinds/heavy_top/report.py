@@ -17,7 +17,6 @@ from .locus import FIG43_ELEVATION_DEG, locus_stretch
 from .results import SCHEMA
 
 plots = lazy_module("reportgen.kinds.heavy_top.plots")
-animation = lazy_module("reportgen.kinds.heavy_top.motion")
 
 FORMULATION_TEXT = {
     "reduced": "Lagrange's reduction: the nutation w = 1 − cos θ (ẅ = g′(w)/2, a polynomial) "
@@ -57,10 +56,6 @@ class HeavyTopReport(Report):
         Section("invariants", "Conserved quantities", integrates=True),
         Section("error_vs_runtime", "Error against run time", integrates=True),
     )
-
-    @classmethod
-    def motion(cls, data, frames):
-        return animation.motion(data, frames)
 
     @classmethod
     def default_sections(cls, data):

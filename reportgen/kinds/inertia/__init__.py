@@ -20,4 +20,3 @@ class InertiaScene(InertiaSimulation, InertiaReport):
     summary = "inertia tensor of a shape or point set, principal axes, stable spin axes"
     Config = InertiaConfig
     presets = PRESETS
-    faces = frozenset({"simulation", "report"})

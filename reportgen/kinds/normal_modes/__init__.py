@@ -27,4 +27,3 @@ class NormalModesScene(NormalModesSimulation, NormalModesReport):
                "[evolve] (displacement, t_end) adds a time evolution")
     Config = NormalModesConfig
     presets = PRESETS
-    faces = frozenset({"simulation", "report"})

@@ -15,7 +15,6 @@ from .results import SCHEMA, schema_for
 
 plots = lazy_module("reportgen.kinds.normal_modes.plots")
 common_plots = lazy_module("reportgen.rendering.plots.common")
-animation = lazy_module("reportgen.kinds.normal_modes.motion")
 
 
 class NormalModesReport(Report):
@@ -38,10 +37,6 @@ class NormalModesReport(Report):
                 integrates=True),
         Section("error_vs_runtime", "Error against run time", integrates=True),
     )
-
-    @classmethod
-    def motion(cls, data, frames):
-        return animation.motion(data, frames)
 
     @classmethod
     def section_frequencies_family(cls, data):

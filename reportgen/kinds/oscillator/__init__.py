@@ -19,4 +19,3 @@ class OscillatorScene(OscillatorSimulation, OscillatorReport):
     summary = "harmonic oscillator H = p²/2m + m ω² q²/2: Hamilton, canonical swap, Hamilton–Jacobi"
     Config = OscillatorConfig
     presets = PRESETS
-    faces = frozenset({"simulation", "report"})

@@ -14,7 +14,6 @@ from .results import SCHEMA
 
 common_plots = lazy_module("reportgen.rendering.plots.common")
 plots = lazy_module("reportgen.kinds.oscillator.plots")
-animation = lazy_module("reportgen.kinds.oscillator.motion")
 
 
 class OscillatorReport(Report):
@@ -27,10 +26,6 @@ class OscillatorReport(Report):
         Section("hamilton_jacobi", "Hamilton–Jacobi solution", integrates=True),
         Section("error_vs_runtime", "Error against run time", integrates=True),
     )
-
-    @classmethod
-    def motion(cls, data, frames):
-        return animation.motion(data, frames)
 
     @classmethod
     def headline(cls, data):

@@ -19,4 +19,3 @@ class PendulumScene(PendulumSimulation, PendulumReport):
     summary = "nonlinear plane pendulum m l² θ'' + m g l sin θ = 0 and its small-angle limit"
     Config = PendulumConfig
     presets = PRESETS
-    faces = frozenset({"simulation", "report"})

@@ -16,7 +16,6 @@ from .results import SCHEMA
 
 common_plots = lazy_module("reportgen.rendering.plots.common")
 plots = lazy_module("reportgen.kinds.pendulum.plots")
-animation = lazy_module("reportgen.kinds.pendulum.motion")
 
 
 class PendulumReport(Report):
@@ -36,10 +35,6 @@ class PendulumReport(Report):
         Section("period_family", "Period against amplitude across the family",
                 description="Each member's period, integrated, against the exact period."),
     )
-
-    @classmethod
-    def motion(cls, data, frames):
-        return animation.motion(data, frames)
 
     @classmethod
     def default_sections(cls, data):

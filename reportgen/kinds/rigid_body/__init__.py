@@ -31,4 +31,3 @@ class RigidBodyScene(RigidBodySimulation, RigidBodyReport):
     summary = "torque-free rigid body: Euler's equations, attitude, polhodes, axis stability"
     Config = RigidBodyConfig
     presets = PRESETS
-    faces = frozenset({"simulation", "report"})

@@ -15,7 +15,6 @@ from .results import SCHEMA
 
 common_plots = lazy_module("reportgen.rendering.plots.common")
 plots = lazy_module("reportgen.rendering.plots.rigid_body")
-animation = lazy_module("reportgen.kinds.rigid_body.motion")
 
 #: the invariants as named in tables and the main run's drift figure
 INVARIANT_NAMES = {"twice_energy": "2T", "L_squared": "L² (body frame)",
@@ -40,10 +39,6 @@ class RigidBodyReport(Report):
         Section("invariants", "Conserved quantities", integrates=True),
         Section("error_vs_runtime", "Error against run time", integrates=True),
     )
-
-    @classmethod
-    def motion(cls, data, frames):
-        return animation.motion(data, frames)
 
     @classmethod
     def default_sections(cls, data):

@@ -35,4 +35,3 @@ class RotationScene(RotationSimulation, RotationReport):
                "rates, stereographic projection and SU(2) → SO(3) by Möbius maps")
     Config = RotationConfig
     presets = PRESETS
-    faces = frozenset({"simulation", "report"})

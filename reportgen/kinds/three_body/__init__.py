@@ -25,4 +25,3 @@ class ThreeBodyScene(ThreeBodySimulation, ThreeBodyReport):
               "Pythagorean problem"
     Config = ThreeBodyConfig
     presets = PRESETS
-    faces = frozenset({"simulation", "report"})

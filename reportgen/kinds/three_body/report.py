@@ -14,7 +14,6 @@ from ...scene.report import Report
 from .results import SCHEMA
 
 plots = lazy_module("reportgen.rendering.plots.gravitation")
-animation = lazy_module("reportgen.kinds.three_body.motion")
 
 
 class ThreeBodyReport(Report):
@@ -35,10 +34,6 @@ class ThreeBodyReport(Report):
     def _positions(run) -> np.ndarray:
         """The archived positions as (N, 3, 3): time, body, xyz (columns x1 … z3 first)."""
         return np.asarray(run.y)[:, :9].reshape(-1, 3, 3)
-
-    @classmethod
-    def motion(cls, data, frames):
-        return animation.motion(data, frames)
 
     @classmethod
     def default_sections(cls, data):

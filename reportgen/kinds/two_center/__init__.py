@@ -19,4 +19,3 @@ class TwoCenterScene(TwoCenterSimulation, TwoCenterReport):
     order = 50
     summary = "Euler's problem of two fixed centres: elliptic coordinates, separation constant"
     Config = TwoCenterConfig
-    faces = frozenset({"simulation", "report"})

@@ -15,7 +15,6 @@ from .results import SCHEMA
 
 plots = lazy_module("reportgen.rendering.plots.gravitation")
 section_plots = lazy_module("reportgen.rendering.plots.sections")
-animation = lazy_module("reportgen.kinds.two_center.motion")
 
 FAMILY_TEXT = {
     "satellite": "satellite orbit: encircles both centres (β ≤ 0, η free in [−1, 1], "
@@ -60,10 +59,6 @@ class TwoCenterReport(Report):
     #: marker area of a crossing [pt²]: an integrable family's crossings lie on curves
     #: that do not crowd one another, so they can be larger than in a chaotic sea
     MARKER_SIZE = 9.0
-
-    @classmethod
-    def motion(cls, data, frames):
-        return animation.motion(data, frames)
 
     @classmethod
     def section_poincare_family(cls, data):
