@@ -237,3 +237,38 @@ def test_pipeline_writes_archive_with_required_columns(write_config, cli, tmp_pa
         for key in ("eccentricity", "semi_major_axis", "period"):
             assert key in f["analysis"].attrs
         assert len(f["study/error_vs_runtime"]) > 3
+
+
+def test_power_law_is_named_with_its_exponent_typeset():
+    # on a page V = −k/r^1.2 is V = −k/r¹·²: no caret exponent (the document gate's tex rule)
+    from reportgen.kinds.central_force import CentralForceScene
+    from reportgen.kinds.central_force.report import power_potential
+
+    assert power_potential("1.2") == "V = −k/r¹·²"
+    assert power_potential("−0.5") == "V = −k/r⁻⁰·⁵"
+    scene = load_scene(parse_config_text(text(params='potential = "power"\nn = 1.2',
+                                              initial="x = 1.0\ny = 0.0\nvx = 0.0\nvy = 0.8")))
+    assert CentralForceScene.default_title(scene.config) == (
+        "Central potential V = −k/r¹·²: two bodies started at r = 1 m")
+
+
+@pytest.mark.parametrize("near_label", ["near-circular limit π/√(2 − n)",
+                                        "closed form π/√(1 − 2με/L²)"])
+def test_apsidal_angle_figure_passes_the_gate(near_label):
+    # the eccentricity label in mathtext (r_max, r_min typeset), the legend off the data,
+    # and the dashed line named as the caller says (the 1/r³ case: a closed form)
+    import io
+
+    from reportgen.rendering.gate import figure_findings
+    from reportgen.rendering.plots import gravitation
+
+    e = np.linspace(0.0, 0.6, 61)
+    limit = math.pi / math.sqrt(0.8)
+    angle = limit + 0.1 * e**2
+    fig = gravitation.apsidal_angle_family(e, angle, near_circular=limit,
+                                           measured=(0.54, float(angle[54])),
+                                           exact_label="exact quadrature at this L",
+                                           near_label=near_label)
+    fig.savefig(io.BytesIO(), format="svg")
+    assert figure_findings(fig) == []
+    assert near_label in [t.get_text() for t in fig.axes[0].get_legend().texts]

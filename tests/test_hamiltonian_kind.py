@@ -16,9 +16,11 @@ Fradkin, Am. J. Phys. 33, 207 (1965): the isotropic oscillator's conserved tenso
 
 from __future__ import annotations
 
+import html
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 import textwrap
@@ -398,6 +400,39 @@ def test_isotropic_oscillator_conserves_Lz_and_the_Fradkin_tensor(isotropic):
     # the Jacobi identity on (Lz, A_xx, H); every term vanishes here (both conserved), so
     # the non-trivial check is on Kepler and the double pendulum below
     assert a["jacobi_max"] <= 1e-13
+
+
+def test_brackets_and_invariants_are_typeset_not_printed_as_identifiers(cli, tmp_path):
+    """The isotropic oscillator's report names A_xy, L_z, p_x as typeset symbols (their
+    TeX, from the archive, as the equation's accessible name), never as the config's
+    identifiers in the page text; the brackets between observables are the archived TeX."""
+    from conftest import without_study
+
+    config = without_study(REPO / "configs" / "hamiltonian_isotropic_oscillator.toml",
+                           tmp_path / "iso.toml")
+    code, _, err = cli("run", config, "--out", tmp_path / "o", "--jobs", 1)
+    assert code == 0, err
+    folder = tmp_path / "o" / "iso"
+    with h5py.File(folder / "run.h5") as f:
+        a = f["analysis"]
+        pairs = dict(zip(zip(a["pair_brackets"].attrs["f"], a["pair_brackets"].attrs["g"],
+                             strict=True), a["pair_brackets"].attrs["latex"], strict=True))
+        jacobi = list(a.attrs["jacobi_triple_latex"])
+    # {A_xx, A_yy} = 0 and {Lz, A_xx} = 2 A_xy (Fradkin), as SymPy prints them
+    assert pairs["A_xx", "A_yy"] == "0" and "p_{x} p_{y}" in pairs["Lz", "A_xx"]
+    assert jacobi[2] == "H" and "p_{x}" in jacobi[0]  # f = Lz = x p_y − y p_x
+    page = (folder / "report.html").read_text(encoding="utf-8")
+    brackets = page[page.index('<section id="brackets">'):page.index('<section id="config">')]
+    for tex in (r"\{L_{z}, A_{xx}\}", "A_{xy}", "p_{x_{2}}", pairs["Lz", "A_xx"]):
+        assert f'aria-label="{html.escape(tex)}"' in brackets, tex
+    invariants = page[page.index('<section id="invariants">'):
+                      page.index('<section id="brackets">')]
+    assert 'aria-label="A_{xy}"' in invariants and 'aria-label="L_{z}"' in invariants
+    text = re.sub(r"<svg.*?</svg>|<pre class=\"config\">.*?</pre>|<head>.*?</head>", " ",
+                  page, flags=re.S)
+    text = html.unescape(re.sub(r"<[^>]+>", " ", text))
+    for identifier in ("A_xx", "A_xy", "A_yy", "p_x", "p_y", "Lz", "$"):
+        assert identifier not in text, identifier
 
 
 def test_spherical_pendulum_phi_is_cyclic_and_p_phi_conserved(spherical):

@@ -10,9 +10,13 @@ import pytest
 
 from reportgen.core import normal_modes as core
 from reportgen.kinds import load_scene
+from reportgen.kinds.normal_modes.results import MOLECULAR_OMEGA
 from reportgen.scene.config import ConfigError, parse_config_text
 
 M_O, M_C, M_H = core.ELEMENT_MASSES["O"], core.ELEMENT_MASSES["C"], core.ELEMENT_MASSES["H"]
+# a molecule's default units (u, Å, mdyn/Å): its ω are stored in rad/s, this many per unit
+# of the eigenproblem in those units
+OMEGA_UNIT = MOLECULAR_OMEGA
 
 
 def scene(text: str):
@@ -113,7 +117,8 @@ def co2():
 
 def test_co2_frequencies_and_counting(co2):
     a = co2.analysis
-    w = a["frequencies"]
+    assert a["unit_system"] == "molecular"
+    w = a["frequencies"] / OMEGA_UNIT  # in the config's units
     assert np.all(np.diff(w) >= 0)
     assert a["n_zero_modes"] == 5 and a["n_vibrational"] == 4  # 3n − 5 for a linear molecule
     assert a["n_rigid_rotations"] == 2 and a["linear"]
@@ -162,7 +167,7 @@ def test_nearly_degenerate_stretch_and_bend_keep_their_labels(split):
     assert sorted(types) == sorted(["longitudinal, symmetric stretch",
                                     "longitudinal, antisymmetric stretch",
                                     "transverse (in-plane)", "transverse (out-of-plane)"])
-    w = a["frequencies"][5:]
+    w = a["frequencies"][5:] / OMEGA_UNIT
     w_sym = w[types.index("longitudinal, symmetric stretch")]
     assert w_sym == pytest.approx(math.sqrt(k / M_O), rel=1e-12)
     for t in ("transverse (in-plane)", "transverse (out-of-plane)"):
@@ -253,7 +258,7 @@ def test_matrices_input_reproduces_the_molecule():
 
     a = simulate(f'kind = "normal_modes"\nM = {mat(M)}\nA = {mat(A)}\n').analysis
     assert a["n_zero_modes"] == 5  # counted from the spectrum, nothing projected
-    assert np.max(np.abs(a["frequencies"] - mol["frequencies"])) < 1e-7
+    assert np.max(np.abs(a["frequencies"] - mol["frequencies"] / OMEGA_UNIT)) < 1e-7
 
 
 # --------------------------------------------------------------------- validation
@@ -354,12 +359,13 @@ def test_modal_superposition_is_exact_with_zero_modes_and_velocity():
     rng = np.random.default_rng(1)
     q0, v0 = rng.normal(size=9) * 0.01, rng.normal(size=9) * 0.01
     t = np.linspace(0.0, 3.0, 7)
-    q, v = core.modal_evolution(a["modes"], a["frequencies"], M, q0, v0, t)
+    w = a["frequencies"] / OMEGA_UNIT  # the units of M and A
+    q, v = core.modal_evolution(a["modes"], w, M, q0, v0, t)
     assert np.allclose(q[0], q0, atol=1e-15) and np.allclose(v[0], v0, atol=1e-15)
     # satisfies M q̈ + A q = 0: compare q̈ by central differences of the exact solution
     h = 1e-4
-    qp, _ = core.modal_evolution(a["modes"], a["frequencies"], M, q0, v0, t + h)
-    qm, _ = core.modal_evolution(a["modes"], a["frequencies"], M, q0, v0, t - h)
+    qp, _ = core.modal_evolution(a["modes"], w, M, q0, v0, t + h)
+    qm, _ = core.modal_evolution(a["modes"], w, M, q0, v0, t - h)
     acc = (qp - 2 * q + qm) / h**2
     assert np.max(np.abs(acc @ M.T + q @ A.T)) < 1e-6
 
@@ -443,7 +449,7 @@ def test_only_a_stiff_scene_is_told_about_stiffness_next_to_its_diagram(write_co
     code, _, err = cli("run", cfg, "--out", tmp_path / "o", "--jobs", 1, "--format", "html")
     assert code == 0, err  # auto chose an implicit method: ok
     html = (tmp_path / "o" / "stiff" / "report.html").read_text()
-    assert "This scene is stiff (ω_max/ω_min = " in html
+    assert "This scene is stiff (ωₘₐₓ/ωₘᵢₙ = " in html
     assert "Error against run time" in html
     data = read_archive(tmp_path / "o" / "stiff" / "run.h5")
     assert any("stability bound" in n for n in
@@ -451,3 +457,91 @@ def test_only_a_stiff_scene_is_told_about_stiffness_next_to_its_diagram(write_co
     data.analysis["stiff"] = False
     assert not any("stability bound" in n for n in
                    NormalModesScene.section_error_vs_runtime(data).notes)
+
+
+# -------------------------------------------------------------------------- units
+# CODATA 2018: u = 1.66053906660e-27 kg, c = 299792458 m/s; 1 mdyn/Å = 100 N/m
+U_KG, C_CM = 1.66053906660e-27, 2.99792458e10
+
+
+def test_co2_frequencies_in_rad_per_second_and_wavenumbers(co2):
+    """The preset's molecular units (u, Å, mdyn/Å) give real units: ω² = k/m_O for the
+    symmetric stretch (Goldstein §6.4) with k = 1600 N/m and m_O in kg, ν̃ = ω/(2πc)."""
+    a = co2.analysis
+    types = list(a["mode_type"])
+    i = types.index("longitudinal, symmetric stretch")
+    omega = math.sqrt(16.0 * 100.0 / (M_O * U_KG))  # rad/s, from SI alone
+    assert a["frequencies"][i] == pytest.approx(omega, rel=1e-12)
+    assert a["wavenumbers"][i] == pytest.approx(omega / (2 * math.pi * C_CM), rel=1e-12)
+    assert a["wavenumbers"][i] == pytest.approx(1302.8, abs=0.1)  # cm⁻¹
+    assert {c.unit for c in co2.checks if c.quantity.startswith("ω")} == {"rad/s"}
+
+
+def test_a_molecule_in_si_units_is_not_rescaled():
+    # the same CO₂ in kg, m and N/m: ω = √(k/m_O) directly, in rad/s
+    m_o, m_c = M_O * U_KG, M_C * U_KG
+    text = f"""
+kind = "normal_modes"
+units = "SI"
+[[atoms]]
+mass = {m_o!r}
+position = [-1.16e-10, 0.0, 0.0]
+[[atoms]]
+mass = {m_c!r}
+position = [0.0, 0.0, 0.0]
+[[atoms]]
+mass = {m_o!r}
+position = [1.16e-10, 0.0, 0.0]
+[[bonds]]
+atoms = [0, 1]
+k = 1600.0
+[[bonds]]
+atoms = [1, 2]
+k = 1600.0
+"""
+    a = simulate(text).analysis
+    i = list(a["mode_type"]).index("longitudinal, symmetric stretch")
+    assert a["unit_system"] == "SI"
+    assert a["frequencies"][i] == pytest.approx(math.sqrt(1600.0 / m_o), rel=1e-12)
+    assert a["wavenumbers"][i] == pytest.approx(1302.8, abs=0.1)
+
+
+def test_a_chain_is_dimensionless_by_default():
+    res = simulate('kind = "normal_modes"\npreset = "chain"\n')
+    assert res.analysis["unit_system"] == "dimensionless" and "wavenumbers" not in res.analysis
+    assert {c.unit for c in res.checks} == {"dimensionless"}
+    pendula = simulate('kind = "normal_modes"\npreset = "coupled_pendula"\n')
+    assert pendula.analysis["unit_system"] == "SI"
+    assert {c.unit for c in pendula.checks} == {"rad/s"}
+
+
+@pytest.mark.parametrize(("body", "message"), [
+    ('units = "molecular"\npreset = "chain"\n', "units: 'molecular' (u, Å, mdyn/Å) is for atoms"),
+    ('units = "dimensionless"\npreset = "coupled_pendula"\n', "units: pendula are given in SI"),
+    ('units = "SI"\npreset = "co2"\n', "atoms[0]: units = 'SI' needs `mass`"),
+    ('units = "cgs"\npreset = "co2"\n', "units"),
+])
+def test_a_unit_system_that_does_not_fit_is_refused(body, message):
+    with pytest.raises(ConfigError) as exc:
+        scene('kind = "normal_modes"\n' + body)
+    assert message in str(exc.value)
+
+
+def test_spectrum_axes_carry_their_units(write_config, cli, tmp_path):
+    from reportgen.archive.store import read_archive
+    from reportgen.kinds.normal_modes import NormalModesScene
+
+    for name, body in (("co2", 'preset = "co2"\n'), ("chain", 'preset = "chain"\n'),
+                       ("pendula", 'preset = "coupled_pendula"\n')):
+        cfg = write_config(name, 'kind = "normal_modes"\n' + body)
+        code, _, err = cli("run", cfg, "--out", tmp_path / "o", "--jobs", 1, "--format", "html")
+        assert code == 0, err
+        data = read_archive(tmp_path / "o" / name / "run.h5")
+        content = NormalModesScene.section_spectrum(data)
+        label = content.figures[0].figure.axes[0].get_xlabel()
+        header = content.tables[0].header
+        assert (label, header[1]) == {
+            "co2": ("wavenumber [cm⁻¹]", "ω [rad/s]"),
+            "chain": ("angular frequency ω (dimensionless)", "ω (dimensionless)"),
+            "pendula": ("angular frequency ω [rad/s]", "ω [rad/s]")}[name]
+        assert ("ν̃ [cm⁻¹]" in header) == (name == "co2")

@@ -2,7 +2,10 @@
 
 ``tests/data/report_content_pendulum_small.json`` was written from release 9b4d653 (the
 commit before the staged study budget, SVG-only figures, compiled-once drivers and the
-slimmed PDF figures) with ``python tests/report_content.py output/pendulum_small FILE``.
+slimmed PDF figures) with ``python tests/report_content.py output/pendulum_small FILE``;
+its HTML part was written again for issue 31 (the contents list under the title, the
+end time in words in check names, the study table's run count in its method cell), the
+arrays kept.
 The HTML must have the same sections, headings, figures, fact labels, table headers and
 row labels (rows of the timed study excepted), and the archive the same trajectory and
 invariants to 1e-12.

@@ -107,7 +107,7 @@ def test_index_is_a_gallery_of_the_whole_folder(write_config, tmp_path, cli):
         assert f'id="scene-{name}"' in index
         assert f'href="{name}/report.html"' in index and f'href="{name}/run.h5"' in index
         assert f'src="{name}/figures/' in index  # thumbnail of the first figure
-    assert "rel. error" in index and "pendulum" in index
+    assert "from the exact 4K(k)√(l/g)" in index and "Plane pendulum" in index
     assert not list(out.glob(".index.html.*"))
 
 

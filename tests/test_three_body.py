@@ -57,6 +57,8 @@ def test_pythagorean_to_t70_energy_and_final_binary():
     vrel = np.linalg.norm(vel[0, 2] - vel[0, 1])
     assert 0.5 * vrel**2 - (m[1] + m[2]) / d < 0
     assert np.linalg.norm(pos[0, 0]) > 5.0  # mass 3 has left
+    # the behaviour is page text: the growth law in words, no caret exponent (e^(t/T))
+    assert "exp(t/T)" in r.analysis["behaviour"] and "^" not in r.analysis["behaviour"]
 
 
 def test_loose_tolerance_is_flagged_not_silent():

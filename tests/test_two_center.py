@@ -113,3 +113,43 @@ def test_start_at_a_centre_rejected():
     with pytest.raises(ConfigError) as exc:
         load_scene(parse_config_text(TEXT.format(x=1.0, y=0.0, vx=0.0, vy=1.0)))
     assert "initial.x" in str(exc.value)
+
+
+def test_orbit_figure_legend_below_and_within_the_figure():
+    # the orbit over the elliptic grid: a square box (equal aspect) whose legend, beside or
+    # above it, ran past the figure's edge or into itself; under the axes it is neither
+    import io
+
+    from reportgen.rendering.gate import figure_findings
+    from reportgen.rendering.plots import gravitation
+
+    s = np.linspace(0.0, 2.0 * np.pi, 400)
+
+    def ellipse(xi):  # ξ = const: semi-axes a ξ and a √(ξ² − 1), foci at (±a, 0)
+        return xi * np.cos(s), np.sqrt(xi**2 - 1.0) * np.sin(s)
+
+    grid = [ellipse(xi) for xi in (1.2, 1.5, 2.0)]
+    fig = gravitation.elliptic_grid_orbit(
+        1.9 * np.cos(7 * s), 1.6 * np.sin(7 * s), a=1.0, grid=grid,
+        xi_bounds=[ellipse(1.85), ellipse(2.05)],
+        eta_bounds=[(np.full(9, 0.6), np.linspace(-1, 1, 9))])
+    fig.savefig(io.BytesIO(), format="svg")
+    assert figure_findings(fig) == []
+    fig.draw_without_rendering()  # the legend laid out at the figure's own dpi, as measured
+    renderer = fig._get_renderer()
+    (legend,) = fig.legends
+    box, axes = legend.get_window_extent(renderer), fig.axes[0].get_window_extent(renderer)
+    assert box.y1 <= axes.y0 and fig.bbox.x0 <= box.x0 and box.x1 <= fig.bbox.x1
+    entries = [t.get_window_extent(renderer) for t in legend.texts]
+    assert len(entries) == 4
+    assert not any(a.overlaps(b) for i, a in enumerate(entries) for b in entries[i + 1:])
+
+
+def test_family_results_are_labelled_with_their_units():
+    # the sweep's table: the count of crossings (a number) and each bound by its symbol
+    from reportgen.kinds.two_center.report import TwoCenterReport
+
+    label = TwoCenterReport.result_quantity(None, "poincare_points").label()
+    assert label == "crossings per orbit [dimensionless]"
+    assert TwoCenterReport.result_quantity(None, "xi_bounds_1").label() == (
+        r"$\xi_\mathrm{min}$ [dimensionless]")

@@ -40,6 +40,7 @@ from __future__ import annotations
 import json
 import math
 import shutil
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from datetime import UTC, datetime
 from pathlib import Path
@@ -504,10 +505,13 @@ def stored_identity(path: Path) -> Identity | None:
                    wall_time_s=float(identity.wall_time_s))
 
 
-def gallery_entry(path: Path) -> dict[str, Any] | None:
+def gallery_entry(path: Path, headline: Callable[[ArchiveData], str] | None = None
+                  ) -> dict[str, Any] | None:
     """What the output folder's gallery shows of one archive: kind, title, status,
-    message, wall time and the error headline (the check with the largest relative
-    error).  Reads attrs and the checks table only; None if unreadable."""
+    message, wall time and the headline in words, ``headline(light)`` of the archive
+    read light (:func:`read_light`: no runs, no arrays but small ones); without
+    ``headline`` (or when it fails), the check with the largest relative error.
+    None if unreadable."""
     try:
         with h5py.File(path, "r") as f:
             if f.attrs.get("format") != FORMAT:
@@ -517,16 +521,17 @@ def gallery_entry(path: Path) -> dict[str, Any] | None:
             # a small table only (read back from an output folder: not a declared giant)
             checks = (read_table(ds) if isinstance(ds, h5py.Dataset) and ds.ndim == 1
                       and ds.dtype.names and ds.shape[0] <= 10_000 else None)
+            light = _read_light(f, path, a, checks) if headline is not None else None
     except (OSError, KeyError, TypeError, ValueError, RuntimeError):
         return None
-    headline = ""
-    try:
-        if checks is not None and len(checks):
-            worst = checks[int(np.nanargmax(checks["rel_error"]))] if np.any(
-                np.isfinite(checks["rel_error"])) else checks[0]
-            headline = f"{worst['quantity']}: rel. error {float(worst['rel_error']):.1e}"
-    except (KeyError, TypeError, ValueError, IndexError):
-        headline = ""
+    line = ""
+    if light is not None:
+        try:
+            line = str(headline(light))
+        except Exception:  # noqa: BLE001 - a kind's bad line costs its card the line only
+            line = ""
+    if not line:
+        line = _worst_check_text(checks)
 
     def text(key: str, default: str = "") -> str:
         value = a.get(key, default)
@@ -536,7 +541,52 @@ def gallery_entry(path: Path) -> dict[str, Any] | None:
     return {"kind": text("kind"), "title": text("title"),
             "status": text("status", "ok"), "message": text("message"),
             "wall_time_s": float(wall) if is_number(wall) else math.nan,
-            "headline": headline, "created": text("created")}
+            "headline": printable(line, newlines=False), "created": text("created")}
+
+
+def _worst_check_text(checks) -> str:
+    try:
+        if checks is not None and len(checks):
+            worst = checks[int(np.nanargmax(checks["rel_error"]))] if np.any(
+                np.isfinite(checks["rel_error"])) else checks[0]
+            return f"{worst['quantity']}: {float(worst['rel_error']):.1e} from its reference"
+    except (KeyError, TypeError, ValueError, IndexError):
+        pass
+    return ""
+
+
+#: the largest ``/analysis`` array a light read keeps (a few frequencies, a 3x3 tensor)
+LIGHT_ARRAY_SIZE = 64
+
+
+def _read_light(f: h5py.File, path: Path, attrs: dict, checks) -> ArchiveData | None:
+    """The archive without its runs and big arrays: attrs, resolved config, the
+    scalars and small arrays of ``/analysis`` (no sub-groups), the checks.  None when
+    a part is malformed (the caller then falls back to the checks alone)."""
+    try:
+        config = ConfigView()
+        raw = f.get("config_resolved")
+        if isinstance(raw, h5py.Dataset) and raw.shape == () and raw.dtype.kind in "OS":
+            config = ConfigView.of(json.loads(decode(raw[()])))
+        analysis: dict[str, Any] = {}
+        g = f.get("analysis")
+        if isinstance(g, h5py.Group):
+            analysis = {k: decode(v) for k, v in g.attrs.items() if not k.startswith("__")}
+            for k, item in g.items():
+                if (isinstance(item, h5py.Dataset) and item.size <= LIGHT_ARRAY_SIZE
+                        and item.dtype.kind in "biuf"):
+                    analysis[k] = item[()]
+        rows = []
+        for row in checks if checks is not None else ():
+            scale = float(row["scale"]) if "scale" in row.dtype.names else math.nan
+            rows.append(Check(quantity=str(row["quantity"]), value=float(row["value"]),
+                              reference=float(row["reference"]), unit=str(row["unit"]),
+                              source=str(row["source"]),
+                              scale=None if math.isnan(scale) else scale))
+    except (OSError, KeyError, TypeError, ValueError, RecursionError):
+        return None
+    return ArchiveData(path=Path(path), attrs=attrs, config_text="", provenance={},
+                       config=config, analysis=analysis, checks=rows)
 
 
 def verify_checksums(path: Path) -> list[str]:

@@ -125,6 +125,9 @@ def verdict(runs: list[MethodRun]) -> tuple[str, str]:
     """The case's verdict from its automatic run, with the alternatives as evidence."""
     auto = runs[0]
     others = ", ".join(f"{r.used}: {r.status}" for r in runs[1:]) or "none"
+    if auto.status == "inaccurate":  # ran cleanly; its error is large against the scale
+        return "inaccurate", (f"{auto.used} is stable (drift {auto.drift:.1e}) but "
+                              f"{auto.message or 'errs by more than the accuracy bound'}")
     if auto.status != "ok":
         return "unstable", f"{auto.used}: {auto.message or auto.status} (alternatives: {others})"
     if auto.solver_status == _policy.RunStatus.SWITCHED:

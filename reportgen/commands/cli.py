@@ -1,6 +1,6 @@
 """Command line: argument parsing and exit codes only.
 
-Exit status: 0 all scenes ok; 1 some scene failed or was flagged unstable;
+Exit status: 0 all scenes ok; 1 some scene failed, was inaccurate or numerically unstable;
 2 bad usage or invalid config (nothing run, nothing overwritten).
 """
 

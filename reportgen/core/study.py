@@ -79,11 +79,27 @@ SCIPY_FLOOR = 100 * np.finfo(float).eps
 _RECORD_DTYPE = np.dtype([
     ("method", "S24"), ("label", "S48"), ("kind", "S8"), ("tolerance", "f8"), ("h", "f8"),
     ("error_final", "f8"), ("error_max", "f8"), ("wall_time_s", "f8"), ("nfev", "i8"),
-    ("compile_time_s", "f8"), ("status", "S8"), ("repeats", "i4"),
-    ("measured_at", "S20"), ("machine", "S96"), ("cached", "?"),
+    ("compile_time_s", "f8"), ("status", "S12"), ("repeats", "i4"),
+    ("measured_at", "S20"), ("machine", "S96"), ("cached", "?"), ("message", "S160"),
 ])
+#: the study table's declaration: what each column of ``/study/error_vs_runtime`` holds
+RECORD_FIELDS = {
+    "method": "the method's registry name", "label": "the method's name as printed",
+    "kind": "adaptive or fixed", "tolerance": "rtol (adaptive; atol = 1e-2 rtol), else NaN",
+    "h": "the step (fixed-step), else NaN",
+    "error_final": "max |y - y_ref| over the components at the last output time",
+    "error_max": "max |y - y_ref| over all output times and components",
+    "wall_time_s": "minimum wall time over the repeats [s], compile time excluded",
+    "nfev": "right-hand-side evaluations", "compile_time_s": "compile time [s]",
+    "status": "ok, inaccurate (error_max above ACCURACY_TOLERANCE of the scene's scale: "
+              "the table's attrs accuracy_scale, accuracy_scale_what) or failed",
+    "repeats": "timed runs", "measured_at": "when (UTC)", "machine": "where",
+    "cached": "taken from the peer measurement cache",
+    "message": "why a failed row failed (the solver's message), or why it is inaccurate",
+}
+assert set(RECORD_FIELDS) == set(_RECORD_DTYPE.names)
 #: bump when a peer row's meaning changes (invalidates cached peer measurements)
-PEER_ROWS_FORMAT = 2  # 2: measured under a study budget
+PEER_ROWS_FORMAT = 3  # 2: measured under a study budget; 3: rows carry a message
 
 
 class RowCache(Protocol):
@@ -130,6 +146,8 @@ class StudyResult:
     rows: list[dict]
     reference_kind: str
     reference_agreement: float = math.nan
+    #: the largest |value| of the reference (the default accuracy scale)
+    reference_size: float = math.nan
     skipped: list[str] = field(default_factory=list)
     #: methods whose first run did not finish within their share of the budget (no rows)
     over_budget: list[str] = field(default_factory=list)
@@ -139,9 +157,28 @@ class StudyResult:
         rec = np.zeros(len(self.rows), dtype=_RECORD_DTYPE)
         for i, row in enumerate(self.rows):
             for name in _RECORD_DTYPE.names:
-                value = row[name]
-                rec[name][i] = value.encode("utf-8") if isinstance(value, str) else value
+                value = row.get(name, "") if name == "message" else row[name]
+                if isinstance(value, str):  # cut to the column's width, whole characters
+                    width = _RECORD_DTYPE[name].itemsize
+                    value = value.encode("utf-8")[:width].decode("utf-8", "ignore")
+                    value = value.encode("utf-8")
+                rec[name][i] = value
         return rec
+
+
+def judge_records(records: np.ndarray, limit: float, reason) -> int:
+    """Mark every "ok" row of a study table (:meth:`StudyResult.to_records`, rows a kind
+    added included) whose ``error_max`` exceeds ``limit`` "inaccurate", with ``message``
+    = ``reason(error_max)``, in place.  Returns how many rows it marked."""
+    ok = np.char.strip(records["status"].astype("S12")) == b"ok"
+    err = records["error_max"].astype(float)
+    bad = np.flatnonzero(ok & np.isfinite(err) & (err > limit))
+    width = records.dtype["message"].itemsize
+    for i in bad:
+        records["status"][i] = b"inaccurate"
+        text = reason(float(err[i])).encode("utf-8")[:width].decode("utf-8", "ignore")
+        records["message"][i] = text.encode("utf-8")
+    return len(bad)
 
 
 def reference_run(model, y0, t_eval) -> np.ndarray:
@@ -255,6 +292,15 @@ def default_steps(model, y0, t_eval) -> np.ndarray:
     return h0 * 2.0 ** (-0.5 * np.arange(12))
 
 
+def _bound_orbit(model, y0) -> bool:
+    """Whether the Kepler orbit through ``y0`` is bound: the regularized methods
+    (``needs_kepler``) integrate only those, so an escaping orbit's study leaves them out
+    rather than failing on them."""
+    from .integrators.policy import _bound_kepler_eccentricity
+
+    return _bound_kepler_eccentricity(model, y0) is not None
+
+
 def work_precision(model, y0, t_eval, reference=None, methods=None, tolerances=None,
                    steps=None, repeats=3, progress=None, our_tolerances=None,
                    cache: RowCache | None = None,
@@ -301,7 +347,7 @@ def work_precision(model, y0, t_eval, reference=None, methods=None, tolerances=N
     if methods is None:  # a method for one force law only (levi_civita) is not "skipped"
         methods = [n for n, m in METHODS.items()
                    if n != "radau" and not (m.needs_separable and model.separable is None)
-                   and (not m.needs_kepler or m.fits(model))]
+                   and (not m.needs_kepler or (m.fits(model) and _bound_orbit(model, y0)))]
     skipped = [n for n in methods if not METHODS[n].fits(model)]
     methods = [n for n in methods if n not in skipped]
     if steps is None and any(not METHODS[n].adaptive for n in methods):
@@ -351,6 +397,7 @@ def work_precision(model, y0, t_eval, reference=None, methods=None, tolerances=N
             progress((k + 1) / len(methods))
     return StudyResult(rows=rows, reference_kind=reference_kind,
                        reference_agreement=agreement, skipped=skipped,
+                       reference_size=float(np.max(np.abs(refs["default"]), initial=0.0)),
                        over_budget=[n for n in methods if not any(r["method"] == n
                                                                   for r in rows)])
 
@@ -407,7 +454,8 @@ def _sweep(model, y0, t_eval, name, grid, y_ref, repeats, stamp, budget: Budget,
             h=sol.h if sol.h is not None else math.nan,
             error_final=float(np.max(err[-1])), error_max=float(np.max(err)),
             wall_time_s=sol.wall_time_s, nfev=sol.nfev, compile_time_s=compile_s,
-            status=sol.status, repeats=n, **stamp))
+            status=sol.status, repeats=n, **stamp,
+            message="" if sol.status == "ok" else _failure_reason(sol)))
         if sol.wall_time_s > TIME_CAP_S:
             break
         # a fixed step too long for the method (an implicit method's Newton iteration at
@@ -418,6 +466,20 @@ def _sweep(model, y0, t_eval, name, grid, y_ref, repeats, stamp, budget: Budget,
         if _at_round_off_floor(rows, name):
             break
     return rows
+
+
+def _failure_reason(sol) -> str:
+    """Why a run failed, for its study row: the solver's message, else its status code."""
+    message = str(getattr(sol, "message", "") or "")
+    if message and message != "ok":
+        return message
+    code = getattr(sol, "code", None)
+    return str(getattr(code, "value", code) or sol.status)
+
+
+#: statuses of a row whose error and time were measured (an inaccurate run's error is
+#: large, not unknown)
+_MEASURED = ("ok", "inaccurate")
 
 
 def matched_error_speedup(rows, baseline="scipy_dop853", baseline_rtol=1e-10):
@@ -433,7 +495,7 @@ def matched_error_speedup(rows, baseline="scipy_dop853", baseline_rtol=1e-10):
     ``speedup`` = baseline wall time / this wall time.
     """
     rows = rows.rows if isinstance(rows, StudyResult) else rows
-    base = [r for r in rows if r["method"] == baseline and r["status"] == "ok"
+    base = [r for r in rows if r["method"] == baseline and r["status"] in _MEASURED
             and math.isclose(r["tolerance"], baseline_rtol, rel_tol=1e-9)]
     if not base:
         raise ValueError(f"baseline: no ok run of {baseline!r} at rtol={baseline_rtol:g}")
@@ -442,7 +504,7 @@ def matched_error_speedup(rows, baseline="scipy_dop853", baseline_rtol=1e-10):
     for name in dict.fromkeys(r["method"] for r in rows):
         if name in METHODS and METHODS[name].peer:
             continue  # a kind's own method (the rigid body's splitting2/4) is ours
-        good = [r for r in rows if r["method"] == name and r["status"] == "ok"
+        good = [r for r in rows if r["method"] == name and r["status"] in _MEASURED
                 and r["error_max"] <= b["error_max"]]
         if good:
             best = min(good, key=lambda r: r["wall_time_s"])

@@ -8,7 +8,9 @@ process pool (``--jobs``); a scene that fails does not stop the others.
 from __future__ import annotations
 
 import json
+import math
 import os
+import re
 import sys
 import time
 import traceback
@@ -18,6 +20,7 @@ from multiprocessing import get_context
 from pathlib import Path
 from urllib.parse import quote
 
+from .. import __version__
 from ..archive.store import (
     FORMAT_VERSION,
     Identity,
@@ -27,9 +30,10 @@ from ..archive.store import (
     write_archive,
 )
 from ..errors import UsageError  # noqa: F401 - part of this module's interface
-from ..kinds import load_scene
+from ..kinds import KINDS, load_scene
 from ..scene.base import Scene
 from ..scene.config import ConfigError, read_config
+from ..scene.gallery import check_headline, chosen_figure
 from ..scene.results import STATUSES, worst_status
 from ..support.forked import JobProcess, kill_children, run_child, serve
 from ..support.fsutil import (
@@ -687,7 +691,9 @@ def _dask_blocks(client, scene: Scene):
 
 def write_index(out_root: str, outcomes: list[Outcome] = ()) -> Path:
     """``index.html``: a gallery of every scene archive in ``out_root`` (not only this
-    batch's), plus the scenes of this batch that failed before writing one."""
+    batch's), plus the scenes of this batch that failed before writing one; the cards
+    grouped by kind (in the kinds' order), by title within a kind, each with its kind's
+    signature figure (:attr:`~reportgen.scene.report.Report.gallery_figures`)."""
     from ..rendering.report import build_index  # matplotlib and jinja2 only when drawing
 
     root = Path(out_root)
@@ -699,24 +705,61 @@ def write_index(out_root: str, outcomes: list[Outcome] = ()) -> Path:
                  if (folder / f"report.{fmt}").exists()]
         links.append(("HDF5", gallery_href(name, "run.h5")))
         entries.append({**entry, "name": name, "links": links,
-                        "thumbnail": _first_figure(folder)})
+                        **_gallery_figure(folder, entry["kind"])})
     seen = {e["name"] for e in entries}
     for o in outcomes:
         if o.name not in seen and not o.ok:
             entries.append({"name": o.name, "kind": o.kind, "title": o.title,
                             "status": o.status, "message": o.message, "wall_time_s": None,
-                            "headline": "", "links": [], "thumbnail": None})
-    return build_index(root, entries)
+                            "headline": "", "links": [], "thumbnail": None,
+                            "thumbnail_alt": "", "wide": False})
+    return build_index(root, gallery_groups(entries))
+
+
+def gallery_groups(entries: list[dict]) -> list[dict]:
+    """The gallery's cards grouped by kind: a group per kind present, in the kinds' order
+    (``reportgen kinds``; a kind this reportgen does not know last), each with its
+    heading and its cards sorted by title, then name."""
+    groups: dict[str, list[dict]] = {}
+    for e in entries:
+        groups.setdefault(e.get("kind") or "", []).append(e)
+    rank = {kind: i for i, kind in enumerate(KINDS)}
+    ordered = sorted(groups.items(), key=lambda kv: (rank.get(kv[0], len(rank)), kv[0]))
+    return [{"kind": kind, "name": _kind_heading(kind),
+             # the heading's anchor: a kind's id, or a number for a name read from a file
+             "anchor": kind if kind in rank else f"other-{i}",
+             "entries": sorted(cards, key=lambda e: ((e.get("title") or e["name"]).casefold(),
+                                                     e["name"]))}
+            for i, (kind, cards) in enumerate(ordered)]
+
+
+def _kind_heading(kind: str) -> str:
+    """A kind's human name: its report's ``gallery_name``, else its id in words."""
+    cls = KINDS.get(kind)
+    name = getattr(cls, "gallery_name", "") if cls is not None else ""
+    return name or (kind.replace("_", " ").capitalize() if kind else "Unknown kind")
+
+
+def _gallery_headline(data) -> str:
+    """The card's line: the kind's ``gallery_headline`` of the light archive (a kind
+    this reportgen does not know: the checks' default)."""
+    cls = KINDS.get(data.kind)
+    return (cls.gallery_headline if cls is not None and hasattr(cls, "gallery_headline")
+            else check_headline)(data)
 
 
 #: the gallery's entry of each archive, kept with the archive's size and time of change:
 #: an edit loop's run re-reads only the archive it changed (each read opens the HDF5 file)
 GALLERY_CACHE = ".gallery.json"
+#: bump when an entry's contents change (the headline's wording, a new key): every
+#: cached entry is then read again, as it is after a new reportgen version
+GALLERY_FORMAT = 2
 
 
 def _gallery_entries(root: Path) -> dict[Path, dict]:
     """:func:`reportgen.archive.store.gallery_entry` of every ``*/run.h5`` under ``root``,
-    from ``root/.gallery.json`` where an archive is unchanged since it was read."""
+    from ``root/.gallery.json`` where an archive is unchanged since it was read (by this
+    reportgen version and gallery format)."""
     cache = root / GALLERY_CACHE
     try:
         stored = json.loads(cache.read_text(encoding="utf-8"))
@@ -728,11 +771,12 @@ def _gallery_entries(root: Path) -> dict[Path, dict]:
             st = archive.stat()
         except OSError:
             continue
-        stamp = [st.st_mtime_ns, st.st_size, st.st_ino]
+        stamp = [st.st_mtime_ns, st.st_size, st.st_ino, GALLERY_FORMAT, __version__]
         name = archive.parent.name
         hit = stored.get(name) if isinstance(stored, dict) else None
         entry = (hit["entry"] if isinstance(hit, dict) and hit.get("stamp") == stamp
-                 and _valid_entry(hit.get("entry")) else gallery_entry(archive))
+                 and _valid_entry(hit.get("entry"))
+                 else gallery_entry(archive, headline=_gallery_headline))
         if entry is None:
             continue
         fresh[name] = {"stamp": stamp, "entry": entry}
@@ -745,14 +789,50 @@ def _gallery_entries(root: Path) -> dict[Path, dict]:
     return entries
 
 
-def _first_figure(folder: Path) -> str | None:
-    """The first figure of a scene's report (a link relative to the output folder), if
-    drawn; from the figures' manifest, validated (:func:`reportgen.support.layout.figure_manifest`)."""
+#: a thumbnail this much wider than tall gets a card two columns wide (Fig. 4.3's
+#: three loci side by side would be a strip of 17em by 4em in one column)
+WIDE_ASPECT = 2.2
+
+
+def _gallery_figure(folder: Path, kind: str) -> dict:
+    """The card's thumbnail: the kind's signature figure (the first of its report's
+    ``gallery_figures`` that this scene drew, else the report's first figure) as a link
+    relative to the output folder, its caption as the image's alt text, and whether it
+    is wide; from the figures' manifest, validated
+    (:func:`reportgen.support.layout.figure_manifest`)."""
     stored = figure_manifest(folder)
-    for section in stored["sections"] if stored is not None else ():
-        for fig in section["figures"]:
-            return gallery_href(folder.name, fig["files"]["svg"])
-    return None
+    figures = [fig for section in (stored["sections"] if stored is not None else ())
+               for fig in section["figures"] if "svg" in fig["files"]]
+    cls = KINDS.get(kind)
+    i = chosen_figure([str(fig.get("id", "")) for fig in figures],
+                      tuple(getattr(cls, "gallery_figures", ())))
+    if i is None:
+        return {"thumbnail": None, "thumbnail_alt": "", "wide": False}
+    fig = figures[i]
+    caption = fig.get("caption") if isinstance(fig.get("caption"), str) else ""
+    return {"thumbnail": gallery_href(folder.name, fig["files"]["svg"]),
+            "thumbnail_alt": caption[:300] or f"figure of {folder.name}",
+            "wide": _svg_aspect(folder / fig["files"]["svg"]) >= WIDE_ASPECT}
+
+
+_SVG_SIZE = re.compile(rb'<svg\b[^>]*?\bwidth="([\d.]+)(?:pt|px)?"[^>]*?\bheight="([\d.]+)'
+                       rb'(?:pt|px)?"')
+
+
+def _svg_aspect(path: Path) -> float:
+    """Width over height of an SVG figure, from its opening tag (the first 4 kB); 1 when
+    it cannot be told."""
+    try:
+        with open(path, "rb") as f:
+            head = f.read(4096)
+    except OSError:
+        return 1.0
+    found = _SVG_SIZE.search(head)
+    try:
+        w, h = (float(v) for v in found.groups()) if found else (1.0, 1.0)
+    except ValueError:
+        return 1.0
+    return w / h if h > 0 and math.isfinite(w / h) else 1.0
 
 
 def gallery_href(name: str, rel: str) -> str:

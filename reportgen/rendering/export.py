@@ -11,6 +11,11 @@ Sizes
 ``print``   6.5 in wide (a page's text width), the figure's own aspect ratio
 ``WxH``     W x H inches, e.g. ``8x4.5``
 
+A multi-panel figure whose function lays it out for the size asked for
+(:mod:`.plots.layout`: Fig. 4.3 as a row of three on a slide, 2 + 1 in print, text at
+least ``SLIDE_MIN_FONT`` on a slide) is saved as drawn, at the asked width and height
+(print: its own height); every other figure is stretched to the size and its text scaled.
+
 PNG files record their resolution (``--dpi``, default 200) in the file's pHYs chunk, so
 a word processor places them at their size; SVG and PDF keep text as text.
 """
@@ -19,37 +24,24 @@ from __future__ import annotations
 
 import fnmatch
 import re
-from collections.abc import Callable
-from dataclasses import dataclass
+from collections.abc import Callable, Iterator
 from pathlib import Path
+from typing import Any
 
 from ..errors import UsageError
 from ..support.fsutil import atomic_write
+from .plots.layout import Size, drawing_for, laid_out_for
 
 EXPORT_FORMATS = ("png", "svg", "pdf")
 DEFAULT_DPI = 200
 
-@dataclass(frozen=True)
-class Size:
-    """What ``--size`` asked for: a width and height in inches (None: the figure's own,
-    or the own aspect ratio when only the height is None) and a text scale."""
-
-    label: str
-    width: float | None = None
-    height: float | None = None
-    text_scale: float = 1.0
-
-    def inches(self, own: tuple[float, float]) -> tuple[float, float]:
-        if self.width is None:
-            return own
-        if self.height is None:
-            return self.width, self.width * own[1] / own[0]
-        return self.width, self.height
-
+#: the smallest text [pt] a figure laid out again for a slide uses: read from the back
+#: of a lecture hall
+SLIDE_MIN_FONT = 14.0
 
 SIZES = {
     "report": Size("report"),
-    "slide": Size("slide", 10.0, 5.625, 1.3),
+    "slide": Size("slide", 10.0, 5.625, 1.3, min_font=SLIDE_MIN_FONT),
     "print": Size("print", 6.5, None),
 }
 _WXH = re.compile(r"^\s*(\d+(?:\.\d*)?|\.\d+)\s*[x×]\s*(\d+(?:\.\d*)?|\.\d+)\s*$")
@@ -100,6 +92,32 @@ def _scale_text(fig, scale: float) -> None:
             text.set_fontsize(text.get_fontsize() * scale)
 
 
+def sized_figures(data, size: Size, only: tuple[str, ...] = ()) -> Iterator[tuple[str, Any]]:
+    """(figure id, figure drawn for ``size``) of each figure of the report of the archive
+    ``data``, in the report's order; the figure is None when ``only`` (shell patterns)
+    leaves it out.  A figure its function laid out for ``size`` comes as drawn; any other
+    is stretched to the size and its text scaled.  The caller may clear each figure once
+    it is done with it."""
+    from .plots import style  # noqa: F401 - the figure style, before anything draws
+    from .report import kind_of_archive
+
+    scene = kind_of_archive(data)
+    for section in scene.chosen_sections(data):
+        with drawing_for(size):
+            content = getattr(scene, f"section_{section.name}")(data)
+        for spec in content.figures:
+            fig_id = f"{section.name}-{spec.name}"
+            fig = spec.figure
+            if only and not any(fnmatch.fnmatch(fig_id, p) for p in only):
+                fig.clear()
+                yield fig_id, None
+                continue
+            if laid_out_for(fig) != size:  # not drawn for it: stretched, text scaled
+                fig.set_size_inches(*size.inches(tuple(fig.get_size_inches())))
+                _scale_text(fig, size.text_scale)
+            yield fig_id, fig
+
+
 def export_figures(archive: Path, out_dir: Path, *, size: Size = SIZES["report"],
                    dpi: int = DEFAULT_DPI, formats: tuple[str, ...] = EXPORT_FORMATS,
                    only: tuple[str, ...] = (),
@@ -110,34 +128,25 @@ def export_figures(archive: Path, out_dir: Path, *, size: Size = SIZES["report"]
     Returns the files written, in the report's order.  Each file is written atomically.
     """
     from ..archive.store import read_archive
-    from .plots import style  # noqa: F401 - the figure style, before anything draws
-    from .report import figure_bytes, kind_of_archive
+    from .report import figure_bytes
 
     data = read_archive(Path(archive))
-    scene = kind_of_archive(data)
     written: list[Path] = []
     seen: list[str] = []
     out_dir = Path(out_dir)
-    for section in scene.chosen_sections(data):
-        content = getattr(scene, f"section_{section.name}")(data)
-        for spec in content.figures:
-            fig_id = f"{section.name}-{spec.name}"
-            seen.append(fig_id)
-            if only and not any(fnmatch.fnmatch(fig_id, p) for p in only):
-                spec.figure.clear()
-                continue
-            out_dir.mkdir(parents=True, exist_ok=True)
-            fig = spec.figure
-            fig.set_size_inches(*size.inches(tuple(fig.get_size_inches())))
-            _scale_text(fig, size.text_scale)
-            for fmt in formats:
-                target = out_dir / f"{fig_id}.{fmt}"
-                atomic_write(target, figure_bytes(fig, fig_id, fmt,
-                                                    dpi if fmt == "png" else "figure"))
-                written.append(target)
-                if progress is not None:
-                    progress(target)
-            fig.clear()
+    for fig_id, fig in sized_figures(data, size, only):
+        seen.append(fig_id)
+        if fig is None:
+            continue
+        out_dir.mkdir(parents=True, exist_ok=True)
+        for fmt in formats:
+            target = out_dir / f"{fig_id}.{fmt}"
+            atomic_write(target, figure_bytes(fig, fig_id, fmt,
+                                                dpi if fmt == "png" else "figure"))
+            written.append(target)
+            if progress is not None:
+                progress(target)
+        fig.clear()
     if only and not written:
         raise UsageError(f"--only {' '.join(only)}: no figure of {archive} matches; its "
                          f"figures are: {', '.join(seen) or 'none'}")

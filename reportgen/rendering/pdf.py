@@ -33,12 +33,16 @@ def prepare_html(html_text: str, folder: Path, slim_cache: Path | None = None,
     return inline_svgs_as_images(html_text, folder=folder, cache=slim_cache, used=used)
 
 
-def render_pdf(html_for_pdf: str, target: Path, base_url: Path) -> None:
-    """WeasyPrint's PDF of prepared HTML, written atomically to ``target``."""
+def render_pdf(html_for_pdf: str, target: Path, base_url: Path) -> list[str]:
+    """WeasyPrint's PDF of prepared HTML, written atomically to ``target``; returns the
+    document gate's findings on the laid-out pages (:func:`.gate.page_findings`, read
+    between layout and writing, a few milliseconds)."""
     import gc
     import logging
 
     import weasyprint
+
+    from .gate import page_findings
 
     logging.getLogger("weasyprint").setLevel(logging.ERROR)
     logging.getLogger("fontTools").setLevel(logging.ERROR)
@@ -47,24 +51,30 @@ def render_pdf(html_for_pdf: str, target: Path, base_url: Path) -> None:
     gc_thresholds = gc.get_threshold()
     gc.set_threshold(max(10_000, gc_thresholds[0]), *gc_thresholds[1:])
     try:
-        pdf = weasyprint.HTML(string=html_for_pdf, base_url=str(base_url)).write_pdf()
+        document = weasyprint.HTML(string=html_for_pdf, base_url=str(base_url)).render()
+        findings = page_findings(document)
+        pdf = document.write_pdf()
     finally:
         gc.set_threshold(*gc_thresholds)
     atomic_write(target, pdf)
+    return findings
 
 
 def write_pdf(html_text: str, target: Path, base_url: Path,
-              slim_cache: Path | None = None, render=render_pdf) -> None:
+              slim_cache: Path | None = None, render=render_pdf) -> list[str]:
     """``target``: the PDF of a report's HTML (figures as vector images).  ``slim_cache``:
     the folder of the figures' slim copies (kept for the next render, pruned to this one's).
-    ``render(html_for_pdf, target, base_url)`` does the rendering (a worker's, say)."""
+    ``render(html_for_pdf, target, base_url)`` does the rendering (a worker's, say) and
+    returns the document gate's findings on the pages, which this returns."""
     used: set[Path] = set()
     with tempfile.TemporaryDirectory(prefix="reportgen-pdf-") as folder:
-        render(prepare_html(html_text, Path(folder), slim_cache, used), target, base_url)
+        findings = render(prepare_html(html_text, Path(folder), slim_cache, used), target,
+                          base_url)
     if slim_cache is not None and Path(slim_cache).is_dir():
         from .svgslim import prune_cache
 
         prune_cache(slim_cache, used)
+    return list(findings or ())
 
 
 class PdfWorker(JobProcess):
@@ -86,21 +96,23 @@ class PdfWorker(JobProcess):
         return not self._closed and self.proc.is_alive()
 
     def write_pdf(self, html_text: str, target: Path, base_url: Path,
-                  slim_cache: Path | None = None) -> None:
-        """Render like :func:`write_pdf`, in the worker; raise what it raised."""
+                  slim_cache: Path | None = None) -> list[str]:
+        """Render like :func:`write_pdf`, in the worker; raise what it raised, else return
+        the pages' gate findings."""
         if self._closed:
             raise ReportError(f"{target}: the PDF process was already stopped")
         self._used = True
-        write_pdf(html_text, target, base_url, slim_cache, render=self._render)
+        return write_pdf(html_text, target, base_url, slim_cache, render=self._render)
 
-    def _render(self, html_for_pdf: str, target: Path, base_url: Path) -> None:
+    def _render(self, html_for_pdf: str, target: Path, base_url: Path) -> list[str]:
         try:
             self.jobs.send((html_for_pdf, str(target), str(base_url)))
-            error = self.results.recv()
+            error, findings = self.results.recv()
         except (EOFError, OSError):
             error = f"PDF process ended without a result (exit code {self.proc.exitcode})"
         if error is not None:
             raise ReportError(f"{target}: {error}")
+        return findings
 
     def close(self) -> None:
         """Stop the worker: at once if it never rendered (it writes nothing before a job),
@@ -144,14 +156,15 @@ def _worker_main(jobs, results) -> None:
     serve(jobs, results, _render_job)
 
 
-def _render_job(job) -> str | None:
-    """A job of the worker: None once rendered, else what went wrong (the parent raises)."""
+def _render_job(job) -> tuple[str | None, list[str]]:
+    """A job of the worker: (None, the pages' gate findings) once rendered, else (what went
+    wrong, []) (the parent raises)."""
     html_for_pdf, target, base_url = job
     try:
-        render_pdf(html_for_pdf, Path(target), Path(base_url))
+        findings = render_pdf(html_for_pdf, Path(target), Path(base_url))
     except Exception as exc:  # noqa: BLE001 - sent to the parent, which raises it
-        return f"{type(exc).__name__}: {exc}"
-    return None
+        return f"{type(exc).__name__}: {exc}", []
+    return None, findings
 
 
 #: a figure-like SVG for the warm-up: clipped path, dashes, text in the figures' font

@@ -8,6 +8,7 @@ is WeasyPrint's rendering of the same HTML.
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import io
 import json
@@ -29,10 +30,12 @@ from ..errors import ReportError
 from ..kinds import get_kind
 from ..lazy import lazy_module
 from ..scene.content import FigureSpec, SectionContent, fmt, fmt_err
+from ..scene.report import method_words
 from ..support.forked import JobProcess, serve
 from ..support.fsutil import atomic_write
 from ..support.layout import template_dir
 from .equations import equation_html
+from .gate import gate_findings, write_gate
 from .pdf import PdfWorker, write_pdf  # noqa: F401 - part of this module's interface
 
 # Drawing libraries load on first use: a report whose figures are current (a title edit)
@@ -62,6 +65,7 @@ def environment() -> jinja2.Environment:
         _ENV.filters["eq"] = equation_html  # {% filter eq %}TeX{% endfilter %}
         _ENV.filters["cell"] = table_cell
         _ENV.filters["eq_display"] = display_equation
+        _ENV.filters["prose"] = prose_text
     return _ENV
 
 
@@ -103,12 +107,44 @@ def display_equation(tex: str) -> Markup:
         return Markup("<code>") + str(tex) + Markup("</code>")
 
 
+#: a path inside the archive quoted in prose ("/study/error_vs_runtime", "/runs/main")
+_ARCHIVE_PATH = re.compile(r"(?<![\w/.])/(?:study|runs|analysis|sweep|config|checks|provenance)"
+                           r"(?:/[\w.\-]*\w)*")
+
+
+def prose_text(value) -> Markup:
+    """A note or caption from the archive's report face, escaped, with every archive path
+    it quotes ("/study/error_vs_runtime") set as code, kept on one line."""
+    text = str(value)
+    if isinstance(value, Markup):
+        return value
+    out, start = Markup(""), 0
+    for m in _ARCHIVE_PATH.finditer(text):
+        out += text[start:m.start()] + Markup('<code class="path">{}</code>').format(m.group(0))
+        start = m.end()
+    return out + text[start:]
+
+
 def table_cell(value) -> Markup:
-    """A table cell that may wrap only before a parenthesis: "5.1e-12 (rtol 1e-12)" keeps
-    its number and its note whole (a minus sign or a unit is never a line break), yet a
-    wide table still fits the page."""
-    parts = re.split(r" (?=\()", str(value))
-    return Markup(" ").join(Markup('<span class="nw">{}</span>').format(p) for p in parts)
+    """A table cell (or header) that wraps between its parts, never inside a number:
+    "5.1e-12 (rtol 1e-12)" may break before the parenthesis, "ω3 [rad/s]" before the
+    bracket, "rtol 1e-11: 3.9e-10 in 0.09 ms" after the colon, "0.54, 0.46" and "1.2 /
+    3.4" after the comma or slash (outside brackets only), so that a wide table fits the
+    page.  A part with a digit, or a [unit], is kept whole (a minus sign, an exponent or a
+    unit is never a line break); a part of words alone wraps freely."""
+    text, parts, start, depth = str(value), [], 0, 0
+    for i, ch in enumerate(text):
+        depth += {"(": 1, "[": 1, ")": -1, "]": -1}.get(ch, 0)
+        if ch != " " or i == start:
+            continue
+        if (text[i + 1:i + 2] in ("(", "[") and depth == 0) or (
+                depth == 0 and (text[i - 1] in ",:;" or text[i - 2:i] == " /")):
+            parts.append(text[start:i])
+            start = i + 1
+    parts.append(text[start:])
+    return Markup(" ").join(Markup('<span class="nw">{}</span>').format(p)
+                            if p.startswith("[") or any(c.isdigit() for c in p) else p
+                            for p in parts)
 
 
 # ------------------------------------------------------------------- figures
@@ -118,6 +154,8 @@ class SavedFigure:
     caption: str
     svg: Markup
     files: dict[str, str]  # format -> file name relative to the report
+    #: the document gate's findings on the drawn figure (:func:`.gate.figure_findings`)
+    gate: tuple[str, ...] = ()
 
 
 _SVG_HEAD = re.compile(r"^.*?(?=<svg)", re.S)
@@ -135,10 +173,15 @@ def save_figure(spec: FigureSpec, fig_id: str, folder: Path,
 
     Standalone PDF/PNG files are made only on request (``[report] figure_formats``): a
     PDF export embeds and subsets its fonts, which costs more than drawing the figure.
+    The document gate reads the figure as saved (a few milliseconds): its findings come
+    with the result.
     """
+    from .gate import figure_findings
+
     folder.mkdir(parents=True, exist_ok=True)
     files = {}
     svg_text = ""
+    gate: list[str] = []
     wanted = ["svg", *(f for f in FIGURE_FORMATS if f in formats and f != "svg")]
     for fmt_name in wanted:
         data = figure_bytes(spec.figure, fig_id, fmt_name)
@@ -147,7 +190,9 @@ def save_figure(spec: FigureSpec, fig_id: str, folder: Path,
         files[fmt_name] = f"{folder.name}/{name}"
         if fmt_name == "svg":
             svg_text = _SVG_HEAD.sub("", data.decode("utf-8"), count=1)
-    return SavedFigure(id=fig_id, caption=spec.caption, svg=Markup(svg_text), files=files)
+            gate = figure_findings(spec.figure, dpi=72)  # as the SVG was just laid out
+    return SavedFigure(id=fig_id, caption=spec.caption, svg=Markup(svg_text), files=files,
+                       gate=tuple(gate))
 
 
 def figure_bytes(figure, fig_id: str, fmt: str, dpi=None) -> bytes:
@@ -359,7 +404,8 @@ def _draw_section(scene, section, data: ArchiveData, out_dir: Path,
     figures = []
     for spec in content.figures:
         saved = save_figure(spec, f"{section.name}-{spec.name}", out_dir / "figures", formats)
-        figures.append({"id": saved.id, "caption": saved.caption, "files": saved.files})
+        figures.append({"id": saved.id, "caption": saved.caption, "files": saved.files,
+                        "gate": list(saved.gate)})
         spec.figure.clear()
         if for_pdf:  # here, in the drawing processes, rather than in the PDF stage
             from .svgslim import warm_cache
@@ -450,9 +496,13 @@ def build_context(data: ArchiveData, out_dir: Path,
         sections, _ = figures_stage(data, out_dir)
     sections = _with_inline_svg(sections, out_dir)
     runs = []
+    labels = method_labels(data)
     for name, run in data.runs.items() if data.sweep is None else ():  # members: their section
         a = run.attrs
-        runs.append({"name": name, "method": a.get("method"), "reason": a.get("method_reason", ""),
+        runs.append({"name": name, "method": a.get("method"),
+                     "method_label": labels.get(str(a.get("method")),
+                                                method_words(str(a.get("method", "")))),
+                     "reason": a.get("method_reason", ""),
                      "nfev": a.get("nfev"), "nsteps": a.get("nsteps"),
                      "nreject": a.get("nreject"), "wall_time_s": a.get("wall_time_s"),
                      "compile_time_s": a.get("compile_time_s"), "status": a.get("status"),
@@ -461,10 +511,15 @@ def build_context(data: ArchiveData, out_dir: Path,
         "title": data.title,
         "kind": scene.kind,
         "kind_summary": scene.summary,
+        "description": scene.subtitle(data),
+        "case": scene.prose_case(data),
         "scene_name": data.attrs.get("scene", ""),
         "status": data.status,
         "message": data.message,
-        "checks": data.checks,
+        "checks": [dataclasses.replace(c, quantity=scene.check_words(data, c.quantity),
+                                       source=scene.check_words(data, c.source))
+                   for c in data.checks],
+        "behaviour": scene.behaviour(data),  # physical behaviour, beside the status (issue 31)
         "headline": (scene.sweep_headline(data) if data.sweep is not None
                      else scene.headline(data)),
         "sweep": data.sweep is not None,
@@ -476,6 +531,14 @@ def build_context(data: ArchiveData, out_dir: Path,
         "provenance": data.provenance,
         "version": __version__,
     }
+
+
+def method_labels(data: ArchiveData) -> dict[str, str]:
+    """Each integrator's label as the archive's study table names it ("scipy RK45")."""
+    study = data.study
+    if study is None or len(study) == 0 or "label" not in (study.dtype.names or ()):
+        return {}
+    return {str(m): str(lab) for m, lab in zip(study["method"], study["label"], strict=True)}
 
 
 def render_html(context: dict[str, Any]) -> str:
@@ -505,13 +568,18 @@ def build_report(archive_path: Path, formats=("html", "pdf"), out_dir: Path | No
                                 for_pdf="pdf" in formats, helper=figure_helper)
     timings["figures"] = time.perf_counter() - t0
     context = build_context(data, out_dir, sections=sections)
-    return write_formats(render_html(context), out_dir, formats, timings, pdf_worker)
+    pages: list[str] = []
+    written = write_formats(render_html(context), out_dir, formats, timings, pdf_worker, pages)
+    write_gate(out_dir, gate_findings(sections, pages))
+    return written
 
 
 def write_formats(html_text: str, out_dir: Path, formats,
                   timings: dict[str, float] | None = None,
-                  pdf_worker: PdfWorker | None = None) -> list[Path]:
-    """``report.html`` and/or ``report.pdf`` (WeasyPrint's rendering of the same HTML)."""
+                  pdf_worker: PdfWorker | None = None,
+                  gate: list[str] | None = None) -> list[Path]:
+    """``report.html`` and/or ``report.pdf`` (WeasyPrint's rendering of the same HTML);
+    ``gate``, if given, receives the document gate's findings on the PDF's pages."""
     timings = {} if timings is None else timings
     written = []
     if "html" in formats:
@@ -521,17 +589,20 @@ def write_formats(html_text: str, out_dir: Path, formats,
         timings["html"] = time.perf_counter() - t0
     if "pdf" in formats:
         t0 = time.perf_counter()
-        (pdf_worker.write_pdf if pdf_worker is not None else write_pdf)(
+        found = (pdf_worker.write_pdf if pdf_worker is not None else write_pdf)(
             html_text, out_dir / "report.pdf", out_dir, slim_cache=slim_cache(out_dir))
+        if gate is not None:
+            gate.extend(found)
         written.append(out_dir / "report.pdf")
         timings["pdf"] = time.perf_counter() - t0
     return written
 
 
-def build_index(out_dir: Path, entries: list[dict[str, Any]]) -> Path:
-    """``index.html``: the gallery of every scene in ``out_dir`` (written atomically)."""
+def build_index(out_dir: Path, groups: list[dict[str, Any]]) -> Path:
+    """``index.html``: the gallery of every scene in ``out_dir`` (written atomically);
+    ``groups``: the cards by kind (:func:`reportgen.pipeline.stages.gallery_groups`)."""
     text = environment().get_template("index.html.j2").render(
-        entries=entries, version=__version__,
+        groups=groups, count=sum(len(g["entries"]) for g in groups), version=__version__,
         created=datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC"))
     path = Path(out_dir) / "index.html"
     atomic_write(path, text.encode("utf-8"))

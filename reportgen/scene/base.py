@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import math
 import sys
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -84,6 +85,8 @@ class Scene:
     sections: ClassVar[tuple[Section, ...]] = ()
     #: sections shown when the config names none (None: all of ``sections``)
     default_section_names: ClassVar[tuple[str, ...] | None] = None
+    #: the kind in words, the start of its default titles ("Plane pendulum")
+    name_in_words: ClassVar[str] = ""
     #: position in ``reportgen kinds`` and the docs (the SPEC's order)
     order: ClassVar[int] = 100
     #: sections whose data ``simulate`` computes only when the report shows them (costly
@@ -99,7 +102,8 @@ class Scene:
         Section("sweep_results", "Results across the family",
                 description="Each result of the kind's analysis against the swept value."),
         Section("sweep_members", "Members kept whole",
-                description="The members whose whole run the archive keeps ([sweep] store)."),
+                description="The members whose whole run the archive keeps, spread evenly "
+                            "over the family."),
     )
     #: results of the members' analysis left out of the family's results figure (fnmatch
     #: patterns): the kind's own bookkeeping and self-checks, noise against a swept value
@@ -211,7 +215,50 @@ class Scene:
 
     @property
     def title(self) -> str:
-        return self.config.title or f"{self.kind.replace('_', ' ')} ({self.source.name})"
+        """The config's ``title``, else :meth:`default_title` of this scene (for a sweep,
+        the kind's name, the family's size and what it varies)."""
+        if self.config.title:
+            return self.config.title
+        if self.sweep is None:
+            return self.default_title(self.config)
+        # a family: the base config's own numbers (the swept value among them) would
+        # describe one member, so the kind's name and what the family varies
+        from .schema import config_quantity
+
+        name = self.name_in_words or self.summary.split(":")[0]
+        keys = " and ".join(config_quantity(type(self.config), p).text
+                            for p in self.sweep.paths)
+        return f"{name[:1].upper() + name[1:]}: a family of {self.sweep.size} runs over {keys}"
+
+    @classmethod
+    def preset_as_given(cls, config: Any) -> str | None:
+        """The config's preset, if its physics is the preset's as given: a config that
+        changes a preset's parameters or initial state (the figure-eight with one mass
+        changed) is no longer that preset's scene, so its words must not name it.
+        ``[run]``, ``[report]`` and the title may differ."""
+        preset = getattr(config, "preset", None)
+        if preset is None or preset not in cls.presets:
+            return None
+        for table, values in cls.presets[preset].items():
+            if table in ("run", "report", "title", "sweep") or not isinstance(values, dict):
+                continue
+            given = getattr(config, table, None)
+            for key, value in values.items():
+                ours = given.get(key) if isinstance(given, dict) else getattr(given, key, None)
+                if ours is None or not _same_value(ours, value):
+                    return None
+        return preset
+
+    @classmethod
+    def default_title(cls, config: Any) -> str:
+        """A title in words for a config without one: the kind's name, its preset's and
+        the numbers that define the scene.  ``config`` is the validated config or the
+        archive's resolved one (read by attribute only, so either serves).  Kinds
+        override it; this default names the kind and the preset."""
+        name = cls.name_in_words or cls.summary.split(":")[0]
+        name = name[:1].upper() + name[1:]
+        preset = cls.preset_as_given(config)
+        return f"{name} ({preset.replace('_', ' ')})" if preset else name
 
     def resolved_config(self) -> dict[str, Any]:
         """The validated config with presets and defaults filled in (JSON types), and the
@@ -314,3 +361,26 @@ def _faces(cls: type, face: str) -> list[str]:
         if getattr(c, "faces", None) == {face} and c.__module__ not in mods:
             mods.append(c.__module__)
     return mods
+
+
+def _same_value(ours: Any, preset: Any) -> bool:
+    """Whether a config value equals a preset's (numbers to 1e-12 relative, lists and
+    tables element by element; a model or enum is compared by its value)."""
+    if hasattr(ours, "model_dump"):
+        ours = ours.model_dump(mode="json")
+    ours = getattr(ours, "value", ours)
+    if isinstance(preset, dict):
+        return isinstance(ours, dict) and all(
+            k in ours and _same_value(ours[k], v) for k, v in preset.items())
+    if isinstance(preset, (list, tuple)):
+        try:
+            return len(ours) == len(preset) and all(
+                _same_value(a, b) for a, b in zip(ours, preset, strict=True))
+        except TypeError:
+            return False
+    if isinstance(preset, (int, float)) and not isinstance(preset, bool):
+        try:
+            return math.isclose(float(ours), float(preset), rel_tol=1e-12, abs_tol=1e-300)
+        except (TypeError, ValueError):
+            return False
+    return ours == preset

@@ -2,6 +2,11 @@
 
 Shared by every kind's report (and by simulations that word a check's label).  No
 numerics, no drawing.
+
+One rule for every number of a report (:func:`fmt`): 6 significant figures, 2 for an
+error or a drift (:func:`fmt_err`), never ``nan`` or a negative zero; more figures only in
+a deliberate value-against-reference comparison (:func:`fmt_pair`), and exact 0 and 1 in
+a matrix (:func:`fmt_matrix`).
 """
 
 from __future__ import annotations
@@ -42,28 +47,108 @@ class SectionContent:
     equations: list[tuple[str, str]] = field(default_factory=list)
 
 
-def fmt(x: Any, digits: int = 10) -> str:
-    """A number as lecture-table text."""
+#: significant figures of a number in prose, facts and tables
+DIGITS = 6
+#: significant figures of an error, a drift or a relative difference
+ERROR_DIGITS = 2
+#: most significant figures a comparison shows: float64 holds no more
+MAX_DIGITS = 15
+#: a matrix entry within this many ulps (of the matrix's largest entry) of 0, or of 1
+#: and -1, is printed as 0, 1 or -1: the round-off of an exact entry, not a value
+MATRIX_ULPS = 4
+#: what a table cell shows where a number is missing or undefined (never "nan")
+NO_VALUE = "—"
+
+
+def fmt(x: Any, digits: int = DIGITS, *, against: float | None = None) -> str:
+    """A number as report text: the one rule for every number of a report.
+
+    ``digits`` significant figures (6 by default), no float noise (0.79999999999994 is
+    ``0.8``), no trailing zeros, never a negative zero (``-0.0`` is ``0``); scientific
+    notation (``1.2e-13``, ``3.4e7``) below 1e-3 and from ``10**digits`` on.  Integers are
+    printed whole.  Not-a-number is :data:`NO_VALUE`; a caller should say why in its caption
+    (or leave the cell out) rather than pass one.  Infinity is ``∞``.
+
+    ``against``: a deliberate value-against-reference comparison; ``x`` is printed with as
+    many figures as :func:`fmt_pair` gives the pair (enough to see where they differ).
+    """
     if isinstance(x, (int, np.integer)):
         return str(int(x))
-    if isinstance(x, (float, np.floating)):
-        x = float(x)
-        if not math.isfinite(x):
-            return str(x)
-        if x != 0 and (abs(x) < 1e-3 or abs(x) >= 1e6):
-            return f"{x:.{min(digits, 4)}e}"
-        return f"{x:.{digits}g}"
-    return str(x)
+    if not isinstance(x, (float, np.floating)):
+        return str(x)
+    x = float(x)
+    if math.isnan(x):
+        return NO_VALUE
+    if math.isinf(x):
+        return "∞" if x > 0 else "-∞"
+    if against is not None:
+        digits = comparison_digits(x, float(against), digits)
+    if x == 0:
+        return "0"
+    mantissa, exponent = f"{x:.{digits - 1}e}".split("e")
+    exponent = int(exponent)
+    if -3 <= exponent < digits:
+        text = f"{x:.{max(digits - 1 - exponent, 0)}f}"
+        text = text.rstrip("0").rstrip(".") if "." in text else text
+    else:
+        mantissa = mantissa.rstrip("0").rstrip(".") if "." in mantissa else mantissa
+        text = f"{mantissa}e{exponent}"
+    return "0" if float(text) == 0 else text
 
 
-def fmt_err(x: float) -> str:
-    return f"{x:.1e}" if math.isfinite(x) else str(x)
+def fmt_err(x: Any) -> str:
+    """An error, drift or relative difference: two significant figures (``1.2e-13``),
+    exactly zero as ``0``; not-a-number as :data:`NO_VALUE`."""
+    return fmt(x, ERROR_DIGITS)
 
+
+def comparison_digits(value: float, reference: float, digits: int = DIGITS) -> int:
+    """Significant figures that show where ``value`` and ``reference`` differ: one more
+    than the first figure at which their texts differ, at least ``digits``, at most
+    :data:`MAX_DIGITS` (equal values, or values equal to 15 figures, at ``digits`` or 15)."""
+    if not (math.isfinite(value) and math.isfinite(reference)) or value == reference:
+        return digits
+    for n in range(1, MAX_DIGITS + 1):
+        if f"{value:.{n - 1}e}" != f"{reference:.{n - 1}e}":
+            return min(max(n + 1, digits), MAX_DIGITS)
+    return MAX_DIGITS
+
+
+def fmt_pair(value: float, reference: float, digits: int = DIGITS) -> tuple[str, str]:
+    """A value and its reference as text for a deliberate comparison: both to one figure
+    past the first one where they differ (at least ``digits``, at most 15), so that
+    ``0.333333333335`` against ``0.333333333333`` shows the difference instead of hiding
+    it in ``0.333333`` twice."""
+    n = comparison_digits(float(value), float(reference), digits)
+    return fmt(value, n), fmt(reference, n)
+
+
+def fmt_matrix(matrix: Any, digits: int = DIGITS) -> list[list[str]]:
+    """The entries of a matrix (or a vector, as one row) as text: :func:`fmt` each, except
+    that an entry within :data:`MATRIX_ULPS` ulps of 1 or -1 is ``1`` or ``-1``, and one
+    within as many ulps of the matrix's largest entry of 0 is ``0``: a rotation matrix shows
+    ``1`` and ``0``, not ``0.9999999999999998`` and ``-1e-17``, while a matrix whose
+    entries are all ~1e-20 keeps them."""
+    a = np.atleast_2d(np.asarray(matrix, dtype=float))
+    finite = np.abs(a[np.isfinite(a)])
+    ulp = MATRIX_ULPS * np.finfo(float).eps
+    zero = ulp * float(finite.max(initial=0.0))
+    out = []
+    for row in a:
+        cells = []
+        for x in (float(v) for v in row):
+            if abs(x) <= zero:
+                x = 0.0
+            elif abs(abs(x) - 1.0) <= ulp:
+                x = math.copysign(1.0, x)
+            cells.append(fmt(x, digits))
+        out.append(cells)
+    return out
 
 
 def member_text(sweep, i: int, short: bool = False) -> str:
     """A sweep member's swept values as text: ``initial.theta = 0.5`` (``short``: the
-    last part of each key at 4 digits, ``theta = 0.5``, for figure labels)."""
+    last part of each key at 4 figures, ``theta = 0.5``, for figure labels)."""
     return ", ".join(f"{p.rsplit('.', 1)[-1] if short else p} = "
-                     f"{fmt(float(v[i]), 4 if short else 8)}" for p, v in sweep.values.items())
+                     f"{fmt(float(v[i]), 4 if short else DIGITS)}" for p, v in sweep.values.items())
 

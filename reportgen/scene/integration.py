@@ -8,6 +8,7 @@ integrator re-simulates them and no other kind.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
@@ -17,7 +18,7 @@ from ..lazy import lazy_module
 from ..support.cache import default_cache
 from .base import ProgressFn
 from .config import ConfigError
-from .results import Results, RunRecord
+from .results import ACCURACY_TOLERANCE, Results, RunRecord
 from .simulation import Simulation
 
 if TYPE_CHECKING:
@@ -26,6 +27,7 @@ if TYPE_CHECKING:
 _integrators = lazy_module("reportgen.core.integrators")
 _stability = lazy_module("reportgen.core.integrators.stability")
 _study = lazy_module("reportgen.core.study")
+_lyapunov = lazy_module("reportgen.core.lyapunov")
 
 
 def _solution_attrs(sol) -> dict[str, Any]:
@@ -168,4 +170,44 @@ class IntegratingSimulation(Simulation):
         results.study = result.to_records()
         results.study_attrs = {"reference_kind": result.reference_kind,
                                "budget_s": float(self.config.run.study_budget),
-                               "over_budget": ",".join(result.over_budget)}
+                               "over_budget": ",".join(result.over_budget),
+                               "reference_size": result.reference_size}
+
+    def judge_accuracy(self, results: Results) -> None:
+        """The runs (:meth:`Simulation.judge_accuracy`), then every study row: "inaccurate"
+        when its ``error_max`` exceeds ``ACCURACY_TOLERANCE`` × :meth:`accuracy_scale` of
+        the study's reference (rows a kind appended included); the scale is kept in the
+        study table's attrs ``accuracy_scale``, ``accuracy_scale_what``,
+        ``accuracy_scale_unit`` and ``accuracy_tolerance``."""
+        super().judge_accuracy(results)
+        if results.study is None or not len(results.study):
+            return
+        size = float(results.study_attrs.pop("reference_size", math.nan))
+        scale = self.accuracy_scale(size if math.isfinite(size) else 1.0)
+        _study.judge_records(results.study, scale.limit, scale.reason)
+        results.study_attrs.update({"accuracy_scale": scale.value,
+                                    "accuracy_scale_what": scale.what,
+                                    "accuracy_scale_unit": scale.unit,
+                                    "accuracy_tolerance": ACCURACY_TOLERANCE})
+
+    def divergence(self, results: Results, model: OdeModel, y0, t_eval) -> float:
+        """Whether this orbit is chaotic, from two reference runs ``1e-10`` apart
+        (:func:`reportgen.core.lyapunov.divergence`): stores ``/analysis``
+        ``separation_growth`` and, for a chaotic orbit, ``lyapunov_time`` (declare both).
+        Returns the end of the error-against-run-time study's horizon this allows:
+        :data:`STUDY_LYAPUNOV_FRACTION` of the Lyapunov time (``t_eval[-1]`` for a regular
+        orbit).  Nothing is run for a sweep's member (it has no study)."""
+        if self.family_member:
+            return float(t_eval[-1])
+        est = _lyapunov.divergence(model, np.asarray(y0, dtype=float), np.asarray(t_eval))
+        results.analysis["separation_growth"] = est.growth
+        if not est.chaotic:
+            return float(t_eval[-1])
+        results.analysis["lyapunov_time"] = est.lyapunov_time
+        return min(float(t_eval[-1]), STUDY_LYAPUNOV_FRACTION * est.lyapunov_time)
+
+
+#: a chaotic scene's study ends at this fraction of its Lyapunov time: an error made at the
+#: start has grown by at most e^0.5 ≈ 1.6 by then, so the error against the reference still
+#: measures the method, not the chaos
+STUDY_LYAPUNOV_FRACTION = 0.5

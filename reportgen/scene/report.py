@@ -11,7 +11,9 @@ byte-identical figures (``tests/test_archive_only.py``).  The subclass contract:
 2. One classmethod ``section_<name>(data)`` per section returning
    :class:`~reportgen.scene.content.SectionContent`; ``section_error_vs_runtime`` is
    provided here and :meth:`invariants_section` draws any run's conserved quantities.
-3. ``headline(data)`` -> short list of (label, value) facts for the summary.
+3. ``headline(data)`` -> short list of (label, value) facts for the summary;
+   ``behaviour(data)`` -> the physical behaviour in words (shown beside the numerical
+   status, never as a status), default ``/analysis`` ``behaviour``.
 4. Labels come from the kind's declared results (:meth:`label`), never config keys.
 """
 
@@ -21,15 +23,17 @@ import fnmatch
 import importlib
 import importlib.util
 import math
+import re
 import sys
 from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
 from ..lazy import lazy_module
+from . import gallery as _gallery
 from .base import Scene, Section
 from .content import FigureSpec, SectionContent, Table, fmt, fmt_err, member_text
-from .schema import unit_text
+from .schema import Quantity, config_quantity, unit_text
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -44,6 +48,17 @@ class Report(Scene):
     """Base class of a kind's report (see the module docstring for the contract)."""
 
     faces: ClassVar[frozenset[str]] = frozenset({"report"})
+    #: the gallery's heading over this kind's cards ("Heavy symmetric top")
+    gallery_name: ClassVar[str] = ""
+    #: the gallery's thumbnail: figure names (as given to :meth:`figure`) in order of
+    #: preference, the first one drawn wins; none drawn (or ()): the report's first figure
+    gallery_figures: ClassVar[tuple[str, ...]] = ()
+
+    @classmethod
+    def gallery_headline(cls, data: ArchiveData) -> str:
+        """The gallery card's line in words, from a light archive (see
+        :mod:`reportgen.scene.gallery`); default: the first summary check."""
+        return _gallery.check_headline(data, words=lambda text: cls.check_words(data, text))
 
     @classmethod
     def label(cls, name: str, unit: str | None = None) -> str:
@@ -90,6 +105,53 @@ class Report(Scene):
         return []
 
     @classmethod
+    def behaviour(cls, data: ArchiveData) -> str | None:
+        """The scene's physical behaviour in words ("unstable: the tilt grows as e^(γt),
+        γ = 0.71 1/s"), shown beside its numerical status in the summary; None when the
+        kind gives none.  Default: ``/analysis`` ``behaviour``, stored at simulate time."""
+        value = data.analysis.get("behaviour") if data.sweep is None else None
+        return str(value) if value else None
+
+    @classmethod
+    def describe(cls, data: ArchiveData) -> str:
+        """This scene in words, the report's subtitle: the default title of the archived
+        config when the scene has its own title, else the kind's name.  Kinds say more;
+        a sweep's subtitle is :meth:`family_words` instead."""
+        words = cls.default_title(data.config)
+        return words if words != data.title else (cls.name_in_words or cls.kind)
+
+    @classmethod
+    def subtitle(cls, data: ArchiveData) -> str:
+        """The report's subtitle: :meth:`family_words` for a sweep, else :meth:`describe`."""
+        return cls.family_words(data) if data.sweep is not None else cls.describe(data)
+
+    @classmethod
+    def family_words(cls, data: ArchiveData) -> str:
+        """A sweep in words: the family's size and what it varies ("Heavy symmetric top:
+        a family of 13 runs over precession rate φ̇0, −1 to 2 rad/s")."""
+        sweep = data.sweep
+        axes = []
+        for path, values in sweep.values.items():
+            q = cls.config_quantity(data, path)
+            found = re.match(r"^(.*?)\s*\[([^\]]+)\]", q.description)  # "rate [rad/s] (or …)"
+            what, unit = (found.group(1), found.group(2)) if found else (q.description,
+                                                                         q.unit)
+            unit = unit_text(unit) if unit not in ("", "1") else ""
+            span = " to ".join(fmt(float(f(values)), 4).replace("-", "−")
+                               for f in (np.min, np.max))
+            axes.append(f"{what}, {span}{' ' + unit if unit else ''}")
+        name = cls.name_in_words or cls.kind.replace("_", " ").capitalize()
+        return (f"{name}: a family of {sweep.size} runs over "
+                + (" and " if sweep.attrs.get("zip") else ", ").join(axes))
+
+    @classmethod
+    def prose_case(cls, data: ArchiveData) -> dict:
+        """The case of this archive that the kind's prose macros branch on (symmetric or
+        not, bound or escaping, …), as plain values read from the archive: the template
+        sees it as ``case``."""
+        return {}
+
+    @classmethod
     def motion_module(cls) -> str | None:
         """The kind's animation module, ``kinds/<kind>/motion.py``, if its package has one
         (a kind animates by having it, as it registers by existing)."""
@@ -114,10 +176,14 @@ class Report(Scene):
         """The summary facts of a sweep's archive."""
         sweep = data.sweep
         counts = sweep.counts()
-        axes = ", ".join(f"{p} from {fmt(float(np.min(v)), 6)} to {fmt(float(np.max(v)), 6)}"
-                         for p, v in sweep.values.items())
-        facts = [("members", f"{sweep.size} ({'paired' if sweep.attrs.get('zip') else 'grid'}"
-                             f" of {axes})"),
+        axes = []
+        for p, v in sweep.values.items():
+            lo, hi = (_minus(fmt(float(f(v)), 4)) for f in (np.min, np.max))
+            unit = cls.config_unit_words(data, p)
+            axes.append(f"{cls.config_words(data, p)} from {lo} to {hi}"
+                        + (f" {unit}" if unit else ""))
+        facts = [("members", f"{sweep.size} ({'paired values' if sweep.attrs.get('zip') else 'a grid'}"
+                             f" of {', '.join(axes)})"),
                  ("status", ", ".join(f"{n} {k}" for k, n in sorted(counts.items())))]
         wall = float(sweep.attrs.get("members_wall_time_s", math.nan))
         resumed = int(sweep.attrs.get("resumed", 0))
@@ -131,6 +197,115 @@ class Report(Scene):
                                    f"compiled anew) {fmt(start_up_s, 2)} s more"
                                    if math.isfinite(start_up_s) and start_up_s >= 0.01 else "")))
         return facts
+
+    #: TeX symbols of config keys a sweep may vary ({"initial.theta": r"\theta_0"}); a key
+    #: not named here is labelled with its field's description
+    config_symbols: ClassVar[dict[str, str]] = {}
+
+    @classmethod
+    def config_quantity(cls, data: ArchiveData, path: str) -> Quantity:
+        """A swept config key as a quantity: :attr:`config_symbols`' symbol, and the unit
+        its field declares.  A kind whose keys are named by the config overrides it."""
+        return config_quantity(cls.Config, path, cls.config_symbols.get(path, ""))
+
+    @classmethod
+    def config_words(cls, data: ArchiveData, path: str) -> str:
+        """A config key as page text: its symbol in Unicode ("φ̇₀", "θ₀"), else its field's
+        description ("initial energy"); never the key."""
+        return cls.config_quantity(data, path).text
+
+    @classmethod
+    def config_unit_words(cls, data: ArchiveData, path: str) -> str:
+        """The unit of a config key as printed after a value ("rad/s"; "" for a pure
+        number)."""
+        unit = unit_text(cls.config_quantity(data, path).unit)
+        return "" if unit == "dimensionless" else unit
+
+    @classmethod
+    def config_value_words(cls, data: ArchiveData, path: str, value: float,
+                           digits: int = 4) -> str:
+        """A config key's value as page text: "θ₀ = 3.097 rad", "φ̇₀ = −0.125 rad/s"."""
+        unit = cls.config_unit_words(data, path)
+        return (f"{cls.config_words(data, path)} = {_minus(fmt(float(value), digits))}"
+                + (f" {unit}" if unit else ""))
+
+    @classmethod
+    def member_words(cls, data: ArchiveData, i: int, digits: int = 4) -> str:
+        """A sweep member's swept values as page text ("φ̇₀ = −1 rad/s"), never the keys."""
+        return ", ".join(cls.config_value_words(data, p, float(v[i]), digits)
+                         for p, v in data.sweep.values.items())
+
+    @classmethod
+    def time_unit_words(cls, data: ArchiveData) -> str:
+        """The runs' time unit as printed ("s"; "" in scaled units): the config's own
+        ``time_unit`` where it names one, else the kind's declared time axis."""
+        own = getattr(data.config, "time_unit", None)
+        if isinstance(own, str):
+            return "" if own in ("1", "dimensionless") else own
+        unit = unit_text(cls.schema.time.unit) if cls.schema is not None else "s"
+        return "" if unit == "dimensionless" else unit
+
+    @classmethod
+    def run_end_words(cls, data: ArchiveData) -> str:
+        """The end of the run as page text, "t = 10 s"."""
+        unit = cls.time_unit_words(data)
+        return f"t = {fmt(float(data.config.run.t_end), 4)}" + (f" {unit}" if unit else "")
+
+    @classmethod
+    def check_words(cls, data: ArchiveData, text: str) -> str:
+        """A summary check's name (or source) as the page shows it.  The archive keeps the
+        name it was stored under (tests and the gallery look checks up by it); the page
+        says it in words: "θ(t_end)" -> "θ(t = 10 s)", "at t_end" -> "at t = 10 s", a
+        member's "(initial.theta = 3.09691)" -> "(θ₀ = 3.097 rad)", and a config key left
+        bare -> its description."""
+        text = _gallery.run_end_words(str(text), data, cls.time_unit_words(data), "\u00a0")
+        tables = set(getattr(cls.Config, "model_fields", {}) or {})
+
+        def valued(m: re.Match) -> str:
+            if m.group(1) not in tables:
+                return m.group(0)
+            try:
+                value = float(m.group(3).replace("−", "-"))
+            except ValueError:
+                return m.group(0)
+            return cls.config_value_words(data, f"{m.group(1)}.{m.group(2)}", value)
+
+        def bare(m: re.Match) -> str:
+            if m.group(1) not in tables:
+                return m.group(0)
+            words = cls.config_quantity(data, m.group(0)).description
+            return m.group(0) if words == m.group(2) else words  # "run.h5": not a key
+
+        text = re.sub(r"(?<![\w.])([a-z_]+)\.([A-Za-z_][\w.]*?) = "
+                      r"([\-−+]?(?:\d+\.?\d*|\.\d+)(?:[eE][\-+]?\d+)?)", valued, text)
+        return re.sub(r"(?<![\w.])([a-z_]+)\.([A-Za-z_]\w*)(?![\w(.])", bare, text)
+
+    @classmethod
+    def result_quantity(cls, data: ArchiveData, name: str) -> Quantity:
+        """The declared result ``name`` of this archive (a kind whose results are named by
+        the config overrides it); an undeclared one (the archive wrote it without a unit)
+        by its name in words."""
+        try:
+            return cls.schema.quantity(name)
+        except KeyError:
+            return Quantity(name, "", "", name.replace("_", " ").replace("/", ": "))
+
+    @classmethod
+    def colour_key_label(cls, data: ArchiveData, key: str) -> str:
+        """The colour bar's label of a family keyed by ``key`` (:func:`section_colours`):
+        the swept quantity, or the member's number."""
+        if key == "member":
+            return "member of the sweep (dimensionless)"
+        return cls.config_quantity(data, key).label()
+
+    @classmethod
+    def swept_keys(cls, data: ArchiveData) -> dict[str, tuple[str, str]]:
+        """Each swept key as (symbol, typeset unit) for figure labels, never the key."""
+        out = {}
+        for path in data.sweep.values:
+            q = cls.config_quantity(data, path)
+            out[path] = (q.math, unit_text(q.unit))
+        return out
 
     @classmethod
     def section_sweep_results(cls, data: ArchiveData) -> SectionContent:
@@ -152,13 +327,16 @@ class Report(Scene):
                  and not any(fnmatch.fnmatchcase(n, p) for p in cls.SWEEP_HIDDEN_RESULTS)]
         figures = []
         if names:
-            fig = common_plots.sweep_results(sweep.values, {n: sweep.analysis[n] for n in names},
-                                             sweep.ok, paired=bool(sweep.attrs.get("zip")))
+            fig = common_plots.sweep_results(
+                sweep.values, {n: sweep.analysis[n] for n in names}, sweep.ok,
+                paired=bool(sweep.attrs.get("zip")), keys=cls.swept_keys(data),
+                ylabels={n: cls.result_quantity(data, n).label() for n in names})
             figures.append(cls.figure("results", fig, "Each scalar result of the members' "
                                       "analysis against the swept value; members without a "
                                       "result are left out."))
         bad = ~sweep.ok
-        rows = [[str(i), member_text(sweep, i), str(sweep.status[i]), str(sweep.message[i])]
+        rows = [[str(i), cls.member_words(data, i), str(sweep.status[i]),
+                 str(sweep.message[i])]
                 for i in np.flatnonzero(bad)[:20]]
         tables = [Table("Members without a result" + (f" (first 20 of {int(bad.sum())})"
                                                       if bad.sum() > 20 else ""),
@@ -172,14 +350,19 @@ class Report(Scene):
 
         members = kept_members(data)
         runs = {name: data.runs[name] for _, name in members}
+        keys = cls.swept_keys(data)
         labels, rows = {}, []
         for i, name in members:
-            labels[name] = member_text(data.sweep, i, short=True)
+            labels[name] = ", ".join(common_plots.key_value_text(keys[p], float(v[i]))
+                                     for p, v in data.sweep.values.items())
             a = runs[name].attrs
-            rows.append([str(i), labels[name], str(a.get("method", "")), str(a.get("nfev", "")),
-                         f"{a.get('nsteps', '')} ({a.get('nreject', '')})",
+            rows.append([str(i), cls.member_words(data, i), str(a.get("method", "")),
+                         str(a.get("nfev", "")), f"{a.get('nsteps', '')} ({a.get('nreject', '')})",
                          str(a.get("status", ""))])
-        fig = common_plots.member_runs(runs, labels)
+        first = next(iter(runs.values()), None)
+        ylabel = cls.result_quantity(data, first.columns[0]).label() if first else ""
+        fig = common_plots.member_runs(runs, labels, ylabel=ylabel,
+                                       time_unit=unit_text(cls.schema.time.unit))
         table = Table("The kept members' runs", ["member", "values", "method", "f evals",
                                                  "steps (rejected)", "status"], rows)
         return SectionContent(figures=[cls.figure(
@@ -188,19 +371,22 @@ class Report(Scene):
 
     @classmethod
     def invariants_section(cls, data: ArchiveData, *, labels: dict[str, str] | None = None,
-                           caption: str = "", run: str = "main") -> SectionContent:
+                           caption: str = "", run: str = "main",
+                           time_unit: str | None = None) -> SectionContent:
         """Drift of every conserved quantity of a run (relative to the scales stored with
-        the run), with a table of the largest drift."""
+        the run), with a table of the largest drift.  ``time_unit``: the run's time unit as
+        printed, when the config names it (else the kind's declared one)."""
         rec = data.runs[run]
         scales = {q: rec.attrs[f"scale_{q}"] for q in rec.invariants
                   if f"scale_{q}" in rec.attrs}
-        time_unit = unit_text(cls.schema.time.unit) if cls.schema is not None else "s"
+        if not time_unit:
+            time_unit = unit_text(cls.schema.time.unit) if cls.schema is not None else "s"
         fig = _common_plots.invariant_drift(rec.t, rec.invariants, scales=scales or None,
                                             labels=labels, time_unit=time_unit)
         rows = []
         for name, values in rec.invariants.items():
             drift = rec.attrs.get(f"drift_{name}", float("nan"))
-            rows.append([(labels or {}).get(name, name), fmt(float(values[0]), 14),
+            rows.append([(labels or {}).get(name, name), fmt(float(values[0])),
                          fmt_err(drift)])
         table = Table(caption=f"Conserved quantities (bound for a stable run: relative drift ≤ "
                               f"{fmt_err(rec.attrs.get('drift_bound', math.nan))})",
@@ -215,24 +401,30 @@ class Report(Scene):
         """Work-precision diagram and one row per method of ``/study/error_vs_runtime``.
 
         Each row: the fastest run at least as accurate as scipy DOP853 at rtol 1e-10
-        (the baseline), its speed-up over the baseline, and the smallest error the
-        method reached.  Every run is in the archive's table.
+        (the baseline), its speed-up over the baseline, the smallest error the method
+        reached, and its runs' statuses: "ok", "inaccurate" (error above 1e-3 of the
+        scene's scale) or "failed", the reasons in numbered notes under the table.  Every
+        run is in the archive's table.
         """
         study = data.study
         if study is None or len(study) == 0:
             return SectionContent(notes=["The error-against-run-time study was not run for "
-                                         "this scene ([run] study = false)."])
+                                         "this scene: the configuration switches it off."])
         fig = _common_plots.work_precision(study)
-        ok = study[study["status"] == "ok"]
-        baseline = ok[(ok["method"] == "scipy_dop853")
-                      & np.isclose(ok["tolerance"], 1e-10, rtol=1e-6, atol=0.0)]
+        status = np.array([str(v) for v in study["status"]])
+        # an inaccurate run is a valid measurement (its error is just large): it counts
+        measured = study[(status == "ok") | (status == "inaccurate")]
+        baseline = measured[(measured["method"] == "scipy_dop853")
+                            & np.isclose(measured["tolerance"], 1e-10, rtol=1e-6, atol=0.0)]
         base = baseline[0] if len(baseline) else None
-        rows = []
+        rows, reasons = [], []
         for method in dict.fromkeys(study["method"]):
-            runs = ok[ok["method"] == method]
+            mine = study["method"] == method
+            label = f"{study[mine]['label'][0]} ({_runs_text(int(mine.sum()))})"
+            cell = _status_cell(study[mine], status[mine], data.study_attrs, reasons)
+            runs = measured[measured["method"] == method]
             if len(runs) == 0:
-                rows.append([str(study[study["method"] == method]["label"][0]), "—", "—", "—",
-                             "—", "failed"])
+                rows.append([label, "—", "—", "—", cell])
                 continue
             best = runs[np.argmin(runs["error_max"])]
             matched, speedup = "—", "—"
@@ -241,16 +433,27 @@ class Report(Scene):
                 if len(good):
                     fastest = good[np.argmin(good["wall_time_s"])]
                     matched = (f"{_setting(fastest)}: {fmt_err(float(fastest['error_max']))} in "
-                               f"{float(fastest['wall_time_s']) * 1e3:.3g} ms")
-                    speedup = f"{float(base['wall_time_s']) / float(fastest['wall_time_s']):.3g}×"
-            rows.append([str(runs["label"][0]), matched, speedup,
-                         f"{fmt_err(float(best['error_max']))} ({_setting(best)})",
-                         str(len(runs)), "ok"])
-        notes = []
+                               f"{fmt(float(fastest['wall_time_s']) * 1e3, 3)} ms")
+                    speedup = f"{fmt(float(base['wall_time_s']) / float(fastest['wall_time_s']), 3)}×"
+            rows.append([label, matched, speedup,
+                         f"{fmt_err(float(best['error_max']))} ({_setting(best)})", cell])
+        notes = [f"{_mark(k)} {text}" for k, text in enumerate(reasons, 1)]
         t_study, t_end = data.analysis.get("study_t_end"), data.config.run.t_end
-        if t_study is not None and t_study < t_end:
-            notes.append(f"The study integrates t ∈ [0, {fmt(t_study, 4)}] only (the report's "
-                         f"run goes to {fmt(t_end, 6)}): {cls.study_horizon_reason}")
+        lyapunov = data.analysis.get("lyapunov_time")
+        unit = cls.time_unit_words(data)
+        unit = f" {unit}" if unit else ""
+        if t_study is not None and t_study < t_end and lyapunov is not None:
+            notes.append(f"The study integrates t ∈ [0, {fmt(t_study, 4)}]{unit} only (the "
+                         f"report's run goes to {fmt(t_end, 6)}{unit}): the orbit is chaotic, "
+                         "and the horizon is half its estimated Lyapunov time "
+                         f"T = {fmt(lyapunov, 3)}{unit} "
+                         "(the time over which two orbits started 1e-10 apart separate by a "
+                         "factor e). Past it the error against any reference measures the "
+                         "chaos, not the method; the main run is judged on its invariants.")
+        elif t_study is not None and t_study < t_end:
+            notes.append(f"The study integrates t ∈ [0, {fmt(t_study, 4)}]{unit} only (the "
+                         f"report's run goes to {fmt(t_end, 6)}{unit}): "
+                         f"{cls.study_horizon_reason}")
         if "cached" in study.dtype.names and np.any(study["cached"]):
             cached = study[study["cached"].astype(bool)]
             where = sorted({(str(r["measured_at"]), str(r["machine"])) for r in cached})
@@ -261,24 +464,30 @@ class Report(Scene):
         reference = data.study_attrs.get("reference_kind", "")
         budget = float(data.study_attrs.get("budget_s", math.inf))
         if math.isfinite(budget):
-            notes.append(f"Study budget {budget:g} s of timed runs ([run] study_budget): each "
-                         "method's ladder stops before a rung that would overrun its share, "
-                         "so the tightest tolerances and smallest steps may be absent; scipy "
-                         "DOP853 is always run down to the rtol-1e-10 baseline.")
+            notes.append(f"The study has a budget of {fmt(budget, 3)} s of timed runs, set in "
+                         "the configuration: each method's ladder stops before a rung that "
+                         "would overrun its share, so the tightest tolerances and smallest "
+                         "steps may be absent; scipy DOP853 is always run down to the "
+                         "rtol-1e-10 baseline.")
         over = [m for m in str(data.study_attrs.get("over_budget", "")).split(",") if m]
         if over:
+            labels = {str(m): str(lab) for m, lab in zip(study["method"], study["label"],
+                                                         strict=True)}
             notes.append("No run within the study budget (the loosest tolerance was stopped "
-                         "when it overran its share; raise [run] study_budget to include it): "
-                         + ", ".join(over) + ".")
+                         "when it overran its share; a larger study budget in the "
+                         "configuration includes it): "
+                         + ", ".join(labels.get(m, method_words(m)) for m in over) + ".")
         target = (f"scipy DOP853 at rtol 1e-10 reaches {fmt_err(float(base['error_max']))} in "
-                  f"{float(base['wall_time_s']) * 1e3:.3g} ms" if base is not None
+                  f"{fmt(float(base['wall_time_s']) * 1e3, 3)} ms" if base is not None
                   else "no scipy DOP853 baseline run")
-        table = Table(caption=f"Per method: the fastest run at least as accurate as the baseline "
-                              f"({target}), and the smallest error reached. Reference: "
-                              f"{reference}. Wall time: minimum over repeats after a warm-up; "
-                              "compile time excluded. All runs are in /study/error_vs_runtime.",
+        table = Table(caption=f"Per method (and its number of runs): the fastest run at least "
+                              f"as accurate as the baseline ({target}), the smallest error "
+                              f"reached, and the runs' status (notes below). Reference: "
+                              f"{reference}. Wall time: minimum over repeats "
+                              "after a warm-up; compile time excluded. All runs are in "
+                              "the archive's /study/error_vs_runtime.",
                       header=["method", "fastest at baseline error", "speed-up",
-                              "smallest error", "runs", "status"],
+                              "smallest error", "status"],
                       rows=rows)
         return SectionContent(
             figures=[cls.figure("work_precision", fig,
@@ -310,7 +519,7 @@ def section_colours(sweep, points, legend_members: int):
 
 def section_point_notes(sweep, name: str, kept, not_crossing: str) -> list[str]:
     """The notes of a family's surface of section on its point set ``name`` (``kept``
-    points per member): orbits whose crossings were capped by ``[sweep] max_points`` (the
+    points per member): orbits whose crossings were capped by the sweep's ``max_points`` (the
     members' ``<name>_points`` result counts them all), and ok members with none
     (``not_crossing`` says what they did not do, e.g. "cross the surface")."""
     points = sweep.points[name]
@@ -321,7 +530,8 @@ def section_point_notes(sweep, name: str, kept, not_crossing: str) -> list[str]:
         cap = int(points.attrs.get("max_points", 0))
         notes.append(f"Capped: the archive keeps the first {cap} crossings of each orbit; "
                      f"{len(capped)} of the orbits had more (up to "
-                     f"{int(np.max(total[capped]))}). [sweep] max_points keeps more.")
+                     f"{int(np.max(total[capped]))}); a larger cap on the kept crossings "
+                     "in the configuration's sweep settings keeps more.")
     missing = np.flatnonzero(sweep.ok & (kept == 0))
     if len(missing):
         notes.append(f"{len(missing)} member(s) did not {not_crossing} during the run: "
@@ -336,8 +546,86 @@ def kept_members(data: ArchiveData) -> list[tuple[int, str]]:
                   if name.startswith("member_"))
 
 
+_MARKS = "¹²³⁴⁵⁶⁷⁸⁹"
+
+
+def _mark(k: int) -> str:
+    """The note mark of the ``k``-th reason (1-based): ¹ … ⁹, then (10), (11) …"""
+    return _MARKS[k - 1] if k <= len(_MARKS) else f"({k})"
+
+
+def _minus(text: str) -> str:
+    """A number's text with a typeset minus sign ("−1"), for prose."""
+    return text.replace("-", "−") if not re.search(r"e-\d", text) else \
+        re.sub(r"^-", "−", text)
+
+
+_METHOD_CODES = re.compile(r"^(?:rk\d+|dop\d+|lsoda|bdf)$")
+
+
+def method_words(name: str) -> str:
+    """An integrator's name as a reader says it, when the archive holds no label for it:
+    "scipy_rk45" -> "scipy RK45", "levi_civita_dop853" -> "Levi-Civita + DOP853"."""
+    name = str(name)
+    text = name.replace("levi_civita", "Levi-Civita")
+    scipy = text.startswith("scipy_")
+    parts = [p for p in (text[6:] if scipy else text).split("_") if p]
+    words = [p.upper() if _METHOD_CODES.match(p) else
+             (p.capitalize() if scipy and p.isalpha() else p) for p in parts]
+    return ("scipy " if scipy else "") + " + ".join(words) if words else name
+
+
+def _runs_text(n: int) -> str:
+    return f"{n} run" + ("" if n == 1 else "s")
+
+
+def _scale_text(attrs) -> str:
+    """"1e-3 × the orbit's semi-major axis a (1 m)" from the study table's attrs, or ""."""
+    value = attrs.get("accuracy_scale")
+    if value is None or not math.isfinite(float(value)):
+        return ""
+    unit = str(attrs.get("accuracy_scale_unit", "") or "")
+    return (f"{float(attrs.get('accuracy_tolerance', 1e-3)):g} × "
+            f"{attrs.get('accuracy_scale_what', 'the scene scale')} "
+            f"({fmt(float(value), 3)}{' ' + unit if unit else ''})")
+
+
+def _status_cell(rows, status: np.ndarray, attrs, reasons: list[str]) -> str:
+    """A method's runs' statuses in a table cell ("ok", "9 inaccurate¹, 3 ok"), the
+    reasons appended to ``reasons`` (the numbered notes under the table)."""
+    label = str(rows["label"][0])
+    messages = ([str(m) for m in rows["message"]] if "message" in rows.dtype.names
+                else [""] * len(rows))
+    parts = []
+    for word in ("failed", "inaccurate", "unstable", "ok"):
+        which = np.flatnonzero(status == word)
+        if len(which) == 0:
+            continue
+        count = "" if len(which) == len(rows) else f"{len(which)} "
+        if word == "ok":
+            parts.append(f"{count}ok")
+            continue
+        settings = [_setting(rows[i]) for i in which]
+        span = settings[0] if len(which) == 1 else f"{settings[0]} … {settings[-1]}"
+        if word == "inaccurate":  # one reason for every method: the scene's scale
+            scale = _scale_text(attrs)
+            text = ("inaccurate: the run's max error (the smallest error column shows the "
+                    "best run's) is above " + (scale or "1e-3 of the scene's scale") + ".")
+        else:
+            found = [messages[i] for i in which if messages[i]]
+            why = found[0] if found else ("no reason stored (an archive written before "
+                                          "study rows had a message)")
+            if len(set(found)) > 1:
+                why += f" (and {len(set(found)) - 1} other reason(s), in the archive)"
+            text = f"{label}, {_runs_text(len(which))} {word} ({span}): {why}."
+        if text not in reasons:
+            reasons.append(text)
+        parts.append(f"{count}{word}{_mark(reasons.index(text) + 1)}")
+    return ", ".join(parts)
+
+
 def _setting(row) -> str:
     tol, h = float(row["tolerance"]), float(row["h"])
     if math.isfinite(tol):
-        return f"rtol {tol:.0e}"
-    return f"h {h:.3g}" if math.isfinite(h) else ""
+        return f"rtol {fmt(tol)}"
+    return f"h {fmt(h, 3)}" if math.isfinite(h) else ""

@@ -12,12 +12,52 @@ from typing import Any
 
 import numpy as np
 
-STATUSES = ("ok", "unstable", "failed")
+#: a run's *numerical health*, best first (SPEC.md "HDF5 layout"): "ok"; "inaccurate" (it
+#: ran cleanly, but its error against its reference is not small against the scene's own
+#: scale, :data:`ACCURACY_TOLERANCE`); "unstable" (an invariant drifted, or a named explicit
+#: method met stiffness); "failed" (the solver gave up, or the state is not finite).  An
+#: unstable run is worse than an inaccurate one: its error is not even controlled, and an
+#: inaccurate run's data can still be read (a looser tolerance, a too-long fixed step).
+STATUSES = ("ok", "inaccurate", "unstable", "failed")
+
+#: a run (or a study row) is "inaccurate" when its largest error against its reference
+#: exceeds this fraction of the scene's own scale (:class:`AccuracyScale`; a Kepler orbit's
+#: semi-major axis, say: an error of 1 mm on a 1 m orbit is the limit)
+ACCURACY_TOLERANCE = 1e-3
 
 
 def worst_status(*statuses: str) -> str:
-    """The worst of several statuses: failed > unstable > ok."""
+    """The worst of several statuses: failed > unstable > inaccurate > ok."""
     return max(statuses, key=STATUSES.index, default="ok")
+
+
+@dataclass(frozen=True)
+class AccuracyScale:
+    """The size an error against a reference is measured against (a scene's own scale).
+
+    ``value`` in ``unit``; ``what`` names it ("the orbit's semi-major axis a").  A run's
+    error is small when it is at most :data:`ACCURACY_TOLERANCE` × ``value``.
+    """
+
+    value: float
+    what: str
+    unit: str = ""
+
+    @property
+    def limit(self) -> float:
+        """The largest error that still counts as accurate."""
+        return ACCURACY_TOLERANCE * self.value
+
+    def verdict(self, error: float) -> str:
+        """"inaccurate" when ``error`` (finite) exceeds :attr:`limit`, else "ok"."""
+        return "inaccurate" if math.isfinite(error) and error > self.limit else "ok"
+
+    def reason(self, error: float) -> str:
+        """Why ``error`` is inaccurate: "error 6.2 > 0.001 × the orbit's semi-major axis a
+        (1 m)" (the error is a max over the state's components, which may mix units)."""
+        unit = f" {self.unit}" if self.unit else ""
+        return (f"error {error:.2g} > {ACCURACY_TOLERANCE:g} × {self.what} "
+                f"({self.value:.3g}{unit})")
 
 
 @dataclass
@@ -112,6 +152,8 @@ class Results:
     wall_time_s: float = 0.0
     #: a sweep's family (:class:`reportgen.scene.sweep.SweepData`): ``/sweep``
     sweep: Any = None
+    #: whether :meth:`reportgen.scene.simulation.Simulation.judge_accuracy` has run on it
+    accuracy_judged: bool = False
 
     def flag(self, status: str, message: str) -> None:
         """Raise the scene status to ``status`` (never lowers it) and add a message."""

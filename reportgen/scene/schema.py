@@ -85,8 +85,17 @@ class Quantity:
         circle."""
         if not self.symbol:
             return self.description
-        symbol = re.sub(r"\\dot\{([^{}]*)\}", r"\\mathrm{d}\1/\\mathrm{d}t", self.symbol)
+        # a subscript after the derivative belongs to all of it: (dθ/dt)₀, not dθ/dt₀
+        symbol = re.sub(r"\\dot\{([^{}]*)\}(_\{[^{}]*\}|_\w)",
+                        r"(\\mathrm{d}\1/\\mathrm{d}t)\2", self.symbol)
+        symbol = re.sub(r"\\dot\{([^{}]*)\}", r"\\mathrm{d}\1/\\mathrm{d}t", symbol)
         return f"${symbol}$"
+
+    @property
+    def text(self) -> str:
+        """The symbol as page text (Unicode: "θ₀", "φ̇₀"), or the description when it has
+        none or one that plain text cannot show."""
+        return (symbol_text(self.symbol) if self.symbol else None) or self.description
 
     def label(self, unit: str | None = None) -> str:
         """Axis label: symbol and unit, "$\\dot{\\theta}$ [rad/s]" (``unit`` overrides)."""
@@ -101,6 +110,125 @@ class Quantity:
     def with_name(self, name: str) -> Quantity:
         return Quantity(name, self.symbol, self.unit, self.description, self.dims,
                         self.kind, self.optional)
+
+
+def config_quantity(model, path: str, symbol: str = "") -> Quantity:
+    """The config key ``path`` ("initial.theta") of the pydantic ``model`` as a quantity,
+    for a figure's label: its field's description cut to the quantity, the unit in its
+    description's brackets ("... [rad]"), and ``symbol`` (TeX).  Without ``symbol``, a
+    description that ends in one ("precession rate φ̇0 [rad/s] (or give `steady`)")
+    gives it (``\\dot{\\varphi}_{0}``); what follows the unit (a note on other values,
+    a condition) is not part of the quantity.  A key the model does not declare field by
+    field (a table of free keys) has no description or unit."""
+    field = None
+    for part in path.split("."):
+        fields = getattr(model, "model_fields", None)
+        if not fields or part not in fields:
+            field = None
+            break
+        field = fields[part]
+        model = field.annotation
+        for arg in getattr(model, "__args__", ()) or ():  # X | None
+            if hasattr(arg, "model_fields"):
+                model = arg
+    text = (field.description or "") if field is not None else ""
+    description, unit, found = quantity_of_description(text)
+    return Quantity(path, symbol or found, unit, description or path.rsplit(".", 1)[-1])
+
+
+#: the unit of a config field's description: "[rad/s]" after a space (not a list "[ω1, ω2]")
+_UNIT_BRACKET = re.compile(r"(?:^|\s)\[([^\[\],]+)\]")
+#: a trailing condition on the value: ", 0 ≤ θ < π"
+_CONDITION = re.compile(r",\s*[^,]*[=<>≤≥][^,]*$")
+#: a symbol as config descriptions write it: a letter, an accent, a numeric subscript
+_TEXT_SYMBOL = re.compile(r"([A-Za-zα-ωΑ-Ωϑϕϵ])([\u0307\u0308]?)([0-9₀-₉]*)")
+
+
+def quantity_of_description(text: str) -> tuple[str, str, str]:
+    """(the quantity in words, its unit, its TeX symbol or "") of a config field's
+    description: "precession rate φ̇0 [rad/s] (or give `steady`)" -> ("precession rate
+    φ̇0", "rad/s", ``\\dot{\\varphi}_{0}``); "spin ω3 = ψ̇ + φ̇ cos θ [rad/s]" -> ("spin
+    ω3", "rad/s", ``\\omega_{3}``); "tilt …, 0 ≤ θ < π [rad]" -> ("tilt …", "rad", "")."""
+    found = _UNIT_BRACKET.search(text)
+    head, unit = (text[:found.start()], found.group(1).strip()) if found else (text, "")
+    head = _CONDITION.sub("", head.strip()).strip()
+    defined = re.fullmatch(r"(.+?) = [^,]*", head)  # "spin ω3 = ψ̇ + φ̇ cos θ": spin ω3
+    for name in ([defined.group(1)] if defined else []) + [head]:
+        words = name.rsplit(" ", 1)
+        token = words[-1]
+        # a symbol: "φ̇0", "ω3", "ω", not a lone Latin letter ("velocity, x", "power law V")
+        if (_TEXT_SYMBOL.fullmatch(token) and not (len(token) == 1 and token.isascii())
+                and (len(words) == 1 or not words[0].endswith(","))):
+            return name, unit, tex_of_text_symbol(token)
+    return head, unit, ""
+
+
+_GREEK_LETTERS = {
+    "α": "alpha", "β": "beta", "γ": "gamma", "δ": "delta", "ε": "varepsilon", "ϵ": "epsilon",
+    "ζ": "zeta", "η": "eta", "θ": "theta", "ϑ": "vartheta", "ι": "iota", "κ": "kappa",
+    "λ": "lambda", "μ": "mu", "ν": "nu", "ξ": "xi", "π": "pi", "ρ": "rho", "σ": "sigma",
+    "τ": "tau", "υ": "upsilon", "φ": "varphi", "ϕ": "phi", "χ": "chi", "ψ": "psi",
+    "ω": "omega", "Γ": "Gamma", "Δ": "Delta", "Θ": "Theta", "Λ": "Lambda", "Ξ": "Xi",
+    "Π": "Pi", "Σ": "Sigma", "Φ": "Phi", "Ψ": "Psi", "Ω": "Omega"}
+_TEX_GREEK = {tex: char for char, tex in _GREEK_LETTERS.items()} | {"phi": "φ",
+                                                                    "epsilon": "ε"}
+_TEX_WORDS = {"langle": "⟨", "rangle": "⟩", "infty": "∞", "cdot": "·", "times": "×",
+              "ell": "ℓ", "hbar": "ħ", "nabla": "∇", "partial": "∂", "min": "min",
+              "max": "max", "cos": "cos", "sin": "sin", "ln": "ln", "exp": "exp"}
+_SUBSCRIPT_CHARS = str.maketrans("0123456789+-−=()aehijklmnoprstuvx",
+                                 "₀₁₂₃₄₅₆₇₈₉₊₋₋₌₍₎ₐₑₕᵢⱼₖₗₘₙₒₚᵣₛₜᵤᵥₓ")
+_SUPERSCRIPT_CHARS = str.maketrans("0123456789+-−=()in", "⁰¹²³⁴⁵⁶⁷⁸⁹⁺⁻⁻⁼⁽⁾ⁱⁿ")
+_ACCENTS = {"dot": "\u0307", "ddot": "\u0308", "hat": "\u0302", "bar": "\u0304",
+            "tilde": "\u0303", "vec": "\u20d7"}
+
+
+def tex_of_text_symbol(token: str) -> str:
+    """A symbol as config descriptions write it, as TeX for a figure's mathtext: "φ̇0" ->
+    ``\\dot{\\varphi}_{0}``, "ω3" -> ``\\omega_{3}``, "x" -> ``x``."""
+    m = _TEXT_SYMBOL.fullmatch(token)
+    if m is None:
+        return ""
+    base, accent, sub = m.groups()
+    tex = f"\\{_GREEK_LETTERS[base]}" if base in _GREEK_LETTERS else base
+    if accent:
+        tex = ("\\dot" if accent == "\u0307" else "\\ddot") + "{" + tex + "}"
+    if sub:
+        tex += "_{" + sub.translate(str.maketrans("₀₁₂₃₄₅₆₇₈₉", "0123456789")) + "}"
+    return tex
+
+
+def symbol_text(tex: str) -> str | None:
+    """A TeX symbol as page text, in Unicode: ``\\theta_0`` -> θ₀, ``\\dot{\\phi}_0`` ->
+    φ̇₀, ``v_{x,0}`` -> vₓ,₀, ``\\langle\\dot{\\varphi}\\rangle`` -> ⟨φ̇⟩; None when it
+    holds what plain text cannot show (a fraction, a subscript letter Unicode lacks)."""
+    s = str(tex).strip().strip("$").strip()
+    if not s:
+        return None
+    s = re.sub(r"\\([A-Za-z]+)",
+               lambda m: _TEX_GREEK.get(m.group(1), _TEX_WORDS.get(m.group(1), m.group(0))), s)
+    s = re.sub(r"\\(?:mathrm|mathit|text|operatorname|mathbf)\{([^{}]*)\}", r"\1", s)
+    s = s.replace("\\,", " ").replace("\\ ", " ").replace("\\!", "")
+    for _ in range(3):  # accents, innermost first
+        s = re.sub(r"\\(dot|ddot|hat|bar|tilde|vec)\s*(?:\{([^{}]*)\}|(\S))",
+                   lambda m: (m.group(2) if m.group(2) is not None else m.group(3))
+                   + _ACCENTS[m.group(1)], s)
+    failed = False
+
+    def script(m: re.Match, table) -> str:
+        nonlocal failed
+        body = m.group(1) if m.group(1) is not None else m.group(2)
+        out = body.translate(table)
+        shown = {chr(c) for c in table.values()} | {",", " "}
+        if not set(out) <= shown:  # a character Unicode has no sub/superscript of
+            failed = True
+        return out
+
+    s = re.sub(r"_(?:\{([^{}]*)\}|(\w))", lambda m: script(m, _SUBSCRIPT_CHARS), s)
+    s = re.sub(r"\^(?:\{([^{}]*)\}|(\w))", lambda m: script(m, _SUPERSCRIPT_CHARS), s)
+    s = s.replace("{", "").replace("}", "")
+    if failed or "\\" in s or "_" in s or "^" in s:
+        return None
+    return s
 
 
 #: the time axis of every run

@@ -16,6 +16,15 @@ A kind's ``simulation.py`` subclasses :class:`Simulation`.  The subclass contrac
    method that cannot integrate them before anything runs.
 4. Sweeps: ``sweep_block`` and its friends, for kinds with a compiled ensemble.
 5. ``audit_cases()``: the kind's stiff and extreme cases for ``reportgen audit``.
+6. ``accuracy_scale(reference_size)``: the scene's own scale for the error against a
+   reference (a Kepler orbit's semi-major axis); default the reference's largest value.
+   After ``simulate`` returns, every run with a reference and every study row whose error
+   exceeds :data:`~reportgen.scene.results.ACCURACY_TOLERANCE` of it is "inaccurate"
+   (:meth:`judge_accuracy`, applied to every kind's ``simulate``).  For a chaotic scene
+   (``/analysis`` ``lyapunov_time``) runs are compared with their reference up to that time
+   only: beyond it the error measures the chaos (the invariants' drift still judges them).
+7. Physical behaviour (a sleeping top that tilts away, an escape, chaos) is not a status:
+   store its verdict in words as ``/analysis`` ``behaviour`` (declared by the kind).
 
 Numerics come from ``reportgen.core`` (and the kind's own numerical modules); nothing
 here draws or renders.
@@ -31,7 +40,7 @@ import numpy as np
 from . import sweep as _sweep
 from .base import ProgressFn, Scene
 from .config import SourceConfig
-from .results import AuditCase, Check, Results
+from .results import AccuracyScale, AuditCase, Check, Results, RunRecord
 from .schema import ResultsSchema
 
 if TYPE_CHECKING:
@@ -42,6 +51,51 @@ class Simulation(Scene):
     """Base class of a kind's simulation (see the module docstring for the contract)."""
 
     faces: ClassVar[frozenset[str]] = frozenset({"simulation"})
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        own = cls.__dict__.get("simulate")
+        if own is not None and not getattr(own, "judges_accuracy", False):
+            cls.simulate = _judged(own)
+
+    # -------------------------------------------------------------- accuracy
+    def accuracy_scale(self, reference_size: float) -> AccuracyScale:
+        """The scene's own scale for the error of a run or study row against its reference
+        (contract point 6).  ``reference_size``: the reference's largest |value|, the
+        default.  Kinds override it with a physical size (an orbit's semi-major axis)."""
+        return AccuracyScale(float(reference_size), "the reference's largest |value|")
+
+    def accuracy_horizon(self, results: Results) -> float:
+        """The time up to which a run is compared with its reference: a chaotic scene's
+        Lyapunov time (``/analysis`` ``lyapunov_time``), else the whole run (inf).  A kind
+        whose motion passes near an unstable equilibrium overrides it (a sleeping top
+        below its threshold: one nutation period, up to its first return to the vertical,
+        where any error is amplified again)."""
+        return float(results.analysis.get("lyapunov_time", math.inf))
+
+    def judge_accuracy(self, results: Results) -> None:
+        """Mark "inaccurate" (in place) every run whose largest error against its
+        reference exceeds :data:`~reportgen.scene.results.ACCURACY_TOLERANCE` ×
+        :meth:`accuracy_scale`.  A run stores ``error_max``, ``accuracy_scale`` and
+        ``accuracy_horizon`` attrs.  Runs already worse than "ok" keep their status.  (The
+        study's rows: :meth:`IntegratingSimulation.judge_accuracy`; a kind that does not
+        integrate imports no integrator.)"""
+        horizon = self.accuracy_horizon(results)
+        judged: set[int] = set()
+        for run in results.runs.values():
+            if id(run) in judged or not run.reference:
+                continue
+            judged.add(id(run))
+            error, size = reference_error(run, horizon)
+            if not math.isfinite(size):
+                continue
+            scale = self.accuracy_scale(size)
+            run.attrs.update({"error_max": error, "accuracy_scale": scale.value,
+                              "accuracy_horizon": min(horizon, float(run.t[-1]))})
+            if run.status == "ok" and scale.verdict(error) == "inaccurate":
+                run.attrs["status"] = "inaccurate"
+                run.attrs["message"] = "; ".join(m for m in (run.message, scale.reason(error)
+                                                             + " against its reference") if m)
 
     def results_schema(self) -> ResultsSchema | None:
         """The results this scene stores.  Default: the kind's ``schema``."""
@@ -170,4 +224,42 @@ class Simulation(Scene):
     # --------------------------------------------------- simulate side (physics)
     def simulate(self, progress: ProgressFn | None = None) -> Results:
         raise NotImplementedError
+
+
+def reference_error(run: RunRecord, horizon: float = math.inf) -> tuple[float, float]:
+    """(largest |y - reference| over the run's reference columns and the samples with
+    t <= ``horizon``, the reference's largest |value| there); NaNs when it has none."""
+    columns = [c for c in run.reference if c in run.columns]
+    keep = np.asarray(run.t) <= horizon
+    if not columns or not np.any(keep):
+        return math.nan, math.nan
+    ref = np.column_stack([np.asarray(run.reference[c], dtype=float) for c in columns])[keep]
+    y = np.column_stack([run.column(c) for c in columns])[keep]
+    finite = np.isfinite(ref)
+    if not np.any(finite):
+        return math.nan, math.nan
+    diff = np.abs(y - ref)[finite]
+    error = float(np.max(diff)) if np.all(np.isfinite(diff)) else math.inf
+    return error, float(np.max(np.abs(ref[finite])))
+
+
+def _judged(simulate):
+    """``simulate`` followed by :meth:`Simulation.judge_accuracy` (once per results)."""
+    import functools
+
+    @functools.wraps(simulate)
+    def wrapper(self, *args, **kwargs):
+        depth = self.__dict__.get("_simulate_depth", 0)  # a kind calling super().simulate
+        self._simulate_depth = depth + 1
+        try:
+            results = simulate(self, *args, **kwargs)
+        finally:
+            self._simulate_depth = depth
+        if depth == 0 and isinstance(results, Results) and not results.accuracy_judged:
+            results.accuracy_judged = True
+            self.judge_accuracy(results)
+        return results
+
+    wrapper.judges_accuracy = True
+    return wrapper
 

@@ -11,7 +11,9 @@ Every :class:`Status` member is spelled three ways, all defined here and nowhere
   Status.STEP_UNDERFLOW.code``), which numba freezes into the machine code;
   :meth:`Status.from_code` reads a returned code back;
 * its :attr:`~Status.verdict`, the archived run ``status``: ``"ok"``, ``"unstable"`` or
-  ``"failed"``.
+  ``"failed"``.  (The fourth run status, ``"inaccurate"``, is no solver outcome: a run that
+  ended ok is judged against its reference afterwards,
+  :meth:`reportgen.scene.simulation.Simulation.judge_accuracy`.)
 
 Pure Python (no numba): listing the methods imports this module.
 """

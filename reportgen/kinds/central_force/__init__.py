@@ -11,9 +11,17 @@ exact quadrature and its near-circular limit π/√(2 − n).
 
 from __future__ import annotations
 
+import math
+
+from ...scene.content import fmt as _fmt
 from .config import PRESETS, CentralForceConfig
-from .report import CentralForceReport
+from .report import CentralForceReport, power_potential
 from .simulation import CentralForceSimulation
+
+
+def fmt(x, digits: int = 10) -> str:
+    """A number of a title: :func:`~reportgen.scene.content.fmt` with a true minus sign."""
+    return _fmt(x, digits).replace("-", "−")
 
 
 class CentralForceScene(CentralForceSimulation, CentralForceReport):
@@ -22,3 +30,24 @@ class CentralForceScene(CentralForceSimulation, CentralForceReport):
     summary = "two bodies in a central potential: reduced mass, Noether charge, Kepler checks"
     Config = CentralForceConfig
     presets = PRESETS
+    name_in_words = "Two bodies in a central potential"
+
+    @classmethod
+    def default_title(cls, config):
+        """``Kepler orbit, e = 0.95`` (bound), ``Kepler hyperbola, e = 1.3`` (escaping);
+        the power law and the 1/r³ term named with their numbers."""
+        p, ini = config.params, config.initial
+        if p.potential == "power":
+            return (f"Central potential {power_potential(fmt(p.n, 4))}: two bodies started at "
+                    f"r = {fmt(math.hypot(ini.x, ini.y), 4)} m")
+        mu = p.m1 * p.m2 / (p.m1 + p.m2)
+        r = math.hypot(ini.x, ini.y)
+        energy = 0.5 * mu * (ini.vx ** 2 + ini.vy ** 2) - p.k / r
+        ell = mu * (ini.x * ini.vy - ini.y * ini.vx)
+        e = math.sqrt(max(0.0, 1.0 + 2.0 * energy * ell ** 2 / (mu * p.k ** 2)))
+        if p.potential == "kepler_inverse_cube":
+            return (f"Kepler potential with a 1/r³ force (ε = {fmt(p.epsilon, 4)}): a "
+                    + ("bound rosette" if energy < 0 else "escaping orbit"))
+        if energy < 0:
+            return f"Kepler orbit, e = {fmt(e, 4)}"
+        return f"Kepler {'parabola' if energy == 0 else 'hyperbola'}: escape, e = {fmt(e, 4)}"

@@ -4,6 +4,8 @@ quantities and the period across a family."""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from ...lazy import lazy_module
@@ -15,11 +17,39 @@ from .results import SCHEMA
 plots = lazy_module("reportgen.rendering.plots.gravitation")
 common_plots = lazy_module("reportgen.rendering.plots.common")
 
+#: an exponent as printed: "1.2" -> "¹·²"
+_EXPONENT = str.maketrans("0123456789.-−", "⁰¹²³⁴⁵⁶⁷⁸⁹·⁻⁻")
+
+
+def power_potential(n: str) -> str:
+    """The power-law potential with its exponent set as one: ``V = −k/r¹·²``."""
+    return f"V = −k/r{n.translate(_EXPONENT)}"
+
 
 class CentralForceReport(Report):
     """The central-force sections, drawn from the archive alone."""
 
     schema = SCHEMA
+    gallery_name = "Central force, two bodies"
+    gallery_figures = ("orbit",)
+
+    @classmethod
+    def gallery_headline(cls, data):
+        import math
+
+        from ...scene import gallery
+        a = data.analysis
+        energy = gallery.worst_check(data, "energy")
+        drift = f", energy drift {gallery.distance(energy.rel_error)}" if energy else ""
+        if a.get("potential") == "kepler" and "kepler_position_error_max" in a:
+            return (f"e = {fmt(a['eccentricity'], 3)} orbit, r(t) within "
+                    f"{fmt_err(a['kepler_position_error_max'])} m of Kepler's equation{drift}")
+        if "apsidal_angle_exact" in a and math.isfinite(a.get("apsidal_angle_measured", math.nan)):
+            rel = abs(a["apsidal_angle_measured"] / a["apsidal_angle_exact"] - 1)
+            return (f"apsidal angle {fmt(math.degrees(a['apsidal_angle_measured']), 5)}°, "
+                    f"{gallery.from_reference(rel, 'the exact quadrature')}{drift}")
+        return super().gallery_headline(data)
+
     family_sections = (
         Section("kepler_family", "Period against eccentricity across the family",
                 description="Each bound member's period, measured from its orbit, against "
@@ -62,6 +92,54 @@ class CentralForceReport(Report):
             "their relative difference.")], facts=facts)
 
 
+    #: an eccentricity below this is a circular orbit in the prose
+    CIRCULAR_E = 1e-6
+
+    @classmethod
+    def prose_case(cls, data):
+        """The potential (kepler, power, kepler_inverse_cube), bound or escaping, the conic
+        (circle, ellipse, parabola, hyperbola), whether the orbit closes, and the apsidal
+        advance per radial period, from the archive."""
+        a, p = data.analysis, data.config.params
+        if data.sweep is not None:
+            return {}
+        e = float(a.get("eccentricity", math.nan))
+        bound = a.get("bound") == "yes"
+        conic = ("circle" if e < cls.CIRCULAR_E else "ellipse") if bound else (
+            "parabola" if e == 1.0 else "hyperbola")
+        psi = float(a.get("apsidal_angle_exact", math.nan))
+        r_min, r_max = (float(v) for v in np.asarray(a["turning_points"]))
+        return {"potential": str(p.potential), "bound": bound, "conic": conic,
+                "closed": p.potential == "kepler" and bound, "e": fmt(e, 4),
+                "n": fmt(float(getattr(p, "n", math.nan) or math.nan), 4),
+                "r_min": fmt(r_min, 4), "r_max": fmt(r_max, 4) if math.isfinite(r_max) else "∞",
+                "advance_deg": (f"{math.degrees(2 * psi - 2 * math.pi):.4g}°"
+                                if math.isfinite(psi) else ""),
+                "psi_deg": f"{math.degrees(psi):.5g}°" if math.isfinite(psi) else ""}
+
+    @classmethod
+    def describe(cls, data):
+        """``A bound Kepler ellipse, e = 0.7, a = 1 m: it closes every period T = 6.283
+        s``; an escape by its conic and closest approach; a rosette by its advance."""
+        if data.sweep is not None:
+            return super().describe(data)
+        c, a, p = cls.prose_case(data), data.analysis, data.config.params
+        if c["closed"]:
+            return (f"A bound Kepler {c['conic']}, e = {c['e']}, a = "
+                    f"{fmt(float(a['semi_major_axis']), 4)} m: the relative orbit closes every "
+                    f"period T = {fmt(float(a['period']), 4)} s")
+        pot = {"kepler": "V = −k/r", "power": power_potential(c["n"]),
+               "kepler_inverse_cube": "V = −k/r − ε/r²"}[c["potential"]]
+        if c["potential"] == "kepler_inverse_cube":
+            pot += f" (ε = {fmt(float(p.epsilon), 4)})"
+        if not c["bound"]:
+            return (f"An escaping orbit in {pot}" + (f", a {c['conic']} with e = {c['e']}"
+                                                      if c["potential"] == "kepler" else "")
+                    + f": the bodies come within {c['r_min']} m of each other and fly apart")
+        return (f"A bound orbit in {pot}, r between {c['r_min']} and {c['r_max']} m: a "
+                f"rosette whose pericentre advances {c['advance_deg']} per radial period"
+                if c["advance_deg"] else f"A bound orbit in {pot}")
+
     @classmethod
     def default_sections(cls, data):
         names = [s.name for s in cls.sections]
@@ -76,7 +154,7 @@ class CentralForceReport(Report):
     @classmethod
     def headline(cls, data):
         p, a = data.config.params, data.analysis
-        pot = {"kepler": "V = −k/r", "power": f"V = −k/r^{fmt(p.n)}",
+        pot = {"kepler": "V = −k/r", "power": power_potential(fmt(p.n)),
                "kepler_inverse_cube": f"V = −k/r − ε/r², ε = {fmt(p.epsilon)}"}[p.potential]
         out = [("bodies", f"m1 = {fmt(p.m1)} kg, m2 = {fmt(p.m2)} kg, "
                           f"μ = {fmt(a['reduced_mass'])} kg"),
@@ -86,11 +164,12 @@ class CentralForceReport(Report):
         if "eccentricity" in a:
             out.append(("orbit", f"e = {fmt(a['eccentricity'])}, a = "
                                  f"{fmt(a['semi_major_axis'])} m"
-                        + (f", period {fmt(a['period'], 12)} s" if "period" in a else "")))
+                        + (f", period {fmt(a['period'])} s" if "period" in a else "")))
         if "period_note" in a:
             out.append(("period", a["period_note"]))
         if "kepler_position_error_max" in a:
-            out.append(("max |r − r_Kepler|", f"{fmt_err(a['kepler_position_error_max'])} m"))
+            out.append(("max |Δr| to Kepler's orbit",
+                        f"{fmt_err(a['kepler_position_error_max'])} m"))
         return out
 
     @classmethod
@@ -135,27 +214,29 @@ class CentralForceReport(Report):
                                         curve["effective_potential"], energy=a["energy"],
                                         turning=(r_min, r_max),
                                         circular=(rc, curve["circular_energy"]))
-        facts = [("turning points r_min, r_max", f"{fmt(r_min, 12)} m, {fmt(r_max, 12)} m"),
-                 ("circular orbit at this L", f"r_c = {fmt(rc, 12)} m")]
+        facts = [("turning points rₘᵢₙ, rₘₐₓ", f"{fmt(r_min)} m, {fmt(r_max)} m"),
+                 ("radius of the circular orbit at this L", f"{fmt(rc)} m")]
         return SectionContent(figures=[cls.figure(
-            "effective_potential", fig, "The radial motion in V_eff(r) = V(r) + L²/(2μr²) "
-            "(3.28–3.30): the orbit stays where E ≥ V_eff, between the turning points.")],
+            "effective_potential", fig, "The radial motion in the effective potential "
+            "V(r) + L²/(2μr²) (3.28–3.30): the orbit stays where E is above it, "
+            + ("between the turning points." if a["bound"] == "yes" else
+               "outside its one turning point, and escapes."))],
             facts=facts)
 
     @classmethod
     def section_kepler(cls, data):
         run, a = data.runs["main"], data.analysis
         fig = common_plots.error_against_time(
-            run.t, {"|r − r_Kepler| [m]": a["kepler_position_error"],
+            run.t, {r"$|r - r_{\mathrm{Kepler}}|$ [m]": a["kepler_position_error"],
                     "| |A|/(μk) − e |": a["lrl_eccentricity_error"]}, ylabel="absolute error")
-        rows = [["eccentricity e", fmt(a["eccentricity"], 14), "|A|/(μk) of the initial state"],
-                ["semi-major axis a [m]", fmt(a["semi_major_axis"], 14), "−k/(2E)"],
-                ["period T [s]", fmt(a["period"], 14), "2π√(a³ μ/k) (third law)"]]
+        rows = [["eccentricity e", fmt(a["eccentricity"]), "|A|/(μk) of the initial state"],
+                ["semi-major axis a [m]", fmt(a["semi_major_axis"]), "−k/(2E)"],
+                ["period T [s]", fmt(a["period"]), "2π√(a³ μ/k) (third law)"]]
         if "period_measured" in a:
-            rows.append(["period measured [s]", fmt(a["period_measured"], 14),
+            rows.append(["period measured [s]", fmt(a["period_measured"]),
                          f"rel. diff {fmt_err(abs(a['period_measured'] / a['period'] - 1))}"])
         if "semi_major_axis_measured" in a:
-            rows.append(["(r_min + r_max)/2 measured [m]", fmt(a["semi_major_axis_measured"], 14),
+            rows.append(["(rₘᵢₙ + rₘₐₓ)/2 measured [m]", fmt(a["semi_major_axis_measured"]),
                          "rel. diff " + fmt_err(abs(a["semi_major_axis_measured"]
                                                     / a["semi_major_axis"] - 1))])
         notes = [a["period_measured_note"]] if "period_measured_note" in a else []
@@ -165,8 +246,10 @@ class CentralForceReport(Report):
                                 "change of the LRL vector's length.")],
             tables=[Table(caption="Orbit elements from the initial state and as measured",
                           header=["quantity", "value", "source"], rows=rows)],
-            facts=[("max |r − r_Kepler|", f"{fmt_err(a['kepler_position_error_max'])} m"),
-                   ("max |v − v_Kepler|", f"{fmt_err(a['kepler_velocity_error_max'])} m/s")],
+            facts=[("max |Δr| to Kepler's orbit",
+                    f"{fmt_err(a['kepler_position_error_max'])} m"),
+                   ("max |Δv| to Kepler's orbit",
+                    f"{fmt_err(a['kepler_velocity_error_max'])} m/s")],
             notes=notes)
 
     @classmethod
@@ -176,31 +259,30 @@ class CentralForceReport(Report):
         family = a["apsidal_angle_family"]
         if power:
             near, label = a["apsidal_angle_near_circular"], "exact quadrature at this L"
+            near_label = "near-circular limit π/√(2 − n)"
         else:
             near = a["apsidal_angle_closed_form"]
             label = "exact quadrature (= π/√(1 − 2με/L²) at every e)"
+            near_label = "closed form π/√(1 − 2με/L²)"
         measured = ((a["eccentricity"], a["apsidal_angle_measured"])
                     if "apsidal_angle_measured" in a else None)
         fig = plots.apsidal_angle_family(family["eccentricity"], family["angle"],
                                          near_circular=near, measured=measured,
-                                         exact_label=label)
-        if not power:
-            fig.axes[0].get_lines()[1].set_label("closed form π/√(1 − 2με/L²)")
-            fig.axes[0].legend(loc="best")
-        rows = [["exact, quadrature (Goldstein eq. 3.37)", fmt(a["apsidal_angle_exact"], 13),
+                                         exact_label=label, near_label=near_label)
+        rows = [["exact, quadrature (Goldstein eq. 3.37)", fmt(a["apsidal_angle_exact"]),
                  "—"]]
         if "apsidal_angle_measured" in a:
-            rows.append(["measured from the run", fmt(a["apsidal_angle_measured"], 13),
+            rows.append(["measured from the run", fmt(a["apsidal_angle_measured"]),
                          fmt_err(abs(a["apsidal_angle_measured"] / a["apsidal_angle_exact"]
                                      - 1))])
         if "apsidal_angle_near_circular" in a:
             rows.append(["near-circular limit π/√(2 − n) (L&L §14)",
-                         fmt(a["apsidal_angle_near_circular"], 13),
+                         fmt(a["apsidal_angle_near_circular"]),
                          fmt_err(abs(a["apsidal_angle_near_circular"]
                                      / a["apsidal_angle_exact"] - 1))])
         if "apsidal_angle_closed_form" in a:
             rows.append(["closed form π/√(1 − 2με/L²) (L&L §15)",
-                         fmt(a["apsidal_angle_closed_form"], 13),
+                         fmt(a["apsidal_angle_closed_form"]),
                          fmt_err(abs(a["apsidal_angle_closed_form"]
                                      / a["apsidal_angle_exact"] - 1))])
         notes = [a["apsidal_angle_note"]] if "apsidal_angle_note" in a else []
@@ -214,7 +296,7 @@ class CentralForceReport(Report):
     @classmethod
     def section_invariants(cls, data):
         labels = {"energy": "energy E", "angular_momentum": "angular momentum L",
-                  "lrl_x": "LRL A_x", "lrl_y": "LRL A_y"}
+                  "lrl_x": "LRL vector, x component", "lrl_y": "LRL vector, y component"}
         return cls.invariants_section(data, labels=labels,
                                       caption="Drift of the conserved quantities: E and L "
                                               "relative to their size, the LRL components "

@@ -9,7 +9,7 @@ import numpy as np
 
 from ...lazy import lazy_module
 from ...scene.integration import IntegratingSimulation
-from ...scene.results import AuditCase, Check, Results
+from ...scene.results import AccuracyScale, AuditCase, Check, Results
 from .config import CentralForceConfig
 from .results import SCHEMA
 
@@ -118,6 +118,14 @@ class CentralForceSimulation(IntegratingSimulation):
     def models(self) -> list:
         return [core.model(self.config.params.k, self.mu, self.n, self.epsilon)]
 
+    def accuracy_scale(self, reference_size: float) -> AccuracyScale:
+        """A bound orbit's semi-major axis a: an error of 1e-3 a is the limit of "ok"; an
+        unbound orbit's, the reference's size."""
+        a = self.radial_scales().get("semi_major_axis") if self.bound else None
+        if a is not None and math.isfinite(a) and a > 0:
+            return AccuracyScale(float(a), "the orbit's semi-major axis a", "m")
+        return super().accuracy_scale(reference_size)
+
     def simulate(self, progress=None) -> Results:
         run, p = self.config.run, self.config.params
         (model,) = self.models()
@@ -205,7 +213,7 @@ class CentralForceSimulation(IntegratingSimulation):
         a["kepler_position_error_max"] = float(np.max(err))
         a["kepler_velocity_error_max"] = float(np.max(np.hypot(main["vx"] - vx,
                                                                main["vy"] - vy)))
-        results.checks.append(Check("max |r − r_Kepler| over the run", float(np.max(err)), 0.0,
+        results.checks.append(Check("max position error |Δr| over the run", float(np.max(err)), 0.0,
                                     "m", "Kepler's equation E − e sin E = M (Danby §6.6)",
                                     scale=scale))
         mu, k = self.mu, self.config.params.k
@@ -229,7 +237,7 @@ class CentralForceSimulation(IntegratingSimulation):
                                             "s", "third law T = 2π√(a³/(k/μ)) (3.31)"))
                 a_meas = 0.5 * (float(np.mean(rp)) + float(np.mean(ra)))
                 a["semi_major_axis_measured"] = a_meas
-                results.checks.append(Check("semi-major axis (r_min + r_max)/2 measured", a_meas,
+                results.checks.append(Check("semi-major axis (rₘᵢₙ + rₘₐₓ)/2 measured", a_meas,
                                             el["semi_major_axis"], "m",
                                             "a = −k/(2E) (Goldstein eq. 3.61)"))
         else:
@@ -268,11 +276,11 @@ class CentralForceSimulation(IntegratingSimulation):
                                      "y": np.interp(tp, main.t, main["y"])}
         results.checks.append(Check("apsidal angle measured (pericentre to pericentre / 2)",
                                     0.5 * sweep, exact, "rad",
-                                    "∫ (L/μr²) dr/ṙ from r_min to r_max (Goldstein eq. 3.37)"))
+                                    "∫ (L/μr²) dr/ṙ from rₘᵢₙ to rₘₐₓ (Goldstein eq. 3.37)"))
         t_meas = (tp[-1] - tp[0]) / (tp.size - 1)
         a["period_measured"] = t_meas
         results.checks.append(Check("radial period from pericentre passages", t_meas, period,
-                                    "s", "2 ∫ dr/ṙ from r_min to r_max (Goldstein eq. 3.17)"))
+                                    "s", "2 ∫ dr/ṙ from rₘᵢₙ to rₘₐₓ (Goldstein eq. 3.17)"))
 
     def _apsidal_angle_family(self) -> dict:
         """Exact apsidal angle against eccentricity at this L, from near-circular orbits up

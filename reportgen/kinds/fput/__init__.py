@@ -9,9 +9,15 @@ slow time scale ω (GNI Fig. I.5.2).
 
 from __future__ import annotations
 
+from ...scene.content import fmt as _fmt
 from .config import PRESETS, FputConfig
 from .report import FputReport
 from .simulation import FputSimulation
+
+
+def fmt(x, digits: int = 10) -> str:
+    """A number of a title: :func:`~reportgen.scene.content.fmt` with a true minus sign."""
+    return _fmt(x, digits).replace("-", "−")
 
 
 class FputScene(FputSimulation, FputReport):
@@ -21,3 +27,11 @@ class FputScene(FputSimulation, FputReport):
                "springs, adiabatic invariant (GNI §I.5.1)")
     Config = FputConfig
     presets = PRESETS
+    name_in_words = "Fermi–Pasta–Ulam–Tsingou chain"
+
+    @classmethod
+    def default_title(cls, config):
+        """``Fermi–Pasta–Ulam–Tsingou chain: 3 stiff springs, ω = 50``."""
+        m = config.params.m
+        return (f"Fermi–Pasta–Ulam–Tsingou chain: {m} stiff spring{'s' if m != 1 else ''}, "
+                f"ω = {fmt(config.params.omega, 4)}")

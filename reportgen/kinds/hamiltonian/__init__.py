@@ -14,10 +14,16 @@ time.  ``[transform]`` adds a canonical transformation from a generating functio
 
 from __future__ import annotations
 
+from ...scene.content import fmt as _fmt
 from .config import PRESETS, HamiltonianConfig, _PresetFormulas
 from .report import HamiltonianReport
 from .simulation import HamiltonianSimulation
+from .symbols import symbol_text
 
+
+def fmt(x, digits: int = 10) -> str:
+    """A number of a title: :func:`~reportgen.scene.content.fmt` with a true minus sign."""
+    return _fmt(x, digits).replace("-", "−")
 
 class HamiltonianScene(HamiltonianSimulation, HamiltonianReport):
     kind = "hamiltonian"
@@ -25,6 +31,29 @@ class HamiltonianScene(HamiltonianSimulation, HamiltonianReport):
     summary = "any system written as H(q, p, t) or L(q, q̇, t): derived, compiled, checked"
     Config = HamiltonianConfig
     presets = PRESETS
+    name_in_words = "A system given by its Hamiltonian or Lagrangian"
+    PRESET_WORDS = {"central_potential": "Central potential V = −k/r in spherical coordinates",
+                    "two_centres": "Two fixed centres in elliptic coordinates"}
+
+    @classmethod
+    def default_title(cls, config):
+        """``Lagrangian system in (θ1, θ2): surface of section θ1 = 0``: the preset's
+        words or the formula's kind and coordinates, then what the config adds."""
+        system = config.system
+        words = cls.PRESET_WORDS.get(cls.preset_as_given(config) or "")
+        if words is None:
+            coordinates = ", ".join(symbol_text(q) for q in system.coordinates)
+            words = (f"{'Hamiltonian' if system.H else 'Lagrangian'} system in "
+                     f"({coordinates})")
+        extra = []
+        if config.section is not None:
+            extra.append(f"surface of section {symbol_text(config.section.coordinate)} = "
+                         f"{fmt(config.section.value, 4)}")
+        if config.transform is not None:
+            extra.append("a canonical transformation")
+        if config.hamilton_jacobi is not None and config.preset is None:
+            extra.append("Hamilton–Jacobi separation")
+        return words + (": " + ", ".join(extra) if extra else "")
 
 
 __all__ = ["HamiltonianScene", "_PresetFormulas"]

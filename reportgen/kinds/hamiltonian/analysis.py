@@ -52,7 +52,8 @@ class HamiltonianAnalysis:
                 rows.append([f, g, str(bracket), system.latex(bracket)])
         if rows:
             a["pair_brackets"] = {"f": [r[0] for r in rows], "g": [r[1] for r in rows],
-                                  "bracket": [r[2] for r in rows]}
+                                  "bracket": [r[2] for r in rows],
+                                  "latex": [r[3] for r in rows]}
         # Jacobi: {f,{g,h}} + {g,{h,f}} + {h,{f,g}} = 0 for f, g from the observables (or q1,
         # p1) and h = H; evaluated, not simplified
         # the first pair whose terms do not all vanish (two conserved observables, or
@@ -79,6 +80,7 @@ class HamiltonianAnalysis:
         a["jacobi_max"] = float(np.max(np.abs(numeric.evaluate(sum(terms), sample))))
         a["jacobi_scale"] = scale
         a["jacobi_triple"] = [str(f), str(g), "H"]
+        a["jacobi_triple_latex"] = [system.latex(f), system.latex(g), "H"]
 
     def _legendre_checks(self, a: dict, system, main) -> None:
         """Along the run: p = ∂L/∂q̇ at q̇(q, p), and H = q̇·∂L/∂q̇ − L (Jacobi's energy)."""

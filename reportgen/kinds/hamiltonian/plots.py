@@ -1,44 +1,64 @@
 """Figures of a formula system: coordinates, configuration path, phase portrait, surface of
-section, observables.  Axis labels are the symbols of the config's names, as SymPy typesets
-them (no units: a formula system is in whatever units its author chose)."""
+section, observables.  Axis labels are given by the report: the symbols of the config's
+names with their unit, [rad] for an angle, else the config's own units (:data:`UNITS`: a
+formula system declares none)."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from ...rendering.plots.common import envelope
-from ...rendering.plots.style import CONTEXT, HIGHLIGHT, PALETTE, dots, new_figure, new_figure_grid
+from ...rendering.plots.common import envelope, time_label
+from ...rendering.plots.style import (
+    CONTEXT,
+    HIGHLIGHT,
+    PALETTE,
+    dots,
+    new_figure,
+    new_figure_grid,
+    place_legend,
+)
+from .symbols import symbol_tex
+
+#: the unit of a formula system's quantities (but its angles): the config's own
+UNITS = "config units"
+
+
+def _math(name: str) -> str:
+    """A config name (``p_x2``, ``P_phi``) as mathtext for a legend."""
+    return f"${symbol_tex(name)}$"
 
 
 def coordinates(t, series: dict[str, np.ndarray], *, labels: dict[str, str] | None = None):
     """Each coordinate against time, one panel per coordinate (shared time axis);
-    ``labels``: each panel's axis label by coordinate (default its name)."""
+    ``labels``: each panel's axis label, with its unit, by coordinate (default the name's
+    symbol in :data:`UNITS`)."""
     n = len(series)
     fig, axes = new_figure_grid(n, 1, figsize=(6.8, 1.2 + 1.5 * n), sharex=True)
     axes = axes[:, 0]
     for ax, (name, values), colour in zip(axes, series.items(), PALETTE, strict=False):
         ax.plot(*envelope(t, values), color=colour)
-        ax.set_ylabel((labels or {}).get(name, name))
-    axes[-1].set_xlabel("time t")
+        ax.set_ylabel((labels or {}).get(name, f"{_math(name)} [{UNITS}]"))
+    axes[-1].set_xlabel(time_label(UNITS))
     return fig
 
 
 def configuration(x, y, xname: str, yname: str):
-    """The path in the plane of the first two coordinates."""
+    """The path in the plane of the first two coordinates (``xname``, ``yname``: the axis
+    labels, with their units)."""
     fig, ax = new_figure(figsize=(5.6, 5.0))
     ax.plot(x, y, color=HIGHLIGHT, linewidth=0.8)
     ax.plot([x[0]], [y[0]], "o", color="black", markersize=5, label="start")
     ax.set_xlabel(xname)
     ax.set_ylabel(yname)
-    ax.legend(loc="upper right")
+    place_legend(ax, loc="upper right", outside="right")
     return fig
 
 
 def phase_portrait(q, p, grid_q, grid_p, H, H0: float, qname: str, angle: bool = False, *,
                    labels: tuple[str, str] | None = None):
     """Level curves of H on the grid, the run's level H0 and its orbit (an angle wrapped
-    to (−π, π], the orbit broken where it wraps); ``labels``: the axes' labels (default
-    ``qname`` and ``p_<qname>``)."""
+    to (−π, π], the orbit broken where it wraps); ``labels``: the axes' labels, with their
+    units (default the symbols of ``qname`` and ``p_<qname>`` in :data:`UNITS`)."""
     fig, ax = new_figure(figsize=(6.4, 4.6))
     Q, P = np.meshgrid(grid_q, grid_p)
     finite = H[np.isfinite(H)]
@@ -57,15 +77,16 @@ def phase_portrait(q, p, grid_q, grid_p, H, H0: float, qname: str, angle: bool =
         ax.plot(q, p, color=HIGHLIGHT, linewidth=2.0)
     ax.plot([], [], color=HIGHLIGHT, linewidth=2.0, label=f"this run, H = {H0:.6g}")
     ax.plot([], [], color=CONTEXT, label="other levels of H")
-    xlabel, ylabel = labels or (qname, f"p_{qname}")
+    xlabel, ylabel = labels or (f"{_math(qname)} [{UNITS}]", f"{_math('p_' + qname)} [{UNITS}]")
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
-    ax.legend(loc="upper right")
+    place_legend(ax, loc="upper right", outside="right")
     return fig
 
 
 def poincare(u, v, uname: str, vname: str):
-    """The crossings of the surface of section as points."""
+    """The crossings of the surface of section as points (``uname``, ``vname``: the axis
+    labels, with their units)."""
     fig, ax = new_figure(figsize=(5.8, 5.0))
     ax.plot(u, v, color=HIGHLIGHT,
             **(dots() if len(u) > 400 else {"marker": ".", "markersize": 4.0, "ls": "none"}))
@@ -75,13 +96,13 @@ def poincare(u, v, uname: str, vname: str):
 
 
 def observables(t, series: dict[str, np.ndarray]):
-    """Observables that change, against time."""
+    """Observables that change, against time (``series`` by their legend labels)."""
     fig, ax = new_figure()
-    for (name, values), colour in zip(series.items(), PALETTE, strict=False):
-        ax.plot(*envelope(t, values), color=colour, label=name)
-    ax.set_xlabel("time t")
-    ax.set_ylabel("value")
-    ax.legend(loc="best")
+    for (label, values), colour in zip(series.items(), PALETTE, strict=False):
+        ax.plot(*envelope(t, values), color=colour, label=label)
+    ax.set_xlabel(time_label(UNITS))
+    ax.set_ylabel(f"value [{UNITS}]")
+    place_legend(ax)
     return fig
 
 
@@ -90,11 +111,11 @@ def new_variables(t, series: dict[str, np.ndarray], integrated=None, first: str 
     K (dashed), when given."""
     fig, ax = new_figure()
     for (name, values), colour in zip(series.items(), PALETTE, strict=False):
-        ax.plot(*envelope(t, values), color=colour, label=name)
+        ax.plot(*envelope(t, values), color=colour, label=_math(name))
     if integrated is not None:
         ax.plot(*envelope(t, integrated), color="black", linestyle=(0, (3, 3)), linewidth=1.0,
-                label=f"{first} from K")
-    ax.set_xlabel("time t")
-    ax.set_ylabel("new variables")
-    ax.legend(loc="best")
+                label=f"{_math(first)} from K")
+    ax.set_xlabel(time_label(UNITS))
+    ax.set_ylabel(f"new variables [{UNITS}]")
+    place_legend(ax)
     return fig

@@ -4,14 +4,19 @@ a canonical transformation and the Hamilton–Jacobi comparison, from the archiv
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
+from markupsafe import Markup
 
 from ...lazy import lazy_module
+from ...rendering.equations import equation_html
 from ...scene.base import Section
-from ...scene.content import SectionContent, Table, fmt, fmt_err
+from ...scene.content import SectionContent, fmt, fmt_err
 from ...scene.report import Report, section_colours, section_point_notes
 from .config import JACOBI_SAMPLES, STUDY_STEPS, family_energy
 from .results import SCHEMA
+from .symbols import symbol_tex, symbol_text, symbol_words
 
 common_plots = lazy_module("reportgen.rendering.plots.common")
 plots = lazy_module("reportgen.kinds.hamiltonian.plots")
@@ -22,6 +27,25 @@ class HamiltonianReport(Report):
     """The sections of a formula system, drawn from the archive alone."""
 
     schema = SCHEMA
+    gallery_name = "Hamiltonian and Lagrangian systems"
+    gallery_figures = ("poincare", "poincare_family", "configuration")
+
+    @classmethod
+    def gallery_headline(cls, data):
+        from ...scene import gallery
+        a = data.analysis
+        if gallery.is_family(data):
+            energy = a.get("poincare_edge_energy")
+            members, ok = a.get("sweep_members", 0), a.get("sweep_ok", 0)
+            return (f"{members} orbits on the section"
+                    + (f" at H = {fmt(energy, 5)}" if energy is not None else "")
+                    + (", all ok" if ok == members else f", {ok} ok"))
+        check = gallery.worst_check(data, "H(t_end)")
+        if check is None or "H0" not in a:
+            return super().gallery_headline(data)
+        given = "from L: " if a.get("given") == "L" else ""
+        return f"{given}energy H = {fmt(a['H0'], 5)} conserved to {gallery.distance(check.rel_error)}"
+
     study_horizon_reason = (f"it covers at most {STUDY_STEPS} steps of the main run, since "
                             "long runs would spend most of their time on references, and in a "
                             "chaotic system errors that have grown to the size of the orbit "
@@ -60,6 +84,24 @@ class HamiltonianReport(Report):
     #: samples the Jacobi identity is checked on
     JACOBI_SAMPLES = JACOBI_SAMPLES
 
+    @classmethod
+    def config_quantity(cls, data, path):
+        """A swept initial value ``initial.<q>`` as q(0), in the system's scaled units."""
+        from ...scene.schema import Quantity
+
+        head, _, name = path.partition(".")
+        if head != "initial" or not name:
+            return super().config_quantity(data, path)
+        return Quantity(path, f"{symbol_tex(name)}(0)", "1", f"initial {name}")
+
+    @classmethod
+    def result_quantity(cls, data, name):
+        """A result of a formula system: every quantity is in the author's scaled units."""
+        from ...scene.schema import Quantity
+
+        q = super().result_quantity(data, name)
+        return q if q.unit else Quantity(name, q.symbol, "1", q.description)
+
     @staticmethod
     def symbols(data) -> dict[str, str]:
         """Each state column's symbol for an axis label ("$p_{\\theta}$"), from the TeX
@@ -69,6 +111,31 @@ class HamiltonianReport(Report):
         symbol = {n: f"${t}$" for n, t in zip(names, tex["q"], strict=True)}
         symbol.update({f"p_{n}": f"${t}$" for n, t in zip(names, tex["p"], strict=True)})
         return symbol
+
+    #: the unit of every quantity of a formula system but an angle: the config's own,
+    #: which it does not declare (Hénon–Heiles is scaled; a pendulum's g may be in m/s²)
+    UNITS = "config units"
+
+    @classmethod
+    def axis_labels(cls, data) -> dict[str, str]:
+        """Each state column's axis label: its symbol (:meth:`symbols`) and unit, [rad] for
+        an angle (a coordinate H is 2π-periodic in), else :attr:`UNITS`."""
+        return {n: f"{s} [{cls.unit_of(data, n)}]" for n, s in cls.symbols(data).items()}
+
+    @classmethod
+    def unit_of(cls, data, name: str) -> str:
+        """The unit a state column is printed in: rad for an angle, else :attr:`UNITS`."""
+        return "rad" if name in list(data.analysis.get("angles", [])) else cls.UNITS
+
+    @staticmethod
+    def coordinates(data) -> list[str]:
+        """The coordinates' names: archived with a run, else those of the archived config
+        (a family stores no run's analysis)."""
+        a = data.analysis
+        if "coordinates" in a:
+            return [str(q) for q in a["coordinates"]]
+        system = getattr(data.config, "system", None)
+        return list(getattr(system, "coordinates", None) or [])
 
     @classmethod
     def default_sections(cls, data):
@@ -98,14 +165,15 @@ class HamiltonianReport(Report):
         crossing, key, colour, labels = section_colours(sweep, pts, cls.LEGEND_MEMBERS)
         edge = a.get("poincare_edge")
         fig = section_plots.poincare_family(
-            pts.columns["u"], pts.columns["v"], member, colour, uname, vname,
-            colour_label=key, labels=labels,
+            pts.columns["u"], pts.columns["v"], member, colour,
+            f"${symbol_tex(uname)}$ [{cls.unit_of(data, uname)}]",
+            f"${symbol_tex(vname)}$ [{cls.unit_of(data, vname)}]",
+            colour_label=cls.colour_key_label(data, key), labels=labels,
             edge=None if edge is None else (edge["u"], edge["v"], edge["H"],
                                             a["poincare_edge_energy"]),
             edge_label=None if edge is None else
-            f"{a['poincare_edge_momentum']} = 0 on H = {fmt(a['poincare_edge_energy'], 6)}")
-        which = {"up": f"with {s_col} increasing", "down": f"with {s_col} decreasing",
-                 "both": "in either direction"}[direction]
+            f"${symbol_tex(str(a['poincare_edge_momentum']))}$ = 0 on H = "
+            f"{fmt(a['poincare_edge_energy'])}")
         facts = [("orbits", f"{len(crossing)} of {sweep.size} members cross the surface"),
                  ("crossings drawn", f"{len(member)} ({int(kept[crossing].min())} to "
                                      f"{int(kept[crossing].max())} per orbit)")]
@@ -115,35 +183,174 @@ class HamiltonianReport(Report):
                           fmt_err(float(np.nanmax(h_error)))))
         energy = family_energy(sweep)
         if energy is not None:
-            facts.append(("energy of every orbit", f"H = {fmt(energy, 12)}"))
+            facts.append(("energy of every orbit", f"H = {fmt(energy)}"))
         notes = ["A regular (quasi-periodic) orbit crosses the surface on a closed curve: an "
                  "island around a stable periodic orbit or a curve across the section; a "
                  "chaotic orbit scatters over an area, the chaotic sea between the islands."]
         notes += section_point_notes(sweep, "poincare", kept, "cross the surface")
-        caption = (f"Surface of section {s_col} = {value} crossed {which}: ({uname}, {vname}) "
-                   f"at the crossings of {len(crossing)} orbits, each orbit in its own colour "
-                   + (f"(keyed to {key})" if labels is None else "(legend)")
-                   + (f"; the closed curve: the edge of the allowed region, where "
-                      f"{a['poincare_edge_momentum']} = 0" if edge is not None else "") + ".")
+        caption = (cls.surface_words(data, s_col, value, direction, uname, vname)
+                   + f" at the crossings of {len(crossing)} orbits, each orbit in its own colour "
+                   + (f"(keyed to {cls.config_words(data, key) if key != 'member' else 'its number'})"
+                      if labels is None else "(legend)")
+                   + ("; the closed curve: the edge of the allowed region, where "
+                      + symbol_words(str(a["poincare_edge_momentum"]), cls.coordinates(data))
+                      + " vanishes" if edge is not None else "") + ".")
         return SectionContent(figures=[cls.figure("poincare_family", fig, caption)],
                               facts=facts, notes=notes)
 
+    @classmethod
+    def surface_words(cls, data, s_col: str, value, direction: str, u: str, v: str) -> str:
+        """The surface of section and its plotted columns in words: "Surface of section
+        x = 0 crossed with x increasing: the momentum conjugate to y against y"."""
+        coords = cls.coordinates(data)
+        s = symbol_words(s_col, coords)
+        where = (f"{s} = {fmt(float(value), 4)}" if s_col in coords
+                 else f"where {s} is {fmt(float(value), 4)}")
+        which = {"up": f"with {s} increasing", "down": f"with {s} decreasing",
+                 "both": "in either direction"}[direction]
+        return (f"Surface of section {where} crossed {which}: {symbol_words(v, coords)} "
+                f"against {symbol_words(u, coords)}")
+
     # ------------------------------------------------------------------ report side
+    @classmethod
+    def prose_case(cls, data):
+        """Regular or chaotic (the first word of the archived behaviour verdict, "" when
+        the scene has none: one degree of freedom, or a family), the Lyapunov time, and the
+        surface of section's crossings."""
+        if data.sweep is not None:
+            return {"behaviour": "", "crossings": 0, "lyapunov_time": "",
+                    "tables": {"invariants": [], "brackets": [], "hamilton_jacobi": []}}
+        a = data.analysis
+        behaviour = str(a.get("behaviour", ""))
+        pts = a.get("poincare")
+        return {"behaviour": behaviour.split(":", 1)[0] if behaviour else "",
+                "lyapunov_time": fmt(float(a.get("lyapunov_time", math.nan)), 3),
+                "crossings": len(pts["u"]) if pts is not None else 0,
+                "tables": cls.symbol_tables(data)}
+
+    @classmethod
+    def symbol_tables(cls, data) -> dict[str, list[dict]]:
+        """The tables whose cells are symbols or brackets, by section, for the kind's
+        template to typeset (``symbol_table``: the columns ``tex`` hold TeX): a section's
+        own tables are printed as text, where p_y and A_xy have no spelling.  Each table:
+        ``header``, ``rows``, ``caption``, ``tex``."""
+        a, run = data.analysis, data.runs.get("main")
+        tables: dict[str, list[dict]] = {"invariants": [], "brackets": [], "hamilton_jacobi": []}
+        if run is not None:
+            tables["invariants"].append({
+                "header": ["quantity", "initial value", "max relative drift"],
+                "rows": [[cls.name_tex(data, n), fmt(float(v[0])),
+                          fmt_err(run.attrs.get(f"drift_{n}", math.nan))]
+                         for n, v in run.invariants.items()],
+                "caption": "Conserved quantities (bound for a stable run: relative drift ≤ "
+                           f"{fmt_err(run.attrs.get('drift_bound', math.nan))})",
+                "tex": [0]})
+        observables = [k[len("poisson_"):] for k in a
+                       if k.startswith("poisson_") and not k.endswith(("_latex", "_max"))]
+        if observables:
+            tables["brackets"].append({
+                "header": ["observable f", "{f, H}", "conserved", "max |{f, H}| on the run"],
+                "rows": [[cls.name_tex(data, f), cls.cell_tex(a[f"poisson_{f}_latex"]),
+                          "yes" if a[f"conserved_{f}"] else "no",
+                          fmt_err(a[f"poisson_{f}_max"])] for f in observables],
+                "caption": "{f, H} = Σ ∂f/∂q ∂H/∂p − ∂f/∂p ∂H/∂q, simplified by SymPy "
+                           "(archived in /analysis); f is conserved when {f, H} + ∂f/∂t = 0. "
+                           "The last column evaluates {f, H} along the run.",
+                "tex": [0, 1]})
+        pairs = a.get("pair_brackets")
+        if pairs and "latex" in pairs:
+            tables["brackets"].append({
+                "header": ["bracket", "simplified"],
+                "rows": [[rf"\{{{cls.name_tex(data, f)}, {cls.name_tex(data, g)}\}}",
+                          cls.cell_tex(b)]
+                         for f, g, b in zip(pairs["f"], pairs["g"], pairs["latex"],
+                                            strict=True)],
+                "caption": "Brackets between the observables, simplified.",
+                "tex": [0, 1]})
+        if "hj_constants" in a:
+            tables["hamilton_jacobi"].append({
+                "header": ["constant", "value", "max relative drift"],
+                "rows": [[cls.name_tex(data, k), fmt(v), fmt_err(a["hj_constant_drift"][k])]
+                         for k, v in a["hj_constants"].items()],
+                "caption": "The separated constants at t = 0 and their relative drift along "
+                           "the integration.",
+                "tex": [0]})
+        return tables
+
+    @classmethod
+    def cell_tex(cls, tex) -> str:
+        """A bracket's TeX for a table cell; one too long to read typeset (a cell does not
+        wrap) is said to be so: the archive holds it whole."""
+        tex = str(tex)
+        return tex if len(tex) <= cls.LONGEST_EQUATION // 2 else r"\mathrm{(too\ long;\ archived)}"
+
+    #: what the names of a preset (or of a separation's constants) mean beyond their
+    #: spelling: the central potential's ``L2`` is L², not L with index 2
+    NAMED_SYMBOLS = {"central_potential": {"L2": "L^{2}"}, "central": {"L2": "L^{2}"}}
+
+    @classmethod
+    def name_tex(cls, data, name: str) -> str:
+        """A name's TeX (:func:`symbol_tex`), unless the scene's preset or separation gives
+        it a meaning of its own (:attr:`NAMED_SYMBOLS`)."""
+        for key in (getattr(data.config, "preset", None), data.analysis.get("hj_separation")):
+            if key is not None and str(name) in cls.NAMED_SYMBOLS.get(str(key), {}):
+                return cls.NAMED_SYMBOLS[str(key)][str(name)]
+        return symbol_tex(str(name))
+
+    @classmethod
+    def behaviour(cls, data):
+        """Chaotic or regular, in words from the archived divergence of two orbits started
+        10⁻¹⁰ apart (its growth and, when chaotic, its Lyapunov time)."""
+        a = data.analysis
+        if data.sweep is not None or "separation_growth" not in a:
+            return super().behaviour(data)
+        growth = float(a["separation_growth"])
+        if "lyapunov_time" in a:
+            return (f"chaotic: two orbits 10⁻¹⁰ apart separate by {fmt(growth, 2)}× over the "
+                    f"run, as exp(t/T) with Lyapunov time T ≈ {fmt(float(a['lyapunov_time']), 2)}")
+        return (f"regular: two orbits 10⁻¹⁰ apart separate by only {fmt(growth, 2)}× over the "
+                "run (no exponential divergence)")
+
+    @classmethod
+    def describe(cls, data):
+        """``Hamiltonian in (x, y), 2 degrees of freedom, at H = 0.1667: a chaotic orbit
+        (Lyapunov time ≈ 9.3), 143 crossings of the surface x = 0``."""
+        if data.sweep is not None:
+            return super().describe(data)
+        a, c = data.analysis, cls.prose_case(data)
+        coords = [symbol_text(str(q)) for q in a["coordinates"]]
+        n = len(coords)
+        text = (f"{'Lagrangian' if a['given'] == 'L' else 'Hamiltonian'} in "
+                f"({', '.join(coords)}), {n} degree{'s' if n > 1 else ''} of freedom")
+        if "H0" in a and not a.get("time_dependent", False):
+            text += f", at H = {fmt(float(a['H0']), 4)}"
+        if c["behaviour"] == "chaotic":
+            text += f": a chaotic orbit (Lyapunov time ≈ {c['lyapunov_time']})"
+        elif c["behaviour"] == "regular":
+            text += ": a regular orbit"
+        if c["crossings"]:
+            s_col, value, _ = a["poincare_surface"]
+            text += (f"{',' if c['behaviour'] else ':'} {c['crossings']} crossings of the "
+                     f"surface {symbol_text(str(s_col))} = {fmt(float(value), 4)}")
+        return text
+
     @classmethod
     def headline(cls, data):
         a = data.analysis
         run = data.runs.get("main")
         facts = [("system", f"{'L' if a['given'] == 'L' else 'H'} in "
-                            f"{', '.join(a['coordinates'])} ({len(a['coordinates'])} degree"
+                            f"{', '.join(map(symbol_text, cls.coordinates(data)))} "
+                            f"({len(a['coordinates'])} degree"
                             f"{'s' if len(a['coordinates']) > 1 else ''} of freedom"
                             f"{', separable' if a['separable'] else ''})"),
-                 ("H(0)", fmt(a["H0"], 14))]
+                 ("H(0)", fmt(a["H0"]))]
         if run is not None and "drift_H" in run.attrs:
             facts.append(("relative drift of H", fmt_err(run.attrs["drift_H"])))
         conserved = [k[len("conserved_"):] for k, v in a.items()
                      if k.startswith("conserved_") and v]
-        if conserved:
-            facts.append(("conserved observables", ", ".join(conserved)))
+        if conserved:  # typeset: A_xy has no spelling in text (the headline is not archived)
+            facts.append(("conserved observables", Markup(", ").join(
+                equation_html(cls.name_tex(data, f)) for f in conserved)))
         return facts
 
     @classmethod
@@ -153,25 +360,30 @@ class HamiltonianReport(Report):
         eqs = []
         if a["given"] == "L":
             eqs.append(("Lagrangian", f"L = {tex['L']}"))
-            for q, m in zip(tex["q"], tex["momenta"], strict=True):
-                eqs.append((f"momentum conjugate to {q}", rf"p_{{{q}}} = {m}"))
+            for name, q, m in zip(a["coordinates"], tex["q"], tex["momenta"], strict=True):
+                eqs.append(("momentum conjugate to " + symbol_text(name),
+                            rf"p_{{{q}}} = {m}"))
             for q, v in zip(tex["q"], tex["velocities"], strict=True):
                 eqs.append(("velocity", rf"\dot{{{q}}} = {v}"))
         eqs.append(("Hamiltonian", f"H = {tex['H']}"))
         long = []
         for i, (q, e) in enumerate(zip(tex["q"], tex["qdot"], strict=True)):
             if len(e) > cls.LONGEST_EQUATION:
-                long.append(f"q̇ of {q}")
+                long.append(rf"\dot{{{q}}}")
                 continue
             eqs.append(("Hamilton's equations: q̇ = ∂H/∂p" if i == 0 else "",
                         rf"\dot{{{q}}} = {e}"))
         for i, (p, e) in enumerate(zip(tex["p"], tex["pdot"], strict=True)):
             if len(e) > cls.LONGEST_EQUATION:
-                long.append(f"ṗ of {p}")
+                long.append(rf"\dot{{{p}}}")
                 continue
             eqs.append(("ṗ = −∂H/∂q" if i == 0 else "", rf"\dot{{{p}}} = {e}"))
+        if long:  # named by their left-hand sides; the archive holds them whole
+            eqs.append(("too long to read typeset, not shown (their TeX is archived in "
+                        "/analysis/latex)", r",\ ".join(long)))
         for i, name in enumerate(k[len("observable_"):] for k in tex if k.startswith("observable_")):
-            eqs.append(("observables" if i == 0 else "", f"{name} = {tex['observable_' + name]}"))
+            eqs.append(("observables" if i == 0 else "",
+                        f"{cls.name_tex(data, name)} = {tex['observable_' + name]}"))
         facts = [("H separable (T(p) + V(q))", "yes: symplectic splitting methods apply"
                   if a["separable"] else "no"),
                  ("H depends on t", "yes: H is not conserved" if a["time_dependent"] else "no")]
@@ -181,16 +393,13 @@ class HamiltonianReport(Report):
             facts.append(("max |H − (q̇·∂L/∂q̇ − L)| along the run",
                           f"{fmt_err(a['legendre_energy_error'])} (|H| ≤ "
                           f"{fmt(a['legendre_energy_scale'], 4)})"))
-        notes = [f"Too long to read when typeset, and not shown: {', '.join(long)} (the "
-                 "derivatives of H above; their TeX is in the archive, /analysis/latex)."] \
-            if long else []
-        return SectionContent(facts=facts, equations=eqs, notes=notes)
+        return SectionContent(facts=facts, equations=eqs)
 
     @classmethod
     def section_trajectory(cls, data):
         run = data.runs["main"]
         names = list(data.analysis["coordinates"])
-        symbol = cls.symbols(data)
+        symbol = cls.axis_labels(data)
         figs = [cls.figure("coordinates", plots.coordinates(run.t, {n: run[n] for n in names},
                                                             labels=symbol),
                            "The coordinates against time.")]
@@ -198,10 +407,11 @@ class HamiltonianReport(Report):
             # a long path fills its region with ink: the first CONFIGURATION_SAMPLES show it
             n = min(len(run.t), cls.CONFIGURATION_SAMPLES)
             part = ("" if n == len(run.t) else
-                    f", for t ≤ {fmt(float(run.t[n - 1]), 4)} (of {fmt(float(run.t[-1]), 6)})")
+                    f", for t ≤ {fmt(float(run.t[n - 1]), 4)} (of {fmt(float(run.t[-1]))})")
             figs.append(cls.figure("configuration", plots.configuration(
                 run[names[0]][:n], run[names[1]][:n], symbol[names[0]], symbol[names[1]]),
-                f"The path in the ({names[0]}, {names[1]}) plane of configuration space{part}."))
+                f"The path in the ({symbol_text(names[0])}, {symbol_text(names[1])}) plane of "
+                f"configuration space{part}."))
         return SectionContent(figures=figs)
 
     @classmethod
@@ -210,13 +420,14 @@ class HamiltonianReport(Report):
         a = data.analysis
         q = a["coordinates"][0]
         grid = a["phase_grid"]
-        symbol = cls.symbols(data)
+        symbol = cls.axis_labels(data)
         fig = plots.phase_portrait(run[q], run[f"p_{q}"], grid["q"], grid["p"], grid["H"],
                                    a["H0"], q, angle=q in list(a.get("angles", [])),
                                    labels=(symbol[q], symbol[f"p_{q}"]))
         return SectionContent(figures=[cls.figure(
-            "phase_portrait", fig, f"Level curves of H in the ({q}, p_{q}) plane; the run's "
-                                   "orbit on its level H = H(0) (highlighted).")])
+            "phase_portrait", fig, f"Level curves of H in the plane of {symbol_text(q)} and its "
+                                   "conjugate momentum; the run's orbit on its level H = H(0) "
+                                   "(highlighted).")])
 
     @classmethod
     def section_poincare(cls, data):
@@ -224,17 +435,23 @@ class HamiltonianReport(Report):
         pts = a["poincare"]
         s_col, value, direction = a["poincare_surface"]
         u, v = a["poincare_axes"]
-        symbol = cls.symbols(data)
+        symbol = cls.axis_labels(data)
         fig = plots.poincare(pts["u"], pts["v"], symbol[u], symbol[v])
-        which = {"up": f"with {s_col} increasing", "down": f"with {s_col} decreasing",
-                 "both": "in either direction"}[direction]
         return SectionContent(
             figures=[cls.figure("poincare", fig,
-                                f"Surface of section {s_col} = {value} crossed {which}: "
-                                f"({u}, {v}) at each of the {len(pts['u'])} crossings.")],
+                                cls.surface_words(data, s_col, value, direction, u, v)
+                                + f" at each of the {len(pts['u'])} crossings.")],
             facts=[("crossings", str(len(pts["u"])))],
-            notes=["A regular (quasi-periodic) orbit crosses the surface on a closed curve; a "
-                   "chaotic one scatters over an area. Crossings are located between stored "
+            notes=[{"chaotic": "This orbit is chaotic (its behaviour, above): its crossings "
+                                "scatter over an area of the section instead of lying on a "
+                                "curve, as a regular orbit's would. ",
+                    "regular": "This orbit is regular (quasi-periodic; its behaviour, above): "
+                               "its crossings lie on a closed curve, or a chain of islands, "
+                               "and fill it in as they accumulate. "}.get(
+                       cls.prose_case(data)["behaviour"],
+                       "A regular (quasi-periodic) orbit crosses the surface on a closed "
+                       "curve; a chaotic one scatters over an area. ")
+                   + "Crossings are located between stored "
                    "samples by cubic Hermite interpolation with the derivatives from "
                    "Hamilton's equations."] if len(pts["u"]) else
                   ["The orbit did not cross the surface of section during the run."])
@@ -243,50 +460,38 @@ class HamiltonianReport(Report):
     def section_invariants(cls, data):
         a = data.analysis
         content = cls.invariants_section(
-            data, caption="Relative drift of H and of every conserved quantity: observables "
+            data, labels={n: f"${cls.name_tex(data, n)}$" for n in data.runs["main"].invariants},
+            time_unit=cls.UNITS,
+            caption="Relative drift of H and of every conserved quantity: observables "
                           "whose total time derivative {f, H} + ∂f/∂t simplifies to zero, and "
                           "the momenta of cyclic coordinates.")
+        content.tables = []  # the kind's template typesets it (symbol_tables: its names)
         moving = a.get("observables")
         if moving:
             run = data.runs["main"]
             content.figures.append(cls.figure(
-                "observables", plots.observables(run.t, moving),
+                "observables", plots.observables(
+                    run.t, {f"${cls.name_tex(data, f)}$": v for f, v in moving.items()}),
                 "Observables that are not conserved ({f, H} + ∂f/∂t ≠ 0), against time."))
         return content
 
     @classmethod
     def section_brackets(cls, data):
+        """The cyclic coordinates and the Jacobi identity on the run; the brackets' tables
+        are typeset by the kind's template (:meth:`symbol_tables`)."""
         a = data.analysis
-        rows = []
-        for key, value in a.items():
-            if key.startswith("poisson_") and not key.endswith(("_latex", "_max")):
-                name = key[len("poisson_"):]
-                rows.append([name, value, "yes" if a[f"conserved_{name}"] else "no",
-                             fmt_err(a[f"poisson_{name}_max"])])
-        tables = []
-        if rows:
-            tables.append(Table(
-                caption="{f, H} = Σ ∂f/∂q ∂H/∂p − ∂f/∂p ∂H/∂q, simplified by SymPy (archived as "
-                        "/analysis attrs poisson_<name>); conserved when {f, H} + ∂f/∂t = 0. "
-                        "The last column evaluates {f, H} along the run.",
-                header=["observable f", "{f, H}", "conserved", "max |{f, H}| on the run"],
-                rows=rows))
-        pairs = a.get("pair_brackets")
-        if pairs:
-            tables.append(Table(caption="Brackets between the observables, simplified.",
-                                 header=["f", "g", "{f, g}"],
-                                 rows=[list(r) for r in zip(pairs["f"], pairs["g"],
-                                                            pairs["bracket"], strict=True)]))
-        cyclic = list(a["cyclic"])
-        f, g, h = a["jacobi_triple"]
-        facts = [("cyclic coordinates", ", ".join(cyclic) + " (their momenta "
-                  + ", ".join(f"p_{c}" for c in cyclic) + " are conserved)" if cyclic
-                  else "none"),
+        cyclic = [symbol_text(str(c)) for c in a["cyclic"]]
+        facts = [("cyclic coordinates", ", ".join(cyclic) + (
+                      " (its conjugate momentum is conserved)" if len(cyclic) == 1 else
+                      " (their conjugate momenta are conserved)") if cyclic else "none"),
                  ("Jacobi identity {f,{g,h}} + {g,{h,f}} + {h,{f,g}}",
                   f"max {fmt_err(a['jacobi_max'])} on {cls.JACOBI_SAMPLES} samples of the run "
-                  f"(terms up to {fmt(a['jacobi_scale'], 3)}), f = {f}, g = {g}, h = {h}")]
-        return SectionContent(facts=facts, tables=tables)
-
+                  f"(terms up to {fmt(a['jacobi_scale'], 3)})")]
+        triple = a.get("jacobi_triple_latex")
+        equations = [] if triple is None else [
+            ("the Jacobi identity is checked for", r",\quad ".join(
+                f"{n} = {t}" for n, t in zip("fgh", triple, strict=True)))]
+        return SectionContent(facts=facts, equations=equations)
 
     @classmethod
     def section_transform(cls, data):
@@ -314,8 +519,8 @@ class HamiltonianReport(Report):
             facts.append(("K in closed form", "not found (the old variables are not linear "
                           "in the new ones); K = H + ∂F/∂t is evaluated along the run"))
         caption = ("The new variables along the integrated orbit" +
-                   (f"; dashed: {new[0]} from integrating K's own Hamilton equations from "
-                    "(Q0, P0)." if run is not None else "."))
+                   (f"; dashed: {symbol_text(new[0])} from integrating K's own Hamilton "
+                    "equations from (Q₀, P₀)." if run is not None else "."))
         return SectionContent(figures=[cls.figure("new_variables", fig, caption)],
                               equations=eqs, facts=facts)
 
@@ -325,18 +530,15 @@ class HamiltonianReport(Report):
         hj = a["hamilton_jacobi"]
         run = data.runs["main"]
         fig = common_plots.error_against_time(
-            run.t, {f"|{c}_HJ − {c}|": d for c, d in hj["difference"].items()},
-            time_unit="time units", ylabel="quadrature − integration")
-        rows = [[k, fmt(v, 14), fmt_err(a["hj_constant_drift"][k])]
-                for k, v in a["hj_constants"].items()]
+            run.t, {f"$|{symbol_tex(c)}^{{\\mathrm{{HJ}}}} - {symbol_tex(c)}|$": d
+                    for c, d in hj["difference"].items()},
+            time_unit=cls.UNITS, ylabel="quadrature − integration", unit=cls.UNITS)
         which = ("Kepler's equation for t(r) (∂W/∂E), the argument of latitude (∂W/∂L) and the "
-                 "node (∂W/∂L_z)" if a["hj_separation"] == "central" else
+                 "node (W differentiated by the z-component of L)"
+                 if a["hj_separation"] == "central" else
                  "Charlier's quadratures in the fictitious time dt = m a²(cosh²ξ − cos²η) dτ, "
                  "each coordinate through its turning points")
         return SectionContent(
             figures=[cls.figure("hj_difference", fig,
                                 f"The quadrature solution ({which}) minus the integration.")],
-            tables=[Table(caption="The separated constants at t = 0 and their relative drift "
-                                  "along the integration.",
-                          header=["constant", "value", "max relative drift"], rows=rows)],
             facts=[("max |quadrature − integration|", fmt_err(a["hj_max_difference"]))])

@@ -47,6 +47,13 @@ SCHEMA = ResultsSchema(
     time=TIME,
     invariants=(Q("H", "H", "1", "Hamiltonian", ("t",)),),
     analysis=(
+        # physical behaviour (not the run's numerical status): chaotic or regular
+        _text("behaviour", "physical behaviour: chaotic or regular (two orbits 1e-10 apart)",
+              optional=True),
+        Q("separation_growth", r"\max d/d_0", "1", "growth of the separation of two orbits "
+          "started 1e-10 apart", optional=True),
+        Q("lyapunov_time", r"T_\lambda", "1", "Lyapunov time 1/lambda of a chaotic orbit",
+          optional=True),
         _text("angles", "coordinates H depends on 2 pi-periodically", ("angle",)),
         _text("latex/H", "the Hamiltonian (TeX)"),
         _text("latex/qdot", "Hamilton's equations dq/dt = dH/dp (TeX)", ("coordinate",)),
@@ -67,10 +74,13 @@ SCHEMA = ResultsSchema(
         _text("pair_brackets/f", "first observable of a bracket", ("pair",), optional=True),
         _text("pair_brackets/g", "second observable of a bracket", ("pair",), optional=True),
         _text("pair_brackets/bracket", "{f, g} simplified", ("pair",), optional=True),
+        _text("pair_brackets/latex", "{f, g} simplified (TeX)", ("pair",), optional=True),
         Q("jacobi_max", r"\max|\{f,\{g,h\}\} + \{g,\{h,f\}\} + \{h,\{f,g\}\}|", "1",
           "largest Jacobi-identity sum on samples of the run"),
         Q("jacobi_scale", "", "1", "sum of the largest Jacobi-identity terms"),
         _text("jacobi_triple", "the f, g, h of the Jacobi identity checked", ("triple",)),
+        _text("jacobi_triple_latex", "the f, g, h of the Jacobi identity checked (TeX)",
+              ("triple",), optional=True),
         Q("legendre_momentum_error", r"\max|p - \partial L/\partial\dot{q}|", "1",
           "largest error of the momenta along the run", optional=True),
         Q("legendre_energy_error", r"\max|H - (\dot{q} p - L)|", "1",

@@ -256,9 +256,23 @@ class HamiltonianSimulation(HamiltonianAnalysis, IntegratingSimulation):
         # would spend seconds on references, and errors that have grown to the orbit's size
         # compare nothing
         horizon = run.t_end * min(1.0, STUDY_STEPS / max(int(main.attrs["nsteps"]), 1))
+        if (system.n >= 2 or system.time_dependent) and not self.family_member:
+            # chaotic or regular: a chaotic orbit's study ends before its Lyapunov time
+            horizon = min(horizon, self.divergence(results, model, y0, t))
+            a["behaviour"] = self._chaos_words(a)
         a["study_t_end"] = float(horizon)
         self.study(results, model, y0, np.linspace(0.0, horizon, 201))
         return results
+
+    @staticmethod
+    def _chaos_words(a: dict) -> str:
+        """The behaviour verdict from the divergence of two orbits 1e-10 apart."""
+        if "lyapunov_time" in a:
+            return (f"chaotic: two orbits 1e-10 apart separate by {a['separation_growth']:.1e}"
+                    f"× over the run, as e^(t/T) with Lyapunov time T ≈ "
+                    f"{a['lyapunov_time']:.2g}")
+        return (f"regular: two orbits 1e-10 apart separate by only "
+                f"{a['separation_growth']:.2g}× over the run (no exponential divergence)")
 
     def _transform(self, results, system, main) -> None:
         """New variables along the run, the symplectic condition MᵀJM = J there, K = H +

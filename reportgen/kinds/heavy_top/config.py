@@ -235,15 +235,26 @@ def _preset(initial, t_end, samples, case=None, **extra):
     return out | extra
 
 
-#: the cases of Fig. 4.3 and the sleeping top (explicit keys override)
+#: Fig. 4.3's band: the upper and lower turning circles θ1 = 50°, θ2 = 60° [rad]
+FIG43_BAND = (math.radians(50.0), math.radians(60.0))
+
+#: the cases of Fig. 4.3 and the sleeping top (explicit keys override).  Fig. 4.3 a/b/c
+#: are the three runs of configs/heavy_top_fig4.3.toml: released at rest in θ on the
+#: upper circle θ1 = 50° with the φ̇0, ω3 that band_start solves for so that θ2 = 60°
+#: (cusps: the one spin of the band; loops 1.5 times it; waves halfway between the
+#: smallest wave spin and it); each run goes a full turn round the band (Δφ ≥ 2π)
 PRESETS = {
-    # θ0 = 1 rad, ω3 = 6 rad/s, threshold ω3 = 4 rad/s; steady rates 0.356 and 5.196 rad/s
-    "fig4.3a": _preset({"theta": 1.0, "theta_dot": 0.0, "phi_dot": 1.5, "omega3": 6.0},
-                       30.0, 3000, "loops"),
-    "fig4.3b": _preset({"theta": 1.0, "theta_dot": 0.0, "phi_dot": 0.2, "omega3": 6.0},
-                       30.0, 3000, "waves"),
-    "fig4.3c": _preset({"theta": 1.0, "theta_dot": 0.0, "phi_dot": 0.0, "omega3": 6.0},
-                       30.0, 3000, "cusps"),
+    # T = 1.35342 s, Δφ = 0.283264 rad per period: 23 periods are 31.13 s
+    "fig4.3a": _preset({"theta": FIG43_BAND[0], "theta_dot": 0.0,
+                        "phi_dot": -0.3168071689827444, "omega3": 9.723477700446692},
+                       32.0, 3201, "loops"),
+    # T = 3.33752 s, Δφ = 1.572850 rad: 4 periods are 13.35 s
+    "fig4.3b": _preset({"theta": FIG43_BAND[0], "theta_dot": 0.0,
+                        "phi_dot": 0.26563611133989, "omega3": 4.752971132950242},
+                       14.0, 1401, "waves"),
+    # T = 2.17290 s, Δφ = 0.705923 rad: 9 periods are 19.56 s
+    "fig4.3c": _preset({"theta": FIG43_BAND[0], "theta_dot": 0.0, "phi_dot": 0.0,
+                        "omega3": 6.482318466964461}, 20.0, 2001, "cusps"),
     "sleeping_stable": _preset({"theta": 1e-6, "theta_dot": 0.0, "phi_dot": 0.0,
                                 "omega3": 6.0}, 40.0, 4001,
                                sleeping={"tilt": 1e-6, "t_end": 60.0}),

@@ -9,14 +9,19 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.figure import Figure
 
+from ...rendering.plots import layout
+from ...rendering.plots.layout import Size
 from ...rendering.plots.style import (
     CONTEXT,
+    GREEN,
     HIGHLIGHT,
     REFERENCE,
     SEPARATRIX,
     new_figure,
     new_figure_grid,
+    place_legend,
 )
+from ...scene.content import fmt
 
 
 def _circle_on_sphere(theta, n=361):
@@ -44,9 +49,9 @@ def nutation_locus(axis, theta, *, theta1, theta2, figsize=(8.6, 5.0)):
     uu, vv = np.meshgrid(np.linspace(0, 2 * np.pi, 37), np.linspace(0, np.pi, 19))
     ax3.plot_wireframe(np.cos(uu) * np.sin(vv), np.sin(uu) * np.sin(vv), np.cos(vv),
                        color=CONTEXT, linewidth=0.3, alpha=0.5, rasterized=True)
-    for th in (theta1, theta2):
-        if np.isfinite(th):
-            ax3.plot(*_circle_on_sphere(th), color=REFERENCE, linestyle="--", linewidth=1.0)
+    circles = _turning_circles(theta1, theta2)
+    for th, style, _ in circles:
+        ax3.plot(*_circle_on_sphere(th), linewidth=1.0, **style)
     ax3.plot(axis[:, 0], axis[:, 1], axis[:, 2], color=HIGHLIGHT, linewidth=1.2)
     ax3.scatter([axis[0, 0]], [axis[0, 1]], [axis[0, 2]], color="k", s=15)
     ax3.set_xlabel("x")
@@ -62,11 +67,9 @@ def nutation_locus(axis, theta, *, theta1, theta2, figsize=(8.6, 5.0)):
     safe = np.where(rho > 0, rho, 1.0)
     x = np.where(rho > 0, theta * axis[:, 0] / safe, 0.0)
     y = np.where(rho > 0, theta * axis[:, 1] / safe, 0.0)
-    for th, label in ((theta1, "θ1"), (theta2, "θ2")):
-        if np.isfinite(th):
-            phi = np.linspace(0, 2 * np.pi, 361)
-            ax2.plot(th * np.cos(phi), th * np.sin(phi), color=REFERENCE, linestyle="--",
-                     linewidth=1.0, label=f"turning circle {label} = {th:.4g} rad")
+    phi = np.linspace(0, 2 * np.pi, 361)
+    for th, style, label in circles:
+        ax2.plot(th * np.cos(phi), th * np.sin(phi), linewidth=1.0, label=label, **style)
     ax2.plot(x, y, color=HIGHLIGHT, linewidth=1.0, label="axis path")
     ax2.plot(x[:1], y[:1], "ko", markersize=4, label="start")
     ax2.set_aspect("equal")
@@ -78,15 +81,33 @@ def nutation_locus(axis, theta, *, theta1, theta2, figsize=(8.6, 5.0)):
     return fig
 
 
-def cubic(u, f, *, u1, u2, u3, b_over_a, u0, xlabel="u = cos θ", names=("u1", "u2", "u3"),
-          ratio_label="b/a", ax=None):
+#: line styles of the upper (θ1) and lower (θ2) turning circle in the locus figure
+UPPER_CIRCLE = {"color": REFERENCE, "linestyle": "--"}
+LOWER_CIRCLE = {"color": GREEN, "linestyle": "-."}
+
+
+def _turning_circles(theta1, theta2):
+    """(θ, line style, legend label) of each turning circle to draw: the upper θ1 dashed
+    blue, the lower θ2 dash-dotted green; one circle when they coincide (steady
+    precession: no nutation), none for NaN."""
+    finite = [(th, style, name) for th, style, name in
+              ((theta1, UPPER_CIRCLE, "upper turning circle θ1"),
+               (theta2, LOWER_CIRCLE, "lower turning circle θ2")) if np.isfinite(th)]
+    if len(finite) == 2 and fmt(theta1) == fmt(theta2):
+        return [(theta1, UPPER_CIRCLE, f"turning circle θ1 = θ2 = {fmt(theta1)} rad "
+                                       "(no nutation)")]
+    return [(th, style, f"{name} = {fmt(th)} rad") for th, style, name in finite]
+
+
+def cubic(u, f, *, u1, u2, u3, b_over_a, u0, xlabel="u = cos θ (dimensionless)",
+          names=("u1", "u2", "u3"), ratio_label="b/a", ax=None):
     """f(u) = (1 − u²)(α − βu) − (b − au)² with its roots and the admissible interval.
 
     Near the vertical the scene passes w = 1 − u instead (``xlabel`` says so): the
     roots are then 1 − u2 ≤ 1 − u1 and the picture is mirrored.
     """
     fig, ax = new_figure(ax, figsize=(6.8, 4.4))
-    label = "f(u)" if u[0] <= u3 <= u[-1] else f"f(u)  ({names[2]} = {u3:.6g} off scale)"
+    label = "f(u)" if u[0] <= u3 <= u[-1] else f"f(u)  ({names[2]} = {fmt(u3)} off scale)"
     ax.plot(u, f, color=REFERENCE, label=label)
     ax.axhline(0.0, color="k", linewidth=0.8)
     if np.isfinite(u1) and np.isfinite(u2):
@@ -99,8 +120,8 @@ def cubic(u, f, *, u1, u2, u3, b_over_a, u0, xlabel="u = cos θ", names=("u1", "
         ax.axvline(1.0, color=CONTEXT, linestyle=":", linewidth=1.0)
     if np.isfinite(b_over_a) and u[0] <= b_over_a <= u[-1]:
         ax.axvline(b_over_a, color=SEPARATRIX, linestyle="--", linewidth=1.2,
-                   label=f"{ratio_label} = {b_over_a:.6g}")
-    ax.plot([u0], [0.0], "k|", markersize=14, label=f"start: {u0:.6g}")
+                   label=f"{ratio_label} = {fmt(b_over_a)}")
+    ax.plot([u0], [0.0], "k|", markersize=14, label=f"start: {fmt(u0)}")
     finite = f[np.isfinite(f)]
     if finite.size:
         top = max(float(np.max(finite)), 1e-300)
@@ -115,7 +136,7 @@ def effective_potential(theta, V, *, energy, theta1, theta2, ylabel="V'(θ) [J]"
     """V'(θ) (10.28) with the energy line E' and the turning angles."""
     fig, ax = new_figure(ax, figsize=(6.8, 4.4))
     ax.plot(theta, V, color=REFERENCE, label=ylabel.split(" [")[0])
-    ax.axhline(energy, color=HIGHLIGHT, linestyle="--", label=f"energy {energy:.6g} J")
+    ax.axhline(energy, color=HIGHLIGHT, linestyle="--", label=f"energy {fmt(energy)} J")
     for th, name in ((theta1, "θ1"), (theta2, "θ2")):
         if np.isfinite(th):
             ax.axvline(th, color=CONTEXT, linestyle=":")
@@ -139,7 +160,7 @@ def effective_potential(theta, V, *, energy, theta1, theta2, ylabel="V'(θ) [J]"
 
 
 def time_series(t, theta, theta_closed, phi_dot, u_error, *, theta1, theta2,
-                error_label="|cos θ − closed form|", figsize=(7.0, 7.2)):
+                error_label="|cos θ − closed form|\n(dimensionless)", figsize=(7.0, 7.2)):
     """θ(t) against the closed form, φ̇(t), and |cos θ − closed form|."""
     fig, axes = new_figure_grid(3, 1, figsize=figsize, sharex=True)
     ax = axes[0, 0]
@@ -150,7 +171,9 @@ def time_series(t, theta, theta_closed, phi_dot, u_error, *, theta1, theta2,
         if np.isfinite(th):
             ax.axhline(th, color=CONTEXT, linestyle=":")
     ax.set_ylabel("θ [rad]")
-    ax.legend(loc="upper right")
+    # above the axes: θ(t) fills the band between the circles, peaks in every corner
+    fig.legend(*ax.get_legend_handles_labels(), loc="outside upper center", ncol=2,
+               frameon=False)
     ax = axes[1, 0]
     ax.plot(t, phi_dot, color=HIGHLIGHT)
     ax.axhline(0.0, color="k", linewidth=0.8)
@@ -172,7 +195,7 @@ def steady_rates(omega3, slow, fast, *, omega3_min, omega3_config, rate_config, 
     ax.semilogy(omega3, fast, color=SEPARATRIX, label="fast root")
     if np.isfinite(omega3_min):
         ax.axvline(omega3_min, color=CONTEXT, linestyle=":",
-                   label=f"(10.46): ω3 ≥ {omega3_min:.4g} rad/s")
+                   label=f"(10.46): ω3 ≥ {fmt(omega3_min, 4)} rad/s")
     ax.plot([omega3_config], [abs(rate_config)], "o", color=HIGHLIGHT, markersize=7,
             label="this scene (closed form)")
     if np.isfinite(rate_measured):
@@ -191,16 +214,16 @@ def sleeping_sweep(t, theta, ratios, *, theta_max, figsize=(11.0, 4.6)):
     cmap = _diverging(len(ratios))
     for k, r in enumerate(ratios):
         ax1.semilogy(t, np.maximum(theta[k], 1e-18), color=cmap[k],
-                     label=f"ω3 = {r:.3g} × threshold")
+                     label=f"ω3 = {fmt(r, 3)} × threshold")
     ax1.set_xlabel("time t [s]")
     ax1.set_ylabel("tilt θ [rad]")
-    ax1.legend(loc="lower right", fontsize=8)
     ax1.set_title("growth of a small tilt")
+    place_legend(ax1, loc="lower right", outside="right", fontsize=8)
     colours = [HIGHLIGHT if r < 1 else REFERENCE for r in ratios]
     ax2.scatter(ratios, theta_max, c=colours, zorder=3)
     ax2.set_yscale("log")
     ax2.axvline(1.0, color=SEPARATRIX, linestyle="--", label="ω3² = 4 I1 M g l / I3² (10.50)")
-    ax2.set_xlabel("ω3 / ω3,threshold")
+    ax2.set_xlabel("ω3 / threshold ω3 (dimensionless)")
     ax2.set_ylabel("largest tilt θmax [rad]")
     ax2.set_title("unstable (red) below, stable (blue) above")
     fig.legend(*ax2.get_legend_handles_labels(), loc="outside lower center", ncol=2, fontsize=9,
@@ -243,7 +266,7 @@ def _front_and_back(points, basis):
 
 
 def sphere_locus(ax, axis, *, theta1, theta2, azimuth, elevation=FIG43_ELEVATION,
-                 title=("", "")):
+                 title=("", ""), fontsize=10.0):
     """One panel of Fig. 4.3: the axis path on the unit sphere seen from outside, with the
     turning circles θ1, θ2 (orthographic view; dashed: behind the sphere).
 
@@ -256,8 +279,10 @@ def sphere_locus(ax, axis, *, theta1, theta2, azimuth, elevation=FIG43_ELEVATION
         Turning circles [rad].
     azimuth, elevation : float
         Direction of the viewer [rad]: the azimuth faces the viewer.
-    title : (str, str)
-        Panel label and a second, smaller line.
+    title : (str, str) or None
+        Panel label and a second, smaller line (None: no title; the caller sets it).
+    fontsize : float
+        Size [pt] of the labels of the circles and the vertical.
     """
     basis = _view_basis(azimuth, elevation)
     limb = np.linspace(0.0, 2.0 * np.pi, 361)
@@ -265,30 +290,37 @@ def sphere_locus(ax, axis, *, theta1, theta2, azimuth, elevation=FIG43_ELEVATION
     pole = basis[2][2]  # screen height of the north pole
     ax.plot([0.0, 0.0], [0.0, pole], color=CONTEXT, linestyle=":", linewidth=1.0)
     ax.annotate("z", (0.0, pole), textcoords="offset points", xytext=(4, 2), color="0.35",
-                fontsize=10)
+                fontsize=fontsize)
     psi = np.linspace(0.0, 2.0 * np.pi, 721)
-    for th, name in ((theta1, "θ1"), (theta2, "θ2")):
+    # the upper circle's label above its height, the lower's below: apart on any band
+    for th, name, align in ((theta1, "θ1", "bottom"), (theta2, "θ2", "top")):
         circle = np.column_stack([np.sin(th) * np.cos(psi), np.sin(th) * np.sin(psi),
                                   np.full_like(psi, np.cos(th))])
         (fx, fy), (bx, by) = _front_and_back(circle, basis)
         ax.plot(fx, fy, color=REFERENCE, linewidth=1.0)
         ax.plot(bx, by, color=REFERENCE, linewidth=0.8, linestyle="--", alpha=0.45)
+        # at the height of the circle's right end, right of both circles: clear of the
+        # locus between them
         right = np.array([np.sin(th) * basis[1][0], np.sin(th) * basis[1][1], np.cos(th)])
-        ax.annotate(name, (right @ basis[1], right @ basis[2]), textcoords="offset points",
-                    xytext=(3, 0), color=REFERENCE, fontsize=11, va="center",
-                    annotation_clip=False)
+        ax.annotate(name, (max(np.sin(theta1), np.sin(theta2)), right @ basis[2]),
+                    textcoords="offset points", xytext=(3, 0), color=REFERENCE,
+                    fontsize=fontsize, va=align, annotation_clip=False)
     (fx, fy), (bx, by) = _front_and_back(np.asarray(axis), basis)
     ax.plot(bx, by, color=HIGHLIGHT, linewidth=1.0, linestyle="--", alpha=0.4)
     ax.plot(fx, fy, color=HIGHLIGHT, linewidth=1.5)
-    ax.plot([axis[0] @ basis[1]], [axis[0] @ basis[2]], "o", color="k", markersize=3.5)
+    start = np.asarray(axis)[0]
+    behind = start @ basis[0] < 0.0  # hollow: the release is behind the sphere
+    ax.plot([start @ basis[1]], [start @ basis[2]], "o", color="k", markersize=4.0,
+            markerfacecolor="white" if behind else "k", zorder=4)
     x0, x1, y0, y1 = _cap_limits(theta1, theta2, elevation)
     ax.set_xlim(x0, x1)
     ax.set_ylim(y0, y1)
     ax.set_aspect("equal")
     ax.axis("off")
-    ax.set_title(f"{title[0]}\n", fontsize=13, loc="center")
-    ax.text(0.5, 1.0, title[1], transform=ax.transAxes, ha="center", va="bottom",
-            fontsize=10, color="0.3")
+    if title is not None:
+        ax.set_title(f"{title[0]}\n", fontsize=13, loc="center")
+        ax.text(0.5, 1.0, title[1], transform=ax.transAxes, ha="center", va="bottom",
+                fontsize=10, color="0.3")
 
 
 def _cap_limits(theta1, theta2, elevation):
@@ -304,8 +336,22 @@ def _cap_limits(theta1, theta2, elevation):
             min(max(high, np.cos(elevation)) + 0.1, 1.06))
 
 
-def fig43(loci, *, theta1, theta2, labels, azimuths, elevation=FIG43_ELEVATION, width=9.6):
-    """Fig. 4.3 as printed: the loops, waves and cusps loci on one band, side by side.
+#: Fig. 4.3 in the report: the page's text width [in] (A4 less 16 mm margins), and the
+#: height it may take (a row of three, as printed)
+FIG43_REPORT = Size("report", 7.0, 3.0)
+#: print (only a width asked for): two rows may be as tall as the figure is wide
+FIG43_PRINT_HEIGHT = 1.0
+#: text sizes at report size [pt]: panel label, subtitle and the circles' labels
+FIG43_FONTS = (11.0, 9.0)
+
+
+def fig43(loci, *, theta1, theta2, labels, azimuths, elevation=FIG43_ELEVATION, size=None):
+    """Fig. 4.3 as printed: the loops, waves and cusps loci on one band.
+
+    Laid out for ``size`` (default: the size the export asks for, :func:`layout.requested`,
+    else the report's page width): the panels in the arrangement that makes them largest,
+    a row of three on a 16:9 slide and in the report, 2 + 1 on a printed page; text at
+    ``size.font`` of :data:`FIG43_FONTS`.
 
     Parameters
     ----------
@@ -314,21 +360,46 @@ def fig43(loci, *, theta1, theta2, labels, azimuths, elevation=FIG43_ELEVATION, 
     theta1, theta2 : float
         The band's turning circles [rad], the same in every panel.
     labels : list of (str, str)
-        Panel label and subtitle.
+        Panel label and subtitle (its lines separated by newlines).
     azimuths : list of float
         View azimuth of each panel [rad] (facing the middle of its locus).
     elevation : float
         Height of the viewer above the horizon [rad].
-    width : float
-        Figure width [in]; the height follows from the cap the band needs.
+    size : layout.Size, optional
+        What the figure is drawn for; a height of None: as tall as the panels need, at
+        most ``FIG43_PRINT_HEIGHT`` × the width.
     """
+    size = size or layout.requested() or FIG43_REPORT
+    fill = size.height is not None and size is not FIG43_REPORT  # a slide: the whole box
+    width = size.width
+    height = size.height if size.height is not None else FIG43_PRINT_HEIGHT * width
+    label_pt, sub_pt = (size.font(f) for f in FIG43_FONTS)
+    label_pt = max(label_pt, sub_pt + 2.0)
+    lines = max(1 + label.count("\n") for _, label in labels)
+    pad = 0.06  # [in] around the figure and between a panel and its text
+    head = (1.3 * label_pt + 1.25 * sub_pt * lines) / 72.0 + 2 * pad
     x0, x1, y0, y1 = _cap_limits(theta1, theta2, elevation)
-    panel = width / len(loci)
-    fig = Figure(figsize=(width, panel * (y1 - y0) / (x1 - x0) + 0.7), layout="constrained")
-    axes = fig.subplots(1, len(loci))
-    for ax, axis, label, azimuth in zip(axes, loci, labels, azimuths, strict=True):
+    aspect = (x1 - x0) / (y1 - y0)
+    grid = layout.panel_grid(len(loci), aspect, width - 2 * pad, height - 2 * pad, head=head)
+    w, h = grid.panel, grid.panel / aspect
+    used = grid.rows * (h + head)
+    fig_h = height if fill else used + 2 * pad
+    fig = Figure(figsize=(width, fig_h))
+    # the grid centred in the figure
+    gap_x = (width - grid.cols * w) / (grid.cols + 1)
+    top = fig_h - 0.5 * (fig_h - used)
+    for (row, col), axis, (label, sub), azimuth in zip(grid.slots(len(loci)), loci, labels,
+                                                       azimuths, strict=True):
+        left = gap_x + col * (w + gap_x)
+        bottom = top - (row + 1) * (h + head)
+        ax = fig.add_axes((left / width, bottom / fig_h, w / width, h / fig_h))
         sphere_locus(ax, axis, theta1=theta1, theta2=theta2, azimuth=azimuth,
-                     elevation=elevation, title=label)
+                     elevation=elevation, title=None, fontsize=sub_pt)
+        ax.text(0.5, 1.0 + pad / h, sub, transform=ax.transAxes, ha="center", va="bottom",
+                fontsize=sub_pt, color="0.3", linespacing=1.15)
+        ax.text(0.5, 1.0 + (head - pad) / h, label, transform=ax.transAxes, ha="center",
+                va="top", fontsize=label_pt)
+    layout.mark(fig, size)
     return fig
 
 
@@ -366,12 +437,13 @@ def weierstrass_rectangle(omega, omega_prime, x0, t_end, *, figsize=(5.4, 3.9), 
     ax.plot([start], [wp], "o", color="k", markersize=5, zorder=5)
     ax.annotate("t = 0", (start, wp), textcoords="offset points", xytext=(3, 10), fontsize=9,
                 ha="left", va="center")
-    ax.legend(loc="upper center", fontsize=8.5)
     ax.set_xlim(-0.55 * w, 2.12 * w)
-    ax.set_ylim(-0.25 * wp, 2.12 * wp)
+    # room above the rectangle for the legend, clear of its top edge
+    ax.set_ylim(-0.25 * wp, 2.6 * wp)
     ax.set_xlabel("Re z [s]")
     ax.set_ylabel("Im z [s]")
-    ax.set_title(f"period rectangle of ℘ (the run: {t_end / (2 * omega):.3g} × 2ω)")
+    ax.set_title(f"period rectangle of ℘ (the run: {fmt(t_end / (2 * omega), 3)} × 2ω)")
+    place_legend(ax, loc="upper center", fontsize=8.5)
     return fig
 
 
@@ -421,7 +493,7 @@ def nutation_family(x, *, theta1, theta2, case, xlabel, precession=None, thresho
             ax2.set_ylabel("growth rate of a tilt [1/s]")
             if threshold is not None and np.isfinite(threshold):
                 ax2.axvline(threshold, color=SEPARATRIX, linewidth=1.5,
-                            label=f"sleeping threshold ω3 = {threshold:.4g} rad/s")
+                            label=f"sleeping threshold ω3 = {fmt(threshold, 4)} rad/s")
                 ax2.legend(loc="best", fontsize=8)
         else:
             ax2.plot(x[order], np.asarray(precession)[order], "o-", color=HIGHLIGHT, ms=3)

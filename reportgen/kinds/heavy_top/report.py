@@ -37,6 +37,39 @@ class HeavyTopReport(Report):
     """The heavy top's sections, drawn from the archive alone."""
 
     schema = SCHEMA
+    #: only an unstable sleeping top's study is cut short (its accuracy_horizon)
+    study_horizon_reason = ("one nutation period, up to the top's first return to the "
+                            "vertical: there it passes the unstable equilibrium again, where "
+                            "any error (of a run, and of the reference) grows by about "
+                            "θmax/θ0, so later differences measure that instability, not the "
+                            "method. The run is compared with its closed form over the same "
+                            "period.")
+    gallery_name = "Heavy symmetric top"
+    gallery_figures = ("fig4_3", "loci_family", "nutation_locus")
+
+    @classmethod
+    def gallery_headline(cls, data):
+        from ...scene import gallery
+        if gallery.is_family(data):
+            return gallery.family_headline(data, "spin rates")
+        a = data.analysis
+        steady = gallery.worst_check(data, "steady precession")
+        if steady is not None:
+            exact = "the exact " + gallery.reference_words(steady.source)
+            return (f"steady precession φ̇ = {fmt(steady.value, 5)} rad/s, "
+                    f"{gallery.from_reference(steady.rel_error, exact)}")
+        if a.get("theta1", 1.0) < 1e-3:  # a sleeping top: released next to the vertical
+            stable = bool(a.get("sleeping_stable"))
+            return (f"ω3 = {fmt(a['omega3'], 4)} rad/s, {'above' if stable else 'below'} the "
+                    f"sleeping threshold {fmt(a['sleeping_threshold_omega3'], 4)} rad/s: "
+                    + ("a small tilt stays small" if stable else
+                       f"a small tilt grows at {fmt(a['sleeping_growth_rate'], 3)}/s"))
+        rel = abs(a["nutation_period_measured"] / a["nutation_period"] - 1)
+        if not math.isfinite(rel):
+            return super().gallery_headline(data)
+        return (f"{a['case']}, nutation period {fmt(a['nutation_period'], 5)} s: measured "
+                f"{gallery.from_reference(rel, 'the exact 4K(k²)/√(β(u3−u1))')}")
+
     family_sections = (
         Section("nutation_family", "Nutation band and case across the family",
                 description="Each member's turning circles and case against the swept "
@@ -78,6 +111,61 @@ class HeavyTopReport(Report):
             names.remove("effective_potential")  # V'(θ) is flat-infinite at θ = 0 with b = a
         return names
 
+    #: a start tilted less than this [rad] is a sleeping top (the simulation's SLEEPING_TILT)
+    SLEEPING_TILT = 1e-3
+
+    @classmethod
+    def prose_case(cls, data):
+        """The nutation case (loops, waves, cusps, steady), whether the top sleeps (started
+        within :attr:`SLEEPING_TILT` of the vertical) and on which side of its threshold,
+        which steady root it precesses at, and the band's angles, as printed."""
+        a = data.analysis
+        if data.sweep is not None:
+            return {}
+        w3, threshold = float(a["omega3"]), float(a["sleeping_threshold_omega3"])
+        case = {"case": str(a["case"]), "band": a.get("band") is not None,
+                "sleeping": float(a.get("theta0", math.inf)) < cls.SLEEPING_TILT,
+                "stable": bool(a.get("sleeping_stable", True)),
+                "omega3": fmt(abs(w3), 4), "threshold": fmt(threshold, 4),
+                "ratio": fmt(abs(w3) / threshold, 3) if threshold > 0 else "—",
+                "growth": fmt(float(a.get("sleeping_growth_rate", math.nan)), 3),
+                "theta0": fmt(float(a["theta0"]), 3), "theta1": fmt(float(a["theta1"]), 3),
+                "theta2": fmt(float(a["theta2"]), 3),
+                "theta1_deg": f"{fmt(math.degrees(float(a['theta1'])), 3)}°",
+                "theta2_deg": f"{fmt(math.degrees(float(a['theta2'])), 3)}°",
+                "phi_dot0": fmt(float(a["phi_dot0"]), 4), "root": "", "other": ""}
+        if case["case"] == "steady" and "steady_rate_fast" in a:
+            fast, slow = float(a["steady_rate_fast"]), float(a["steady_rate_slow"])
+            phi = float(a["phi_dot0"])
+            root = "fast" if abs(phi - fast) < abs(phi - slow) else "slow"
+            case.update(root=root, other=fmt(slow if root == "fast" else fast, 4))
+        return case
+
+    @classmethod
+    def describe(cls, data):
+        """``A heavy top spun at ω3 = 6 rad/s in steady precession at θ0 = 57.3°, φ̇ =
+        5.196 rad/s (the fast root of (10.45))``: the scene's case with its numbers."""
+        if data.sweep is not None:
+            return super().describe(data)
+        c, a = cls.prose_case(data), data.analysis
+        if c["band"] and a["band"]["case"] == "all":
+            return (f"Three heavy tops released on the same band, θ from {c['theta1_deg']} to "
+                    f"{c['theta2_deg']}: looping, wavy and cusped nutation (Fig. 4.3)")
+        if c["sleeping"]:
+            side = "above" if c["stable"] else "below"
+            return (f"A top spun at ω3 = {c['omega3']} rad/s, {side} its sleeping threshold "
+                    f"{c['threshold']} rad/s, released at rest {c['theta0']} rad from the "
+                    "vertical")
+        if c["case"] == "steady":
+            return (f"A heavy top spun at ω3 = {c['omega3']} rad/s in steady precession at "
+                    f"θ0 = {c['theta1_deg']}, φ̇ = {c['phi_dot0']} rad/s"
+                    + (f" (the {c['root']} root of (10.45))" if c["root"] else ""))
+        words = {"loops": "looping", "waves": "wavy", "cusps": "cusped"}.get(c["case"], "")
+        period = float(a["nutation_period"])
+        return (f"A heavy top spun at ω3 = {c['omega3']} rad/s, its axis in {words} nutation "
+                f"between θ1 = {c['theta1_deg']} and θ2 = {c['theta2_deg']}"
+                + (f", nutation period {fmt(period, 4)} s" if math.isfinite(period) else ""))
+
     @classmethod
     def headline(cls, data):
         p = data.config.params
@@ -108,12 +196,12 @@ class HeavyTopReport(Report):
         if math.isfinite(a["nutation_period"]):
             extra = " (small-oscillation limit, k² = 0)" if a["case"] in ("steady",
                                                                           "sleeping") else ""
-            facts.append(("nutation period", f"{fmt(a['nutation_period'], 14)} s{extra}"))
+            facts.append(("nutation period", f"{fmt(a['nutation_period'])} s{extra}"))
         if math.isfinite(a["precession_per_period"]):
             facts.append(("precession per nutation period",
-                          f"{fmt(a['precession_per_period'], 14)} rad"))
+                          f"{fmt(a['precession_per_period'])} rad"))
         if "weierstrass_max_difference" in a:
-            facts.append(("℘ form against sn² form", "max |u℘ − u_sn²| = "
+            facts.append(("℘ form against sn² form", "max |Δu| = "
                           f"{fmt_err(a['weierstrass_max_difference'])} on the output grid"))
         facts.append(("sleeping-top threshold", f"ω3 = 2√(I1 M g l)/I3 = "
                       f"{fmt(a['sleeping_threshold_omega3'])} rad/s (10.50)"))
@@ -133,8 +221,8 @@ class HeavyTopReport(Report):
             stop = int(summary["locus_stop"])
             loci.append(np.column_stack([run["axis_x"], run["axis_y"], run["axis_z"]])[:stop])
             labels.append((f"({letter}) {summary['case']}",
-                           f"ω3 = {summary['omega3']:.4g} rad/s, dφ/dt(0) = "
-                           f"{summary['phi_dot0']:.3g} rad/s"))
+                           f"ω3 = {fmt(summary['omega3'], 4)} rad/s\ndφ/dt(0) = "
+                           f"{fmt(summary['phi_dot0'], 3)} rad/s"))
             azimuths.append(summary["view_azimuth"])
         fig = plots.fig43(loci, theta1=band["theta_min"], theta2=band["theta_max"],
                           labels=labels, azimuths=azimuths,
@@ -150,26 +238,33 @@ class HeavyTopReport(Report):
                          f"{fmt_err(roots)} / {fmt_err(span)}", fmt(r["nutation_period"], 5),
                          fmt(r["precession_per_period"], 5),
                          fmt_err(r["weierstrass_max_difference"])])
+        spins = _spins_in_words(band)
         table = Table(
             caption=f"The three runs on θ ∈ [{fmt(band['theta_min'])}, {fmt(band['theta_max'])}] "
                     f"rad: the case the solved release gives (classified from b/a and u1, u2), "
                     f"φ̇ = (b − a cos θ)/sin²θ on the "
                     f"two circles, how far the roots of f(u) and the extremes of the integrated "
                     f"θ(t) are from the band (rad), and the ℘ form against the sn² form. "
-                    f"{band['possible_spins'][0].upper()}{band['possible_spins'][1:]}.",
+                    f"{spins[0].upper()}{spins[1:]}.",
             header=["run (case)", "ω3 [rad/s]", "φ̇0 [rad/s]", "φ̇ on θ1 / θ2 [rad/s]",
-                    "band error: roots / run", "T [s]", "Δφ [rad]", "max |u℘ − u_sn²|"],
+                    "band error: roots / run", "T [s]", "Δφ [rad]", "max |Δu|, ℘ against sn²"],
             rows=rows)
         periods = ", ".join(f"{band['runs'][n]['locus_periods']}" for n in BAND_CASES)
+        turns = ", ".join(fmt(abs(band["runs"][n]["locus_periods"]
+                                  * band["runs"][n]["precession_per_period"]), 4)
+                          for n in BAND_CASES)
         return SectionContent(
             figures=[cls.figure("fig4_3", fig,
                                 f"The symmetry axis on the unit sphere between the turning "
-                                f"circles θ1 = {fmt(band['theta_min'])} rad and θ2 = "
-                                f"{fmt(band['theta_max'])} rad, seen from "
+                                f"circles θ1 = {fmt(band['theta_min'])} rad "
+                                f"({fmt(math.degrees(band['theta_min']), 4)}°) and θ2 = "
+                                f"{fmt(band['theta_max'])} rad "
+                                f"({fmt(math.degrees(band['theta_max']), 4)}°), seen from "
                                 f"{FIG43_ELEVATION_DEG:g}° above the horizon; dashed: "
-                                f"behind the sphere. Each locus starts on the "
-                                f"upper circle (dot) and runs {periods} nutation periods "
-                                f"(loops, waves, cusps).")],
+                                f"behind the sphere. Each locus starts on the upper circle "
+                                f"(dot) and runs {periods} "
+                                f"nutation periods (loops, waves, cusps), the whole number "
+                                f"that takes it once round the band: Δφ = {turns} rad.")],
             tables=[table])
 
     @classmethod
@@ -191,12 +286,13 @@ class HeavyTopReport(Report):
         boundaries = plots._case_boundaries(x[ok], case[ok])
         facts = [("cases", ", ".join(f"{n} {c}" for n, c in zip(names, counts, strict=True)))]
         if boundaries:
-            facts.append(("case changes", "; ".join(f"{left} → {right} near {path} = "
-                                                   f"{fmt(at, 5)}" for at, left, right
-                                                   in boundaries)))
+            facts.append(("case changes", "; ".join(
+                f"{left} → {right} near {cls.config_value_words(data, path, at)}"
+                for at, left, right in boundaries)))
         return SectionContent(figures=[cls.figure(
             "nutation_family", fig, f"Turning circles θ1 (▼) and θ2 (▲) of each member against "
-            f"{path}, by case; the band between them shaded.")], facts=facts)
+            f"{cls.config_words(data, path)}, by case; the band between them shaded.")],
+            facts=facts)
 
     @classmethod
     def section_loci_family(cls, data):
@@ -210,7 +306,8 @@ class HeavyTopReport(Report):
             period = a["nutation_period"][i]
             if not (np.isfinite(period) and period > 0):  # no nutation: the whole run
                 period = math.inf
-            stop, _, azimuth = locus_stretch(run, period, a["precession_per_period"][i])
+            stop, _, azimuth = locus_stretch(run, period, a["precession_per_period"][i],
+                                             full_turn=False)
             loci.append(np.column_stack([run["axis_x"], run["axis_y"], run["axis_z"]])[:stop])
             theta1.append(a["theta1"][i])
             theta2.append(a["theta2"][i])
@@ -235,12 +332,36 @@ class HeavyTopReport(Report):
                  "cusps": "b/a = u2: φ̇ = 0 on the upper circle, cusps (Fig. 4.3c)",
                  "steady": "u1 = u2: no nutation, steady precession on one circle",
                  "sleeping": "the sleeping top: the axis stays vertical"}[a["case"]]
+        # the figure draws one circle where θ1 and θ2 print alike (no nutation)
+        circles = ("; dashed: the turning circle θ1 = θ2" if fmt(a["theta1"]) == fmt(a["theta2"])
+                   else "; dashed: the upper turning circle θ1 = arccos u2, dash-dotted: the "
+                        "lower one θ2 = arccos u1")
+        if not (math.isfinite(a["theta1"]) and math.isfinite(a["theta2"])):
+            circles = ""
         return SectionContent(
             figures=[cls.figure("nutation_locus", fig,
-                                f"Path of the symmetry axis; dashed: the turning circles "
-                                f"θ1 = arccos u2 and θ2 = arccos u1. Case: {label}.")],
+                                f"Path of the symmetry axis{circles}. Case: {label}.")],
             facts=[("case", a["case"]), ("θ1, θ2", f"{fmt(a['theta1'])} rad, "
                                                    f"{fmt(a['theta2'])} rad")])
+
+    @classmethod
+    def _no_period_reason(cls, data) -> str:
+        """Which of the reasons for a missing measured nutation period applies, from the
+        archived run's span and samples against the closed-form period."""
+        period, run = float(data.analysis["nutation_period"]), data.runs.get("main")
+        if not math.isfinite(period) or period <= 0:
+            return "the closed-form nutation period is not finite"
+        if run is None or len(run.t) < 2:
+            return "the archive holds no integrated run to measure it on"
+        periods = float(run.t[-1] - run.t[0]) / period
+        per_period = (len(run.t) - 1) / periods
+        reasons = []
+        if periods < 2:
+            reasons.append(f"the run covers {fmt(periods, 3)} nutation periods, fewer than two")
+        if per_period < MIN_SAMPLES_PER_PERIOD:
+            reasons.append(f"it stores {fmt(per_period, 3)} samples per period, fewer than "
+                           f"{MIN_SAMPLES_PER_PERIOD}")
+        return "; ".join(reasons) or "θ(t) has fewer than two turning points to measure between"
 
     @classmethod
     def section_cubic(cls, data):
@@ -250,44 +371,52 @@ class HeavyTopReport(Report):
             # near the vertical the interval is invisible on [−1, 1]: drawn against w = 1 − u
             fig = plots.cubic(cc["x"], cc["f"], u1=cc["root1"], u2=cc["root2"], u3=cc["root3"],
                               b_over_a=cc["ratio"], u0=cc["start"],
-                              xlabel="1 − u = 1 − cos θ  (near the vertical)",
+                              xlabel="1 − u = 1 − cos θ, near the vertical (dimensionless)",
                               names=("1 − u2", "1 − u1", "1 − u3"), ratio_label="1 − b/a")
         else:
             fig = plots.cubic(cc["x"], cc["f"], u1=cc["root1"], u2=cc["root2"], u3=cc["root3"],
                               b_over_a=cc["ratio"], u0=cc["start"])
         rows = [
-            ["a = I3 ω3/I1 (10.25)", fmt(a["a"], 14), "1/s"],
-            ["b = p_φ/I1 (10.25)", fmt(a["b"], 14), "1/s"],
-            ["α = 2E'/I1 (10.30)", fmt(a["alpha"], 14), "1/s²"],
-            ["β = 2Mgl/I1 (10.30)", fmt(a["beta"], 14), "1/s²"],
-            ["u1, 1 − u1", f"{fmt(a['u1'], 14)}, {fmt(a['one_minus_u1'], 14)}", ""],
-            ["u2, 1 − u2", f"{fmt(a['u2'], 14)}, {fmt(a['one_minus_u2'], 14)}", ""],
-            ["u3", fmt(a["u3"], 14), ""],
-            ["k² = (u2 − u1)/(u3 − u1)", fmt(a["k2"], 14), ""],
+            ["a = I3 ω3/I1 (10.25)", fmt(a["a"]), "1/s"],
+            ["b = p_φ/I1 (10.25)", fmt(a["b"]), "1/s"],
+            ["α = 2E'/I1 (10.30)", fmt(a["alpha"]), "1/s²"],
+            ["β = 2Mgl/I1 (10.30)", fmt(a["beta"]), "1/s²"],
+            ["u1, 1 − u1", f"{fmt(a['u1'])}, {fmt(a['one_minus_u1'])}", ""],
+            ["u2, 1 − u2", f"{fmt(a['u2'])}, {fmt(a['one_minus_u2'])}", ""],
+            ["u3", fmt(a["u3"]), ""],
+            ["k² = (u2 − u1)/(u3 − u1)", fmt(a["k2"]), ""],
         ]
         table = Table(caption="Constants of the motion and the roots of f(u)",
                       header=["quantity", "value", "unit"], rows=rows)
         per = []
-        for name, closed, quad, meas, unit in (
-                ("nutation period T", "nutation_period", "nutation_period_quadrature",
-                 "nutation_period_measured", "s"),
-                ("precession per period Δφ", "precession_per_period", "precession_quadrature",
-                 "precession_measured", "rad")):
+        compared = (("nutation period T", "nutation_period", "nutation_period_quadrature",
+                     "nutation_period_measured", "s"),
+                    ("precession per period Δφ", "precession_per_period",
+                     "precession_quadrature", "precession_measured", "rad"))
+        # a steady or sleeping top has no nutation to measure: no "measured" columns then
+        measured = any(math.isfinite(a[meas]) for _, _, _, meas, _ in compared)
+        for name, closed, quad, meas, unit in compared:
             ref = a[closed]
-            per.append([name + f" [{unit}]", fmt(ref, 14), fmt(a[quad], 14),
-                        fmt_err(abs(a[quad] / ref - 1)) if ref else "—", fmt(a[meas], 14),
-                        fmt_err(abs(a[meas] / ref - 1)) if ref else "—"])
-        table2 = Table(caption="Closed form (Carlson R_F, R_J) against quadrature of "
-                               "∮du/√f(u) and against the integrated trajectory",
-                       header=["quantity", "closed form", "quadrature", "rel. diff.",
-                               "measured", "rel. diff."], rows=per)
+            row = [name + f" [{unit}]", fmt(ref), fmt(a[quad]),
+                   fmt_err(abs(a[quad] / ref - 1)) if ref else "—"]
+            if measured:
+                row += [fmt(a[meas]), fmt_err(abs(a[meas] / ref - 1)) if ref else "—"]
+            per.append(row)
+        table2 = Table(caption="Closed form (Carlson's symmetric integrals of the first and "
+                               "third kind) against quadrature of "
+                               "∮du/√f(u)" + (" and against the integrated trajectory" if measured
+                                              else "; nothing measured: no nutation")
+                               + (" (—: not defined or not measured)"
+                                  if any("—" in c for r in per for c in r) else ""),
+                       header=["quantity", "closed form", "quadrature", "rel. diff."]
+                       + (["measured", "rel. diff."] if measured else []), rows=per)
         notes = []
         if a["case"] in ("steady", "sleeping"):
             notes.append("u1 = u2: f(u) has a double root, there is no nutation. The period "
                          "shown is the small-oscillation limit k² → 0, 2π/√(β(u3 − u1)); "
                          "nothing is measured.")
         if a["case"] == "sleeping" and not a["sleeping_stable"]:
-            notes.append("Unstable sleeping top (u3 ≤ 1): no small-oscillation period (NaN).")
+            notes.append("Unstable sleeping top (u3 ≤ 1): no small-oscillation period (—).")
         sens = a.get("period_sensitivity", math.nan)
         if math.isfinite(sens) and sens > 1e-6:
             notes.append(f"Ill-conditioned: an energy error as small as this run's own drift "
@@ -297,9 +426,7 @@ class HeavyTopReport(Report):
                          f"can agree with the closed form only to about this level.")
         if (not math.isfinite(a["nutation_period_measured"])
                 and a["case"] not in ("steady", "sleeping")):
-            notes.append(f"No measured period: the run covers fewer than two nutation periods "
-                         f"or stores fewer than {MIN_SAMPLES_PER_PERIOD} samples per "
-                         f"period.")
+            notes.append("No measured period: " + cls._no_period_reason(data) + ".")
         facts = [("sensitivity of T to an energy error of the run's drift",
                   fmt_err(sens))] if math.isfinite(sens) else []
         return SectionContent(
@@ -318,22 +445,23 @@ class HeavyTopReport(Report):
                                          "and ℘ degenerates; nothing to show."])
         fig = plots.weierstrass_rectangle(wp["omega"], wp["omega_prime"], wp["x0"], wp["t_end"])
         rows = [
-            ["u = λ℘ + μ: λ = 4/β", fmt(wp["scale"], 14), ""],
-            ["μ = (u1 + u2 + u3)/3", fmt(wp["shift"], 14), ""],
-            ["g2 = 2(e1² + e2² + e3²)", fmt(wp["g2"], 14), "1/s⁴"],
-            ["g3 = 4 e1 e2 e3", fmt(wp["g3"], 14), "1/s⁶"],
-            ["e1 = ℘(ω) = β(u3 − μ)/4", fmt(wp["e1"], 14), "1/s²"],
-            ["e2 = ℘(ω + ω′) = β(u2 − μ)/4", fmt(wp["e2"], 14), "1/s²"],
-            ["e3 = ℘(ω′) = β(u1 − μ)/4", fmt(wp["e3"], 14), "1/s²"],
-            ["ω (real half-period)", fmt(wp["omega"], 14), "s"],
-            ["ω′/i (imaginary half-period)", fmt(wp["omega_prime"], 14), "s"],
-            ["x0: z(0) = x0 + ω′", fmt(wp["x0"], 14), "s"],
+            ["u = λ℘ + μ: λ = 4/β", fmt(wp["scale"]), ""],
+            ["μ = (u1 + u2 + u3)/3", fmt(wp["shift"]), ""],
+            ["g2 = 2(e1² + e2² + e3²)", fmt(wp["g2"]), "1/s⁴"],
+            ["g3 = 4 e1 e2 e3", fmt(wp["g3"]), "1/s⁶"],
+            ["e1 = ℘(ω) = β(u3 − μ)/4", fmt(wp["e1"]), "1/s²"],
+            ["e2 = ℘(ω + ω′) = β(u2 − μ)/4", fmt(wp["e2"]), "1/s²"],
+            ["e3 = ℘(ω′) = β(u1 − μ)/4", fmt(wp["e3"]), "1/s²"],
+            ["ω (real half-period)", fmt(wp["omega"]), "s"],
+            ["ω′/i (imaginary half-period)", fmt(wp["omega_prime"]), "s"],
+            ["x0: z(0) = x0 + ω′", fmt(wp["x0"]), "s"],
             ["nome q = exp(iπω′/ω)", fmt(wp["nome"], 6), ""],
         ]
         table = Table(caption="Invariants, roots and half-periods of ℘ for this top",
                       header=["quantity", "value", "unit"], rows=rows)
         return SectionContent(
-            facts=[("max |u℘(t) − u_sn²(t)| on the output grid", fmt_err(wp["max_difference"])),
+            facts=[("max |Δu(t)|, ℘ form against sn² form, on the output grid",
+                    fmt_err(wp["max_difference"])),
                    ("2ω against 4K(k²)/√(β(u3 − u1))",
                     fmt_err(abs(wp["period"] / a["nutation_period"] - 1.0)))],
             figures=[cls.figure(
@@ -362,7 +490,10 @@ class HeavyTopReport(Report):
         return SectionContent(figures=[cls.figure(
             "effective_potential", fig,
             "V'(θ) = Mgl cos θ + I1 (b − a cos θ)²/(2 sin²θ) (10.28) and the energy E' = "
-            "E − I3ω3²/2: θ oscillates between the turning angles θ1 and θ2 where E' = V'.")])
+            "E − I3ω3²/2: "
+            + ("E' sits at the minimum of V', so θ stays at θ0: steady precession, no "
+               "nutation." if a["case"] == "steady" else
+               "θ oscillates between the turning angles θ1 and θ2 where E' = V'."))])
 
     @classmethod
     def section_time_series(cls, data):
@@ -372,8 +503,8 @@ class HeavyTopReport(Report):
         relative = err["relative_to_width"]
         fig = plots.time_series(run.t, run["theta"], run.reference["theta"], run["phi_dot"],
                                 err["difference"], theta1=a["theta1"], theta2=a["theta2"],
-                                error_label="|Δcos θ| / (u2 − u1)" if relative
-                                else "|cos θ − closed form|")
+                                error_label="|Δcos θ| / (u2 − u1)\n(dimensionless)" if relative
+                                else "|cos θ − closed form|\n(dimensionless)")
         return SectionContent(
             figures=[cls.figure("time_series", fig,
                                 "θ(t) of the integrated attitude against the closed form "
@@ -392,9 +523,9 @@ class HeavyTopReport(Report):
                                  rate_config=a["phi_dot0"], rate_measured=a["mean_phi_dot"])
         table = Table(caption="Steady precession at θ0 (10.45)",
                       header=["root", "φ̇ [rad/s]"],
-                      rows=[["slow  2Mgl/(I3ω3 + √D)", fmt(a["steady_rate_slow"], 14)],
-                            ["fast  (I3ω3 + √D)/(2 I1 cos θ0)", fmt(a["steady_rate_fast"], 14)],
-                            ["mean φ̇ of the integration", fmt(a["mean_phi_dot"], 14)]])
+                      rows=[["slow  2Mgl/(I3ω3 + √D)", fmt(a["steady_rate_slow"])],
+                            ["fast  (I3ω3 + √D)/(2 I1 cos θ0)", fmt(a["steady_rate_fast"])],
+                            ["mean φ̇ of the integration", fmt(a["mean_phi_dot"])]])
         return SectionContent(
             figures=[cls.figure("steady_rates", fig,
                                 "The two steady precession rates φ̇ = [I3ω3 ± √(I3²ω3² − "
@@ -435,3 +566,18 @@ class HeavyTopReport(Report):
                 " The reduced equations hold p_φ and p_ψ constant by construction (only "
                 "round-off shows): here the energy's drift measures the integration error."
                 if data.runs["main"].attrs.get("formulation") == "reduced" else ""))
+
+
+def _spins_in_words(band) -> str:
+    """Which spins give which case on the archived band, in words at the report's
+    6 figures (the config's error messages give 10: core.heavy_top_theory.BandSpins)."""
+    wc = fmt(band["omega3_cusps"])
+    sigma = band["sigma"]
+    if sigma > 0.0:
+        waves = f"|ω3| ≥ {fmt(band['omega3_waves_min'])} rad/s"
+    elif sigma < 0.0:
+        waves = "any ω3"
+    else:
+        waves = f"0 < |ω3| < {wc} rad/s"
+    return (f"on the band [{fmt(band['theta_min'])}, {fmt(band['theta_max'])}] rad cusps "
+            f"need |ω3| = {wc} rad/s, loops |ω3| > {wc} rad/s, waves {waves}")

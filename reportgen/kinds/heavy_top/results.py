@@ -133,6 +133,8 @@ SCHEMA = ResultsSchema(
           kind="bool"),
         Q("sleeping_growth_rate", r"\gamma", "1/s",
           "linear growth rate of a tilt of the sleeping top"),
+        Q("behaviour", "", "", "physical behaviour of a sleeping top: stable or unstable "
+          "(not the run's numerical status)", kind="str", optional=True),
         Q("u_max_error", r"\max|\Delta u|", "1",
           "largest difference of cos theta from the closed form"),
         Q("mean_phi_dot", r"\langle\mathrm{d}\varphi/\mathrm{d}t\rangle", "rad/s",

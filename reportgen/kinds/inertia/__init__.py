@@ -9,9 +9,32 @@ the tensor is full and the principal axes come out of the diagonalization.
 
 from __future__ import annotations
 
+from ...scene.content import fmt as _fmt
 from .config import PRESETS, InertiaConfig
 from .report import InertiaReport
 from .simulation import InertiaSimulation
+
+
+def fmt(x, digits: int = 10) -> str:
+    """A number of a title: :func:`~reportgen.scene.content.fmt` with a true minus sign."""
+    return _fmt(x, digits).replace("-", "−")
+
+
+def shape_in_words(shape) -> str:
+    """A ``[shape]`` table in words with its numbers: ``a solid cone (M = 1 kg, R = 0.5 m,
+    h = 2 m)`` (shared with ``rigid_body``)."""
+    def n(key: str) -> str:
+        return fmt(float(getattr(shape, key)), 4)
+
+    if shape.type == "points":
+        count = len(shape.masses)
+        return f"{count} point mass{'es' if count != 1 else ''}"
+    if shape.type in ("cone", "cylinder"):
+        size = f"R = {n('radius')} m, h = {n('height')} m"
+    else:
+        word = {"box": "sides", "ellipsoid": "semi-axes", "octahedron": "half-diagonals"}
+        size = f"{word[shape.type]} {n('a')}, {n('b')}, {n('c')} m"
+    return f"a solid {shape.type} (M = {n('mass')} kg, {size})"
 
 
 class InertiaScene(InertiaSimulation, InertiaReport):
@@ -20,3 +43,13 @@ class InertiaScene(InertiaSimulation, InertiaReport):
     summary = "inertia tensor of a shape or point set, principal axes, stable spin axes"
     Config = InertiaConfig
     presets = PRESETS
+    name_in_words = "Inertia tensor"
+
+    @classmethod
+    def default_title(cls, config):
+        """``Inertia of a solid cone (M = 1 kg, R = 0.5 m, h = 2 m), tilted``."""
+        shape = config.shape
+        return (f"Inertia of {shape_in_words(shape)}"
+                + (", tilted" if shape.euler_angles is not None else "")
+                + (", about (" + ", ".join(fmt(float(x), 4) for x in shape.about) + ") m"
+                   if shape.about is not None else ""))

@@ -81,7 +81,7 @@ class Box(_ShapeBase):
                f"{fmt(self.c)} m"
 
     def closed_form_source(self):
-        return "I_xx = M(b² + c²)/12, cyclic (Landau & Lifshitz §32 Problem 2)"
+        return "Iₓₓ = M(b² + c²)/12, cyclic (Landau & Lifshitz §32 Problem 2)"
 
 
 class Cylinder(_ShapeBase):
@@ -116,7 +116,7 @@ class Ellipsoid(_ShapeBase):
                f"{fmt(self.b)}, {fmt(self.c)} m"
 
     def closed_form_source(self):
-        return "I_xx = M(b² + c²)/5, cyclic (Landau & Lifshitz §32 Problem 2)"
+        return "Iₓₓ = M(b² + c²)/5, cyclic (Landau & Lifshitz §32 Problem 2)"
 
 
 class Octahedron(_ShapeBase):
@@ -134,7 +134,7 @@ class Octahedron(_ShapeBase):
                f"{fmt(self.b)}, {fmt(self.c)} m"
 
     def closed_form_source(self):
-        return "I_xx = M(b² + c²)/10, cyclic (exercise 4.9; Dirichlet integral)"
+        return "Iₓₓ = M(b² + c²)/10, cyclic (exercise 4.9; Dirichlet integral)"
 
 
 class Points(_ShapeBase):

@@ -4,9 +4,11 @@ parallel-axis shift and the stability table (:func:`stability_table_section`, sh
 
 from __future__ import annotations
 
+import math
+
 from ...lazy import lazy_module
 from ...scene.base import Section
-from ...scene.content import SectionContent, Table, fmt, fmt_err
+from ...scene.content import SectionContent, Table, fmt, fmt_err, fmt_matrix
 from ...scene.report import Report
 from .results import SCHEMA
 
@@ -17,6 +19,22 @@ class InertiaReport(Report):
     """The inertia kind's sections, drawn from the archive alone."""
 
     schema = SCHEMA
+    gallery_name = "Inertia tensor"
+    gallery_figures = ("inertia_ellipsoid",)
+
+    @classmethod
+    def gallery_headline(cls, data):
+        import numpy as np
+
+        from ...scene import gallery
+        moments = np.asarray(data.analysis.get("principal_moments", ()), dtype=float)
+        if moments.size != 3 or not np.all(np.isfinite(moments)):
+            return super().gallery_headline(data)
+        check = gallery.worst_check(data, "principal moment")
+        text = f"principal moments {', '.join(fmt(float(m), 5) for m in moments)} kg m²"
+        return text + (f", {gallery.from_reference(check.rel_error, 'the closed form')}"
+                       if check is not None else "")
+
     sections = (
         Section("tensor", "Inertia tensor and principal axes"),
         Section("parallel_axis", "Parallel-axis shift"),
@@ -40,18 +58,29 @@ class InertiaReport(Report):
                 ("spin stability", ", ".join(f"I{k + 1}: {v}" for k, v in enumerate(verdicts)))]
 
     @classmethod
+    def prose_case(cls, data):
+        """Spherical (three equal moments), symmetric (two) or asymmetric, by the stability
+        verdicts the archive holds."""
+        verdicts = [data.analysis["axis_stability"][f"axis_{k + 1}"]["verdict"]
+                    for k in range(3)]
+        marginal = verdicts.count("marginal")
+        return {"spherical": marginal == 3, "symmetric": marginal == 2,
+                "asymmetric": "unstable" in verdicts,
+                "intermediate": verdicts.index("unstable") + 1 if "unstable" in verdicts
+                else None}
+
+    @classmethod
     def section_tensor(cls, data):
         a = data.analysis
         T, m, ax = a["tensor"], a["principal_moments"], a["principal_axes"]
         tensor = Table(caption="Inertia tensor about the centre of mass, lab frame [kg m²]",
                        header=["", "x", "y", "z"],
-                       rows=[[c] + [fmt(float(v)) for v in T[i]] for i, c in
-                             enumerate("xyz")])
+                       rows=[[c] + fmt_matrix(T)[i] for i, c in enumerate("xyz")])
         principal = Table(caption="Principal moments (ascending) and axes (lab-frame unit "
                                   "vectors) from diagonalization",
                           header=["axis", "moment [kg m²]", "direction"],
-                          rows=[[f"{k + 1}", fmt(float(m[k]), 12),
-                                 "(" + ", ".join(f"{float(v):+.6f}" for v in ax[:, k]) + ")"]
+                          rows=[[f"{k + 1}", fmt(float(m[k])),
+                                 "(" + ", ".join(fmt_matrix(ax[:, k])[0]) + ")"]
                                 for k in range(3)])
         ell = a["inertia_ellipsoid"]
         pts = a.get("points")
@@ -65,7 +94,7 @@ class InertiaReport(Report):
                          f"diagonalized moments: {fmt_err(cf['max_relative_difference'])}.")
         return SectionContent(
             figures=[cls.figure("inertia_ellipsoid", fig,
-                                "Inertia ellipsoid Σ I_k x_k² = 1 (semi-axes 1/√I_k) with the "
+                                "Inertia ellipsoid Σ Iₖ xₖ² = 1 (semi-axes 1/√Iₖ) with the "
                                 "principal axes; points shown where the body is a point set.")],
             tables=[tensor, principal], notes=notes)
 
@@ -75,14 +104,15 @@ class InertiaReport(Report):
         T = p["tensor"]
         return SectionContent(tables=[
             Table(caption=f"Tensor about ({', '.join(fmt(float(x)) for x in p['about'])}) by "
-                          "(8.49): I = I_cm + M(d² 1 − d dᵀ) [kg m²]",
+                          "(8.49), I = Iᶜᵐ + M(d² 1 − d dᵀ) with Iᶜᵐ the tensor about the centre "
+                          "of mass [kg m²]",
                   header=["", "x", "y", "z"],
-                  rows=[[c] + [fmt(float(v)) for v in T[i]] for i, c in enumerate("xyz")]),
+                  rows=[[c] + fmt_matrix(T)[i] for i, c in enumerate("xyz")]),
             Table(caption="Principal moments and axes about that point",
                   header=["axis", "moment [kg m²]", "direction"],
-                  rows=[[f"{k + 1}", fmt(float(p["principal_moments"][k]), 12),
-                         "(" + ", ".join(f"{float(v):+.6f}" for v in p["principal_axes"][:, k])
-                         + ")"] for k in range(3)])])
+                  rows=[[f"{k + 1}", fmt(float(p["principal_moments"][k])),
+                         "(" + ", ".join(fmt_matrix(p["principal_axes"][:, k])[0]) + ")"]
+                        for k in range(3)])])
 
     @classmethod
     def section_stability(cls, data):
@@ -106,16 +136,32 @@ def stability_table_section(analysis: dict) -> SectionContent:
         s = stability[f"axis_{k + 1}"]
         rate = s["growth_rate"] if s["verdict"] == "unstable" else s["oscillation_frequency"]
         what = "growth rate" if s["verdict"] == "unstable" else "wobble frequency"
-        row = [f"{k + 1}", fmt(float(moments[k])), s["verdict"], f"{what}: {fmt(float(rate))}"
-               f" {unit}"]
+        if s["verdict"] == "marginal":  # equal moments: neither a wobble nor a growth
+            equal = [m for m in moments if math.isclose(float(m), float(moments[k]),
+                                                        rel_tol=1e-9)]
+            cell = ("— (marginal: spherical body)" if len(equal) == 3 else
+                    "— (marginal: symmetric body)")
+        else:
+            cell = f"{what}: {fmt(float(rate))} {unit}"
+        row = [f"{k + 1}", fmt(float(moments[k])), s["verdict"], cell]
         if "growth_rate_jacobian" in s:
             row.append(fmt(float(s["growth_rate_jacobian"])))
         rows.append(row)
     header = ["axis", "moment [kg m²]", "verdict", "rate (10.12)–(10.14)"]
     if rows and len(rows[0]) == 5:
         header.append("max Re λ of the Jacobian [1/s]")
+    verdicts = [stability[f"axis_{k + 1}"]["verdict"] for k in range(3)]
+    if "unstable" in verdicts:
+        case = (f": unstable about the intermediate axis {verdicts.index('unstable') + 1} with "
+                "growth Ω√((I2−I1)(I3−I2)/(I1 I3)), stable about the other two")
+    elif verdicts.count("marginal") == 3:
+        case = ": all three moments equal, so no axis is unstable (every axis marginal)"
+    elif "marginal" in verdicts:
+        case = (": two equal moments (a symmetric body), so no axis is unstable: marginal "
+                "about the transverse axes, stable about the figure axis")
+    else:
+        case = ""
     return SectionContent(tables=[Table(
         caption="Free rotation about each principal axis, linearized (10.12)–(10.14)"
-                + ("" if spin is None else f" at spin Ω = {fmt(spin)} rad/s")
-                + ": unstable about the intermediate axis with growth Ω√((I2−I1)(I3−I2)/(I1 I3))",
+                + ("" if spin is None else f" at spin Ω = {fmt(spin)} rad/s") + case,
         header=header, rows=rows)])

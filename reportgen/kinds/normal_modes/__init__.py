@@ -14,7 +14,7 @@ Atom indices in ``[[bonds]]`` and ``[[angles]]`` are zero-based.
 from __future__ import annotations
 
 from .config import PRESETS, NormalModesConfig
-from .report import NormalModesReport
+from .report import NormalModesReport, counted, formula
 from .simulation import NormalModesSimulation
 
 
@@ -27,3 +27,22 @@ class NormalModesScene(NormalModesSimulation, NormalModesReport):
                "[evolve] (displacement, t_end) adds a time evolution")
     Config = NormalModesConfig
     presets = PRESETS
+    name_in_words = "Normal modes"
+
+    @classmethod
+    def default_title(cls, config):
+        """``Normal modes of CO₂ (3 atoms, 2 bonds, 1 bending angle)``, of a chain, of
+        coupled pendula or of given matrices."""
+        if config.chain is not None:
+            c = config.chain
+            return (f"Normal modes of a chain of {c.n} equal masses "
+                    + ("between fixed walls" if c.ends == "fixed" else "with free ends"))
+        if config.pendula is not None:
+            return f"Normal modes of {config.pendula.n} pendula coupled by springs"
+        if config.atoms:
+            atoms = list(config.atoms)
+            name = formula([atom.element for atom in atoms]) or "a molecule"
+            return (f"Normal modes of {name} ({counted(len(atoms), 'atom')}, "
+                    f"{counted(len(config.bonds), 'bond')}, "
+                    f"{counted(len(config.angles), 'bending angle')})")
+        return f"Normal modes of a system of {len(config.M)} coordinates (M and A given)"

@@ -74,6 +74,14 @@ def flat_values(value) -> list[float] | None:
     return [float(x) for x in value]
 
 
+def unit_system(config) -> str:
+    """The config's unit system (``units``), or its system's default: SI for pendula,
+    molecular (u, Å, mdyn/Å) for a molecule, dimensionless for a chain or matrices."""
+    if getattr(config, "units", None):
+        return config.units
+    return {"pendula": "SI", "molecule": "molecular"}.get(system_of(config), "dimensionless")
+
+
 def system_of(config) -> str:
     """Which way ``config`` (the validated config, or an archive's resolved one) gives the
     system: molecule, chain, pendula or matrices."""
@@ -91,6 +99,12 @@ class NormalModesConfig(SceneConfig):
     chain: Chain | None = None
     pendula: Pendula | None = None
     evolve: Evolve | None = None
+    units: Literal["SI", "molecular", "dimensionless"] | None = Field(
+        None, description="unit system of the numbers: SI (kg, m, N/m, s), molecular (masses "
+                          "in u, lengths in Å, force constants in mdyn/Å; ω reported in rad/s "
+                          "and cm⁻¹, time in τ = 4.075 fs) or dimensionless (masses and springs "
+                          "in units of a reference m₀ and k₀). Default: SI for pendula, "
+                          "molecular for atoms, dimensionless for a chain or M and A")
 
     @model_validator(mode="before")
     @classmethod
@@ -121,6 +135,17 @@ class NormalModesConfig(SceneConfig):
         if self.evolve is not None and self.run.t_end != self.evolve.t_end:
             raise ValueError(f"run.t_end: must equal evolve.t_end (got {self.run.t_end} and "
                              f"{self.evolve.t_end}); give it once, in [evolve]")
+        if self.units == "molecular" and not self.atoms:
+            raise ValueError(f"units: 'molecular' (u, Å, mdyn/Å) is for atoms; give SI or "
+                             f"dimensionless for {sources[0]}")
+        if self.pendula is not None and self.units not in (None, "SI"):
+            raise ValueError(f"units: pendula are given in SI (kg, m, m/s², N/m); got "
+                             f"{self.units!r}")
+        if self.units in ("SI", "dimensionless") and self.atoms:
+            by_element = [a for a, atom in enumerate(self.atoms) if atom.mass is None]
+            if by_element:
+                raise ValueError(f"atoms[{by_element[0]}]: units = {self.units!r} needs `mass` "
+                                 "(an element's mass is in u: molecular units)")
         if self.atoms:
             self._check_molecule()
         elif sources == ["M/A"]:

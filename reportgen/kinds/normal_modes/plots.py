@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 
+from ...rendering.plots.common import time_label
 from ...rendering.plots.style import (
     ATOM_COLOURS,
     BLUE,
@@ -13,20 +14,26 @@ from ...rendering.plots.style import (
     GREEN,
     HIGHLIGHT,
     OTHER_ATOM,
+    PURPLE,
     REFERENCE,
     VERMILLION,
     new_figure,
     new_figure_grid,
+    place_legend,
 )
 
-#: colour per mode type (legend order)
+#: colour per mode type, the most specific first ("antisymmetric stretch" holds
+#: "symmetric stretch", and a linear molecule's stretches are "longitudinal, ..."): each
+#: type its own colour, so CO₂'s two stretches differ
 TYPE_COLOURS = {
-    "longitudinal": BLUE,
-    "transverse": VERMILLION,
-    "symmetric stretch": BLUE,
     "antisymmetric stretch": GREEN,
+    "symmetric stretch": BLUE,
     "bend": VERMILLION,
+    "transverse": VERMILLION,
+    "longitudinal": PURPLE,
 }
+#: atoms dark enough for a white element symbol
+DARK_ATOMS = frozenset({"C", "O", "N", "Cl"})
 
 
 def _type_colour(kind: str) -> str:
@@ -36,11 +43,14 @@ def _type_colour(kind: str) -> str:
     return HIGHLIGHT
 
 
-def spectrum(omega, types, groups, *, exact=None, unit="rad/s", ax=None):
+def spectrum(omega, types, groups, *, exact=None, unit="rad/s",
+             quantity="angular frequency ω", ax=None):
     """Stick spectrum of the vibrational frequencies, degenerate sets marked ×g.
 
     omega : (k,) ascending, types : k labels, groups : (k,) degenerate-set ids;
-    exact : (k,) closed-form frequencies drawn as hollow markers, or None.
+    exact : (k,) closed-form frequencies drawn as hollow markers, or None;
+    ``quantity`` and ``unit`` name the x axis ("wavenumber ν̃", "cm⁻¹"; a unit
+    "dimensionless" or "" is printed as "(dimensionless)").
     """
     fig, ax = new_figure(ax, figsize=(6.8, 3.2))
     omega = np.asarray(omega, dtype=float)
@@ -61,8 +71,9 @@ def spectrum(omega, types, groups, *, exact=None, unit="rad/s", ax=None):
     if exact is not None:
         ax.plot(exact, np.full(len(exact), 0.5), "o", mfc="none", color=REFERENCE, ms=7,
                 label="closed form")
-    ax.set_xlabel(f"angular frequency ω [{unit}]")
-    ax.set_ylabel("multiplicity")
+    ax.set_xlabel(f"{quantity} (dimensionless)" if unit in ("", "1", "dimensionless")
+                  else f"{quantity} [{unit}]")
+    ax.set_ylabel("multiplicity (dimensionless)")
     top = max([int(np.sum(np.asarray(groups) == g)) for g in set(np.asarray(groups).tolist())]
               or [1])
     ax.set_ylim(0, top + 0.6)
@@ -73,17 +84,23 @@ def spectrum(omega, types, groups, *, exact=None, unit="rad/s", ax=None):
         ax.set_xlim(positive.min() / 2, positive.max() * 2)
     else:
         ax.set_xlim(0, 1.08 * float(np.max(omega)) if omega.size else 1.0)
-    ax.legend(loc="upper left", fontsize=8)
+    place_legend(ax, loc="upper left", fontsize=8, outside="right")
     return fig
 
 
-def _draw_molecule(ax, xy, elements, bonds, *, alpha=1.0, size=None):
+def _draw_molecule(ax, xy, elements, bonds, *, alpha=1.0, size=None, labels=False,
+                   fontsize=8.0):
+    """Bonds and atoms (CPK colours, area by mass); ``labels``: each atom's element
+    symbol on it."""
     for i, j in bonds:
         ax.plot([xy[i, 0], xy[j, 0]], [xy[i, 1], xy[j, 1]], color=CONTEXT, lw=3, alpha=alpha,
                 zorder=1, solid_capstyle="round")
     for a, (x, y) in enumerate(xy):
         ax.scatter([x], [y], s=size[a], color=ATOM_COLOURS.get(elements[a], OTHER_ATOM),
                    edgecolor="black", lw=0.8, alpha=alpha, zorder=2)
+        if labels and elements[a]:
+            ax.text(x, y, elements[a], ha="center", va="center", fontsize=fontsize,
+                    color="white" if elements[a] in DARK_ATOMS else "black", zorder=7)
 
 
 def _atom_sizes(masses):
@@ -146,7 +163,7 @@ def molecule_modes(xy, masses, elements, bonds, displacements, titles):
     for ax, d, title in zip(axes.ravel(), ds, titles, strict=False):
         for sgn in (1.0, -1.0):
             _draw_molecule(ax, xy + sgn * d[:, :2], elements, bonds, alpha=0.18, size=sizes)
-        _draw_molecule(ax, xy, elements, bonds, size=sizes)
+        _draw_molecule(ax, xy, elements, bonds, size=sizes, labels=True)
         for a in range(len(xy)):
             if np.hypot(d[a, 0], d[a, 1]) > 0.02 * span:
                 ax.annotate("", xy=(xy[a, 0] + d[a, 0], xy[a, 1] + d[a, 1]), xytext=tuple(xy[a]),
@@ -197,7 +214,7 @@ def molecule_snapshots(pos, masses, elements, bonds, displacements, titles):
             ax = axes[r, c]
             _draw_molecule(ax, base, elements, bonds, alpha=0.12, size=sizes)
             _draw_molecule(ax, base + math.cos(math.pi * c / (phases - 1)) * d[:, list(v)],
-                           elements, bonds, size=sizes)
+                           elements, bonds, size=sizes, labels=c == 0, fontsize=6.0)
             _bare(ax, box)
             if r == 0:
                 ax.set_title(f"ωt = {PHASE_LABELS[c]}", fontsize=9)
@@ -216,7 +233,9 @@ def chain_modes(modes, titles, *, coordinate="q", exact_shapes=None, ncols=2):
     n, k = modes.shape
     ncols = min(ncols, k)
     nrows = math.ceil(k / ncols)
-    fig, axes = new_figure_grid(nrows, ncols, figsize=(3.5 * ncols, 1.9 * nrows + 0.4))
+    # shared axes: the inner panels' tick labels (and so their axis labels) are left out
+    fig, axes = new_figure_grid(nrows, ncols, figsize=(3.5 * ncols, 1.9 * nrows + 0.4),
+                                sharex=True, sharey=True)
     s = np.arange(1, n + 1)
     for ax in axes.ravel()[k:]:
         ax.set_visible(False)
@@ -232,9 +251,9 @@ def chain_modes(modes, titles, *, coordinate="q", exact_shapes=None, ncols=2):
         ax.set_ylim(-1.25, 1.25)
         ax.set_xlim(0, n + 1)
         if j % ncols == 0:
-            ax.set_ylabel(f"{coordinate} / max|{coordinate}|")
+            ax.set_ylabel(f"{coordinate}/max|{coordinate}| (dimensionless)", fontsize=9)
     for ax in axes[-1, :]:
-        ax.set_xlabel("mass index s")
+        ax.set_xlabel("mass index s (dimensionless)")
     return fig
 
 
@@ -248,7 +267,7 @@ def matrix_modes(modes, titles, names):
         ax.bar(np.arange(n), v, color=HIGHLIGHT)
         ax.axhline(0, color=CONTEXT, lw=0.8)
         ax.set_ylim(-1.2, 1.2)
-        ax.set_ylabel("η / max|η|", fontsize=8)
+        ax.set_ylabel("η/max|η| (dimensionless)", fontsize=8)
         ax.set_title(titles[j], fontsize=9)
     axes[-1, 0].set_xticks(np.arange(n))
     axes[-1, 0].set_xticklabels(names)
@@ -256,8 +275,9 @@ def matrix_modes(modes, titles, names):
     return fig
 
 
-def evolution(t, direct, modal, names, *, time_unit="s"):
-    """Direct integration (solid) over the modal superposition (dashed), and their difference."""
+def evolution(t, direct, modal, names, *, time_unit="s", unit=""):
+    """Direct integration (solid) over the modal superposition (dashed), and their
+    difference; ``names``: the coordinates' axis labels, ``unit`` their common unit."""
     k = len(names)
     fig, axes = new_figure_grid(k + 1, 1, figsize=(6.8, 1.7 * (k + 1) + 0.6), sharex=True)
     for i, name in enumerate(names):
@@ -265,10 +285,12 @@ def evolution(t, direct, modal, names, *, time_unit="s"):
         ax.plot(t, direct[:, i], color=HIGHLIGHT, label="direct integration")
         ax.plot(t, modal[:, i], color=REFERENCE, ls=(0, (4, 3)), label="modal superposition")
         ax.set_ylabel(name)
-    axes[0, 0].legend(loc="upper right", fontsize=8)
+    place_legend(axes[0, 0], loc="upper right", fontsize=8)
     ax = axes[-1, 0]
     err = np.max(np.abs(direct - modal), axis=1)
     ax.semilogy(t, np.maximum(err, 1e-18), color=HIGHLIGHT)
-    ax.set_ylabel("max |q − q_modal|")
-    ax.set_xlabel(f"time t [{time_unit}]")
+    what = r"max $|q - q_\mathrm{modal}|$"
+    ax.set_ylabel(f"{what} (dimensionless)" if unit in ("", "1", "dimensionless")
+                  else f"{what} [{unit}]")
+    ax.set_xlabel(time_label(time_unit))
     return fig

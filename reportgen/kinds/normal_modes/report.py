@@ -11,7 +11,7 @@ from ...scene.content import SectionContent, Table, fmt, fmt_err
 from ...scene.report import Report
 from ...scene.schema import ResultsSchema, unit_text
 from .config import SHAPES_SHOWN, STIFF_RATIO, system_of
-from .results import SCHEMA, schema_for
+from .results import SCHEMA, schema_for, units
 
 plots = lazy_module("reportgen.kinds.normal_modes.plots")
 common_plots = lazy_module("reportgen.rendering.plots.common")
@@ -21,6 +21,33 @@ class NormalModesReport(Report):
     """The normal modes' sections; units follow the system's (:func:`schema_for`)."""
 
     schema = SCHEMA
+    gallery_name = "Normal modes"
+    gallery_figures = ("modes",)
+
+    @classmethod
+    def gallery_headline(cls, data):
+        from ...scene import gallery
+        omega = np.asarray(data.analysis.get("frequencies", ()), dtype=float)
+        top = float(np.max(omega, initial=0.0))
+        omega = np.sort(omega[np.isfinite(omega) & (omega > 1e-9 * top)])
+        if omega.size == 0:
+            return super().gallery_headline(data)
+        check = gallery.worst_check(data, "ω")
+        symbol, unit = "ω", cls._omega_unit(data)
+        if "wavenumbers" in data.analysis:  # a molecule: its spectrum in cm⁻¹
+            nu = np.asarray(data.analysis["wavenumbers"], dtype=float)
+            omega, symbol, unit = np.sort(nu[nu > 1e-9 * float(np.max(nu))]), "ν̃", "cm⁻¹"
+        values, counts = np.unique(np.round(omega, 6), return_counts=True)
+        shown = [fmt(float(v), 6) + (f" (×{c})" if c > 1 else "")
+                 for v, c in zip(values[:5], counts[:5], strict=True)]
+        unit = ("per time unit" if "time unit" in unit
+                else "(dimensionless)" if unit == "dimensionless" else unit)
+        text = (f"{omega.size} mode{'s' if omega.size != 1 else ''}: {symbol} = "
+                f"{', '.join(shown)}" + (", …" if values.size > 5 else "")
+                + (f" {unit}" if unit else ""))
+        return text + (f"; {gallery.from_reference(check.rel_error, 'the closed form')}"
+                       if check is not None else "")
+
     family_sections = (
         Section("frequencies_family", "Eigenfrequencies across the family",
                 description="Each member's eigenfrequencies against the swept value, with "
@@ -51,7 +78,8 @@ class NormalModesReport(Report):
 
         numeric, exact = spectrum("frequencies"), spectrum("frequencies_exact")
         fig = common_plots.family_lines(x[ok], numeric, reference=exact or None,
-                                        xlabel=path, ylabel=cls._schema(data).label("frequencies"),
+                                        xlabel=cls.config_quantity(data, path).label(),
+                                        ylabel=cls._schema(data).label("frequencies"),
                                         label="ω", reference_label="closed form")
         facts = [("modes", str(len(numeric)))]
         if exact:
@@ -59,7 +87,7 @@ class NormalModesReport(Report):
                                                                          strict=True))
             facts.append(("max relative difference to the closed form", fmt_err(worst)))
         return SectionContent(figures=[cls.figure(
-            "frequencies_family", fig, f"Eigenfrequencies ω_j of every member against {path}"
+            "frequencies_family", fig, f"Eigenfrequencies ωⱼ of every member against {path}"
             + ("; dashed: the closed form." if exact else "."))], facts=facts)
 
     @classmethod
@@ -74,13 +102,55 @@ class NormalModesReport(Report):
     @staticmethod
     def _schema(data) -> ResultsSchema:
         """The declared results in the units of this archive's system."""
-        return schema_for(system_of(data.config))
+        analysis = getattr(data, "analysis", None) or {}
+        return schema_for(system_of(data.config), system=analysis.get("unit_system"))
+
+    @classmethod
+    def time_unit_words(cls, data) -> str:
+        """The time unit of this archive's unit system ("s" for pendula; "" when
+        dimensionless), not the kind's generic one."""
+        unit = unit_text(cls._schema(data).time.unit)
+        return "" if unit == "dimensionless" else unit
+
+    @staticmethod
+    def _units(data) -> dict[str, str]:
+        """This archive's units as printed ("dimensionless" for a pure number)."""
+        a = data.analysis
+        return {k: unit_text(v) for k, v in units(a["source"], a.get("unit_system")).items()}
+
+    @staticmethod
+    def _with_unit(text: str, unit: str) -> str:
+        """``text [unit]``, or ``text (dimensionless)``."""
+        return f"{text} (dimensionless)" if unit == "dimensionless" else f"{text} [{unit}]"
 
     @staticmethod
     def _vib(data):
         a = data.analysis
         z = int(a["n_zero_modes"])
         return z, np.asarray(a["frequencies"])[z:], list(a["mode_type"])[z:]
+
+    @classmethod
+    def describe(cls, data):
+        """``A linear triatomic molecule, CO₂: 3 atoms, 2 bonds, 1 bending angle``."""
+        a = data.analysis
+        if a["source"] == "molecule":
+            n = len(a["masses"])
+            size = {1: "monatomic", 2: "diatomic", 3: "triatomic"}.get(n, f"{n}-atom")
+            shape = "linear" if a["linear"] else "non-linear"
+            name = formula([atom.element for atom in data.config.atoms])
+            return (f"A {shape} {size} molecule{', ' + name if name else ''}: "
+                    f"{counted(n, 'atom')}, {counted(len(a['bonds']), 'bond')}, "
+                    f"{counted(len(a['angles']), 'bending angle')}; its small oscillations "
+                    "about equilibrium")
+        n = int(a["n_dof"])
+        if a["source"] == "chain":
+            ends = data.config.chain.ends
+            return (f"Small oscillations of a chain of {n} equal mass{'es' if n != 1 else ''} "
+                    + ("between fixed walls" if ends == "fixed" else "with free ends"))
+        if a["source"] == "pendula":
+            return (f"Small oscillations of {n} pendula coupled by springs" if n != 1
+                    else "Small oscillations of a pendulum")
+        return f"Small oscillations of a system given by its matrices M and A ({n} coordinates)"
 
     @classmethod
     def headline(cls, data):
@@ -90,13 +160,24 @@ class NormalModesReport(Report):
                ("vibrations", f"{int(a['n_vibrational'])} of {int(a['n_dof'])} coordinates "
                               f"({z} zero modes)")]
         if w.size:
-            out.append(("frequencies ω", ", ".join(fmt(x, 6) for x in w[:8]) +
-                        (" …" if w.size > 8 else "")))
+            unit = cls._omega_unit(data)
+            out.append(("frequencies ω", ", ".join(fmt(x) for x in w[:8]) +
+                        (" …" if w.size > 8 else "")
+                        + (" (dimensionless)" if unit == "dimensionless" else f" {unit}")))
+        if "wavenumbers" in a and w.size:
+            nu = np.asarray(a["wavenumbers"])[z:]
+            out.append(("wavenumbers ν̃ = ω/2πc", ", ".join(fmt(x, 4) for x in nu[:8])
+                        + (" …" if nu.size > 8 else "") + " cm⁻¹"))
+        if "unit_system" in a:
+            out.append(("units", UNIT_WORDS[str(a["unit_system"])]))
         if "closed_form_max_rel_error" in a:
             out.append(("max relative error against the closed form",
                         fmt_err(a["closed_form_max_rel_error"])))
         if "evolution_max_error" in a:
-            out.append(("evolution: max |q_direct − q_modal|", fmt_err(a["evolution_max_error"])))
+            q_unit = cls._units(data)["q"]
+            out.append(("evolution: max |q − q(modal)|, q integrated",
+                        fmt_err(a["evolution_max_error"])
+                        + ("" if q_unit == "dimensionless" else f" {q_unit}")))
             if a.get("stiff"):
                 out.append(("stiffness", a["stiff_reason"]))
         return out
@@ -106,8 +187,9 @@ class NormalModesReport(Report):
         src = a["source"]
         if src == "molecule":
             n = len(a["masses"])
-            return (f"{'linear' if a['linear'] else 'non-linear'} molecule, {n} atoms, "
-                    f"{len(a['bonds'])} bonds, {len(a['angles'])} angles")
+            return (f"{'linear' if a['linear'] else 'non-linear'} molecule, "
+                    f"{counted(n, 'atom')}, {counted(len(a['bonds']), 'bond')}, "
+                    f"{counted(len(a['angles']), 'bending angle')}")
         if src == "chain":
             return f"chain of {int(a['n_dof'])} masses"
         if src == "pendula":
@@ -120,32 +202,43 @@ class NormalModesReport(Report):
         z, w, types = cls._vib(data)
         groups = np.asarray(a["degenerate_group"])[z:]
         exact = a.get("frequencies_exact")
-        fig = plots.spectrum(w, types, groups, exact=None if exact is None else
-                             np.asarray(exact)[z:], unit=cls._omega_unit(data))
+        u = cls._units(data)
+        nu = np.asarray(a["wavenumbers"])[z:] if "wavenumbers" in a else None
+        if nu is not None:  # a molecule: the spectroscopist's axis
+            fig = plots.spectrum(nu, types, groups, unit="cm⁻¹", quantity="wavenumber")
+        else:
+            fig = plots.spectrum(w, types, groups, exact=None if exact is None else
+                                 np.asarray(exact)[z:], unit=u["omega"])
         rows = []
         w2 = np.asarray(a["omega_squared"])[z:]
         for i, (wi, t) in enumerate(zip(w, types, strict=True)):
             g = int(np.sum(groups == groups[i]))
-            row = [str(z + i + 1), fmt(wi, 10), fmt(w2[i], 10), t, str(g)]
+            row = [str(z + i + 1), fmt(wi), fmt(w2[i])]
+            row += [fmt(float(nu[i]), 5)] if nu is not None else []
+            row += [t, str(g)]
             if exact is not None:
                 ex = float(np.asarray(exact)[z + i])
-                row += [fmt(ex, 10), fmt_err(abs(wi - ex) / ex if ex else abs(wi))]
+                row += [fmt(ex), fmt_err(abs(wi - ex) / ex if ex else abs(wi))]
             rows.append(row)
-        header = ["mode", "ω", "ω²", "type", "degeneracy"]
+        header = ["mode", cls._with_unit("ω", u["omega"]), cls._with_unit("ω²", u["omega2"])]
+        header += ["ν̃ [cm⁻¹]"] if nu is not None else []
+        header += ["type", "degeneracy"]
         if exact is not None:
             header += ["closed form", "relative error"]
         facts = [("eigenproblem", "A η = ω² M η (scipy.linalg.eigh on the pair), ηᵀ M η = 1"),
-                 ("textbook three steps (diagonalize M, unit mass, diagonalize A′): max |Δω²|/ω²_max",
-                  fmt_err(a["three_step_max_difference"])),
+                 ("textbook three steps (diagonalize M, unit mass, diagonalize A′): "
+                  "max |Δω²|/ω²ₘₐₓ", fmt_err(a["three_step_max_difference"])),
                  ("max |ηᵀ M η − 1|", fmt_err(a["orthonormality_error"]))]
         if w.size > 1:
-            facts.append(("ω_max / ω_min", fmt(a["stiffness_ratio"], 6)))
+            facts.append(("ωₘₐₓ/ωₘᵢₙ", fmt(a["stiffness_ratio"])))
         if exact is not None:
             facts.append(("closed form", str(a["closed_form_source"])))
         return SectionContent(
-            figures=[cls.figure("spectrum", fig, "Vibrational frequencies; bar height is the "
-                                "degeneracy" + ("; hollow circles: closed form." if exact is not
-                                                None else "."))],
+            figures=[cls.figure("spectrum", fig, (
+                "Vibrational wavenumbers ν̃ = ω/2πc" if nu is not None
+                else "Vibrational frequencies") + "; bar height is the degeneracy"
+                + ("; hollow circles: closed form." if exact is not None and nu is None
+                   else "."))],
             tables=[Table("Vibrational modes (zero modes omitted), ascending ω", header, rows)],
             facts=facts)
 
@@ -156,10 +249,25 @@ class NormalModesReport(Report):
         return unit_text(cls._schema(data).result("frequencies").unit)
 
     @classmethod
+    def _frequency_titles(cls, data, digits: int = 5) -> list[str]:
+        """Each vibration's frequency as a panel title: "mode 9, 2494 cm⁻¹" for a molecule
+        with wavenumbers (the figures' fonts draw no ν̃), else "ω1 = 3.1321 rad/s" (no unit
+        when dimensionless)."""
+        a = data.analysis
+        z, w, _ = cls._vib(data)
+        if "wavenumbers" in a:
+            nu = np.asarray(a["wavenumbers"])[z:]
+            return [f"mode {z + i + 1}, {fmt(float(x), 4)} cm⁻¹" for i, x in enumerate(nu)]
+        unit = cls._omega_unit(data)
+        unit = "" if unit == "dimensionless" else f" {unit}"
+        return [f"ω{z + i + 1} = {fmt(float(x), digits)}{unit}" for i, x in enumerate(w)]
+
+    @classmethod
     def _titles(cls, data):
-        z, w, types = cls._vib(data)
-        return [f"ω{z + i + 1} = {fmt(wi, 5)}: {t}" for i, (wi, t) in
-                enumerate(zip(w, types, strict=True))]
+        _, _, types = cls._vib(data)
+        # a long type goes under the frequency: two panels side by side share the width
+        return [f"{f}: {t}" if len(t) <= 24 else f"{f}\n{t}"
+                for f, t in zip(cls._frequency_titles(data), types, strict=True)]
 
     @classmethod
     def section_mode_shapes(cls, data):
@@ -181,8 +289,7 @@ class NormalModesReport(Report):
                                    "from the viewer."))
             shown = min(len(disps), 6)
             snap = plots.molecule_snapshots(pos, a["masses"], elems, bonds, disps[:shown],
-                                            [f"ω{z + i + 1} = {fmt(w[i], 4)}"
-                                             for i in range(shown)])
+                                            cls._frequency_titles(data, 4)[:shown])
             figs.append(cls.figure("snapshots", snap, "Phase snapshots over half a period: "
                                    "x(t) = x₀ + η cos ωt for ωt from 0 to π (faint: equilibrium)."))
         elif src in ("chain", "pendula"):
@@ -242,7 +349,7 @@ class NormalModesReport(Report):
         a = data.analysis
         if a.get("stiff"):  # what the diagram shows only a stiff scene needs said
             content.notes.insert(0, (
-                f"This scene is stiff (ω_max/ω_min = {a['stiffness_ratio']:.3g} ≥ "
+                f"This scene is stiff (ωₘₐₓ/ωₘᵢₙ = {a['stiffness_ratio']:.3g} ≥ "
                 f"{STIFF_RATIO:g}): explicit methods cannot step past the stability bound "
                 "set by the fastest mode, however loose the tolerance; implicit methods "
                 "(Gauss–Legendre, Radau) stay stable at any step, and at large steps their "
@@ -258,16 +365,50 @@ class NormalModesReport(Report):
         amp = np.max(np.abs(q_ref), axis=0)
         show = [int(i) for i in np.argsort(-amp, kind="stable")[:min(3, n)] if amp[i] > 0]
         show.sort()
-        unit = {"pendula": " [rad]", "molecule": " [length unit]"}.get(a["source"], "")
-        names = [run.columns[i].replace("phi", "φ") + unit for i in show]
+        schema = cls._schema(data)
+        unit = cls._units(data)["q"]
+        names = [cls._with_unit(run.columns[i].replace("phi", "φ"), unit) for i in show]
         fig = plots.evolution(run.t, run.y[:, show], q_ref[:, show], names,
-                              time_unit=unit_text(cls._schema(data).time.unit))
+                              time_unit=unit_text(schema.time.unit), unit=unit)
         facts = [("method", f"{run.attrs.get('method')} ({run.attrs.get('method_reason', '')})"),
-                 ("max |q_direct − q_modal|", fmt_err(a["evolution_max_error"])),
-                 ("largest amplitude", fmt(a["evolution_amplitude"], 6)),
+                 ("max |q − q(modal)|, q integrated", fmt_err(a["evolution_max_error"])
+                  + ("" if unit == "dimensionless" else f" {unit}")),
+                 ("largest amplitude", fmt(a["evolution_amplitude"])
+                  + ("" if unit == "dimensionless" else f" {unit}")),
                  ("stiffness", str(a["stiff_reason"]))]
         return SectionContent(
             figures=[cls.figure("evolution", fig, "Coordinates with the largest amplitude: direct "
                                 "integration of M q̈ + A q = 0 against the exact modal "
                                 "superposition; bottom: their largest difference.")],
             facts=facts)
+
+
+#: each unit system in words, as the report states it
+UNIT_WORDS = {
+    "SI": "SI: kg, m, N/m and s (ω in rad/s)",
+    "molecular": "molecular: masses in u, lengths in Å, force constants in mdyn/Å; ω in rad/s "
+                 "(one unit of the eigenproblem is √((mdyn/Å)/u) = 2.454·10¹⁴ rad/s)",
+    "dimensionless": "dimensionless: masses and spring constants in units of a reference m₀ "
+                     "and k₀, time in units of √(m₀/k₀), ω in units of √(k₀/m₀)",
+}
+
+
+def counted(n: int, noun: str) -> str:
+    """``1 angle``, ``2 angles``: a count and its noun, singular or plural."""
+    return f"{n} {noun}{'' if n == 1 else 's'}"
+
+
+_SUBSCRIPTS = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+
+
+def formula(elements) -> str:
+    """The chemical formula of a list of symbols in Hill order (C, then H, then the rest
+    alphabetically; without carbon all alphabetically): ``CO₂``, ``H₂O``; "" when an atom
+    has no element."""
+    if not elements or any(not e for e in elements):
+        return ""
+    counts = {e: list(elements).count(e) for e in set(elements)}
+    order = (["C", "H"] if "C" in counts else []) + sorted(
+        e for e in counts if "C" not in counts or e not in ("C", "H"))
+    return "".join(e + (str(counts[e]).translate(_SUBSCRIPTS) if counts[e] > 1 else "")
+                   for e in order if e in counts)

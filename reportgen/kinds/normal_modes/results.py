@@ -1,39 +1,87 @@
 """What a ``normal_modes`` run stores: every result once, with its symbol and unit.
 
-The units follow the config: coupled pendula are given in SI (kg, m, m/s², N/m), so
-their frequencies are in rad/s; a molecule (masses in u, positions in Å, force
-constants in mdyn/Å, or any other consistent set), a chain of unit-less masses and
-springs or M and A given as matrices are in the config's own units, and their
-frequencies in 1/(time unit) of that set.
+The units follow the config's unit system (``units``, stored as ``/analysis/unit_system``):
+
+``"SI"``
+    kg, m, N/m, s; coupled pendula always (their coordinates are angles in rad).
+``"molecular"``
+    a molecule's default: masses in u, lengths in Å, force constants in mdyn/Å (bends in
+    mdyn·Å/rad²).  The eigenproblem is solved in these units, whose time unit is
+    τ = √(u/(mdyn/Å)) = 4.075 fs; the frequencies are stored in rad/s (ω/τ) with the
+    wavenumbers ν̃ = ω/(2πc) in cm⁻¹, and a time evolution runs in units of τ.
+``"dimensionless"``
+    the default of a chain or of M and A: pure numbers, masses in units of a reference
+    m₀ and springs of k₀, so time is in √(m₀/k₀) and ω in √(k₀/m₀).
+
+An archive written before the unit systems (no ``unit_system``) keeps the old reading:
+pendula in SI, everything else in the config's own units.
 """
 
 from __future__ import annotations
 
+import math
+
 from ...scene.schema import Quantity as Q
 from ...scene.schema import ResultsSchema
 
-#: the systems given in SI units (the others are in the config's own consistent units)
+#: the systems given in SI units in an archive without ``unit_system``
 SI_SOURCES = frozenset({"pendula"})
+#: the unit systems a config may declare
+UNIT_SYSTEMS = ("SI", "molecular", "dimensionless")
+#: the unified atomic mass unit [kg] (CODATA 2018)
+ATOMIC_MASS = 1.66053906660e-27
+#: one mdyn/Å [N/m]
+MDYN_PER_ANGSTROM = 100.0
+#: ω of the molecular units (u, Å, mdyn/Å), 1/τ = √((mdyn/Å)/u) [rad/s] (2.454e14)
+MOLECULAR_OMEGA = math.sqrt(MDYN_PER_ANGSTROM / ATOMIC_MASS)
+#: the speed of light [cm/s]: wavenumber ν̃ = ω/(2πc)
+LIGHT_CM_PER_S = 2.99792458e10
+_TAU_FS = f"{1e15 / MOLECULAR_OMEGA:.4g} fs"  # the molecular time unit τ, 4.075 fs
 
 _SI = {"time": "s", "omega": "rad/s", "omega2": "1/s^2", "omega4": "1/s^4", "q": "rad",
        "p": "kg m^2/s", "energy": "J", "mass": "kg m^2", "stiffness": "J",
        "mode": "kg^-0.5/m"}
+_SI_LENGTHS = {"time": "s", "omega": "rad/s", "omega2": "1/s^2", "omega4": "1/s^4",
+               "q": "m", "p": "kg m/s", "energy": "J", "mass": "kg", "stiffness": "N/m",
+               "mode": "kg^-0.5"}
+_MOLECULAR = {"time": _TAU_FS, "omega": "rad/s", "omega2": "1/s^2", "omega4": "1/s^4",
+              "q": "Å", "p": f"u Å/({_TAU_FS})", "energy": "aJ", "mass": "u",
+              "stiffness": "mdyn/Å", "mode": "u^-0.5"}
+_DIMENSIONLESS = dict.fromkeys(_SI_LENGTHS, "1")
+#: an archive without a unit system: the config's own units, unnamed
 _OWN = {"time": "time unit", "omega": "1/time unit", "omega2": "1/time unit^2",
         "omega4": "1/time unit^4", "q": "length unit", "p": "momentum unit",
         "energy": "energy unit", "mass": "mass unit",
         "stiffness": "energy unit/length unit^2", "mode": "mass unit^-0.5"}
 
 
-def units(source: str) -> dict[str, str]:
+def units(source: str, system: str | None = None) -> dict[str, str]:
     """The units of a system given as ``source`` ("molecule", "chain", "pendula",
-    "matrices"): time, omega, omega2, omega4, q, p, energy, mass, stiffness, mode."""
-    return _SI if source in SI_SOURCES else _OWN
+    "matrices") in the unit ``system`` (one of :data:`UNIT_SYSTEMS`; None: an archive
+    written before them): time, omega, omega2, omega4, q, p, energy, mass, stiffness,
+    mode; a molecule's atoms also atom_mass and length."""
+    if system is None:
+        u = _SI if source in SI_SOURCES else _OWN
+        return {**u, "atom_mass": "mass unit", "length": "length unit"}
+    if system == "SI":
+        u = _SI if source == "pendula" else _SI_LENGTHS
+        return {**u, "atom_mass": "kg", "length": "m"}
+    if system == "molecular":
+        return {**_MOLECULAR, "atom_mass": "u", "length": "Å"}
+    return {**_DIMENSIONLESS, "atom_mass": "1", "length": "1"}
 
 
-def schema_for(source: str, coordinates: tuple[str, ...] = ()) -> ResultsSchema:
-    """The results of a system given as ``source`` with the run columns ``coordinates``
-    (the coordinates, then ``p_<coordinate>``, of an ``[evolve]`` run)."""
-    u = units(source)
+def omega_scale(system: str | None) -> float:
+    """Stored ω per ω of the eigenproblem: 1/τ [rad/s] in molecular units, else 1."""
+    return MOLECULAR_OMEGA if system == "molecular" else 1.0
+
+
+def schema_for(source: str, coordinates: tuple[str, ...] = (),
+               system: str | None = None) -> ResultsSchema:
+    """The results of a system given as ``source`` in the unit ``system`` with the run
+    columns ``coordinates`` (the coordinates, then ``p_<coordinate>``, of an ``[evolve]``
+    run)."""
+    u = units(source, system)
     t = ("t",)
     return ResultsSchema(
         time=Q("t", "t", u["time"], "time", t),
@@ -44,6 +92,10 @@ def schema_for(source: str, coordinates: tuple[str, ...] = ()) -> ResultsSchema:
         analysis=(
             Q("source", "", "", "how the system is given: molecule, chain, pendula or "
               "matrices", kind="str"),
+            Q("unit_system", "", "", "the config's units: SI, molecular or dimensionless",
+              kind="str", optional=True),
+            Q("wavenumbers", r"\tilde\nu", "1/cm", "wavenumbers omega/(2 pi c) of a molecule "
+              "in SI or molecular units, ascending", ("mode",), optional=True),
             Q("frequencies", r"\omega", u["omega"], "eigenfrequencies, ascending", ("mode",)),
             Q("omega_squared", r"\omega^2", u["omega2"], "eigenvalues of A eta = omega^2 M eta",
               ("mode",)),
@@ -69,8 +121,8 @@ def schema_for(source: str, coordinates: tuple[str, ...] = ()) -> ResultsSchema:
             Q("stiffness_ratio", r"\omega_\mathrm{max}/\omega_\mathrm{min}", "1",
               "ratio of the highest to the lowest non-zero frequency"),
             # a molecule
-            Q("masses", "m", "mass unit", "atomic masses", ("atom",), optional=True),
-            Q("positions", "x", "length unit", "equilibrium positions", ("atom", "xyz"),
+            Q("masses", "m", u["atom_mass"], "atomic masses", ("atom",), optional=True),
+            Q("positions", "x", u["length"], "equilibrium positions", ("atom", "xyz"),
               optional=True),
             Q("elements", "", "", "chemical symbols", ("atom",), kind="str", optional=True),
             Q("bonds", "", "1", "bonded atom pairs (zero-based)", ("bond", "pair"),
@@ -80,7 +132,7 @@ def schema_for(source: str, coordinates: tuple[str, ...] = ()) -> ResultsSchema:
             Q("linear", "", "", "whether the molecule is linear", kind="bool", optional=True),
             Q("frame", "", "1", "drawing frame: rows e1, e2, e3", ("xyz", "xyz"),
               optional=True),
-            Q("drawing/positions", "x - x_{cm}", "length unit",
+            Q("drawing/positions", "x - x_{cm}", u["length"],
               "positions relative to the centre of mass in the drawing frame",
               ("atom", "xyz"), optional=True),
             Q("drawing/displacements", r"\eta_a", u["mode"],

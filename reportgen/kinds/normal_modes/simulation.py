@@ -13,8 +13,15 @@ from ...lazy import lazy_module
 from ...scene.integration import IntegratingSimulation
 from ...scene.results import AuditCase, Check, Results
 from ...scene.schema import ResultsSchema, unit_text
-from .config import SHAPES_SHOWN, STIFF_RATIO, NormalModesConfig, flat_values, system_of
-from .results import SCHEMA, schema_for, units
+from .config import (
+    SHAPES_SHOWN,
+    STIFF_RATIO,
+    NormalModesConfig,
+    flat_values,
+    system_of,
+    unit_system,
+)
+from .results import LIGHT_CM_PER_S, SCHEMA, omega_scale, schema_for, units
 
 core = lazy_module("reportgen.core.normal_modes")
 linear_chain = lazy_module("reportgen.core.models.linear_chain")
@@ -43,7 +50,8 @@ class NormalModesSimulation(IntegratingSimulation):
     def results_schema(self) -> ResultsSchema:
         """The results in this system's units, with its coordinates as the evolution's
         columns."""
-        return schema_for(self.system(), tuple(self.coordinate_names()))
+        return schema_for(self.system(), tuple(self.coordinate_names()),
+                          unit_system(self.config))
 
     # ------------------------------------------------------------------ system
     def molecule(self) -> core.Molecule:
@@ -86,14 +94,14 @@ class NormalModesSimulation(IntegratingSimulation):
         """Closed-form frequencies of a generated system, ascending, and their source."""
         c = self.config
         if c.chain is not None:
-            src = ("ω_j = 2√(k/m) sin(jπ/(2(N+1))), fixed ends (notes §5.1; Goldstein §6.4)"
-                   if c.chain.ends == "fixed" else "ω_j = 2√(k/m) sin(jπ/(2N)), free ends")
+            src = ("ωⱼ = 2√(k/m) sin(jπ/(2(N+1))), fixed ends (notes §5.1; Goldstein §6.4)"
+                   if c.chain.ends == "fixed" else "ωⱼ = 2√(k/m) sin(jπ/(2N)), free ends")
             return core.chain_exact_frequencies(c.chain.n, c.chain.m, c.chain.k,
                                                 c.chain.ends), src
         if c.pendula is not None:
             p = c.pendula
             return (core.pendula_exact_frequencies(p.n, p.m, p.l, p.g, p.k),
-                    "ω_j² = g/l + (4k/m) sin²(jπ/(2N)) (Goldstein §6.3 for N = 2)")
+                    "ωⱼ² = g/l + (4k/m) sin²(jπ/(2N)) (Goldstein §6.3 for N = 2)")
         return None
 
     # -------------------------------------------------------------- simulation
@@ -133,9 +141,12 @@ class NormalModesSimulation(IntegratingSimulation):
         a = results.analysis
         n = M.shape[0]
         system = self.system()
+        # ω of the eigenproblem in the config's units; stored in rad/s for molecular units
+        scale = omega_scale(unit_system(c))
         a.update({
-            "source": system,
-            "frequencies": modes.omega, "omega_squared": modes.omega2, "modes": modes.modes,
+            "source": system, "unit_system": unit_system(c),
+            "frequencies": modes.omega * scale, "omega_squared": modes.omega2 * scale ** 2,
+            "modes": modes.modes,
             "n_dof": n, "n_zero_modes": modes.n_zero, "n_vibrational": n - modes.n_zero,
             "degenerate_group": modes.groups, "mass_matrix": M, "hessian": A,
             "coordinate_names": self.coordinate_names(),
@@ -150,6 +161,8 @@ class NormalModesSimulation(IntegratingSimulation):
         a["mode_type"] = core.classify_modes(modes, M, system, mol, rigid_labels)
         a["stiffness_ratio"] = self._stiffness_ratio(modes)
         if mol is not None:
+            if unit_system(c) != "dimensionless":
+                a["wavenumbers"] = a["frequencies"] / (2 * math.pi * LIGHT_CM_PER_S)
             self._molecule_analysis(results, mol, modes, M, ops)
         exact = self.exact_frequencies()
         if exact is not None:
@@ -160,10 +173,10 @@ class NormalModesSimulation(IntegratingSimulation):
             a["closed_form_max_rel_error"] = float(rel.max())
             a["closed_form_source"] = src
             j = int(np.argmax(rel))
-            unit = unit_text(units(system)["omega"])
-            results.checks.append(Check(f"ω_{j + 1} (worst of {n})", float(w_num[j]),
+            unit = unit_text(units(system, unit_system(c))["omega"])
+            results.checks.append(Check(f"ω{j + 1} (worst of {n})", float(w_num[j]),
                                         float(w_ex[j]), unit, src))
-            results.checks.append(Check(f"ω_{n} (highest)", float(w_num[-1]), float(w_ex[-1]),
+            results.checks.append(Check(f"ω{n} (highest)", float(w_num[-1]), float(w_ex[-1]),
                                         unit, src))
         if c.chain is not None and c.chain.ends == "fixed":
             # the closed-form standing waves drawn over the lowest modes
@@ -221,8 +234,10 @@ class NormalModesSimulation(IntegratingSimulation):
             return
         k, kb, my, mx, r = xy2.k, xy2.k_bend, xy2.m_y, xy2.m_x, xy2.r
         types = list(results.analysis["mode_type"])
-        w = modes.omega
-        u = units("molecule")
+        system = unit_system(self.config)
+        scale = omega_scale(system)  # the closed forms below are in the config's units
+        w = results.analysis["frequencies"]
+        u = units("molecule", system)
         w_unit, w2_unit = unit_text(u["omega"]), unit_text(u["omega2"])
 
         def find(label):
@@ -230,8 +245,8 @@ class NormalModesSimulation(IntegratingSimulation):
 
         if xy2.linear:
             # Goldstein §6.4 (linear triatomic molecule); notes §5.1, Fig. 5.1
-            src = "Goldstein §6.4: ω² = k/m_O, (k/m_O)(1 + 2m_O/m_C)"
-            w_sym, w_asym = core.linear_xy2_frequencies(k, my, mx)
+            src = "Goldstein §6.4: ω² = k/m, (k/m)(1 + 2m/M), m and M the end and centre masses"
+            w_sym, w_asym = (scale * x for x in core.linear_xy2_frequencies(k, my, mx))
             sym, asym = find("longitudinal, symmetric"), find("longitudinal, antisymmetric")
             if sym:
                 results.checks.append(Check("ω symmetric stretch", sym[0], w_sym, w_unit,
@@ -242,22 +257,23 @@ class NormalModesSimulation(IntegratingSimulation):
             bend = find("transverse")
             if kb is not None and len(bend) == 2:
                 results.checks.append(Check("ω bend (twofold)", bend[1],
-                                            core.linear_xy2_bend_frequency(kb, my, mx, r), w_unit,
-                                            "ω² = (2k_θ/(m_O r²))(1 + 2m_O/m_C), linear bend"))
+                                            scale * core.linear_xy2_bend_frequency(kb, my, mx, r),
+                                            w_unit, "ω² = 2κ(1 + 2m/M)/(m r²), κ the bend "
+                                            "constant, linear bend"))
         elif kb is not None:
             src = "Herzberg (1945) ch. II, XY₂ valence force field"
             lam3, tot, prod = core.bent_xy2_eigenvalues(k, kb, my, mx, r, xy2.half_angle)
             asym = find("antisymmetric stretch")
             if len(asym) == 1:
-                results.checks.append(Check("ω antisymmetric stretch", asym[0], math.sqrt(lam3),
-                                            w_unit, src))
+                results.checks.append(Check("ω antisymmetric stretch", asym[0],
+                                            scale * math.sqrt(lam3), w_unit, src))
             others = [float(v) ** 2 for i, v in enumerate(w)
                       if i >= modes.n_zero and "antisymmetric" not in types[i]]
             if len(others) == 2:
-                results.checks.append(Check("ω₁² + ω₂² (symmetric block)", sum(others), tot,
-                                            w2_unit, src))
+                results.checks.append(Check("ω₁² + ω₂² (symmetric block)", sum(others),
+                                            scale ** 2 * tot, w2_unit, src))
                 results.checks.append(Check("ω₁² ω₂² (symmetric block)", others[0] * others[1],
-                                            prod, unit_text(u["omega4"]), src))
+                                            scale ** 4 * prod, unit_text(u["omega4"]), src))
 
     # ------------------------------------------------------------------ evolution
     def initial_state(self) -> tuple[np.ndarray, np.ndarray]:
@@ -291,8 +307,8 @@ class NormalModesSimulation(IntegratingSimulation):
 
         ref = reference(t)
         main.reference = {col: ref[:, i] for i, col in enumerate(main.columns)}
-        main.attrs["reference_label"] = ("modal superposition q = Σ η_k (a_k cos ω_k t + "
-                                         "b_k sin ω_k t / ω_k), p = M q̇ (notes §5.1)")
+        main.attrs["reference_label"] = ("modal superposition q = Σ ηₖ (aₖ cos ωₖt + "
+                                         "bₖ sin ωₖt / ωₖ), p = M q̇ (notes §5.1)")
         results.runs["main"] = main
         n = M.shape[0]
         err_q = np.abs(main.y[:, :n] - ref[:, :n])
@@ -300,19 +316,19 @@ class NormalModesSimulation(IntegratingSimulation):
         a["evolution_amplitude"] = float(np.max(np.abs(ref[:, :n])))
         a["stiff"] = stiff
         a["stiff_reason"] = (
-            f"ω_max/ω_min = {ratio:.3g} ≥ {STIFF_RATIO:g}: an explicit method's step is bounded by "
-            "the fastest mode (h ≲ 3/ω_max) while the motion lasts many slow periods; the modal "
+            f"ωₘₐₓ/ωₘᵢₙ = {ratio:.3g} ≥ {STIFF_RATIO:g}: an explicit method's step is bounded by "
+            "the fastest mode (h ≲ 3/ωₘₐₓ) while the motion lasts many slow periods; the modal "
             "superposition is exact at any t, and auto chooses an implicit method (Gauss–Legendre "
             "6, A-stable and symplectic)"
-            if stiff else f"ω_max/ω_min = {ratio:.3g} < {STIFF_RATIO:g}: not stiff")
+            if stiff else f"ωₘₐₓ/ωₘᵢₙ = {ratio:.3g} < {STIFF_RATIO:g}: not stiff")
         c_idx = int(np.argmax(np.max(np.abs(ref[:, :n]), axis=0)))
-        name = self.coordinate_names()[c_idx]
+        name = self.coordinate_names()[c_idx].replace("phi", "φ")
         results.checks.append(Check(f"{name}(t_end), direct integration",
                                     float(main.y[-1, c_idx]), float(ref[-1, c_idx]), "",
-                                    "modal superposition q = Σ η_k a_k cos ω_k t (notes §5.1)"))
+                                    "modal superposition q = Σ ηₖ aₖ cos ωₖt (notes §5.1)"))
         if stiff:
             results.message = "; ".join(x for x in (results.message, (
-                f"stiff: ω_max/ω_min = {ratio:.3g}; direct integration by "
+                f"stiff: ωₘₐₓ/ωₘᵢₙ = {ratio:.3g}; direct integration by "
                 f"{main.attrs.get('method')}")) if x)
         t_study = np.linspace(0.0, run.t_end, 201)
         self.study(results, model, y0, t_study, reference=reference, progress=progress)

@@ -22,7 +22,9 @@ def swap_phase_planes(q, p, Q_int, P_int, Q_map, P_map):
     right.set_xlabel("Q = p [kg·m/s]")
     right.set_ylabel("P = −q [m]")
     right.set_title("K(Q, P)")
-    right.legend(loc="upper right", fontsize=8)
+    # under the panels: the orbits fill the right one up to its corners
+    fig.legend(*right.get_legend_handles_labels(), loc="outside lower center", ncols=2,
+               fontsize=8, frameon=False)
     for ax in (left, right):
         ax.set_aspect("auto")
     return fig
@@ -34,7 +36,9 @@ def hamilton_jacobi(t, q_int, q_hj, energy, beta):
     ax_q.plot(t, q_int, color=HIGHLIGHT, label="integrated")
     ax_q.plot(t, q_hj, color=REFERENCE, linestyle=(0, (4, 3)), label="Hamilton–Jacobi (7.38)")
     ax_q.set_ylabel("q [m]")
-    ax_q.legend(loc="upper right")
+    # above the panels: q(t) peaks in every corner of its axes
+    fig.legend(*ax_q.get_legend_handles_labels(), loc="outside upper center", ncols=2,
+               frameon=False)
     ax_e.plot(t, np.asarray(energy) - energy[0], color=REFERENCE)
     ax_e.set_ylabel("E(t) − E(0) [J]")
     ax_e.ticklabel_format(axis="y", style="sci", scilimits=(-2, 2))

@@ -20,12 +20,39 @@ class OscillatorReport(Report):
     """The oscillator's sections, drawn from the archive alone."""
 
     schema = SCHEMA
+    gallery_name = "Harmonic oscillator"
+    gallery_figures = ("swap", "qp")
+
+    @classmethod
+    def gallery_headline(cls, data):
+        from ...scene import gallery
+        motion = gallery.worst_check(data, "q(t_end)", "p(t_end)")
+        others = gallery.worst_check(data, "Q(t_end)", "Hamilton–Jacobi")
+        if motion is None:
+            return super().gallery_headline(data)
+        text = f"q(t), p(t) {gallery.from_reference(motion.rel_error, 'the closed form')}"
+        return text + (f"; the canonical swap and Hamilton–Jacobi agree to "
+                       f"{gallery.distance(others.rel_error)}" if others is not None else "")
+
     sections = (
         Section("hamilton", "Hamilton's equations against the closed form", integrates=True),
         Section("canonical_swap", "The swap transformation F = q Q", integrates=True),
         Section("hamilton_jacobi", "Hamilton–Jacobi solution", integrates=True),
         Section("error_vs_runtime", "Error against run time", integrates=True),
     )
+
+    @classmethod
+    def describe(cls, data):
+        """``An oscillator with ω = 1.5 rad/s (period 4.189 s) at E = 2.312 J: amplitude
+        1.434 m``, from the archived analysis."""
+        if data.sweep is not None:
+            return super().describe(data)
+        a, m = data.analysis, float(data.config.params.m)
+        omega, energy = float(a["omega"]), float(a["energy"])
+        amplitude = (2.0 * energy / (m * omega ** 2)) ** 0.5
+        return (f"An oscillator with ω = {fmt(omega, 4)} rad/s (period "
+                f"{fmt(float(a['period']), 4)} s) at E = {fmt(energy, 4)} J: amplitude "
+                f"{fmt(amplitude, 4)} m")
 
     @classmethod
     def headline(cls, data):
@@ -36,7 +63,7 @@ class OscillatorReport(Report):
                            f"(period {fmt(a['period'])} s)"),
             ("initial state", f"q0 = {fmt(ini.q)} m, p0 = {fmt(ini.p)} kg·m/s, "
                               f"E = {fmt(a['energy'])} J"),
-            ("max |q − q_exact|", f"{fmt_err(a['q_max_error'])} m"),
+            ("max |q − closed form|", f"{fmt_err(a['q_max_error'])} m"),
         ]
 
     @classmethod
@@ -48,8 +75,8 @@ class OscillatorReport(Report):
             ylabels={"q": "q [m]", "p": "p [kg·m/s]"},
             reference_label=run.attrs["reference_label"])
         err = common_plots.error_against_time(
-            run.t, {"|q − q_exact| [m]": run["q"] - q_ex,
-                    "|p − p_exact| [kg·m/s]": run["p"] - p_ex},
+            run.t, {"|q − closed form| [m]": run["q"] - q_ex,
+                    "|p − closed form| [kg·m/s]": run["p"] - p_ex},
             ylabel="absolute error")
         return SectionContent(
             figures=[cls.figure("qp", fig, "q̇ = ∂H/∂p = p/m, ṗ = −∂H/∂q = −mω²q integrated, "
@@ -72,7 +99,8 @@ class OscillatorReport(Report):
                     "F1(q, Q) = q Q  ⇒  p = ∂F1/∂q = Q,  P = −∂F1/∂Q = −q"),
                    ("new Hamiltonian", "K(Q, P) = H(−P, Q) = Q²/2m + m ω² P²/2"),
                    ("Poisson bracket {Q, P}", "1 (canonical)"),
-                   ("max |(Q, P)_integrated − (p, −q)|", fmt_err(a["swap_max_difference"]))])
+                   ("max distance of the integrated (Q, P) from (p, −q)",
+                    fmt_err(a["swap_max_difference"]))])
 
     @classmethod
     def section_hamilton_jacobi(cls, data):
@@ -85,8 +113,9 @@ class OscillatorReport(Report):
                                 "complete integral S = W(q, E) − E t against the integration. "
                                 "Bottom: the new canonical pair (E, β) evaluated along the "
                                 "integrated trajectory stays constant.")],
-            facts=[("E", f"{fmt(a['hj_energy'], 14)} J"),
-                   ("β = ∂S/∂E", f"{fmt(a['hj_beta'], 14)} s"),
+            facts=[("E", f"{fmt(a['hj_energy'])} J"),
+                   ("β = ∂S/∂E", f"{fmt(a['hj_beta'])} s"),
                    ("max |β(t) − β(0)| along the integration",
                     fmt_err(a["hj_beta_drift"]) + " s"),
-                   ("max |q_HJ − q_integrated|", fmt_err(a["hj_q_max_difference"]) + " m")])
+                   ("max difference of q, Hamilton–Jacobi against the integration",
+                    fmt_err(a["hj_q_max_difference"]) + " m")])

@@ -8,9 +8,17 @@ linearised equation (1.21) with its action (2.4).
 
 from __future__ import annotations
 
+import math
+
+from ...scene.content import fmt as _fmt
 from .config import PRESETS, PendulumConfig
 from .report import PendulumReport
 from .simulation import PendulumSimulation
+
+
+def fmt(x, digits: int = 10) -> str:
+    """A number of a title: :func:`~reportgen.scene.content.fmt` with a true minus sign."""
+    return _fmt(x, digits).replace("-", "−")
 
 
 class PendulumScene(PendulumSimulation, PendulumReport):
@@ -19,3 +27,19 @@ class PendulumScene(PendulumSimulation, PendulumReport):
     summary = "nonlinear plane pendulum m l² θ'' + m g l sin θ = 0 and its small-angle limit"
     Config = PendulumConfig
     presets = PRESETS
+    name_in_words = "Plane pendulum"
+
+    @classmethod
+    def default_title(cls, config):
+        """``Plane pendulum librating from θ0 = 2.5 rad`` (or rotating over the top), by
+        the sign of E − m g l at the start."""
+        p, ini = config.params, config.initial
+        energy = 0.5 * ini.theta_dot ** 2 - p.g / p.l * math.cos(ini.theta)  # per m l²
+        start = f"θ0 = {fmt(ini.theta, 6)} rad" + (
+            f", θ̇0 = {fmt(ini.theta_dot, 4)} rad/s" if ini.theta_dot else "")
+        if energy > p.g / p.l:
+            return f"Plane pendulum rotating over the top ({start})"
+        if energy == p.g / p.l:
+            return f"Plane pendulum on the separatrix ({start})"
+        return f"Plane pendulum librating from {start}" if not ini.theta_dot else (
+            f"Plane pendulum librating ({start})")

@@ -15,6 +15,7 @@ from ...rendering.plots.style import (
     member_markers,
     new_figure,
     new_figure_grid,
+    place_legend,
 )
 
 
@@ -41,8 +42,8 @@ def phase_portrait(theta, theta_dot, *, grid_theta, grid_theta_dot, energy, leve
     ax.set_xticks([-math.pi, -math.pi / 2, 0, math.pi / 2, math.pi],
                   ["−π", "−π/2", "0", "π/2", "π"])
     ax.set_xlabel("θ [rad]")
-    ax.set_ylabel("θ̇ [rad/s]")
-    ax.legend(loc="upper right", fontsize=8)
+    ax.set_ylabel(r"$\mathrm{d}\theta/\mathrm{d}t$ [rad/s]")  # no combining dot (see Quantity.math)
+    place_legend(ax, loc="upper right", fontsize=8, outside="right")
     return fig
 
 
@@ -59,13 +60,17 @@ def period_against_amplitude(*, curve_amplitude, curve_period, small_angle_perio
     if amplitude is not None and period_measured is not None:
         ax.plot([amplitude], [period_measured], "x", color=HIGHLIGHT, markersize=9,
                 label="this scene, measured")
-    ax.set_xlim(0, math.pi)
-    ax.set_ylim(0, min(float(np.max(curve_period)), 4 * small_angle_period))
+    ax.set_xlim(0, 1.02 * math.pi)  # a point at θ0 → π keeps its whole marker
+    # the curve up to four small-angle periods, or up to this scene's point (inside the
+    # frame, with room for its marker): near the separatrix it lies far above
+    top = min(float(np.max(curve_period)), 4 * small_angle_period)
+    shown = [v for v in (period, period_measured) if v is not None and np.isfinite(v)]
+    ax.set_ylim(0, max([top, *(1.08 * v for v in shown)]))
     ax.set_xticks([0, math.pi / 4, math.pi / 2, 3 * math.pi / 4, math.pi],
                   ["0", "π/4", "π/2", "3π/4", "π"])
-    ax.set_xlabel("amplitude θ0 [rad]")
+    ax.set_xlabel("amplitude θ₀ [rad]")
     ax.set_ylabel("period T [s]")
-    ax.legend(loc="upper left")
+    place_legend(ax, loc="upper left")
     return fig
 
 
@@ -79,7 +84,7 @@ def boundary_value(t, theta_exact, theta_numeric, theta_nonlinear, *, ax=None):
             label="boundary values")
     ax.set_xlabel("time t [s]")
     ax.set_ylabel("θ [rad]")
-    ax.legend(loc="best")
+    place_legend(ax)
     return fig
 
 
@@ -103,9 +108,9 @@ def period_family(amplitude, measured, exact, *, curve=None, small_angle=None):
         sa = np.asarray(small_angle)[order]
         ax.plot(*envelope(x, sa), "--", color=CONTEXT, label="small-angle 2π√(l/g)")
     ax.set_ylabel("period T [s]")
-    ax.legend(loc="upper left")
+    place_legend(ax, loc="upper left")
     rel = np.maximum(np.abs(y / np.asarray(exact)[order] - 1), 1e-17)
     ax_err.semilogy(*envelope(x, rel), color=HIGHLIGHT, **member_markers(dense))
-    ax_err.set_ylabel("|T − T_exact| / T_exact")
-    ax_err.set_xlabel("amplitude θ0 [rad]")
+    ax_err.set_ylabel(r"$|T - T_\mathrm{exact}|/T_\mathrm{exact}$ (dimensionless)")
+    ax_err.set_xlabel("amplitude θ₀ [rad]")
     return fig

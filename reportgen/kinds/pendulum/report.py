@@ -22,6 +22,24 @@ class PendulumReport(Report):
     """The pendulum's sections, drawn from the archive alone."""
 
     schema = SCHEMA
+    gallery_name = "Plane pendulum"
+    gallery_figures = ("phase", "period_family", "period")
+
+    @classmethod
+    def gallery_headline(cls, data):
+        from ...scene import gallery
+        if gallery.is_family(data):
+            return gallery.family_headline(data, "amplitudes", "period")
+        a = data.analysis
+        rel = abs(a["period_measured"] / a["period"] - 1)
+        if not math.isfinite(rel):
+            return super().gallery_headline(data)
+        exact = "4K(k)√(l/g)" if a["motion"] == "libration" else "2K(1/k²)/(k ω0)"
+        return (f"{a['motion']}, period {fmt(a['period'], 5)} s: measured "
+                f"{gallery.from_reference(rel, 'the exact ' + exact)}")
+
+    config_symbols = {"initial.theta": r"\theta_0", "initial.theta_dot": r"\dot{\theta}_0",
+                      "params.g": "g", "params.l": "l", "params.m": "m"}
     sections = (
         Section("time_series", "Angle against time", integrates=True),
         Section("phase_portrait", "Phase portrait", integrates=True),
@@ -43,6 +61,43 @@ class PendulumReport(Report):
             names.remove("boundary_value")
         return names
 
+    #: 1 − k below this is "near the separatrix" in the prose
+    SEPARATRIX_GAP = 1e-3
+
+    @classmethod
+    def prose_case(cls, data):
+        """Libration or rotation, near the separatrix (1 − k < :attr:`SEPARATRIX_GAP`) or
+        not, and how far the exact period is from the small-angle one."""
+        if data.sweep is not None:
+            return {}
+        a = data.analysis
+        period, small = float(a["period"]), float(a["period_small_angle"])
+        k = float(a["k"])
+        excess = period / small - 1.0
+        return {"motion": str(a["motion"]), "k": fmt(k, 6),
+                "near_separatrix": abs(1.0 - k) < cls.SEPARATRIX_GAP,
+                "gap": fmt_err(abs(1.0 - k)), "amplitude": fmt(float(a.get("amplitude", math.nan)), 6),
+                "period": fmt(period, 5), "period_small": fmt(small, 5),
+                "excess": f"{excess * 100:.2g} %" if excess < 1 else f"{excess + 1:.3g} times",
+                "small": excess < 0.01}
+
+    @classmethod
+    def describe(cls, data):
+        """``A pendulum librating with amplitude 0.2 rad (k = 0.0998), period 2.0116 s:
+        0.25 % longer than the small-angle 2π√(l/g)``."""
+        if data.sweep is not None:
+            return super().describe(data)
+        c = cls.prose_case(data)
+        if c["motion"] == "rotation":
+            return (f"A pendulum rotating over the top (k = {c['k']}): one turn takes "
+                    f"{c['period']} s")
+        where = " just inside the separatrix" if c["near_separatrix"] else ""
+        longer = (f"{c['excess']} the small-angle period" if c["excess"].endswith("times")
+                  else f"{c['excess']} longer than the small-angle 2π√(l/g)")
+        k = f"1 − k = {c['gap']}" if c["near_separatrix"] else f"k = {c['k']}"
+        return (f"A pendulum librating{where} with amplitude {c['amplitude']} rad "
+                f"({k}), period {c['period']} s: {longer}")
+
     @classmethod
     def headline(cls, data):
         p, ini = data.config.params, data.config.initial
@@ -51,7 +106,7 @@ class PendulumReport(Report):
             ("parameters", f"g = {fmt(p.g)} m/s², l = {fmt(p.l)} m, m = {fmt(p.m)} kg"),
             ("initial state", f"θ0 = {fmt(ini.theta)} rad, θ̇0 = {fmt(ini.theta_dot)} rad/s"),
             ("motion", f"{a['motion']}, k = {fmt(a['k'])}"),
-            ("period", f"{fmt(a['period'], 14)} s exact; small-angle 2π/ω0 = "
+            ("period", f"{fmt(a['period'])} s exact; small-angle 2π/ω0 = "
                        f"{fmt(a['period_small_angle'])} s"),
             ("max |θ − θ_exact|", f"{fmt_err(a['theta_max_error'])} rad over the run"),
         ]
@@ -64,14 +119,14 @@ class PendulumReport(Report):
         fig = common_plots.timeseries_against_reference(
             run.t, {"theta": run["theta"], "theta_dot": run["theta_dot"]},
             {"theta": th_ex, "theta_dot": thd_ex},
-            ylabels={"theta": "θ [rad]", "theta_dot": "θ̇ [rad/s]"},
+            ylabels={"theta": cls.label("theta"), "theta_dot": cls.label("theta_dot")},
             reference_label=run.attrs["reference_label"],
             extra={"theta": small["theta"], "theta_dot": small["theta_dot"]}
             if small is not None else None,
         )
         err = common_plots.error_against_time(
             run.t, {"|θ − θ_exact| [rad]": run["theta"] - th_ex,
-                    "|θ̇ − θ̇_exact| [rad/s]": run["theta_dot"] - thd_ex},
+                    "|dθ/dt − (dθ/dt)_exact| [rad/s]": run["theta_dot"] - thd_ex},
             ylabel="absolute error")
         return SectionContent(figures=[
             cls.figure("timeseries", fig, "θ(t) and θ̇(t) integrated, against the exact "
@@ -100,17 +155,35 @@ class PendulumReport(Report):
             small_angle_period=a["period_small_angle"],
             amplitude=a["amplitude"] if libration else None, period=a["period"],
             period_measured=a["period_measured"] if libration else None)
-        facts = [("exact period", f"{fmt(a['period'], 14)} s"),
-                 ("measured from θ(t)", f"{fmt(a['period_measured'], 14)} s"),
+        facts = [("exact period", f"{fmt(a['period'])} s"),
+                 ("measured from θ(t)", f"{fmt(a['period_measured'])} s"),
                  ("relative difference", fmt_err(abs(a['period_measured'] / a['period'] - 1)))]
         notes = [] if libration else [
             "This scene rotates; its period is the time of one full turn, 2K(1/k²)/(k ω0)."]
         if not math.isfinite(a["period_measured"]):
-            notes.append(f"No measured period: the run covers fewer than two periods or stores "
-                         f"fewer than {MIN_SAMPLES_PER_PERIOD} samples per period.")
+            notes.append("No measured period: " + cls._no_period_reason(data) + ".")
         return SectionContent(figures=[cls.figure(
             "period", fig, "Period against amplitude: exact 4K(k)√(l/g), k = sin(θ0/2), "
             "against the small-angle period 2π√(l/g).")], facts=facts, notes=notes)
+
+    @classmethod
+    def _no_period_reason(cls, data) -> str:
+        """Which of the reasons for a missing measured period applies, from the archived
+        run's span and samples against the exact period."""
+        period, run = float(data.analysis["period"]), data.runs.get("main")
+        if not math.isfinite(period):
+            return "the exact period is infinite (the pendulum is on the separatrix)"
+        if run is None or len(run.t) < 2:
+            return "the archive holds no integrated run to measure it on"
+        periods = float(run.t[-1] - run.t[0]) / period
+        per_period = (len(run.t) - 1) / periods
+        reasons = []
+        if periods < 2:
+            reasons.append(f"the run covers {fmt(periods, 3)} periods, fewer than two")
+        if per_period < MIN_SAMPLES_PER_PERIOD:
+            reasons.append(f"it stores {fmt(per_period, 3)} samples per period, fewer than "
+                           f"{MIN_SAMPLES_PER_PERIOD}")
+        return "; ".join(reasons) or "θ(t) crosses its centre upward fewer than twice"
 
     @classmethod
     def section_period_family(cls, data):
@@ -126,8 +199,8 @@ class PendulumReport(Report):
         facts = [("members with a period", f"{int(ok.sum())} of {sweep.size}"),
                  ("max relative error of the period", fmt_err(float(np.max(rel)))
                   if rel.size else "—"),
-                 ("tolerance of the runs", f"rtol {data.config.run.rtol:g}, "
-                                           f"atol {data.config.run.atol:g}")]
+                 ("tolerance of the runs", f"rtol {fmt(data.config.run.rtol)}, "
+                                           f"atol {fmt(data.config.run.atol)}")]
         return SectionContent(figures=[cls.figure(
             "period_family", fig, "Each member's period, the time between its first two upward "
             "crossings of θ = 0 on the integrator's dense output, against the exact "
@@ -143,10 +216,10 @@ class PendulumReport(Report):
         table = Table(
             caption="Action S = ∫ L dt (2.4) along the boundary-value solution",
             header=["solution", "action [J·s]", "rel. error vs closed form"],
-            rows=[["linear, closed form (2.4)", fmt(bvp["action_exact"], 14), "—"],
-                  ["linear, solve_bvp + Simpson quadrature", fmt(bvp["action_numeric"], 14),
+            rows=[["linear, closed form (2.4)", fmt(bvp["action_exact"]), "—"],
+                  ["linear, solve_bvp + Simpson quadrature", fmt(bvp["action_numeric"]),
                    fmt_err(abs(bvp["action_numeric"] / bvp["action_exact"] - 1))],
-                  ["nonlinear pendulum, solve_bvp", fmt(bvp["action_nonlinear"], 14),
+                  ["nonlinear pendulum, solve_bvp", fmt(bvp["action_nonlinear"]),
                    "(different problem)"]])
         return SectionContent(
             figures=[cls.figure("bvp", fig, f"θ(0) = {fmt(b.theta0)} rad, θ(T) = "

@@ -23,6 +23,8 @@ SCHEMA = ResultsSchema(
         Q("omega0", r"\omega_0", "rad/s", "small-angle angular frequency sqrt(g/l)"),
         Q("k", "k", "1", "elliptic modulus"),
         Q("motion", "", "", "libration or rotation", kind="str"),
+        Q("behaviour", "", "", "physical behaviour: libration, rotation or separatrix",
+          kind="str", optional=True),
         Q("complementary_parameter", "1 - k^2", "1", "complementary elliptic parameter"),
         Q("reference", "", "", "what the reference solution is", kind="str"),
         Q("theta_max_error", r"\max|\theta - \theta_\mathrm{exact}|", "rad",

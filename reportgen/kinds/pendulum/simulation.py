@@ -79,6 +79,19 @@ class PendulumSimulation(IntegratingSimulation):
     def regime(self) -> str:
         return "libration" if self.m1 > 0.0 else "rotation"
 
+    #: |1 − k²| below this: on the separatrix (the motion creeps towards the upright)
+    SEPARATRIX_M1 = 1e-6
+
+    def _behaviour(self, a: dict) -> str:
+        """Libration, rotation, or (|1 − k²| < SEPARATRIX_M1) the separatrix, in words."""
+        if abs(self.m1) < self.SEPARATRIX_M1:
+            return (f"separatrix: 1 − k² = {self.m1:.2g}, the pendulum creeps towards the "
+                    "upright position, the period growing without bound")
+        if self.m1 > 0:
+            return (f"libration: swings between ±{a.get('amplitude', math.nan):.4g} rad, "
+                    "never over the top")
+        return "rotation: goes over the top, θ grows without bound"
+
     @property
     def has_exact_solution(self) -> bool:
         return abs(self.m1) >= theory.EXACT_SOLUTION_MIN_M1
@@ -153,6 +166,8 @@ class PendulumSimulation(IntegratingSimulation):
             results.analysis["amplitude"] = core.libration_amplitude(ini.theta, ini.theta_dot,
                                                                      self.omega0)
         results.analysis["phase_portrait"] = self._phase_portrait(theta_dot)
+        if not self.family_member:  # physical behaviour, not a status (a sweep: per member)
+            results.analysis["behaviour"] = self._behaviour(results.analysis)
         amp = np.linspace(1e-3, math.pi - 1e-3, self.PERIOD_CURVE_POINTS)
         results.analysis["period_curve"] = {"amplitude": amp,
                                             "period": core.libration_period(amp, self.omega0)}

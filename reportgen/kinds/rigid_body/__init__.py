@@ -20,9 +20,16 @@ separatrix; that is why this kind does not loosen it.
 
 from __future__ import annotations
 
+from ...scene.content import fmt as _fmt
+from ..inertia import shape_in_words
 from .config import PRESETS, RigidBodyConfig
 from .report import RigidBodyReport
 from .simulation import RigidBodySimulation
+
+
+def fmt(x, digits: int = 10) -> str:
+    """A number of a title: :func:`~reportgen.scene.content.fmt` with a true minus sign."""
+    return _fmt(x, digits).replace("-", "−")
 
 
 class RigidBodyScene(RigidBodySimulation, RigidBodyReport):
@@ -31,3 +38,34 @@ class RigidBodyScene(RigidBodySimulation, RigidBodyReport):
     summary = "torque-free rigid body: Euler's equations, attitude, polhodes, axis stability"
     Config = RigidBodyConfig
     presets = PRESETS
+    name_in_words = "Torque-free rigid body"
+
+    @classmethod
+    def default_title(cls, config):
+        """``Torque-free asymmetric body (I = 1, 2, 3 kg m²) spun near its intermediate
+        axis``: the case by the moments (spherical, symmetric, asymmetric), the spin by
+        the largest component of I ω."""
+        omega = [float(w) for w in config.initial.omega]
+        spin = "(" + ", ".join(fmt(w, 4) for w in omega) + ") rad/s"
+        if config.params is None:
+            body = shape_in_words(config.shape)
+            body = body[2:] if body.startswith("a ") else f"body of {body}"
+            title = f"Torque-free {body}, ω0 = {spin}"
+            if config.impulse is not None:
+                title += (", struck at the apex" if config.impulse.at == "apex"
+                          else ", struck by an impulse")
+            return title
+        moments = [float(config.params.I1), float(config.params.I2), float(config.params.I3)]
+        body = {1: "spherical top", 2: "symmetric body", 3: "asymmetric body"}[
+            len({round(m / max(moments), 12) for m in moments})]
+        title = f"Torque-free {body} (I = {', '.join(fmt(m, 4) for m in moments)} kg m²)"
+        if body == "asymmetric body":
+            near = max(range(3), key=lambda k: abs(moments[k] * omega[k]))
+            rank = sorted(moments).index(moments[near])
+            which = ("smallest-moment", "intermediate", "largest-moment")[rank]
+            title += f" spun near its {which} axis"
+        else:
+            title += f", ω0 = {spin}"
+        if config.impulse is not None:
+            title += ", struck by an impulse"
+        return title

@@ -18,14 +18,38 @@ plots = lazy_module("reportgen.rendering.plots.rigid_body")
 
 #: the invariants as named in tables and the main run's drift figure
 INVARIANT_NAMES = {"twice_energy": "2T", "L_squared": "L² (body frame)",
-                   "L_x": "L_x (space)", "L_y": "L_y (space)", "L_z": "L_z (space)",
+                   "L_x": "Lx (space)", "L_y": "Ly (space)", "L_z": "Lz (space)",
                    "quaternion_norm": "|q|"}
+
+
+def axes_by_moment(analysis) -> tuple[int, int, int]:
+    """The body axes (1, 2, 3) of the smallest, the intermediate and the largest principal
+    moment, as configured (ties in axis order)."""
+    moments = [float(x) for x in analysis["principal_moments"]]
+    order = sorted(range(3), key=lambda k: moments[k])
+    return order[0] + 1, order[1] + 1, order[2] + 1
 
 
 class RigidBodyReport(Report):
     """The rigid body's sections, drawn from the archive alone."""
 
     schema = SCHEMA
+    gallery_name = "Torque-free rigid body"
+    gallery_figures = ("polhode_ellipsoid", "polhodes")
+
+    @classmethod
+    def gallery_headline(cls, data):
+        from ...scene import gallery
+        flips = gallery.worst_check(data, "time between flips")
+        if flips is not None and math.isfinite(flips.value):
+            return (f"flips every {fmt(flips.value, 5)} s, "
+                    f"{gallery.from_reference(flips.rel_error, 'the exact 2K(m)/λ')}")
+        omega = gallery.worst_check(data, "ω1", "ω2", "ω3")
+        if omega is None:
+            return super().gallery_headline(data)
+        exact = "the exact " + gallery.reference_words(omega.source)
+        return f"ω(t) {gallery.from_reference(omega.rel_error, exact)}"
+
     sections = (
         Section("omega", "Angular velocity against the exact solution", integrates=True),
         Section("polhodes", "Polhodes on the angular-momentum sphere", integrates=True),
@@ -63,13 +87,36 @@ class RigidBodyReport(Report):
             ("initial ω (body)", "(" + ", ".join(fmt(float(x)) for x in w) + ") rad/s"
              + (" after the impulse" if data.config.get("impulse") is not None else "")),
             ("axis stability", ", ".join(f"{k[-1]}: {v['verdict']}" for k, v in st.items())),
-            ("max |ω − ω_exact|", f"{fmt_err(a['omega_max_error'])} rad/s ({a['reference']})"),
+            ("max |ω − exact ω|", f"{fmt_err(a['omega_max_error'])} rad/s ({a['reference']})"),
             ("max ||q| − 1|", f"{fmt_err(a['quaternion_norm_max_deviation'])} (integrator "
                               "output; archived attitude renormalized)"),
         ]
         if "elliptic" in a:
             facts.append(("branch", f"{a['elliptic']['branch']}, m = {fmt(a['elliptic']['m'])}"))
         return facts
+
+    @classmethod
+    def prose_case(cls, data):
+        """Spherical, symmetric (figure axis, prolate or oblate) or asymmetric (which
+        configured axis has the smallest, intermediate and largest moment, the elliptic
+        branch), and whether the scene shows the intermediate-axis flip."""
+        a = data.analysis
+        moments = [float(x) for x in a["principal_moments"]]
+        case = {"spherical": bool(a.get("spherical", False)), "symmetric": "symmetric" in a,
+                "asymmetric": "elliptic" in a, "flip": "flip" in a,
+                "unstable_axes": [int(k[-1]) for k, v in a["axis_stability"].items()
+                                  if v["verdict"] == "unstable"]}
+        if case["symmetric"]:
+            axis = int(a["symmetric"]["axis"])
+            transverse = [k for k in (1, 2, 3) if k != axis]
+            case.update(axis=axis, transverse=transverse,
+                        shape="oblate" if moments[axis - 1] > moments[transverse[0] - 1]
+                        else "prolate")
+        if case["asymmetric"]:
+            smallest, intermediate, largest = axes_by_moment(a)
+            case.update(smallest=smallest, intermediate=intermediate, largest=largest,
+                        branch=str(a["elliptic"]["branch"]))
+        return case
 
     @classmethod
     def section_omega(cls, data):
@@ -87,16 +134,19 @@ class RigidBodyReport(Report):
             cls.figure("omega", fig, "Body-frame angular velocity integrated (Euler's equations "
                        "(10.5)) against the exact solution."),
             cls.figure("omega_error", err, "Error of ω against the exact solution.")],
-            facts=[("max |ω − ω_exact|", f"{fmt_err(data.analysis['omega_max_error'])} rad/s")])
+            facts=[("max |ω − exact ω|", f"{fmt_err(data.analysis['omega_max_error'])} rad/s")])
 
     @classmethod
     def section_polhodes(cls, data):
         p = data.analysis["polhodes"]
-        fig = plots.polhodes(p["family"], p["separatrices"], p["track"])
+        fig = plots.polhodes(p["family"], p["separatrices"], p["track"],
+                             intermediate=axes_by_moment(data.analysis)[1])
         return SectionContent(figures=[cls.figure(
             "polhodes", fig, "Polhodes: the body-frame L on the sphere |L| = const cut by the "
-            "energy ellipsoid Σ L_k²/I_k = 2E. Grey: a family of energies; orange: the "
-            "separatrices through the intermediate axis; red: this scene.")])
+            "energy ellipsoid Σ Lₖ²/Iₖ = 2E. Grey: a family of energies; "
+            + ("orange: the separatrices through the intermediate axis; "
+               if len(p["separatrices"]) else "")
+            + "red: this scene.")])
 
     @classmethod
     def section_polhode_ellipsoid(cls, data):
@@ -106,21 +156,32 @@ class RigidBodyReport(Report):
                                          "computed for this archive (a spherical body, or the "
                                          "section was not asked for when it was simulated)."])
         run = data.runs["main"]
+        smallest, mid, largest = axes_by_moment(data.analysis)
         fig = plots.polhodes_on_ellipsoid(p["surface"], p["semi_axes"], p["family"],
-                                          p["separatrices"], run.y[:, :3])
+                                          p["separatrices"], run.y[:, :3], intermediate=mid)
         side = int(p["circled_axis"])
         facts = [("2T, L²", f"{fmt(float(p['twice_energy']))} J, "
-                            f"{fmt(float(p['L_squared']))} (kg m²/s)²"),
-                 ("(L² − 2T·I_mid)/(2T·I_mid)",
-                  f"{fmt(float(p['separatrix_offset']), 4)}: "
-                  + (f"the polhode circles axis {side}" if side else "on the separatrix"))]
+                            f"{fmt(float(p['L_squared']))} (kg m²/s)²")]
+        symmetric = data.analysis.get("symmetric")
+        if symmetric is not None:  # no intermediate moment, no separatrix to be off
+            facts.append(("polhode (symmetric body)",
+                          f"a circle about the figure axis {int(symmetric['axis'])}, "
+                          f"|ω⊥| = {fmt(float(symmetric['omega_perp']))} rad/s constant"))
+        else:
+            facts.append((f"(L² − 2T·I{mid})/(2T·I{mid}), I{mid} the intermediate moment",
+                          f"{fmt(float(p['separatrix_offset']), 4)}: "
+                          + (f"the polhode circles axis {side}" if side else
+                             "on the separatrix")))
         return SectionContent(
             figures=[cls.figure(
                 "polhode_ellipsoid", fig,
                 "Polhodes on the energy ellipsoid ω·Iω = 2T (the inertia ellipsoid scaled by "
                 "√(2T)), body frame: each is its intersection with ω·I²ω = L². Grey: a ladder "
-                "of L² between 2T·I_min and 2T·I_max; orange: the separatrices L² = 2T·I_mid; "
-                "red: ω of this scene as integrated.")],
+                f"of L² between 2T·I{smallest} and 2T·I{largest} (the smallest and the largest "
+                "moment); "
+                + (f"orange: the separatrices L² = 2T·I{mid}; " if len(p["separatrices"])
+                   else "")
+                + "red: ω of this scene as integrated.")],
             facts=facts)
 
     @classmethod
@@ -131,9 +192,12 @@ class RigidBodyReport(Report):
                                          "archive (a spherical body, or the section was not "
                                          "asked for when it was simulated)."])
         radius = c.get("herpolhode_radius")
+        t = data.runs["main"].t
+        contact_time = float(t[int(c["contact_index"])])
         fig = plots.poinsot(c["surface"], c["axes"], c["polhode"], c["herpolhode"],
                             float(c["plane_height"]),
-                            circle_radius=None if radius is None else float(radius))
+                            circle_radius=None if radius is None else float(radius),
+                            contact_time=contact_time)
         d = float(c["plane_distance"])
         facts = [("invariable plane at √(2T)/|L|", f"{fmt(d)} 1/√(kg m²)"),
                  ("tip of x off the plane", f"{fmt_err(float(c['plane_distance_max_error']))}"
@@ -142,10 +206,9 @@ class RigidBodyReport(Report):
             facts.append(("herpolhode radius (symmetric body)",
                           f"{fmt(float(radius))} 1/√(kg m²) closed form; the run deviates by "
                           f"{fmt_err(float(c['herpolhode_radius_max_error']))} at most"))
-        t = data.runs["main"].t
         caption = ("Poinsot's construction, x = ω/√(2T) [1/√(kg m²)], seen with L pointing "
                    "down: the inertia ellipsoid x·Ix = 1 at t = "
-                   f"{fmt(float(t[int(c['contact_index'])]), 4)} s, resting on the invariable "
+                   f"{fmt(contact_time, 4)} s, resting on the invariable "
                    "plane at the tip of x; red, the polhode on the body; light blue, the herpolhode "
                    "the contact point has traced on the plane since t = 0 (right: the plane "
                    "seen along L).")
@@ -177,8 +240,9 @@ class RigidBodyReport(Report):
         s = data.analysis["symmetric"]
         return SectionContent(facts=[
             ("symmetry axis", str(s["axis"])),
-            ("Ω (10.10)", f"{fmt(s['Omega'], 12)} rad/s"),
-            ("Ω measured (slope of the phase of ω⊥)", f"{fmt(s['Omega_measured'], 12)} rad/s"),
+            ("Ω (10.10)", f"{fmt(s['Omega'], against=s['Omega_measured'])} rad/s"),
+            ("Ω measured (slope of the phase of ω⊥)",
+             f"{fmt(s['Omega_measured'], against=s['Omega'])} rad/s"),
             ("|ω⊥|", f"{fmt(s['omega_perp'])} rad/s (constant)"),
             ("precession of the figure axis about L, |L|/I⊥", f"{fmt(s['space_precession_rate'])}"
                                                                 " rad/s")])
@@ -215,7 +279,7 @@ class RigidBodyReport(Report):
             tables=[Table(caption="Max relative drift of each invariant",
                           header=["quantity", "splitting", f"main run "
                                   f"({data.runs['main'].attrs['method']})"], rows=rows)],
-            facts=[("max |ω − ω_exact| (splitting)", f"{fmt_err(a['splitting_omega_max_error'])}"
+            facts=[("max |ω − exact ω| (splitting)", f"{fmt_err(a['splitting_omega_max_error'])}"
                     f" rad/s in {float(split.attrs['wall_time_s']) * 1e3:.3g} ms, "
                     f"{int(split.attrs['nsteps'])} steps")])
 

@@ -48,6 +48,8 @@ SCHEMA = ResultsSchema(
         Q("twice_energy", "2T", "J", "twice the kinetic energy"),
         Q("L_squared", "L^2", L_SQUARED, "squared angular momentum"),
         Q("reference", "", "", "what the reference solution is", kind="str"),
+        Q("behaviour", "", "", "physical behaviour: a flip about the intermediate axis",
+          kind="str", optional=True),
         Q("elliptic/branch", "", "", "branch of the elliptic solution (L^2 against 2E I2)",
           kind="str", optional=True),
         Q("elliptic/lambda", r"\lambda", "rad/s", "frequency of the elliptic solution",

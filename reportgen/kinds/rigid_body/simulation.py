@@ -178,8 +178,14 @@ class RigidBodySimulation(IntegratingSimulation):
                 t, main.y[:, :3], k2, stability[k2]["growth_rate"],
                 elliptic["period"] / 2.0 if elliptic else math.nan)
             f = analysis["flip"]
+            half = next((v for v in (f["half_period_exact"], f["half_period_measured"])
+                         if math.isfinite(v)), math.nan)
+            analysis["behaviour"] = (
+                f"flip: rotation near the intermediate axis {k2 + 1} is unstable (growth rate "
+                f"{stability[k2]['growth_rate']:.3g} 1/s)"
+                + (f"; the body turns over every {half:.4g} s" if math.isfinite(half) else ""))
             if math.isfinite(f["half_period_measured"]):
-                results.checks.append(Check("time between flips (zero crossings of ω_b)",
+                results.checks.append(Check(f"time between flips (zero crossings of ω{k2 + 1})",
                                             f["half_period_measured"], f["half_period_exact"],
                                             "s", "2K(m)/λ of the elliptic solution"))
         if "symmetric" in analysis:
@@ -279,7 +285,7 @@ class RigidBodySimulation(IntegratingSimulation):
                 e = np.abs(Y - ref)
                 rows.append((f"splitting{order}", f"axis splitting, order {order}", "fixed",
                              math.nan, h, float(np.max(e[-1])), float(np.max(e)), best,
-                             0, 0.0, "ok", len(walls), *stamp))
+                             0, 0.0, "ok", len(walls), *stamp, ""))  # message: none
                 if best > 0.5 or float(np.max(e)) < 1e-12:
                     break
         extra = np.array([tuple(v.encode() if isinstance(v, str) else v for v in r)

@@ -35,3 +35,21 @@ class RotationScene(RotationSimulation, RotationReport):
                "rates, stereographic projection and SU(2) → SO(3) by Möbius maps")
     Config = RotationConfig
     presets = PRESETS
+    name_in_words = "Rotations"
+
+    @classmethod
+    def default_title(cls, config):
+        """``Rotations: axis and angle, Euler angles (z-x-z) and SU(2) → SO(3) by Möbius maps``: the
+        parts the config asks for."""
+        parts = []
+        if config.axis_angle is not None:
+            parts.append("axis and angle")
+        if config.euler is not None:
+            c = config.euler.convention
+            parts.append(f"Euler angles ({c[0]}-{c[1]}-{c[2]})")
+        if config.su2 is not None:
+            parts.append("SU(2) → SO(3) by Möbius maps")
+        if not parts:
+            return "Rotations"
+        return "Rotations: " + (", ".join(parts[:-1]) + " and " + parts[-1]
+                                if len(parts) > 1 else parts[0])

@@ -10,7 +10,15 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ...rendering.plots.rigid_body import AXIS_COLOURS
-from ...rendering.plots.style import CONTEXT, HIGHLIGHT, REFERENCE, SEPARATRIX, legend_below, new_figure
+from ...rendering.plots.style import (
+    CONTEXT,
+    HIGHLIGHT,
+    REFERENCE,
+    SEPARATRIX,
+    legend_below,
+    new_figure,
+    place_legend,
+)
 
 #: Euler-angle convention names as printed
 CONVENTION = {"zxz": "z-x-z", "zyz": "z-y-z"}
@@ -186,16 +194,16 @@ def stereographic(s: dict, *, markers: int = PLANE_MARKERS):
                                                           "plane_rotated"))
     ax.plot(*plane.T, "o", color=REFERENCE, markersize=3.0, label="ζ = π(x)")
     ax.plot(*mob.T, "o", color=HIGHLIGHT, markersize=7.0, markerfacecolor="none",
-            markeredgewidth=0.9, label="M_U(ζ) = (aζ + b)/(a* − b*ζ)")
+            markeredgewidth=0.9, label=r"$M_U(\zeta) = (a\zeta + b)/(\bar a - \bar b\zeta)$")
     ax.plot(*rot.T, ".", color=HIGHLIGHT, markersize=3.5, label="π(R(U) x)")
     ax.plot(*np.asarray(s["circle_plane"]).T, color=REFERENCE, linewidth=2.0)
     ax.plot(*np.asarray(s["circle_plane_mobius"]).T, color=HIGHLIGHT, linewidth=2.0)
     ax.plot(*np.asarray(s["pole_image_plane"]), "*", color=HIGHLIGHT, markersize=12,
-            label="M_U(∞) = π(R(U) N)")
+            label=r"$M_U(\infty)$ = π(R(U) N)")
     ax.set_xlim(-w, w)
     ax.set_ylim(-w, w)
     ax.set_aspect("equal")
-    ax.set_xlabel("Re ζ")
-    ax.set_ylabel("Im ζ")
-    ax.legend(loc="lower left", fontsize=8, framealpha=0.95)
+    ax.set_xlabel("Re ζ (dimensionless)")
+    ax.set_ylabel("Im ζ (dimensionless)")
+    place_legend(ax, loc="lower left", outside="right", fontsize=8, framealpha=0.95)
     return fig

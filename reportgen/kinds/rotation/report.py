@@ -9,7 +9,7 @@ import numpy as np
 
 from ...lazy import lazy_module
 from ...scene.base import Section
-from ...scene.content import SectionContent, Table, fmt, fmt_err
+from ...scene.content import SectionContent, Table, fmt, fmt_err, fmt_matrix
 from ...scene.report import Report
 from .results import SCHEMA, SECTION_DATA, TOLERANCE
 
@@ -17,22 +17,35 @@ plots = lazy_module("reportgen.kinds.rotation.plots")
 
 
 def _vec(v) -> str:
-    return "(" + ", ".join(f"{float(x):+.6f}" for x in v) + ")"
+    return "(" + ", ".join(fmt_matrix(v)[0]) + ")"
 
 
-def _matrix_rows(M, digits: int = 12) -> list[list[str]]:
-    return [[f"{float(x):+.{digits}f}" for x in row] for row in np.asarray(M)]
+def _matrix_rows(M) -> list[list[str]]:
+    return fmt_matrix(M)
 
 
 def _complex(pair) -> str:
-    re_, im = (float(x) for x in pair)
-    return f"{re_:.12g} {'+' if im >= 0 else '−'} {abs(im):.12g} i"
+    re_, im = fmt_matrix(pair)[0]
+    return f"{re_} {'−' if im.startswith('-') else '+'} {im.lstrip('-')} i"
 
 
 class RotationReport(Report):
     """The rotation kind's sections, drawn from the archive alone."""
 
     schema = SCHEMA
+    gallery_name = "Rotations"
+    gallery_figures = ("rotation_formula", "line_of_nodes")
+
+    @classmethod
+    def gallery_headline(cls, data):
+        from ...scene import gallery
+        checks = [c for c in data.checks if math.isfinite(c.rel_error)]
+        if not checks:
+            return super().gallery_headline(data)
+        worst = max(c.rel_error for c in checks)
+        return (f"{len(checks)} identities (axis–angle, Euler angles, SU(2)) checked: the "
+                f"largest discrepancy {gallery.distance(worst)}")
+
     sections = (
         Section("axis_angle", "Axis and angle ↔ rotation matrix (exercise 4.5)"),
         Section("euler_angles", "Euler angles: z-x-z and z-y-z (exercises 4.7, 4.8)"),
@@ -47,6 +60,27 @@ class RotationReport(Report):
         return [s.name for s in cls.sections if SECTION_DATA[s.name] in data.analysis]
 
     @classmethod
+    def describe(cls, data):
+        """``A rotation by 120° about n = (0.5774, 0.5774, 0.5774); z-y-z Euler angles along
+        a path; an SU(2) matrix of angle 73.74° as a Möbius map``: what this scene turns."""
+        a, parts = data.analysis, []
+        if "axis_angle" in a:
+            n = ", ".join(fmt(float(x), 4) for x in np.asarray(a["axis_angle"]["axis"]))
+            parts.append(f"a rotation by {math.degrees(float(a['axis_angle']['angle'])):.4g}° "
+                         f"about n = ({n})")
+        if "euler" in a:
+            c = str(a["euler"]["convention"])
+            parts.append(f"{c[0]}-{c[1]}-{c[2]} Euler angles and ω along a path")
+        if "stereographic" in a:
+            parts.append(f"an SU(2) matrix turning by "
+                         f"{math.degrees(float(a['stereographic']['su2_angle'])):.4g}° as a "
+                         "Möbius map of the Riemann sphere")
+        if not parts:
+            return super().describe(data)
+        text = "; ".join(parts)
+        return text[:1].upper() + text[1:]
+
+    @classmethod
     def headline(cls, data):
         a = data.analysis
         facts = []
@@ -54,7 +88,7 @@ class RotationReport(Report):
             e = a["axis_angle"]["errors"]
             facts.append(("ex. 4.5 axis–angle ↔ matrix",
                           f"max error {fmt_err(max(e.values()))} (Φ = "
-                          f"{fmt(a['axis_angle']['angle'], 8)} rad about "
+                          f"{fmt(a['axis_angle']['angle'])} rad about "
                           f"{_vec(a['axis_angle']['axis'])})"))
         if "euler" in a:
             e = a["euler"]["errors"]
@@ -78,15 +112,17 @@ class RotationReport(Report):
         fig = plots.axis_angle(a["axis"], a["angle"], a["vector"], a["rotated_vector"], a["arc"],
                                a["circle"], a["centre"], a["turned_axes"])
         facts = [("axis n (normalized)", _vec(a["axis"])),
-                 ("angle Φ", f"{fmt(a['angle'], 12)} rad = {math.degrees(a['angle']):.6g}°"),
+                 ("angle Φ", f"{fmt(a['angle'], against=a['recovered_angle'])} rad = "
+                             f"{fmt(math.degrees(a['angle']))}°"),
                  ("r", _vec(a["vector"])),
                  ("r′ by (4.62)", _vec(a["rotated_vector"])),
-                 ("recovered from the matrix", f"Φ = {fmt(a['recovered_angle'], 15)} rad, "
-                                               f"n = {_vec(a['recovered_axis'])}"),
-                 ("det A", fmt(a["determinant"], 15))]
+                 ("recovered from the matrix",
+                  f"Φ = {fmt(a['recovered_angle'], against=a['angle'])} rad, "
+                  f"n = {_vec(a['recovered_axis'])}"),
+                 ("det A", fmt(a["determinant"], against=1.0))]
         matrix = Table(caption="A(n, Φ) from Goldstein (4.62), column j = the formula applied to "
-                               "e_j (passive: components in the turned axes); the active "
-                               "rotation reportgen uses elsewhere is R = Aᵀ",
+                               "the j-th axis unit vector (passive: components in the turned "
+                               "axes); the active rotation reportgen uses elsewhere is R = Aᵀ",
                        header=["", "x", "y", "z"],
                        rows=[[c] + row for c, row in zip("xyz", _matrix_rows(a["matrix_formula"]),
                                                           strict=True)])
@@ -122,7 +158,7 @@ class RotationReport(Report):
         names = {"zxz": "z-x-z", "zyz": "z-y-z"}
 
         def angles(v):
-            return ", ".join(f"{float(x):.10g}" for x in v)
+            return ", ".join(fmt(float(x)) for x in v)
 
         facts = [(f"{names[given]} angles (given) φ, θ, ψ", angles(a["path"][0]) + " rad"),
                  (f"{names[other]} angles of the same rotation", angles(a["path_other"][0])
@@ -136,7 +172,8 @@ class RotationReport(Report):
                        header=["check", "max error"],
                        rows=[["R by elementary rotations vs (4.46) elements",
                               fmt_err(e["matrix_product_vs_elements"])],
-                             [f"R_{given} vs R_{other} at the converted angles, whole path",
+                             [f"R by {names[given]} angles vs by {names[other]} angles "
+                              "(converted), whole path",
                               fmt_err(e["matrix_conventions"])]])
         return SectionContent(
             figures=[cls.figure("line_of_nodes", fig,
@@ -156,7 +193,7 @@ class RotationReport(Report):
         path = Table(caption=f"ω along the path by the {given} rate formulas (the {other} "
                              "formulas and Ṙ give the same to the errors below) [rad/s]",
                      header=["t [s]", "ω space axes", "ω body axes"],
-                     rows=[[fmt(float(t[i]), 6), _vec(a["omega_space"][i]),
+                     rows=[[fmt(float(t[i])), _vec(a["omega_space"][i]),
                             _vec(a["omega_body"][i])] for i in picks])
         rows = [[f"ω space: {given} vs {other} formulas", fmt_err(e["omega_space_conventions"])],
                 [f"ω body: {given} vs {other} formulas", fmt_err(e["omega_body_conventions"])],
@@ -164,7 +201,7 @@ class RotationReport(Report):
                 ["ω body: formula vs vee(Rᵀ Ṙ)", fmt_err(e["omega_body_derivative"])],
                 ["ω space vs R ω body", fmt_err(e["body_is_space_rotated"])],
                 ["Ṙ Rᵀ + (Ṙ Rᵀ)ᵀ, zero as R Rᵀ = 1", fmt_err(e["antisymmetry"])]]
-        facts = [("rates φ̇, θ̇, ψ̇", ", ".join(f"{float(x):.10g}" for x in a["rates"])
+        facts = [("rates φ̇, θ̇, ψ̇", ", ".join(fmt(float(x)) for x in a["rates"])
                   + " rad/s"),
                  ("sample path", f"(φ, θ, ψ)(t) = (φ, θ, ψ)(0) + (φ̇, θ̇, ψ̇) t, {len(t)} "
                                  f"points, t = 0 … {fmt(float(t[-1]))} s")]
@@ -181,10 +218,10 @@ class RotationReport(Report):
         e = s["errors"]
         fig = plots.stereographic(s)
         facts = [("U = [[a, b], [−b̄, ā]]", f"a = {_complex(s['a'])}, b = {_complex(s['b'])}"),
-                 ("U = exp(−i α n·σ/2)", f"α = {fmt(s['su2_angle'], 12)} rad about "
+                 ("U = exp(−i α n·σ/2)", f"α = {fmt(s['su2_angle'])} rad about "
                                           f"{_vec(s['su2_axis'])}; −U: α + 2π"),
                  ("sample points", f"{len(s['points'])} (golden-angle spiral, no pole)")]
-        matrix = Table(caption="R(U) = ½ tr(σ_i U σ_j U†), the same for −U",
+        matrix = Table(caption="R(U)ᵢⱼ = ½ tr(σᵢ U σⱼ U†), the same for −U",
                        header=["", "x", "y", "z"],
                        rows=[[c] + row for c, row in zip("xyz", _matrix_rows(s["rotation"]),
                                                           strict=True)])
@@ -196,9 +233,9 @@ class RotationReport(Report):
                    fmt_err(e["mobius_vs_rotation"])],
                   ["Möbius map of U vs R(Ū), ζ = (x + iy)/(1 − z)",
                    fmt_err(e["mobius_vs_rotation_standard_orientation"])],
-                  ["R from the Möbius map (e_x, e_y, e_z) vs ½ tr",
+                  ["R from the Möbius map of the axis unit vectors vs ½ tr",
                    fmt_err(e["rotation_from_mobius"])],
-                  ["½ tr(σ_i U σ_j U†) vs quaternion formula",
+                  ["½ tr(σᵢ U σⱼ U†) vs quaternion formula",
                    fmt_err(e["rotation_trace_vs_quaternion"])],
                   ["R(−U) vs R(U)", fmt_err(e["double_cover_rotation"])],
                   ["Möbius map of −U vs that of U", fmt_err(e["double_cover_mobius"])],

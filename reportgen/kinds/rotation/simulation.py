@@ -85,10 +85,10 @@ class RotationSimulation(Simulation):
         results.checks += [
             Check("max |A(4.62) − exp(−Φ[n]×)|, |A(4.62) − R(q)ᵀ|",
                   max(errors["formula_vs_expm"], errors["formula_vs_quaternion"]), 0.0, "",
-                  "Goldstein (4.62) applied to e_x, e_y, e_z; exp by eigenvectors; quaternion "
+                  "Goldstein (4.62) applied to the axis unit vectors; exp by eigenvectors; quaternion "
                   "q = (cos Φ/2, n sin Φ/2)", scale=1.0),
             Check("Φ from tr R = 1 + 2 cos Φ and ½(R − Rᵀ) = sin Φ [n]×", Phi_back, Phi, "rad",
-                  "the angle given in [axis_angle]"),
+                  "the angle Φ given in the configuration"),
         ]
 
     def _euler(self, results: Results) -> None:
@@ -150,7 +150,7 @@ class RotationSimulation(Simulation):
         shift = ("z-x-z angles (φ + π/2, θ, ψ − π/2)" if given == "zyz"
                  else "z-y-z angles (φ − π/2, θ, ψ + π/2)")
         results.checks += [
-            Check(f"max |R_{given}(φ, θ, ψ) − R_{other}| over the path", errors["matrix_conventions"],
+            Check(f"max |R by {g} angles − R by {o} angles| over the path", errors["matrix_conventions"],
                   0.0, "", f"the same rotation in {o}: {shift}", scale=1.0),
             Check(f"max |ω ({g} rates) − ω ({o} rates)| / max|ω|, space and body axes",
                   max(errors["omega_space_conventions"], errors["omega_body_conventions"]), 0.0,
@@ -218,9 +218,9 @@ class RotationSimulation(Simulation):
             "errors": errors,
         }
         results.checks += [
-            Check(f"max |π⁻¹(M_U(π(x))) − R(U) x| over {c.points} points",
+            Check(f"max |π⁻¹(M(π(x))) − R(U) x| over {c.points} points, M the Möbius map of U",
                   errors["mobius_vs_rotation"], 0.0, "",
-                  "R_ij = ½ tr(σ_i U σ_j U†) applied on the sphere; ζ = (x − iy)/(1 − z)",
+                  "R(U)ᵢⱼ = ½ tr(σᵢ U σⱼ U†) applied on the sphere; ζ = (x − iy)/(1 − z)",
                   scale=1.0),
             Check("max |R(−U) − R(U)| (double cover)", errors["double_cover_rotation"], 0.0, "",
                   "R is quadratic in U", scale=1.0),

@@ -13,9 +13,15 @@ vx1, vy1, vz1, …, vz3 in the same order.
 
 from __future__ import annotations
 
+from ...scene.content import fmt as _fmt
 from .config import PRESETS, ThreeBodyConfig
 from .report import ThreeBodyReport
 from .simulation import ThreeBodySimulation
+
+
+def fmt(x, digits: int = 10) -> str:
+    """A number of a title: :func:`~reportgen.scene.content.fmt` with a true minus sign."""
+    return _fmt(x, digits).replace("-", "−")
 
 
 class ThreeBodyScene(ThreeBodySimulation, ThreeBodyReport):
@@ -25,3 +31,26 @@ class ThreeBodyScene(ThreeBodySimulation, ThreeBodyReport):
               "Pythagorean problem"
     Config = ThreeBodyConfig
     presets = PRESETS
+    name_in_words = "Three gravitating bodies"
+    #: the presets in words, each completed by its masses
+    PRESET_WORDS = {"pythagorean": "Pythagorean three-body problem",
+                    "figure_eight": "Figure-eight orbit of three equal masses",
+                    "sun_earth_moon": "Sun, Earth and Moon in Jacobi coordinates"}
+
+    @classmethod
+    def default_title(cls, config):
+        """``Pythagorean three-body problem (masses 3, 4, 5)``; without a preset, the
+        bodies' names (when given) and masses."""
+        masses = ", ".join(fmt(float(m), 4) for m in config.params.masses)
+        preset = cls.preset_as_given(config)
+        words = cls.PRESET_WORDS.get(preset or "")
+        if preset == "sun_earth_moon":
+            return f"{words} over {fmt(float(config.run.t_end), 4)} {config.time_unit}".strip()
+        if preset == "figure_eight":
+            return f"{words} (period {fmt(float(config.period), 6)})"
+        if words is not None:
+            return f"{words} (masses {masses})"
+        names = list(config.names)
+        if names != ["body 1", "body 2", "body 3"]:
+            return f"Three bodies: {', '.join(names)} (masses {masses})"
+        return f"Three gravitating bodies (masses {masses})"

@@ -20,6 +20,27 @@ class ThreeBodyReport(Report):
     """The three-body sections, drawn from the archive alone."""
 
     schema = SCHEMA
+    gallery_name = "Three bodies"
+    gallery_figures = ("orbits",)
+
+    @classmethod
+    def gallery_headline(cls, data):
+        from ...scene import gallery
+        a = data.analysis
+        energy = gallery.worst_check(data, "energy")
+        drift = f"energy drift {gallery.distance(energy.rel_error)}" if energy else ""
+        if math.isfinite(a.get("return_position_error", math.nan)):
+            return (f"back at its start after one period T = {fmt(a['period'], 6)} within "
+                    f"{fmt_err(a['return_position_error'])}; {drift}").strip("; ")
+        moon = gallery.worst_check(data, "Moon")
+        if moon is not None:
+            return (f"Moon {gallery.distance(moon.rel_error)} from an independent tighter "
+                    f"run; {drift}").strip("; ")
+        if math.isfinite(a.get("min_pair_distance", math.nan)):
+            return (f"closest approach {fmt(a['min_pair_distance'], 3)} at t = "
+                    f"{fmt(a['min_pair_distance_time'], 4)}; {drift}").strip("; ")
+        return drift or super().gallery_headline(data)
+
     sections = (
         Section("orbits", "Orbits", integrates=True),
         Section("moon", "The light body about its primary; Jacobi coordinates",
@@ -44,6 +65,69 @@ class ThreeBodyReport(Report):
             names.remove("periodicity")
         return names
 
+    #: a closest approach below this fraction of the initial size is a close encounter
+    CLOSE_FRACTION = 0.05
+
+    @classmethod
+    def prose_case(cls, data):
+        """Periodic (a period to return after), hierarchical, or neither; the fate the
+        behaviour verdict names (bound, escape, collision), chaotic or not; equal masses;
+        released at rest; close encounters (closest approach under :attr:`CLOSE_FRACTION`
+        of the initial size), from the archive alone."""
+        a, cfg = data.analysis, data.config
+        masses = [float(m) for m in cfg.params.masses]
+        y0 = np.asarray(data.runs["main"].y[0]) if "main" in data.runs else np.zeros(18)
+        pos0 = y0[:9].reshape(3, 3)
+        size0 = float(max(np.linalg.norm(pos0[i] - pos0[j]) for i in range(3)
+                          for j in range(i)))
+        closest = float(a.get("min_pair_distance", math.nan))
+        behaviour = str(a.get("behaviour", ""))
+        ratios = a.get("mass_ratios") or {}
+        return {"preset": str(cfg.preset or ""), "periodic": "return_position_error" in a,
+                "hierarchical": bool(a.get("hierarchical", False)),
+                "fate": behaviour.split(":", 1)[0] if behaviour else "",
+                "binary": "form a binary" in behaviour,
+                "chaotic": "lyapunov_time" in a,
+                "lyapunov_time": fmt(float(a.get("lyapunov_time", math.nan)), 3),
+                "equal_masses": len(set(masses)) == 1,
+                "masses": ", ".join(fmt(m, 4) for m in masses),
+                "at_rest": bool(np.all(y0[9:18] == 0.0)),
+                "close": closest < cls.CLOSE_FRACTION * size0,
+                "closest": fmt(closest, 3), "size0": fmt(size0, 3),
+                "closest_time": fmt(float(a.get("min_pair_distance_time", math.nan)), 4),
+                "period": fmt(float(a.get("period", math.nan)), 6),
+                "ratio_2": fmt(float(ratios.get("m2_m1", math.nan)), 2),
+                "ratio_3": fmt(float(ratios.get("m3_m1", math.nan)), 2),
+                "names": list(cfg.names), "unit": str(cfg.length_unit or "")}
+
+    @classmethod
+    def describe(cls, data):
+        """``Three equal masses on a periodic orbit, period 6.32591: back at the start
+        within 4.1e-8``: the scene's case (periodic, hierarchical, or scattering with its
+        fate) with its defining numbers."""
+        c, a, cfg = cls.prose_case(data), data.analysis, data.config
+        t_end = f"{fmt(float(data.runs['main'].t[-1]), 4)} {cfg.time_unit}".strip()
+        if c["periodic"]:
+            what = "the figure-eight choreography" if c["preset"] == "figure_eight" else \
+                "a periodic orbit"
+            bodies = "Three equal masses" if c["equal_masses"] else f"Masses {c['masses']}"
+            return (f"{bodies} on {what}, period {c['period']}: back at the start within "
+                    f"{fmt_err(float(a['return_position_error']))} after one period")
+        if c["hierarchical"]:
+            n = c["names"]
+            return (f"A hierarchical triple over {t_end}: {n[2]} about {n[1]} "
+                    f"(a = {fmt(float(a['moon_semi_major_axis']), 3)} {cfg.length_unit}), "
+                    f"the pair about {n[0]} (mass ratios {c['ratio_2']} and {c['ratio_3']})")
+        start = "released at rest" if c["at_rest"] else "started in motion"
+        fate = {"escape": "ending in an escape" + (" and a binary" if c["binary"] else ""),
+                "bound": f"still bound at t = {t_end}",
+                "collision": "ending in a collision"}.get(c["fate"], "")
+        return (f"Masses {c['masses']} {start}"
+                + (f", closest approach {c['closest']} (of an initial size {c['size0']})"
+                   if c["close"] else "")
+                + (f", {fate}" if fate else "")
+                + (f"; chaotic, Lyapunov time ≈ {c['lyapunov_time']}" if c["chaotic"] else ""))
+
     @classmethod
     def headline(cls, data):
         p, a = data.config.params, data.analysis
@@ -58,11 +142,11 @@ class ThreeBodyReport(Report):
                                     f"{fmt(a['min_pair_distance_time'])}")]
         if "return_position_error" in a:
             out.append(("return after one period",
-                        f"max |r_i(T) − r_i(0)| = {fmt_err(a['return_position_error'])}"))
+                        f"max |rᵢ(T) − rᵢ(0)| = {fmt_err(a['return_position_error'])}"))
         if "moon_period_measured" in a:
-            out.append(("Moon about the Earth", f"period {fmt(a['moon_period_measured'], 8)} "
+            out.append(("Moon about the Earth", f"period {fmt(a['moon_period_measured'])} "
                         f"{data.config.time_unit} (Kepler two-body "
-                        f"{fmt(a['moon_kepler_period'], 8)})"))
+                        f"{fmt(a['moon_kepler_period'])})"))
         return out
 
     @classmethod
@@ -76,7 +160,41 @@ class ThreeBodyReport(Report):
                 and not data.analysis.get("hierarchical", False)):
             fig2 = plots.three_body_orbits(pos, labels=names, length_unit=unit, plane=(0, 2))
             figures.append(cls.figure("orbits_xz", fig2, "The same tracks in the x–z plane."))
+        box = cls._encounter_box(data, pos)
+        if box is not None:
+            fig3 = plots.encounter_zoom(data.runs["main"].t, pos, box, labels=names,
+                                        length_unit=unit,
+                                        time_unit=_plain(data.config.time_unit))
+            figures.append(cls.figure(
+                "encounters_zoom", fig3, "Right: the region of the close encounters, "
+                "enlarged, each track coloured by time (dashed box on the left); the bodies "
+                "differ in line style."))
         return SectionContent(figures=figures)
+
+    #: the zoom covers the square around the tracks' median point holding this share of
+    #: the stored positions (grown by :attr:`ZOOM_MARGIN`) ...
+    ZOOM_SHARE = 0.6
+    ZOOM_MARGIN = 1.25
+    #: ... and is drawn when the whole tracks span this many times its side
+    ZOOM_RATIO = 3.0
+
+    @classmethod
+    def _encounter_box(cls, data, pos):
+        """(x0, x1, y0, y1): the square where the bodies spend most of their time, the
+        close encounters (the central "blob" of a scattering problem), or None when it
+        would not enlarge the tracks :attr:`ZOOM_RATIO` times (a bound or hierarchical
+        system fills its own picture)."""
+        if data.analysis.get("hierarchical", False):
+            return None
+        xy = pos[:, :, :2].reshape(-1, 2)
+        xy = xy[np.isfinite(xy).all(axis=1)]
+        if len(xy) < 10:
+            return None
+        centre = np.median(xy, axis=0)
+        half = cls.ZOOM_MARGIN * float(np.quantile(np.hypot(*(xy - centre).T), cls.ZOOM_SHARE))
+        if half <= 0 or float(np.max(np.ptp(xy, axis=0))) < cls.ZOOM_RATIO * 2 * half:
+            return None
+        return (centre[0] - half, centre[0] + half, centre[1] - half, centre[1] + half)
 
     @classmethod
     def section_moon(cls, data):
@@ -97,14 +215,15 @@ class ThreeBodyReport(Report):
         facts = [("mass ratios (3.35)", f"m2/m1 = {fmt(ratios['m2_m1'])}, "
                                         f"m3/m1 = {fmt(ratios['m3_m1'])}"),
                  ("Jacobi masses (3.33)", f"M = {fmt(M)}, μ1 = {fmt(mu1)}, μ2 = {fmt(mu2)}"),
-                 ("max |T_Jacobi − T_Cartesian| / T", fmt_err(a["jacobi_kinetic_identity_error"])),
+                 ("kinetic energy T in Jacobi against Cartesian coordinates",
+                  f"max relative difference {fmt_err(a['jacobi_kinetic_identity_error'])}"),
                  (f"{names[2]}'s orbit about {names[1]}",
                   f"a = {fmt(a['moon_semi_major_axis'])} {unit}, inclination "
                   f"{fmt(math.degrees(a['moon_inclination']), 5)}°")]
         rows = []
         if "moon_period_measured" in a:
-            rows.append(["sidereal period, measured", fmt(a["moon_period_measured"], 10)])
-        rows.append(["two-body Kepler period", fmt(a["moon_kepler_period"], 10)])
+            rows.append(["sidereal period, measured", fmt(a["moon_period_measured"])])
+        rows.append(["two-body Kepler period", fmt(a["moon_kepler_period"])])
         return SectionContent(
             figures=[cls.figure("moon", fig, f"{names[2]}'s track relative to {names[1]}: a "
                                 "near-Keplerian ellipse slowly perturbed by the Sun's tide."),
@@ -120,9 +239,9 @@ class ThreeBodyReport(Report):
     def section_periodicity(cls, data):
         a = data.analysis
         return SectionContent(facts=[
-            ("period T", fmt(a["period"], 12)),
-            ("max |r_i(T) − r_i(0)|", fmt_err(a["return_position_error"])),
-            ("max |v_i(T) − v_i(0)|", fmt_err(a["return_velocity_error"]))])
+            ("period T", fmt(a["period"])),
+            ("max |rᵢ(T) − rᵢ(0)|", fmt_err(a["return_position_error"])),
+            ("max |vᵢ(T) − vᵢ(0)|", fmt_err(a["return_velocity_error"]))])
 
     @classmethod
     def section_encounters(cls, data):
@@ -132,7 +251,8 @@ class ThreeBodyReport(Report):
         fig = plots.closest_approach(run.t, {f"{n[0]}–{n[1]}": d["r12"],
                                              f"{n[0]}–{n[2]}": d["r13"],
                                              f"{n[1]}–{n[2]}": d["r23"]},
-                                     time_unit=_plain(data.config.time_unit))
+                                     time_unit=_plain(data.config.time_unit),
+                                     length_unit=_plain(data.config.length_unit))
         return SectionContent(
             figures=[cls.figure("pair_distances", fig, "Distances between the bodies (log "
                                 "scale); close encounters are the deep minima, sampled at the "
@@ -143,7 +263,8 @@ class ThreeBodyReport(Report):
     @classmethod
     def section_invariants(cls, data):
         labels = {q.name: q.description for q in cls.schema.invariants}
-        return cls.invariants_section(data, labels=labels, caption=(
+        return cls.invariants_section(data, labels=labels, time_unit=data.config.time_unit,
+                                      caption=(
             "Drift of energy (relative to the initial potential energy), total momentum and "
             "angular momentum (relative to natural momentum scales)."))
 

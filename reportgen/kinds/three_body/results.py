@@ -76,5 +76,12 @@ SCHEMA = ResultsSchema(
           "the inner pair's centre of mass (3.32)", ("t", "xyz"), optional=True),
         Q("earth_eccentricity", "e", "1", "initial osculating eccentricity of body 2 about "
           "body 1", optional=True),
+        # physical behaviour (not the run's numerical status) and chaos
+        Q("behaviour", "", "", "physical behaviour: collision, escape or bound (and chaotic)",
+          kind="str"),
+        Q("separation_growth", r"\max d/d_0", "1", "growth of the separation of two orbits "
+          "started 1e-10 apart", optional=True),
+        Q("lyapunov_time", r"T_\lambda", "1", "Lyapunov time 1/lambda of a chaotic orbit",
+          optional=True),
     ),
 )

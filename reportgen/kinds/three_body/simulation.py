@@ -97,8 +97,53 @@ class ThreeBodySimulation(IntegratingSimulation):
             self._periodicity(results, model, y0, main)
         if self.hierarchical:
             self._hierarchy(results, model, main)
-        self.study(results, model, y0, np.linspace(0.0, run.t_end, 201))
+        # chaotic (the Pythagorean problem): the study ends before the Lyapunov time
+        horizon = self.divergence(results, model, y0, t)
+        if horizon < run.t_end:
+            a["study_t_end"] = horizon
+        a["behaviour"] = self._fate(main, a)
+        self.study(results, model, y0, np.linspace(0.0, horizon, 201))
         return results
+
+    #: a pair closer than this fraction of the initial size has collided (a verdict word)
+    COLLISION_FRACTION = 1e-6
+    #: an escaping body is at least this many times farther from the other two's centre of
+    #: mass than they are from each other
+    ESCAPE_DISTANCE_RATIO = 3.0
+
+    def _fate(self, main, a: dict) -> str:
+        """The physical behaviour at t_end, in words: a collision, an escape (a body on a
+        hyperbolic orbit away from the other two's centre of mass, the two a binary if
+        their pair energy is negative), or bound; chaotic when ``lyapunov_time`` is known."""
+        G, m, names = self.config.params.G, self.masses, self.config.names
+        pos, vel = core.split(main.y[-1:])
+        pos, vel = pos[0], vel[0]
+        pos0 = core.split(main.y[:1])[0][0]
+        size0 = float(np.max(np.linalg.norm(pos0[:, None] - pos0[None], axis=-1)))
+        chaos = (f"; chaotic: nearby orbits separate as exp(t/T), Lyapunov time T ≈ "
+                 f"{a['lyapunov_time']:.2g}" if "lyapunov_time" in a else "")
+        if a["min_pair_distance"] < self.COLLISION_FRACTION * size0:
+            return (f"collision: two bodies come within {a['min_pair_distance']:.2g} at t = "
+                    f"{a['min_pair_distance_time']:.4g}{chaos}")
+        for i in range(3):
+            j, k = (n for n in range(3) if n != i)
+            mjk = m[j] + m[k]
+            centre = (m[j] * pos[j] + m[k] * pos[k]) / mjk
+            centre_v = (m[j] * vel[j] + m[k] * vel[k]) / mjk
+            r, v = pos[i] - centre, vel[i] - centre_v
+            mu = m[i] * mjk / (m[i] + mjk)
+            energy = 0.5 * mu * float(v @ v) - G * m[i] * mjk / float(np.linalg.norm(r))
+            pair = float(np.linalg.norm(pos[j] - pos[k]))
+            if (energy > 0.0 and float(r @ v) > 0.0
+                    and np.linalg.norm(r) > self.ESCAPE_DISTANCE_RATIO * pair):
+                dv = vel[j] - vel[k]
+                pair_energy = (0.5 * m[j] * m[k] / mjk * float(dv @ dv)
+                               - G * m[j] * m[k] / pair)
+                rest = (f"{names[j]} and {names[k]} form a binary" if pair_energy < 0.0
+                        else f"{names[j]} and {names[k]} separate too")
+                return (f"escape: {names[i]} (m = {m[i]:g}) leaves on a hyperbolic orbit; "
+                        f"{rest}{chaos}")
+        return f"bound: no body escapes by t = {main.t[-1]:.4g}{chaos}"
 
     def _periodicity(self, results, model, y0, main):
         """Integrate exactly to t = period (same method and tolerances) and compare with y0."""
@@ -112,7 +157,7 @@ class ThreeBodySimulation(IntegratingSimulation):
         dvel = float(np.max(np.linalg.norm(vel1[0] - vel0[0], axis=1)))
         results.analysis.update({"period": T, "return_position_error": dpos,
                                  "return_velocity_error": dvel})
-        results.checks.append(Check("max |r_i(T) − r_i(0)| after one period", dpos, 0.0, "",
+        results.checks.append(Check("max |rᵢ(T) − rᵢ(0)| after one period", dpos, 0.0, "",
                                     "periodic orbit, T = 6.32591398 (Chenciner & Montgomery "
                                     "2000; Simó)" if T == FIGURE_EIGHT_PERIOD
                                     else f"periodic orbit, T = {T:g} (config)", scale=1.0))

@@ -9,7 +9,7 @@ import numpy as np
 
 from ...lazy import lazy_module
 from ...scene.base import Section
-from ...scene.content import SectionContent, fmt, fmt_err
+from ...scene.content import SectionContent, Table, fmt, fmt_err
 from ...scene.report import Report, section_colours, section_point_notes
 from .results import SCHEMA
 
@@ -35,6 +35,31 @@ class TwoCenterReport(Report):
     """The two-centre sections, drawn from the archive alone."""
 
     schema = SCHEMA
+    config_symbols = {"initial.x": "x_0", "initial.y": "y_0", "initial.vx": r"v_{x,0}",
+                      "initial.vy": r"v_{y,0}", "initial.energy": "E"}
+    gallery_name = "Two fixed centres (Euler's problem)"
+    gallery_figures = ("orbit", "poincare_family")
+
+    @classmethod
+    def gallery_headline(cls, data):
+        from ...scene import gallery
+        if gallery.is_family(data):
+            a, c = data.analysis, gallery.worst_check(data)
+            members, ok, energy = a["sweep_members"], a.get("sweep_ok", 0), a.get("poincare_energy")
+            return (f"{members} orbits on the section"
+                    + (f" at E = {fmt(energy, 5)}" if energy is not None else "")
+                    + (", all ok" if ok == members else f", {ok} ok")
+                    + (f"; separation constant kept to {gallery.distance(c.rel_error)}"
+                       if c is not None else ""))
+        c = gallery.worst_check(data, "separation constant")
+        energy = gallery.worst_check(data, "energy")
+        if c is None or energy is None:
+            return super().gallery_headline(data)
+        family = data.analysis.get("family")
+        return ((f"{family} orbit: " if isinstance(family, str) and family else "")
+                + f"separation constant kept to {gallery.distance(c.rel_error)}, energy to "
+                  f"{gallery.distance(energy.rel_error)}")
+
     sections = (
         Section("orbit", "Orbit over the elliptic-coordinate grid", integrates=True),
         Section("invariants", "Energy and the separation constant", integrates=True),
@@ -71,11 +96,11 @@ class TwoCenterReport(Report):
         C0 = np.asarray(sweep.analysis["separation_constant"], dtype=float)
         levels = C0[crossing[sweep.ok[crossing]]]
         fig = section_plots.poincare_family(
-            pts.columns["u"], pts.columns["v"], member, colour, "x [m]", "ẋ [m/s]",
-            colour_label=key, labels=labels,
+            pts.columns["u"], pts.columns["v"], member, colour, "x [m]", "dx/dt [m/s]",
+            colour_label=cls.colour_key_label(data, key), labels=labels,
             edge=None if grid is None else (grid["u"], grid["v"], grid["vy2"], 0.0),
             edge_label=None if grid is None else
-            f"ẏ = 0 on E = {fmt(a['poincare_energy'], 6)}",
+            f"ẏ = 0 on E = {fmt(a['poincare_energy'])}",
             curves=None if grid is None else (grid["u"], grid["v"], grid["C"], levels),
             marker_size=cls.MARKER_SIZE, legend_below=True,
             curves_label=None if grid is None else "C(x, ẋ) = C of each orbit",
@@ -90,7 +115,7 @@ class TwoCenterReport(Report):
                 facts.append((label, f"within {fmt_err(float(np.nanmax(error)))} of its value "
                                      "at t = 0, relative, on every orbit"))
         if "poincare_energy" in a:
-            facts.append(("energy of every orbit", f"E = {fmt(a['poincare_energy'], 12)}"))
+            facts.append(("energy of every orbit", f"E = {fmt(a['poincare_energy'])}"))
         formulation = sweep.labels.get("formulation")
         if formulation is not None:
             regularized_members = int(np.sum(np.asarray(formulation) == "regularized"))
@@ -102,7 +127,8 @@ class TwoCenterReport(Report):
                          "drawn: C(x, ẋ) on the section depends on E.")
         caption = ("Surface of section y = 0 crossed with ẏ > 0 (the line through the "
                    f"centres): (x, ẋ) at the crossings of {len(crossing)} orbits, each orbit in "
-                   "its own colour " + (f"(keyed to {key})" if labels is None else "(legend)")
+                   "its own colour " + (f"(colour bar: {cls._colour_key_words(data, key)})"
+                                        if labels is None else "(legend)")
                    + ". The problem is integrable: each regular orbit's crossings lie on one "
                    "closed curve" + (", the grey curve C(x, ẋ) = C of the orbit at its energy; "
                                      "dark: ẏ = 0, the edge of the region the energy allows"
@@ -111,12 +137,61 @@ class TwoCenterReport(Report):
                               facts=facts, notes=notes)
 
     @classmethod
+    def _colour_key_words(cls, data, key: str) -> str:
+        """What a family's colour bar shows, in words: "the initial position x"."""
+        if key == "member":
+            return "the member's number"
+        words = cls.config_quantity(data, key).description
+        return f"the {words.split(' [')[0].split(',')[0]}" if words else "the swept value"
+
+    #: a sampled approach to a centre closer than this fraction of a is a near collision
+    NEAR_FRACTION = 0.05
+
+    @classmethod
+    def prose_case(cls, data):
+        """The orbit's family (planetary, satellite, unbound), its bounds from (7.59), how
+        close the run came to a centre, and whether it was regularized."""
+        if data.sweep is not None:
+            return {}
+        a, p = data.analysis, data.config.params
+        xi_b = [float(v) for v in np.asarray(a["xi_bounds"])]
+        eta_b = [float(v) for v in np.asarray(a["eta_abs_bounds"])]
+        closest = float(a.get("closest_approach_run", math.nan))
+        return {"family": str(a["family"]), "energy": fmt(float(a["energy"]), 4),
+                "beta": fmt(float(a["beta"]), 4), "xi_min": fmt(xi_b[0], 4),
+                "xi_max": fmt(xi_b[1], 4), "eta_min": fmt(eta_b[0], 4),
+                "closest": fmt(closest, 3),
+                "near": closest < cls.NEAR_FRACTION * float(p.a),
+                "regularized": data.runs["main"].attrs.get("formulation") == "regularized"}
+
+    @classmethod
+    def describe(cls, data):
+        """``A planetary orbit about one centre at E = −1.331 (β = 0.4162 > 0): |η| ≥
+        0.3954, ξ ≤ 1.6``, and how close it comes to a centre."""
+        if data.sweep is not None:
+            return super().describe(data)
+        c = cls.prose_case(data)
+        if c["family"] == "planetary":
+            text = (f"A planetary orbit about one centre at E = {c['energy']} (β = {c['beta']} "
+                    f"> 0): |η| ≥ {c['eta_min']}, ξ ≤ {c['xi_max']}")
+        elif c["family"] == "satellite":
+            text = (f"A satellite orbit round both centres at E = {c['energy']} (β = "
+                    f"{c['beta']} ≤ 0), between the ellipses ξ = {c['xi_min']} and "
+                    f"{c['xi_max']}")
+        else:
+            return f"An unbound orbit at E = {c['energy']} ≥ 0: it escapes from both centres"
+        if c["near"]:
+            text += (f"; it passes within {c['closest']} of a centre"
+                     + (", integrated in regularized variables" if c["regularized"] else ""))
+        return text
+
+    @classmethod
     def headline(cls, data):
         p, a = data.config.params, data.analysis
         run = data.runs["main"]
         return [("centres", f"μ = {fmt(p.mu)} each at (±{fmt(p.a)}, 0)"),
-                ("constants", f"E = {fmt(a['energy'], 12)}, C = "
-                              f"{fmt(a['separation_constant'], 12)}, β = {fmt(a['beta'], 10)}"),
+                ("constants", f"E = {fmt(a['energy'])}, C = "
+                              f"{fmt(a['separation_constant'])}, β = {fmt(a['beta'])}"),
                 ("orbit family", FAMILY_TEXT[a["family"]]),
                 ("formulation", FORMULATION_TEXT.get(str(run.attrs.get("formulation")),
                                                      "Cartesian")),
@@ -140,20 +215,24 @@ class TwoCenterReport(Report):
             xi_bounds=curves(bound["ellipses"]) if "ellipses" in bound else None,
             eta_bounds=curves(bound["hyperbolas"]) if "hyperbolas" in bound else None)
         xr, er = np.asarray(a["xi_range_run"]), np.asarray(a["eta_abs_range_run"])
-        facts = [("family", FAMILY_TEXT[a["family"]]),
-                 ("ξ bounds from (7.59)", f"[{fmt(xi_b[0], 10)}, {fmt(xi_b[1], 10)}]; "
-                                          f"sampled run: [{fmt(xr[0], 10)}, {fmt(xr[1], 10)}]"),
-                 ("|η| bounds from (7.59)", f"[{fmt(eta_b[0], 10)}, {fmt(eta_b[1], 10)}]; "
-                                            f"sampled run: [{fmt(er[0], 10)}, {fmt(er[1], 10)}]")]
+        # a table, set under the figure: the prose, the figure and its caption fit one page
+        rows = [["ξ (dimensionless)", f"{fmt(xi_b[0])} to {fmt(xi_b[1])}",
+                 f"{fmt(xr[0])} to {fmt(xr[1])}"],
+                ["|η| (dimensionless)", f"{fmt(eta_b[0])} to {fmt(eta_b[1])}",
+                 f"{fmt(er[0])} to {fmt(er[1])}"]]
         if "closest_approach_bound" in a:
-            facts.append(("closest approach to a centre",
-                          f"≥ {fmt(float(a['closest_approach_bound']), 6)} from (7.59); sampled "
-                          f"run: {fmt(float(a['closest_approach_run']), 6)}"))
+            rows.append(["distance to the nearer centre [m]",
+                         f"at least {fmt(float(a['closest_approach_bound']))}",
+                         f"down to {fmt(float(a['closest_approach_run']))}"])
+        table = Table(caption=f"The region of motion of this {a['family']} orbit: the bounds "
+                              "from the separated equations (7.59) and what the sampled run "
+                              "reaches",
+                      header=["coordinate", "bounds from (7.59)", "sampled run"], rows=rows)
         return SectionContent(figures=[cls.figure(
             "orbit", fig, "The orbit over the elliptic-coordinate grid: confocal ellipses "
             "ξ = (r1 + r2)/2a = const and hyperbolas η = (r1 − r2)/2a = const with foci at the "
-            "two centres. Bold: the coordinate lines where p_ξ = 0 or p_η = 0, which bound the "
-            "motion.")], facts=facts)
+            "two centres. Dashed: the coordinate lines where the momentum conjugate to ξ or "
+            "to η vanishes, which bound the motion.")], tables=[table])
 
     @classmethod
     def section_invariants(cls, data):

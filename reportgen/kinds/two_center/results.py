@@ -29,6 +29,8 @@ SCHEMA = ResultsSchema(
         Q("separation_constant", "C", "m^4/s^2", "separation constant (7.59) at t = 0"),
         Q("beta", r"\beta", "m^4/s^2", "separation constant beta = -C - 2 a^2 E of (7.59)"),
         Q("family", "", "", "orbit family: satellite, planetary or unbound", kind="str"),
+        Q("behaviour", "", "", "physical behaviour: bound (satellite, planetary), escape or "
+          "collision", kind="str", optional=True),
         Q("xi_bounds", r"\xi_\mathrm{min}, \xi_\mathrm{max}", "1",
           "bounds of xi from (7.59)", ("bound",)),
         Q("eta_abs_bounds", r"|\eta|_\mathrm{min}, |\eta|_\mathrm{max}", "1",
@@ -87,5 +89,16 @@ SCHEMA = ResultsSchema(
         Q("poincare_grid/vy2", r"\dot{y}^2", "m^2/s^2", "y velocity squared on the section "
           "at the family's energy", ("grid_v", "grid_u"), optional=True),
         Q("poincare_energy", "E", "m^2/s^2", "the members' common energy", optional=True),
+        # a family's results table: each member's count of crossings, and its bounds
+        # (7.59) element by element, each with its own symbol
+        Q("poincare_points", "", "1", "crossings per orbit", optional=True),
+        Q("xi_bounds_1", r"\xi_\mathrm{min}", "1", "lower bound of xi from (7.59)",
+          optional=True),
+        Q("xi_bounds_2", r"\xi_\mathrm{max}", "1", "upper bound of xi from (7.59)",
+          optional=True),
+        Q("eta_abs_bounds_1", r"|\eta|_\mathrm{min}", "1", "lower bound of |eta| from (7.59)",
+          optional=True),
+        Q("eta_abs_bounds_2", r"|\eta|_\mathrm{max}", "1", "upper bound of |eta| from (7.59)",
+          optional=True),
     ),
 )

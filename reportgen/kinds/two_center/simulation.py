@@ -168,6 +168,13 @@ class TwoCenterSimulation(IntegratingSimulation):
         a.update(self._coordinate_lines(xi, eta, bounds))
         a["closest_approach_bound"] = core.closest_approach_bound(E, C, p.mu, p.a)
         a["closest_approach_run"] = float(np.min(p.a * (xi - np.abs(eta))))
+        if not self.family_member:  # physical behaviour, not a status
+            a["behaviour"] = {
+                "satellite": "bound: a satellite orbit about one centre",
+                "planetary": "bound: a planetary orbit around both centres",
+            }.get(bounds["family"], "escape: unbound, the body leaves the centres")
+            if a["closest_approach_bound"] <= 0.0:
+                a["behaviour"] += "; its region reaches a centre (collision orbit)"
         if crossings is not None:
             a.update(self._section_analysis(*crossings))
         scales = self._scales()

@@ -2,18 +2,21 @@
 
 from __future__ import annotations
 
+import textwrap
+
 import numpy as np
 
 from .style import (
     CONTEXT,
     HIGHLIGHT,
-    PALETTE,
+    MANY_SERIES,
     REFERENCE,
     dots,
     legend_below,
     member_markers,
     new_figure,
     new_figure_grid,
+    place_legend,
 )
 
 #: a time series longer than this is drawn as its per-bin extremes (see :func:`envelope`)
@@ -41,6 +44,18 @@ def envelope(t, values, bins: int = ENVELOPE_BINS):
     return t[keep], values[keep]
 
 
+def time_label(unit: str = "s") -> str:
+    """The time axis's label, "time t [s]"; a scaled time ("1", "dimensionless" or "")
+    is "time t (dimensionless)"."""
+    if unit in ("", "1", "dimensionless"):
+        return "time t (dimensionless)"
+    return f"time t [{unit}]"
+
+
+#: the y label of a relative drift: a ratio of like quantities
+DRIFT_LABEL = "relative drift (I(t) − I(0))/|I| (dimensionless)"
+
+
 def invariant_drift(t, invariants: dict[str, np.ndarray], *, scales=None, time_unit="s",
                     labels=None, ax=None):
     """Relative drift (I(t) - I(0)) / scale of each conserved quantity against time."""
@@ -53,23 +68,26 @@ def invariant_drift(t, invariants: dict[str, np.ndarray], *, scales=None, time_u
         with np.errstate(invalid="ignore"):  # a failed run's NaN tail is left out
             drift = (values - values[0]) / scale
         ax.plot(*envelope(t, drift), label=labels.get(name, name))
-    ax.set_xlabel(f"time t [{time_unit}]")
-    ax.set_ylabel("relative drift  (I(t) − I(0)) / |I|")
+    ax.set_xlabel(time_label(time_unit))
+    ax.set_ylabel(DRIFT_LABEL)
     ax.ticklabel_format(axis="y", style="sci", scilimits=(-2, 2))
-    ax.legend(loc="best")
+    place_legend(ax)
     return fig
 
 
-def error_against_time(t, errors: dict[str, np.ndarray], *, time_unit="s", ylabel="|error|",
-                       ax=None):
-    """Absolute error of one or more quantities against time, log scale."""
+def error_against_time(t, errors: dict[str, np.ndarray], *, time_unit="s",
+                       ylabel="absolute error", unit: str | None = None, ax=None):
+    """Absolute error of one or more quantities against time, log scale.
+
+    ``unit``: the errors' common unit for the y label; None when each series names its
+    own in its label ("|θ − θ_exact| [rad]"), and the label says so."""
     fig, ax = new_figure(ax)
     for name, err in errors.items():
         err = np.abs(np.asarray(err))
         ax.semilogy(*envelope(t, np.maximum(err, 1e-18)), label=name)
-    ax.set_xlabel(f"time t [{time_unit}]")
-    ax.set_ylabel(ylabel)
-    ax.legend(loc="best")
+    ax.set_xlabel(time_label(time_unit))
+    ax.set_ylabel(f"{ylabel} [{unit if unit is not None else 'unit of each series'}]")
+    place_legend(ax)
     return fig
 
 
@@ -80,11 +98,12 @@ def work_precision(study: np.ndarray, *, error_field="error_max", ax=None):
     """
     fig, ax = new_figure(ax, figsize=(6.8, 5.6))
     methods = list(dict.fromkeys(study["method"]))
-    # colours repeat after the palette's 7: a method sharing a colour with an earlier
-    # one differs from it in marker shape ('P', 'X' against 'o', 's') and line (dash-dot)
+    # every method its own colour (the palette's 7 and five more); past those a method
+    # sharing a colour with an earlier one differs from it in marker shape and line
     markers = "osD^v<>PX*hd"
     for i, method in enumerate(methods):
-        rows = study[(study["method"] == method) & (study["status"] == "ok")]
+        rows = study[(study["method"] == method)  # an inaccurate run is measured too (issue 31)
+                     & np.isin(study["status"], ("ok", "inaccurate"))]
         err = np.asarray(rows[error_field], dtype=float)
         time = np.asarray(rows["wall_time_s"], dtype=float)
         keep = np.isfinite(err) & np.isfinite(time) & (time > 0)
@@ -94,13 +113,14 @@ def work_precision(study: np.ndarray, *, error_field="error_max", ax=None):
         peer = str(method).startswith("scipy")
         ax.loglog(
             time[keep][order], np.maximum(err[keep][order], 1e-17),
-            linestyle="--" if peer else ("-" if i < len(PALETTE) else "-."),
+            color=MANY_SERIES[i % len(MANY_SERIES)],
+            linestyle="--" if peer else ("-" if i < len(MANY_SERIES) else "-."),
             marker=markers[i % len(markers)],
             markerfacecolor="none" if peer else None,
             label=str(rows["label"][0]),
         )
     ax.set_xlabel("wall time per run [s]  (min of repeats, compile time excluded)")
-    ax.set_ylabel("max error over the run")
+    ax.set_ylabel("max error over the run [units of the state]")
     legend_below(fig)
     return fig
 
@@ -120,8 +140,8 @@ def timeseries_against_reference(t, numeric: dict[str, np.ndarray],
         if extra and name in extra:
             ax.plot(t, extra[name], color=CONTEXT, linestyle=":", label="small-angle (1.19)")
         ax.set_ylabel(ylabels[name])
-    axes[0, 0].legend(loc="upper right")
-    axes[-1, 0].set_xlabel(f"time t [{time_unit}]")
+    place_legend(axes[0, 0], loc="upper right")
+    axes[-1, 0].set_xlabel(time_label(time_unit))
     return fig
 
 
@@ -130,15 +150,29 @@ SWEEP_MAX_PANELS = 6
 SWEEP_MAX_LINES = 6
 
 
-def _label(path: str) -> str:
-    return path.rsplit(".", 1)[-1]
+def key_value_text(key: tuple[str, str], value: float) -> str:
+    """A swept key's value for a legend: "$\\theta_0$ = 0.5 rad" from ``key`` = (symbol
+    or description, typeset unit)."""
+    symbol, unit = key
+    unit = "" if unit in ("", "dimensionless") else f" {unit}"
+    return f"{symbol} = {value:.4g}{unit}"
+
+
+def key_axis_label(key: tuple[str, str]) -> str:
+    """A swept key as an axis label, "$\\theta_0$ [rad]", from (symbol, typeset unit)."""
+    symbol, unit = key
+    return f"{symbol} [{unit}]" if unit else f"{symbol} (dimensionless)"
 
 
 def sweep_results(values: dict[str, np.ndarray], analysis: dict[str, np.ndarray], ok,
-                  paired: bool = False):
+                  paired: bool = False, *, keys: dict[str, tuple[str, str]],
+                  ylabels: dict[str, str]):
     """One panel per scalar result (at most six) against the first swept key; with more
     keys on a grid, one line per combination of the others' values (at most six, else
-    points); ``paired`` keys (zip) vary together: one line."""
+    points); ``paired`` keys (zip) vary together: one line.
+
+    ``keys``: each swept config key as (symbol or description, typeset unit), for the x
+    label and the legend; ``ylabels``: each result's axis label (from its declaration)."""
     paths = list(values)
     x = np.asarray(values[paths[0]])
     ok = np.asarray(ok, dtype=bool)
@@ -162,31 +196,35 @@ def sweep_results(values: dict[str, np.ndarray], analysis: dict[str, np.ndarray]
         for g, combo in enumerate(groups if as_lines else groups[:1]):
             pick = ok & np.isfinite(y) & ((inverse == g) if as_lines else True)
             order = np.argsort(x[pick])
-            label = ", ".join(f"{_label(p)} = {v:.4g}" for p, v in zip(others, combo,
-                                                                       strict=True))
+            label = ", ".join(key_value_text(keys[p], v) for p, v in zip(others, combo,
+                                                                          strict=True))
             style = dict(marker="o", markersize=2.5) if pick.sum() < 60 else {}
             if as_lines:  # a dense family as per-bin extremes: same pixels, bounded size
                 ax.plot(*envelope(x[pick][order], y[pick][order]), label=label or None,
                         **style)
             else:
                 ax.plot(*envelope(x[pick][order], y[pick][order]), **dots(1.4))
-        ax.set_ylabel(name.replace("_", " "))
+        # a long label (a description, no mathtext) wrapped to the panel's height
+        label = ylabels.get(name, name)
+        ax.set_ylabel(label if "$" in label else textwrap.fill(label, 26))
         if as_lines and others and name == names[0]:  # one legend serves every panel
-            ax.legend(loc="best", fontsize=8)
+            place_legend(ax, fontsize=8)
     for ax in grid[-1]:
-        ax.set_xlabel(paths[0])
+        ax.set_xlabel(key_axis_label(keys[paths[0]]))
     return fig
 
 
-def member_runs(runs: dict, labels: dict[str, str]):
-    """The first coordinate of each kept member of a sweep against time."""
+def member_runs(runs: dict, labels: dict[str, str], *, ylabel: str, time_unit: str = "s"):
+    """The first coordinate of each kept member of a sweep against time (``ylabel``: its
+    declared label), one colour each."""
     fig, ax = new_figure()
-    for name, run in runs.items():
-        ax.plot(*envelope(run.t, run.y[:, 0]), label=labels.get(name, name))
-        ax.set_ylabel(run.columns[0])
-    ax.set_xlabel("time t [s]")
+    for i, (name, run) in enumerate(runs.items()):
+        ax.plot(*envelope(run.t, run.y[:, 0]), color=MANY_SERIES[i % len(MANY_SERIES)],
+                linestyle="-" if i < len(MANY_SERIES) else "--", label=labels.get(name, name))
+    ax.set_ylabel(ylabel)
+    ax.set_xlabel(time_label(time_unit))
     if runs:
-        ax.legend(loc="best", fontsize=8)
+        place_legend(ax, fontsize=8, outside="right")
     return fig
 
 
@@ -206,7 +244,7 @@ def family_lines(x, lines, *, reference=None, xlabel, ylabel, label="", referenc
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
     if label or reference_label:
-        ax.legend(loc="best", fontsize=8, ncol=2 if len(lines) > 4 else 1)
+        place_legend(ax, fontsize=8, ncols=2 if len(lines) > 4 else 1)
     return fig
 
 
@@ -226,11 +264,11 @@ def family_against_reference(x, measured, exact, *, xlabel, ylabel, measured_lab
     ax.plot(*envelope(x, y), color=HIGHLIGHT, label=f"{measured_label} ({x.size} members)",
             **member_markers(dense))
     ax.set_ylabel(ylabel)
-    legend = ax.legend(loc="best")
+    legend = place_legend(ax)
     if dense:  # the legend's sample of the dots at a size one can see
         legend.legend_handles[1].set_markersize(4.0)
     rel = np.maximum(np.abs(y / ref - 1), 1e-17)
     ax_err.semilogy(*envelope(x, rel), color=HIGHLIGHT, **member_markers(dense))
-    ax_err.set_ylabel("relative difference")
+    ax_err.set_ylabel("relative difference (dimensionless)")
     ax_err.set_xlabel(xlabel)
     return fig

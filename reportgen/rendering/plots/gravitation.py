@@ -4,9 +4,30 @@ from __future__ import annotations
 
 import numpy as np
 
-from .style import BLUE, CONTEXT, GREY, HIGHLIGHT, ORANGE, REFERENCE, SEPARATRIX, new_figure
+from .style import (
+    BLUE,
+    CONTEXT,
+    GREEN,
+    GREY,
+    HIGHLIGHT,
+    INK,
+    ORANGE,
+    REFERENCE,
+    SEPARATRIX,
+    legend_below,
+    new_figure,
+    new_figure_grid,
+    place_legend,
+)
 
 BODY_COLOURS = (ORANGE, BLUE, GREY)  # Sun, Earth, Moon
+#: line styles of the bodies where colour shows time
+BODY_STYLES = ("-", (0, (4, 2)), (0, (1, 1.5)))
+
+
+def length_label(name: str, unit: str) -> str:
+    """An axis label of a length: "x [AU]", or "x (dimensionless)" in scaled units."""
+    return f"{name} [{unit}]" if unit else f"{name} (dimensionless)"
 
 
 def _equal_box(ax, length_unit):
@@ -39,7 +60,7 @@ def relative_orbit(x, y, *, reference=None, pericentres=None, lrl=None, length_u
         ax.plot([], [], color=SEPARATRIX, lw=2.0,
                 label=f"LRL direction (|A|/μk = e = {e:.4g})")
     _equal_box(ax, length_unit)
-    ax.legend(loc="best")
+    place_legend(ax)
     return fig
 
 
@@ -52,7 +73,7 @@ def two_body_tracks(r1, r2, *, m1, m2, length_unit="m", ax=None):
         ax.plot([r[0, 0]], [r[0, 1]], marker="o", color=c, ms=5, ls="none")
     ax.plot([0], [0], marker="x", color="k", ms=8, ls="none", label="centre of mass")
     _equal_box(ax, length_unit)
-    ax.legend(loc="best")
+    place_legend(ax)
     return fig
 
 
@@ -61,7 +82,7 @@ def effective_potential(r, v, v_eff, *, energy, turning, circular=None, length_u
     """V(r), V_eff(r) = V + L²/2μr² and the energy line between the turning points."""
     fig, ax = new_figure(ax)
     ax.plot(r, v, color=CONTEXT, linestyle="--", label="V(r)")
-    ax.plot(r, v_eff, color=REFERENCE, label="V_eff(r) = V + L²/(2μr²)")
+    ax.plot(r, v_eff, color=REFERENCE, label=r"$V_{\mathrm{eff}}(r) = V + L^2/(2\mu r^2)$")
     r_lo, r_hi = turning
     hi = r_hi if np.isfinite(r_hi) else r[-1]
     ax.plot([r_lo, hi], [energy, energy], color=HIGHLIGHT, lw=2.0, label="E (allowed region)")
@@ -78,24 +99,25 @@ def effective_potential(r, v, v_eff, *, energy, turning, circular=None, length_u
     ax.set_xlim(0.0, r[-1])
     ax.set_xlabel(f"r [{length_unit}]")
     ax.set_ylabel(f"energy [{energy_unit}]")
-    ax.legend(loc="best")
+    place_legend(ax)
     return fig
 
 
 def apsidal_angle_family(e, angle_exact, *, near_circular, measured=None, exact_label,
-                         ax=None):
-    """Apsidal angle against eccentricity at fixed L: exact quadrature and its circular limit."""
+                         near_label="near-circular limit π/√(2 − n)", ax=None):
+    """Apsidal angle against eccentricity at fixed L: the exact quadrature and, dashed,
+    ``near_circular`` (its circular limit, or a closed form) labelled ``near_label``."""
     fig, ax = new_figure(ax)
     ax.plot(e, np.degrees(angle_exact), color=REFERENCE, label=exact_label)
-    ax.axhline(np.degrees(near_circular), color=CONTEXT, linestyle="--",
-               label="near-circular limit π/√(2 − n)")
+    ax.axhline(np.degrees(near_circular), color=CONTEXT, linestyle="--", label=near_label)
     ax.axhline(180.0, color=CONTEXT, linestyle=":", label="Kepler: 180° (closed orbit)")
     if measured is not None:
         ax.plot([measured[0]], [np.degrees(measured[1])], marker="o", color=HIGHLIGHT,
                 ls="none", label="measured from the run")
-    ax.set_xlabel("eccentricity e = (r_max − r_min)/(r_max + r_min)")
+    ax.set_xlabel(r"eccentricity $e = (r_{\max} - r_{\min})/(r_{\max} + r_{\min})$ "
+                  "(dimensionless)")
     ax.set_ylabel("apsidal angle [deg]")
-    ax.legend(loc="best")
+    place_legend(ax)
     return fig
 
 
@@ -111,11 +133,53 @@ def three_body_orbits(positions, *, labels, length_unit="", ax=None, plane=(0, 1
                 ms=5, ls="none")
         ax.plot([positions[-1, b, plane[0]]], [positions[-1, b, plane[1]]], marker="s",
                 color=c, ms=5, ls="none", mfc="none")
-    unit = f" [{length_unit}]" if length_unit else ""
     ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel(f"{names[plane[0]]}{unit}")
-    ax.set_ylabel(f"{names[plane[1]]}{unit}")
-    ax.legend(loc="best", title="● start, □ end")
+    ax.set_xlabel(length_label(names[plane[0]], length_unit))
+    ax.set_ylabel(length_label(names[plane[1]], length_unit))
+    place_legend(ax, title="● start, □ end")
+    return fig
+
+
+def encounter_zoom(t, positions, box, *, labels, length_unit="", time_unit="", cmap="viridis"):
+    """Left, the whole tracks with the zoomed box; right, the tracks inside the box with
+    time as colour (one colour scale, the bodies told apart by line style), so the order
+    of the close encounters reads off the colours.
+
+    positions : (N, 3, 3) time, body, xyz; box : (x0, x1, y0, y1) the zoomed region."""
+    from matplotlib.collections import LineCollection
+    from matplotlib.colors import Normalize
+
+    fig, axes = new_figure_grid(1, 2, figsize=(8.6, 4.6))
+    full, zoom = axes[0]
+    t = np.asarray(t, dtype=float)
+    norm = Normalize(float(t[0]), float(t[-1]))
+    for b in range(positions.shape[1]):
+        xy = positions[:, b, :2]
+        full.plot(xy[:, 0], xy[:, 1], color=BODY_COLOURS[b % len(BODY_COLOURS)], lw=0.7,
+                  label=labels[b])
+        segments = np.stack([xy[:-1], xy[1:]], axis=1)
+        lines = LineCollection(segments, cmap=cmap, norm=norm, linewidths=1.1,
+                               linestyles=BODY_STYLES[b % len(BODY_STYLES)])
+        lines.set_array(0.5 * (t[:-1] + t[1:]))
+        zoom.add_collection(lines)
+        zoom.plot([], [], color=INK, linestyle=BODY_STYLES[b % len(BODY_STYLES)],
+                  label=labels[b])
+    x0, x1, y0, y1 = box
+    full.plot([x0, x1, x1, x0, x0], [y0, y0, y1, y1, y0], color="k", lw=0.9, ls="--",
+              label="zoomed region")
+    full.set_aspect("equal", adjustable="datalim")
+    zoom.set_xlim(x0, x1)
+    zoom.set_ylim(y0, y1)
+    zoom.set_aspect("equal")
+    for ax in (full, zoom):
+        ax.set_xlabel(length_label("x", length_unit))
+        ax.set_ylabel(length_label("y", length_unit))
+    full.set_title("whole tracks", fontsize=10)
+    zoom.set_title("close encounters, coloured by time", fontsize=10)
+    place_legend(full, fontsize=8)
+    place_legend(zoom, fontsize=8)
+    bar = fig.colorbar(lines, ax=zoom, shrink=0.8)
+    bar.set_label(f"time t [{time_unit}]" if time_unit else "time t (dimensionless)")
     return fig
 
 
@@ -124,23 +188,23 @@ def relative_track(dx, dy, *, label, centre_label, length_unit="", ax=None):
     fig, ax = new_figure(ax, figsize=(6.0, 5.2))
     ax.plot(dx, dy, color=HIGHLIGHT, lw=0.8, label=label)
     ax.plot([0], [0], marker="o", color=BODY_COLOURS[1], ms=7, ls="none", label=centre_label)
-    unit = f" [{length_unit}]" if length_unit else ""
     ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel(f"Δx{unit}")
-    ax.set_ylabel(f"Δy{unit}")
-    ax.legend(loc="upper right")
+    ax.set_xlabel(length_label("Δx", length_unit))
+    ax.set_ylabel(length_label("Δy", length_unit))
+    place_legend(ax, loc="upper right")
     return fig
 
 
-def closest_approach(t, distances: dict[str, np.ndarray], *, time_unit="", ax=None):
-    """Pairwise distances against time on a log scale (close encounters)."""
+def closest_approach(t, distances: dict[str, np.ndarray], *, time_unit="", length_unit="",
+                     ax=None):
+    """Pairwise distances against time on a log scale (close encounters); an empty unit
+    is a scaled (dimensionless) one."""
     fig, ax = new_figure(ax)
     for name, d in distances.items():
         ax.semilogy(t, d, lw=0.9, label=name)
-    unit = f" [{time_unit}]" if time_unit else ""
-    ax.set_xlabel(f"time t{unit}")
-    ax.set_ylabel("pair distance")
-    ax.legend(loc="best")
+    ax.set_xlabel(f"time t [{time_unit}]" if time_unit else "time t (dimensionless)")
+    ax.set_ylabel(length_label("pair distance r", length_unit))
+    place_legend(ax)
     return fig
 
 
@@ -151,16 +215,17 @@ def elliptic_grid_orbit(x, y, *, a, grid, xi_bounds=None, eta_bounds=None, lengt
     ``grid``: the coordinate lines as (x, y) curves, drawn thin: confocal ellipses
     ξ = (r1 + r2)/2a = const and hyperbola branches η = (r1 − r2)/2a = const.
     ``xi_bounds`` (ellipses) and ``eta_bounds`` (hyperbola branches): the coordinate
-    lines bounding the separated motion, as (x, y) curves, drawn bold when given.
+    lines bounding the separated motion, as (x, y) curves, drawn dashed when given (the
+    orbit runs along them).
     """
-    fig, ax = new_figure(ax, figsize=(6.8, 5.2))
+    fig, ax = new_figure(ax, figsize=(6.4, 4.6))
     for gx, gy in grid:
         ax.plot(gx, gy, color=CONTEXT, lw=0.5)
     for i, (bx, by) in enumerate(xi_bounds or ()):
-        ax.plot(bx, by, color=SEPARATRIX, lw=1.5,
+        ax.plot(bx, by, color=GREEN, lw=1.5, linestyle=(0, (4, 2)), zorder=3,
                 label="ξ bounds of the motion" if i == 0 else None)
     for i, (bx, by) in enumerate(eta_bounds or ()):
-        ax.plot(bx, by, color=REFERENCE, lw=1.5,
+        ax.plot(bx, by, color=REFERENCE, lw=1.5, linestyle=(0, (4, 2)), zorder=3,
                 label="η bounds of the motion" if i == 0 else None)
     ax.plot(x, y, color=HIGHLIGHT, lw=0.7, label="orbit")
     ax.plot([-a, a], [0, 0], marker="o", color="k", ms=6, ls="none", label="fixed centres")
@@ -171,5 +236,7 @@ def elliptic_grid_orbit(x, y, *, a, grid, xi_bounds=None, eta_bounds=None, lengt
     ax.set_aspect("equal")
     ax.set_xlabel(f"x [{length_unit}]")
     ax.set_ylabel(f"y [{length_unit}]")
-    ax.legend(loc="upper right", fontsize=8)
+    # under the axes, as the figure's: the orbit fills the square box, and a legend
+    # anchored beside or above an equal-aspect axes was cut at the figure's edge
+    legend_below(fig, fontsize=8, max_columns=4)
     return fig

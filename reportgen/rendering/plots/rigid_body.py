@@ -22,20 +22,32 @@ from .style import (
     SEPARATRIX,
     SKY,
     new_figure,
+    place_legend,
 )
 
 AXIS_COLOURS = (BLUE, GREEN, PURPLE)
 #: the herpolhode (the curve in space), apart from the polhode (the curve on the body)
 HERPOLHODE = SKY
+_SUBSCRIPT_DIGITS = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
 
 
-def polhodes(family, separatrices, track, *, ax=None):
+def _moment(axis: int | None) -> str:
+    """The principal moment of body axis ``axis`` (1, 2 or 3) as printed on a figure,
+    "I₂"; without an axis, the intermediate one in words."""
+    if axis is None:
+        return "the intermediate moment"
+    return "I" + str(int(axis)).translate(_SUBSCRIPT_DIGITS)
+
+
+def polhodes(family, separatrices, track, *, intermediate=None, ax=None):
     """Polhodes on the unit angular-momentum sphere (body frame): a family, the
     separatrices and the scene's own, all given as unit vectors L/|L|.
 
     family : ndarray, shape (K, n, 3) — curves of a range of energies (grey).
     separatrices : ndarray, shape (S, n, 3) — S = 2, or 0 for a symmetric body.
     track : ndarray, shape (N, 3) — the run's body-frame L/|L|.
+    intermediate : the body axis (1, 2 or 3) of the intermediate moment, named in the
+    separatrices' legend entry.
     """
     fig, ax = _figure_3d(ax)
     u, v = np.mgrid[0:2 * np.pi:40j, 0:np.pi:20j]
@@ -46,7 +58,7 @@ def polhodes(family, separatrices, track, *, ax=None):
                 label="polhodes of other energies (same |L|)" if k == 0 else None)
     for k, c in enumerate(separatrices):
         ax.plot(c[:, 0], c[:, 1], c[:, 2], color=SEPARATRIX, linewidth=1.6,
-                label="separatrices (2E = L²/I2)" if k == 0 else None)
+                label=f"separatrices (2E = L²/{_moment(intermediate)})" if k == 0 else None)
     track = np.asarray(track, dtype=float)
     ax.plot(track[:, 0], track[:, 1], track[:, 2], color=HIGHLIGHT, linewidth=2.4,
             label="this scene's polhode")
@@ -82,12 +94,14 @@ def _principal_axes_3d(ax, half_axes, labels):
         ax.text(*(1.08 * d), labels[k], color=AXIS_COLOURS[k])
 
 
-def polhodes_on_ellipsoid(surface, semi_axes, family, separatrices, track, *, ax=None):
+def polhodes_on_ellipsoid(surface, semi_axes, family, separatrices, track, *,
+                          intermediate=None, ax=None):
     """Polhodes on the energy ellipsoid ω·Iω = 2T (body frame, [rad/s]).
 
     surface : (n_u, n_v, 3) the ellipsoid; semi_axes : (3,) √(2T/I_k);
     family : (K, n, 3) polhodes of a ladder of L² (grey); separatrices : (S, n, 3),
-    L² = 2T·I2 (S = 0 for a symmetric body); track : (N, 3) the run's body-frame ω.
+    L² = 2T·I_mid (S = 0 for a symmetric body); track : (N, 3) the run's body-frame ω;
+    intermediate : the body axis (1, 2 or 3) of I_mid, named in the legend.
     """
     fig, ax = _figure_3d(ax)
     surface = np.asarray(surface, dtype=float)
@@ -98,7 +112,7 @@ def polhodes_on_ellipsoid(surface, semi_axes, family, separatrices, track, *, ax
                 label="polhodes of other L² (same 2T)" if k == 0 else None)
     for k, c in enumerate(separatrices):
         ax.plot(c[:, 0], c[:, 1], c[:, 2], color=SEPARATRIX, linewidth=1.6,
-                label="separatrices (L² = 2T·I_mid)" if k == 0 else None)
+                label=f"separatrices (L² = 2T·{_moment(intermediate)})" if k == 0 else None)
     track = np.asarray(track, dtype=float)
     ax.plot(track[:, 0], track[:, 1], track[:, 2], color=HIGHLIGHT, linewidth=2.4,
             label="this scene's polhode")
@@ -120,7 +134,7 @@ def polhodes_on_ellipsoid(surface, semi_axes, family, separatrices, track, *, ax
 
 
 def poinsot(surface, half_axes, polhode, herpolhode, plane_height, *, circle_radius=None,
-            figsize=(8.4, 4.6)):
+            contact_time=None, figsize=(8.4, 4.6)):
     """Poinsot's construction, in the frame (e1, e2, e3 = −L/|L|) of the invariable plane,
     units of x = ω/√(2T) [1/√(kg m²)]: left, the inertia ellipsoid resting on the plane
     z = ``plane_height`` with the polhode on it and the herpolhode on the plane; right,
@@ -130,7 +144,7 @@ def poinsot(surface, half_axes, polhode, herpolhode, plane_height, *, circle_rad
     k the semi-axis vector of body axis k; polhode : (N, 3) the body track carried by the
     attitude of that instant; herpolhode : (N, 3) the space-frame tip of x, ending at the
     contact point; circle_radius : closed-form herpolhode radius (symmetric body), drawn
-    dashed on the plane view.
+    dashed on the plane view; contact_time : the instant drawn [s], named in the legend.
     """
     # fixed panel boxes: a layout engine would measure every text twice per save
     fig = Figure(figsize=figsize)
@@ -171,7 +185,9 @@ def poinsot(surface, half_axes, polhode, herpolhode, plane_height, *, circle_rad
         ax2.plot(circle_radius * np.cos(phi), circle_radius * np.sin(phi), color=REFERENCE,
                  linestyle=(0, (4, 3)), linewidth=1.0, label="closed-form circle")
     ax2.plot(her[0, 0], her[0, 1], "o", color=HERPOLHODE, markersize=5, label="start")
-    ax2.plot(her[-1, 0], her[-1, 1], "o", color="k", markersize=4, label="contact at t_end")
+    contact = ("contact point" if contact_time is None
+               else f"contact at t = {contact_time:.4g} s")
+    ax2.plot(her[-1, 0], her[-1, 1], "o", color="k", markersize=4, label=contact)
     ax2.plot(0.0, 0.0, "+", color="k", markersize=12, label="foot of L")
     ax2.set_aspect("equal", adjustable="datalim")
     ax2.set_xlabel("x·e₁ [1/√(kg m²)]")
@@ -200,7 +216,7 @@ def flips(t, omega, *, envelope=None, ax=None):
                 label="perturbation ∝ exp(γt), γ from (10.14)")
     ax.set_xlabel("time t [s]")
     ax.set_ylabel("body-frame ω [rad/s]")
-    ax.legend(loc="upper right", ncols=2)
+    place_legend(ax, loc="upper right", ncols=2)
     return fig
 
 
@@ -234,8 +250,26 @@ def inertia_ellipsoid(moments, axes, surface, semi_axes, *, points=None, masses=
     ax.set_ylim(-lim, lim)
     ax.set_zlim(-lim, lim)
     ax.set_box_aspect((1, 1, 1))
-    ax.set_xlabel("x [(kg m²)^−½]")
-    ax.set_ylabel("y [(kg m²)^−½]")
-    ax.set_zlabel("z [(kg m²)^−½]")
+    ax.set_xlabel("x [1/√(kg m²)]")
+    ax.set_ylabel("y [1/√(kg m²)]")
+    ax.set_zlabel("z [1/√(kg m²)]")
+    ax.view_init(*ellipsoid_view(axes, semi))
     ax.legend(loc="upper left")
     return fig
+
+
+def ellipsoid_view(axes, semi_axes) -> tuple[float, float]:
+    """(elevation, azimuth) [deg] of a view that shows an ellipsoid's shape: looking
+    mostly along its shortest semi-axis, so the longest and the middle one lie across the
+    view (looking down the long axis of a prolate body shows a circle), tilted a little
+    toward the middle one so it still reads as a solid; from above (z ≥ 0) when the
+    direction allows.  ``axes`` (3, 3): the semi-axes' directions as columns."""
+    axes = np.asarray(axes, dtype=float)
+    order = np.argsort(np.asarray(semi_axes, dtype=float))  # shortest, middle, longest
+    view = 0.9 * axes[:, order[0]] + 0.45 * axes[:, order[1]]
+    view /= np.linalg.norm(view)
+    if view[2] < 0:
+        view = -view
+    elevation = float(np.degrees(np.arcsin(np.clip(view[2], -1.0, 1.0))))
+    azimuth = float(np.degrees(np.arctan2(view[1], view[0])))
+    return elevation, azimuth

@@ -95,7 +95,7 @@ def poincare_family(u, v, member, colour, uname: str, vname: str, *, colour_labe
             shown = True
     spans = np.ptp(u), np.ptp(v)
     if min(spans) > 0 and max(spans) / min(spans) <= EQUAL_SCALE_RATIO:
-        ax.set_aspect("equal", adjustable="datalim")
+        ax.set_aspect("equal", adjustable="box")  # the limits fit the data at any size
     if legend_below and (labels is not None or edge is not None or curves is not None
                          or shown):
         ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, fontsize=8,

@@ -37,6 +37,14 @@ PALETTE = (BLUE, VERMILLION, GREEN, PURPLE, ORANGE, SKY, BLACK)
 RC["axes.prop_cycle"] = matplotlib.cycler(color=list(PALETTE))
 matplotlib.rcParams.update(RC)
 
+#: colours past the palette's seven, for a figure of many series that must each have its
+#: own (the work-precision diagram's dozen methods): Paul Tol's wine, indigo, sand and
+#: olive and a mid grey.  With the palette, every pair stays at least 22 CIELAB units apart
+#: in normal vision and 9 under simulated colour-vision deficiency (tests/test_style.py);
+#: the markers and line styles differ too.
+WINE, INDIGO, SAND, OLIVE, MID_GREY = "#882255", "#332288", "#DDCC77", "#999933", "#7F7F7F"
+MANY_SERIES = (*PALETTE, WINE, INDIGO, SAND, OLIVE, MID_GREY)
+
 
 def _share_text_to_path() -> None:
     """Let every renderer use matplotlib's one module-level TextToPath.
@@ -105,9 +113,9 @@ def new_figure(ax=None, *, figsize=None, projection=None):
     return fig, ax
 
 
-def new_figure_grid(nrows, ncols, *, figsize=None, sharex=False):
+def new_figure_grid(nrows, ncols, *, figsize=None, sharex=False, sharey=False):
     fig = Figure(figsize=figsize or RC["figure.figsize"], layout="constrained")
-    axes = fig.subplots(nrows, ncols, sharex=sharex, squeeze=False)
+    axes = fig.subplots(nrows, ncols, sharex=sharex, sharey=sharey, squeeze=False)
     return fig, axes
 
 
@@ -121,3 +129,89 @@ def legend_below(fig, *, fontsize: float = 8, max_columns: int = 3):
         if ncols == 1 or legend.get_window_extent().width <= 0.98 * fig.bbox.width:
             return legend
         legend.remove()
+
+
+#: where :func:`place_legend` tries a legend inside the axes, in order
+INSIDE_LOCATIONS = ("upper right", "upper left", "lower left", "lower right", "center right",
+                    "center left", "upper center", "lower center")
+
+
+def place_legend(ax, *, loc: str | None = None, outside: str = "above", margin: float = 0.02,
+                 **kwargs):
+    """The axes' legend where it covers no plotted data: ``loc`` if that is clear, else the
+    first clear corner or edge of :data:`INSIDE_LOCATIONS`, else outside the axes
+    (``outside`` = "above" the frame, in as many columns as fit its width, or to the
+    "right").  "Clear": no vertex, marker or point of a line drawn between two vertices
+    (lines in data coordinates and scatters) falls within the legend's frame grown by
+    ``margin`` (a fraction of the axes).  The axes' limits must be final; the layout engine
+    may still resize the axes (it only grows them here, so a clear place stays clear).
+    ``kwargs`` go to ``ax.legend``.  Returns the legend (None if nothing is labelled)."""
+    handles, labels = ax.get_legend_handles_labels()
+    if not handles and "handles" not in kwargs:
+        return None
+    legend = ax.legend(loc=loc or INSIDE_LOCATIONS[0], **kwargs)
+    renderer = ax.figure._get_renderer()
+    points = _data_points_in_axes(ax)
+    to_axes = ax.transAxes.inverted()
+    for where in dict.fromkeys([loc, *INSIDE_LOCATIONS] if loc else INSIDE_LOCATIONS):
+        legend.set_loc(where)
+        box = legend.get_window_extent(renderer).transformed(to_axes)
+        inside = ((points[:, 0] > box.x0 - margin) & (points[:, 0] < box.x1 + margin)
+                  & (points[:, 1] > box.y0 - margin) & (points[:, 1] < box.y1 + margin))
+        if not inside.any():
+            return legend
+    legend.remove()
+    if outside == "right":
+        return ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0,
+                         **kwargs)
+    n = len(labels) if "handles" not in kwargs else len(kwargs["handles"])
+    kwargs.pop("ncols", None)
+    kwargs.pop("ncol", None)
+    # above a linear y axis, clear of its offset text ("1e−11") at the top left
+    pad = 1.3 if ax.get_yscale() == "linear" else 0.0
+    for ncols in range(min(n, 4), 0, -1):
+        legend = ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0, 1.0, 0.1),
+                           mode="expand" if ncols > 1 else None, borderaxespad=pad,
+                           ncols=ncols, **kwargs)
+        if ncols == 1 or legend.get_window_extent(renderer).width <= ax.bbox.width * 1.001:
+            return legend
+        legend.remove()
+    return legend
+
+
+def _data_points_in_axes(ax, step: float = 0.01):
+    """Every plotted point of ``ax`` in axes fractions, shape (n, 2): the vertices of its
+    lines in data coordinates with points every ``step`` between them, and the offsets of
+    its scatters."""
+    import numpy as np
+
+    ax.get_xlim(), ax.get_ylim()  # brings the autoscaled limits up to date
+    if ax.get_aspect() != "auto":
+        ax.apply_aspect()
+    to_axes = ax.transAxes.inverted()
+    parts = [np.zeros((0, 2))]
+    for line in ax.get_lines():
+        if not line.get_visible() or line.get_transform() != ax.transData:
+            continue
+        xy = np.asarray(line.get_xydata(), dtype=float)
+        xy = to_axes.transform(ax.transData.transform(xy[np.isfinite(xy).all(axis=1)]))
+        if len(xy) > 1 and str(line.get_linestyle()) not in ("None", "none", "", " "):
+            gap = np.hypot(*np.diff(xy, axis=0).T)
+            count = np.minimum(np.ceil(gap / step), 200).astype(int)
+            seg = np.repeat(np.arange(len(gap)), count)
+            frac = (np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count)) \
+                / np.repeat(np.maximum(count, 1), count)
+            xy = np.concatenate([xy, xy[seg] + frac[:, None] * (xy[seg + 1] - xy[seg])])
+        parts.append(xy)
+    for coll in ax.collections:
+        offsets = getattr(coll, "get_offsets", lambda: [])()
+        if not coll.get_visible():
+            continue
+        if coll.get_transform() == ax.transData:  # contour lines, line collections
+            parts += [to_axes.transform(ax.transData.transform(path.vertices))
+                      for path in coll.get_paths() if len(path.vertices)]
+        elif len(offsets) and coll.get_offset_transform() == ax.transData:  # scatters
+            parts.append(to_axes.transform(ax.transData.transform(np.asarray(offsets))))
+    points = np.concatenate(parts)
+    inside = (points > -0.01).all(axis=1) & (points < 1.01).all(axis=1)
+    return points[inside]
