@@ -844,3 +844,32 @@ def test_preset_formulas_are_the_ones_the_quadratures_solve():
     presets = HamiltonianScene.presets
     assert presets["central_potential"]["system"]["H"] == hamilton_jacobi.CENTRAL_H
     assert presets["two_centres"]["system"]["H"] == hamilton_jacobi.TWO_CENTRES_H
+
+
+@pytest.mark.parametrize("text, coordinates, expected", [
+    ("p_q**2/2 + q**4/4", ["q"], "p²/2 + q⁴/4"),  # one coordinate: its momentum is p
+    ("p_theta**2/(2*m*l**2) - m*g*l*cos(theta)", ["theta"], "p²/(2ml²) − mgl cos(θ)"),
+    ("m*l**2/2*(theta_dot**2 + phi_dot**2)", ["theta", "phi"], "ml²/2·(θ̇² + φ̇²)"),
+    ("x - (y - z) + 2*x", ["x"], "x − (y − z) + 2x"),
+    ("(p_x**2 + p_y**2)/2", ["x", "y"], None),  # p_y has no Unicode subscript
+    ("x**0.5", ["x"], None),  # not a small whole power
+])
+def test_formula_text_spells_a_formula_in_the_authors_order(text, coordinates, expected):
+    from reportgen.kinds.hamiltonian.symbols import formula_text
+    assert formula_text(text, coordinates) == expected
+
+
+def test_untitled_formula_system_is_titled_by_its_hamiltonian():
+    quartic = Path(__file__).parent / "data" / "variants" / "hamiltonian_quartic.toml"
+    scene = load_scene(parse_config_text(quartic.read_text(encoding="utf-8")))
+    assert scene.config.title == "" and scene.title == "Hamiltonian H = p²/2 + q⁴/4"
+
+
+def test_a_long_hamiltonian_is_broken_between_its_terms():
+    from reportgen.kinds.hamiltonian.symbols import dot_tex, split_sum
+    term = r"\frac{p_{a}^{2}}{" + " + ".join(["l_{1}^{2} m_{1}"] * 12) + "}"
+    lines = split_sum("H", " + ".join([term] * 4))
+    assert len(lines) == 4 and lines[0].startswith("H = ")
+    assert all(line.startswith(r"\qquad + ") for line in lines[1:])
+    assert split_sum("H", "a - b") == ["H = a - b"]
+    assert dot_tex("p_{a}") == r"\dot{p}_{a}" and dot_tex("x") == r"\dot{x}"

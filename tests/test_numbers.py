@@ -14,8 +14,8 @@ import numpy as np
 import pytest
 
 from reportgen.scene.content import (
+    COMPARISON_DIGITS,
     DIGITS,
-    MAX_DIGITS,
     NO_VALUE,
     comparison_digits,
     fmt,
@@ -78,20 +78,22 @@ def test_errors_two_significant_figures(x, text):
 
 
 def test_a_comparison_shows_the_figure_where_value_and_reference_differ():
-    # 0.69999999999963 against 0.7: equal to 12 figures, different at the 13th
-    value, reference = fmt_pair(0.69999999999963, 0.7)
-    assert (value, reference) == ("0.69999999999963", "0.7")
-    value, reference = fmt_pair(1 / 3, 1 / 3 + 2e-12)
-    assert value != reference and fmt(1 / 3) == fmt(1 / 3 + 2e-12)  # 6 figures hide it
-    assert (value, reference) == ("0.333333333333", "0.333333333335")
-    assert fmt(1 / 3, against=1 / 3 + 2e-12) == value
+    # equal to 7 figures, different at the 8th: shown to the 9th
+    value, reference = fmt_pair(1.2345678, 1.2345679)
+    assert (value, reference) == ("1.2345678", "1.2345679")
+    assert fmt(1.2345678) == fmt(1.2345679)  # 6 figures would hide it
+    assert fmt(1.2345678, against=1.2345679) == value
+    # equal to more figures than a comparison prints: the usual 6 (the table's relative
+    # error column tells that agreement), never 15 bare digits
+    assert fmt_pair(0.69999999999963, 0.7) == ("0.7", "0.7")
+    assert fmt_pair(245408173649620.0, 245408173649620.06) == ("2.45408e14", "2.45408e14")
+    assert comparison_digits(1 / 3, 1 / 3 + 2e-12) == DIGITS
     # equal values: the usual 6 figures
     assert fmt_pair(math.pi, math.pi) == ("3.14159", "3.14159")
-    # no more than float64 holds: 1 ulp apart are equal to 15 figures
-    assert comparison_digits(1.0, 1.0 + 2.0**-52) == MAX_DIGITS
     assert fmt_pair(1.0, 1.0 + 2.0**-52) == ("1", "1")
     # at least the usual figures when they differ early
     assert fmt_pair(2.0, 3.0) == ("2", "3") and comparison_digits(2.0, 3.0) == DIGITS
+    assert COMPARISON_DIGITS == 10
 
 
 def test_a_matrix_shows_exact_zeros_and_ones():

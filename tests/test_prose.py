@@ -156,7 +156,7 @@ EXPECTED = {
     "inertia": "Inertia of a solid cone (M = 1 kg, R = 0.5 m, h = 2 m)",
     "rotation": "Rotations: axis and angle, Euler angles (z-x-z) and SU(2) → SO(3) by "
                 "Möbius maps",
-    "hamiltonian": "Lagrangian system in (θ)",
+    "hamiltonian": "Lagrangian L = θ̇²/2 + g cos(θ)",
 }
 
 

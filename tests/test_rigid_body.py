@@ -293,3 +293,30 @@ def test_shipped_presets_validate(cli):
     assert len(paths) == 5
     code, out, err = cli("validate", *paths)
     assert code == 0, out + err
+
+
+def test_omega_error_figure_names_an_exactly_zero_component_instead_of_a_floor_line():
+    """A symmetric body's ω along the figure axis is integrated exactly: its error is 0,
+    which a log axis would draw as a line at the 1e-18 floor. It is left out of the
+    figure and named in the caption; a nonzero error is kept."""
+    from reportgen.kinds.rigid_body.report import omega_errors, zero_error_words
+
+    t = np.linspace(0.0, 1.0, 5)
+    run = {"omega_1": np.cos(t) + 1e-15, "omega_2": np.sin(t), "omega_3": np.full(5, 2.0)}
+    exact = {"omega_1": np.cos(t), "omega_2": np.sin(t) - 3e-16, "omega_3": np.full(5, 2.0)}
+    errors, zero = omega_errors(run, exact)
+    assert list(errors) == ["|ω1 − exact|", "|ω2 − exact|"] and zero == [3]
+    assert "ω3 is exactly zero" in zero_error_words(zero)
+    assert zero_error_words([]) == ""
+
+
+def test_ellipsoid_view_takes_the_camera_off_the_lab_axes():
+    """The octahedron's principal axes are the lab axes; the old view (along the
+    shortest semi-axis, tilted to the middle one) sat square on azimuth 90° at 63°
+    elevation and stacked the y and z tick labels."""
+    from reportgen.rendering.plots.rigid_body import ellipsoid_view
+
+    semi = 1.0 / np.sqrt([0.1, 0.136, 0.164])
+    elev, azim = ellipsoid_view(np.eye(3), semi)
+    off_axis = min(azim % 90.0, 90.0 - azim % 90.0)
+    assert 0.0 <= elev <= 60.0 and off_axis >= 10.0

@@ -102,7 +102,7 @@ def test_reference_run_and_method_filter():
     res = work_precision(DAMPED, np.array([1.0, 0.0]), np.linspace(0.0, 3.0, 31),
                          methods=["dop853", "verlet", "gauss4"], tolerances=[1e-8],
                          steps=[0.05], repeats=1)
-    assert res.reference_kind.startswith("reference run: dop853 rtol=1e-14")
+    assert res.reference_kind.startswith("a reference run, compiled DOP853 at rtol 1e-14")
     assert res.skipped == ["verlet"]
     assert {r["method"] for r in res.rows} == {"dop853", "gauss4"}
     assert res.reference_agreement < 1e-11
@@ -211,7 +211,7 @@ def test_unconverged_gauss_reference_gives_way_to_the_dop853_one(monkeypatch):
     monkeypatch.setattr(study_module, "_GAUSS_REF_MAX_HALVINGS", 0)
     res = work_precision(pendulum.model(G, L), Y0, T_EVAL, methods=["dop853", "rk45"],
                          tolerances=[1e-6, 1e-8], repeats=1)
-    assert "also for dop853 rows" in res.reference_kind
+    assert "also for the DOP853 rows" in res.reference_kind
     errors = [r["error_max"] for r in res.rows if r["method"] == "dop853"]
     assert errors and all(0 < e < 1e-4 for e in errors)
     assert np.isnan(res.reference_agreement)
@@ -219,7 +219,7 @@ def test_unconverged_gauss_reference_gives_way_to_the_dop853_one(monkeypatch):
     monkeypatch.undo()
     res = work_precision(pendulum.model(G, L), Y0, T_EVAL, methods=["dop853"],
                          tolerances=[1e-8], repeats=1)
-    assert "gauss6 h=" in res.reference_kind and res.reference_agreement < 1e-11
+    assert "Gauss–Legendre 6th order at step" in res.reference_kind and res.reference_agreement < 1e-11
 
 
 def test_a_fixed_step_ladder_goes_on_past_steps_too_long_for_the_method():

@@ -154,3 +154,29 @@ def test_default_sections_from_the_archive_alone():
     assert "moon" not in names and "periodicity" not in names and "orbits" in names
     names = ThreeBodyScene.default_sections(data(True, 6.3))
     assert "moon" in names and "periodicity" in names
+
+
+def test_figure_eight_with_one_mass_changed_is_not_the_choreography():
+    """The figure-eight preset with m3 = 1.02 keeps the preset's period, but its orbit does
+    not return after it (0.3 away): its words must not name the choreography or equal
+    masses, and no check holds it to a return it does not make."""
+    text = ('kind = "three_body"\npreset = "figure_eight"\n[params]\nmasses = [1.0, 1.0, 1.02]\n'
+            '[run]\nt_end = 12.0\nsamples = 1201\nstudy = false\n')
+    scene = load_scene(parse_config_text(text))
+    r = scene.simulate()
+    assert ThreeBodyScene.preset_as_given(scene.config) is None
+    assert r.analysis["return_position_error"] > 0.1
+    assert not any("after one period" in c.quantity for c in r.checks)
+    data = SimpleNamespace(analysis=r.analysis, config=scene.config, runs=r.runs, sweep=None)
+    case = ThreeBodyScene.prose_case(data)
+    assert case["preset"] == "" and not case["periodic"] and not case["equal_masses"]
+    words = ThreeBodyScene.describe(data)
+    assert "figure-eight" not in words and "equal" not in words and "not periodic" in words
+    # the preset as given keeps its name, its return check and its words
+    given = load_scene(parse_config_text('kind = "three_body"\npreset = "figure_eight"\n'
+                                         '[run]\nstudy = false\n'))
+    r = given.simulate()
+    assert any("after one period" in c.quantity and "Chenciner" in c.source
+               for c in r.checks)
+    data = SimpleNamespace(analysis=r.analysis, config=given.config, runs=r.runs, sweep=None)
+    assert ThreeBodyScene.describe(data).startswith("Three equal masses on the figure-eight")

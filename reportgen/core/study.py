@@ -360,16 +360,17 @@ def work_precision(model, y0, t_eval, reference=None, methods=None, tolerances=N
         agreement = math.nan
     else:
         ref_dop, ref_gauss = _reference_runs(model, y0, t_eval)
-        reference_kind = "reference run: dop853 rtol=1e-14 atol=1e-16"
+        reference_kind = "a reference run, compiled DOP853 at rtol 1e-14 and atol 1e-16"
         if ref_gauss is not None:
             refs = {"default": ref_dop.y, "dop853": ref_gauss.y}
             agreement = float(np.max(np.abs(ref_dop.y - ref_gauss.y)))
-            reference_kind += f" (gauss6 h={ref_gauss.h:.3g} for dop853 rows)"
+            reference_kind += (f" (for the DOP853 rows an independent one, Gauss–Legendre "
+                               f"6th order at step {ref_gauss.h:.3g})")
         else:  # better than dop853 rows measured against an unconverged one: said so
             refs = {"default": ref_dop.y}
             agreement = math.nan
-            reference_kind += (", also for dop853 rows (the independent gauss6 reference "
-                               "did not converge at the steps tried)")
+            reference_kind += (", also for the DOP853 rows (the independent Gauss–Legendre "
+                               "reference did not converge at the steps tried)")
 
     rows: list[dict] = []
     stamp = measurement_stamp()

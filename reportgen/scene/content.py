@@ -53,6 +53,8 @@ DIGITS = 6
 ERROR_DIGITS = 2
 #: most significant figures a comparison shows: float64 holds no more
 MAX_DIGITS = 15
+#: the most figures a value-against-reference comparison prints (:func:`comparison_digits`)
+COMPARISON_DIGITS = 10
 #: a matrix entry within this many ulps (of the matrix's largest entry) of 0, or of 1
 #: and -1, is printed as 0, 1 or -1: the round-off of an exact entry, not a value
 MATRIX_ULPS = 4
@@ -65,7 +67,8 @@ def fmt(x: Any, digits: int = DIGITS, *, against: float | None = None) -> str:
 
     ``digits`` significant figures (6 by default), no float noise (0.79999999999994 is
     ``0.8``), no trailing zeros, never a negative zero (``-0.0`` is ``0``); scientific
-    notation (``1.2e-13``, ``3.4e7``) below 1e-3 and from ``10**digits`` on.  Integers are
+    notation (``1.2e-13``, ``3.4e7``) below 1e-3 and from 1e6 on (from ``10**digits`` for
+    fewer figures), so a 15-figure comparison of 1.08e14 is not 15 bare digits.  Integers are
     printed whole.  Not-a-number is :data:`NO_VALUE`; a caller should say why in its caption
     (or leave the cell out) rather than pass one.  Infinity is ``∞``.
 
@@ -87,7 +90,7 @@ def fmt(x: Any, digits: int = DIGITS, *, against: float | None = None) -> str:
         return "0"
     mantissa, exponent = f"{x:.{digits - 1}e}".split("e")
     exponent = int(exponent)
-    if -3 <= exponent < digits:
+    if -3 <= exponent < min(digits, DIGITS):
         text = f"{x:.{max(digits - 1 - exponent, 0)}f}"
         text = text.rstrip("0").rstrip(".") if "." in text else text
     else:
@@ -105,20 +108,23 @@ def fmt_err(x: Any) -> str:
 def comparison_digits(value: float, reference: float, digits: int = DIGITS) -> int:
     """Significant figures that show where ``value`` and ``reference`` differ: one more
     than the first figure at which their texts differ, at least ``digits``, at most
-    :data:`MAX_DIGITS` (equal values, or values equal to 15 figures, at ``digits`` or 15)."""
+    :data:`COMPARISON_DIGITS`.  Values equal to more figures than that print at
+    ``digits``: a table of them has a relative-error column, which tells such an
+    agreement better than fifteen printed figures (a lecturer reads 2.45408e14 against
+    2.45408e14 and 5.8e-16, not 245408173649620 against 245408173649620)."""
     if not (math.isfinite(value) and math.isfinite(reference)) or value == reference:
         return digits
-    for n in range(1, MAX_DIGITS + 1):
+    for n in range(1, COMPARISON_DIGITS):
         if f"{value:.{n - 1}e}" != f"{reference:.{n - 1}e}":
-            return min(max(n + 1, digits), MAX_DIGITS)
-    return MAX_DIGITS
+            return max(n + 1, digits)
+    return digits
 
 
 def fmt_pair(value: float, reference: float, digits: int = DIGITS) -> tuple[str, str]:
     """A value and its reference as text for a deliberate comparison: both to one figure
-    past the first one where they differ (at least ``digits``, at most 15), so that
-    ``0.333333333335`` against ``0.333333333333`` shows the difference instead of hiding
-    it in ``0.333333`` twice."""
+    past the first one where they differ (at least ``digits``, at most
+    :data:`COMPARISON_DIGITS`), so that ``1.2345678`` against ``1.2345679`` shows the
+    difference instead of hiding it in ``1.23457`` twice."""
     n = comparison_digits(float(value), float(reference), digits)
     return fmt(value, n), fmt(reference, n)
 

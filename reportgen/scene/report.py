@@ -388,7 +388,8 @@ class Report(Scene):
             drift = rec.attrs.get(f"drift_{name}", float("nan"))
             rows.append([(labels or {}).get(name, name), fmt(float(values[0])),
                          fmt_err(drift)])
-        table = Table(caption=f"Conserved quantities (bound for a stable run: relative drift ≤ "
+        table = Table(caption=f"Conserved quantities (bound on the drift of a numerically "
+                              f"stable run: relative drift ≤ "
                               f"{fmt_err(rec.attrs.get('drift_bound', math.nan))})",
                       header=["quantity", "initial value", "max relative drift"], rows=rows)
         return SectionContent(

@@ -110,6 +110,7 @@ class CentralForceReport(Report):
         psi = float(a.get("apsidal_angle_exact", math.nan))
         r_min, r_max = (float(v) for v in np.asarray(a["turning_points"]))
         return {"potential": str(p.potential), "bound": bound, "conic": conic,
+                "equal_masses": float(p.m1) == float(p.m2),
                 "closed": p.potential == "kepler" and bound, "e": fmt(e, 4),
                 "n": fmt(float(getattr(p, "n", math.nan) or math.nan), 4),
                 "r_min": fmt(r_min, 4), "r_max": fmt(r_max, 4) if math.isfinite(r_max) else "∞",

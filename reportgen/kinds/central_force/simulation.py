@@ -197,6 +197,17 @@ class CentralForceSimulation(IntegratingSimulation):
         return per_period * (1.0 - e) ** 1.5 >= self.MIN_SAMPLES_PER_PASSAGE * 2 * math.pi \
             and run.t_end >= 2.2 * period and e >= self.MIN_ECCENTRICITY_FOR_PASSAGES
 
+    def _unresolved_reason(self, el) -> str:
+        """Why :meth:`_passages_resolved` is false for this orbit, in words."""
+        run, e, period = self.config.run, el["eccentricity"], el["period"]
+        if e < self.MIN_ECCENTRICITY_FOR_PASSAGES:
+            return "the orbit is (nearly) a circle, with no pericentre to time"
+        if run.t_end < 2.2 * period:
+            return "the run is shorter than two orbits"
+        return (f"a pericentre passage spans fewer than {self.MIN_SAMPLES_PER_PASSAGE} "
+                f"samples (e = {e:.3g}: the body sweeps through pericentre in about "
+                f"{(1.0 - e) ** 1.5 / (2 * math.pi):.2g} of a period)")
+
     def _kepler_checks(self, results: Results, main) -> None:
         el, a = self.elements, results.analysis
         x, y, vx, vy = core.kepler_state(main.t, el)
@@ -242,10 +253,8 @@ class CentralForceSimulation(IntegratingSimulation):
                                             "a = −k/(2E) (Goldstein eq. 3.61)"))
         else:
             a["period_measured_note"] = (
-                "period not measured from the samples: a pericentre passage spans fewer than "
-                f"{self.MIN_SAMPLES_PER_PASSAGE} samples, the run is shorter than two orbits, "
-                "or the orbit is a circle (no pericentre to time); the orbit is checked "
-                "against Kepler's equation at every sample instead")
+                f"period not measured from the samples: {self._unresolved_reason(el)}; the "
+                "orbit is checked against Kepler's equation at every sample instead")
 
     def _apsides(self, results: Results, main) -> None:
         a, mu = results.analysis, self.mu

@@ -18,7 +18,7 @@ from ...scene.content import fmt as _fmt
 from .config import PRESETS, HamiltonianConfig, _PresetFormulas
 from .report import HamiltonianReport
 from .simulation import HamiltonianSimulation
-from .symbols import symbol_text
+from .symbols import formula_text, symbol_text
 
 
 def fmt(x, digits: int = 10) -> str:
@@ -35,6 +35,10 @@ class HamiltonianScene(HamiltonianSimulation, HamiltonianReport):
     PRESET_WORDS = {"central_potential": "Central potential V = −k/r in spherical coordinates",
                     "two_centres": "Two fixed centres in elliptic coordinates"}
 
+    #: longest formula (in characters) a default title spells out; a longer one is said
+    #: in words
+    TITLE_FORMULA_CHARACTERS = 48
+
     @classmethod
     def default_title(cls, config):
         """``Lagrangian system in (θ1, θ2): surface of section θ1 = 0``: the preset's
@@ -42,9 +46,15 @@ class HamiltonianScene(HamiltonianSimulation, HamiltonianReport):
         system = config.system
         words = cls.PRESET_WORDS.get(cls.preset_as_given(config) or "")
         if words is None:
-            coordinates = ", ".join(symbol_text(q) for q in system.coordinates)
-            words = (f"{'Hamiltonian' if system.H else 'Lagrangian'} system in "
-                     f"({coordinates})")
+            # the formula itself when it reads as a short line: "Hamiltonian H = p²/2 + q⁴/4"
+            given = "H" if system.H else "L"
+            formula = formula_text(system.H or system.L, system.coordinates)
+            if formula is not None and len(formula) <= cls.TITLE_FORMULA_CHARACTERS:
+                words = f"{'Hamiltonian' if system.H else 'Lagrangian'} {given} = {formula}"
+            else:
+                coordinates = ", ".join(symbol_text(q) for q in system.coordinates)
+                words = (f"{'Hamiltonian' if system.H else 'Lagrangian'} system in "
+                         f"({coordinates})")
         extra = []
         if config.section is not None:
             extra.append(f"surface of section {symbol_text(config.section.coordinate)} = "

@@ -16,7 +16,7 @@ from ...scene.content import SectionContent, fmt, fmt_err
 from ...scene.report import Report, section_colours, section_point_notes
 from .config import JACOBI_SAMPLES, STUDY_STEPS, family_energy
 from .results import SCHEMA
-from .symbols import symbol_tex, symbol_text, symbol_words
+from .symbols import dot_tex, split_sum, symbol_parts, symbol_tex, symbol_text, symbol_words
 
 common_plots = lazy_module("reportgen.rendering.plots.common")
 plots = lazy_module("reportgen.kinds.hamiltonian.plots")
@@ -92,15 +92,29 @@ class HamiltonianReport(Report):
         head, _, name = path.partition(".")
         if head != "initial" or not name:
             return super().config_quantity(data, path)
-        return Quantity(path, f"{symbol_tex(name)}(0)", "1", f"initial {name}")
+        return Quantity(path, f"{symbol_tex(name)}(0)", cls.unit_of(data, name),
+                        f"initial {name}")
 
     @classmethod
     def result_quantity(cls, data, name):
-        """A result of a formula system: every quantity is in the author's scaled units."""
+        """A result of a formula system: every quantity is in the author's units (the
+        config's, :attr:`UNITS`), an initial value in its column's (rad for an angle)."""
         from ...scene.schema import Quantity
 
         q = super().result_quantity(data, name)
+        column = name[len("initial_"):] if name.startswith("initial_") else None
+        if column and column != "state" and column in cls.symbols_of_columns(data):
+            return Quantity(name, f"{symbol_tex(column)}(0)", cls.unit_of(data, column),
+                            f"initial {symbol_words(column, cls.coordinates(data))}")
+        if name == "poincare_H_error":
+            return Quantity(name, q.symbol, cls.UNITS, q.description)
         return q if q.unit else Quantity(name, q.symbol, "1", q.description)
+
+    @classmethod
+    def symbols_of_columns(cls, data) -> list[str]:
+        """The state columns' names: the coordinates and their momenta p_<q>."""
+        coords = cls.coordinates(data)
+        return coords + [f"p_{q}" for q in coords]
 
     @staticmethod
     def symbols(data) -> dict[str, str]:
@@ -122,10 +136,22 @@ class HamiltonianReport(Report):
         an angle (a coordinate H is 2π-periodic in), else :attr:`UNITS`."""
         return {n: f"{s} [{cls.unit_of(data, n)}]" for n, s in cls.symbols(data).items()}
 
+    #: names of a coordinate that is an angle when H does not contain it (a cyclic φ: H
+    #: periodic in it cannot be checked, yet it is measured in radians)
+    ANGLE_NAMES = frozenset({"theta", "phi", "psi", "chi", "alpha", "beta", "gamma",
+                             "varphi", "vartheta"})
+
     @classmethod
     def unit_of(cls, data, name: str) -> str:
-        """The unit a state column is printed in: rad for an angle, else :attr:`UNITS`."""
-        return "rad" if name in list(data.analysis.get("angles", [])) else cls.UNITS
+        """The unit a state column is printed in: rad for an angle (H 2π-periodic in it,
+        or a cyclic coordinate named as an angle), else :attr:`UNITS`."""
+        a = data.analysis
+        if name in list(a.get("angles", [])):
+            return "rad"
+        if (name in [str(c) for c in a.get("cyclic", [])]
+                and symbol_parts(name)[0] in cls.ANGLE_NAMES):
+            return "rad"
+        return cls.UNITS
 
     @staticmethod
     def coordinates(data) -> list[str]:
@@ -242,7 +268,8 @@ class HamiltonianReport(Report):
                 "rows": [[cls.name_tex(data, n), fmt(float(v[0])),
                           fmt_err(run.attrs.get(f"drift_{n}", math.nan))]
                          for n, v in run.invariants.items()],
-                "caption": "Conserved quantities (bound for a stable run: relative drift ≤ "
+                "caption": "Conserved quantities (bound on the drift of a numerically stable run: "
+                           "relative drift ≤ "
                            f"{fmt_err(run.attrs.get('drift_bound', math.nan))})",
                 "tex": [0]})
         observables = [k[len("poisson_"):] for k in a
@@ -365,7 +392,8 @@ class HamiltonianReport(Report):
                             rf"p_{{{q}}} = {m}"))
             for q, v in zip(tex["q"], tex["velocities"], strict=True):
                 eqs.append(("velocity", rf"\dot{{{q}}} = {v}"))
-        eqs.append(("Hamiltonian", f"H = {tex['H']}"))
+        for i, line in enumerate(split_sum("H", str(tex["H"]))):
+            eqs.append(("Hamiltonian" if i == 0 else "", line))
         long = []
         for i, (q, e) in enumerate(zip(tex["q"], tex["qdot"], strict=True)):
             if len(e) > cls.LONGEST_EQUATION:
@@ -375,9 +403,9 @@ class HamiltonianReport(Report):
                         rf"\dot{{{q}}} = {e}"))
         for i, (p, e) in enumerate(zip(tex["p"], tex["pdot"], strict=True)):
             if len(e) > cls.LONGEST_EQUATION:
-                long.append(rf"\dot{{{p}}}")
+                long.append(dot_tex(p))
                 continue
-            eqs.append(("ṗ = −∂H/∂q" if i == 0 else "", rf"\dot{{{p}}} = {e}"))
+            eqs.append(("ṗ = −∂H/∂q" if i == 0 else "", f"{dot_tex(p)} = {e}"))
         if long:  # named by their left-hand sides; the archive holds them whole
             eqs.append(("too long to read typeset, not shown (their TeX is archived in "
                         "/analysis/latex)", r",\ ".join(long)))
@@ -394,6 +422,8 @@ class HamiltonianReport(Report):
                           f"{fmt_err(a['legendre_energy_error'])} (|H| ≤ "
                           f"{fmt(a['legendre_energy_scale'], 4)})"))
         return SectionContent(facts=facts, equations=eqs)
+
+
 
     @classmethod
     def section_trajectory(cls, data):
@@ -516,8 +546,9 @@ class HamiltonianReport(Report):
             facts.append(("max |(Q, P) from integrating K − (Q, P) of the H orbit|",
                           fmt_err(a["transform_run_difference"])))
         else:
-            facts.append(("K in closed form", "not found (the old variables are not linear "
-                          "in the new ones); K = H + ∂F/∂t is evaluated along the run"))
+            facts.append(("K as a formula in (Q, P)", "not found (the old variables are not "
+                          "linear in the new ones); K = H + ∂F/∂t, above, is evaluated along "
+                          "the run"))
         caption = ("The new variables along the integrated orbit" +
                    (f"; dashed: {symbol_text(new[0])} from integrating K's own Hamilton "
                     "equations from (Q₀, P₀)." if run is not None else "."))

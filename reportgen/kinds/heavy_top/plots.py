@@ -17,6 +17,7 @@ from ...rendering.plots.style import (
     HIGHLIGHT,
     REFERENCE,
     SEPARATRIX,
+    legend_below,
     new_figure,
     new_figure_grid,
     place_legend,
@@ -112,10 +113,17 @@ def cubic(u, f, *, u1, u2, u3, b_over_a, u0, xlabel="u = cos θ (dimensionless)"
     ax.axhline(0.0, color="k", linewidth=0.8)
     if np.isfinite(u1) and np.isfinite(u2):
         ax.axvspan(u1, u2, color=HIGHLIGHT, alpha=0.15, label="motion: f ≥ 0")
+    # roots that print alike (a double root: steady precession, an unstable sleeping top)
+    # share one label, "u1 = u2", instead of two printed over each other
+    shown: dict[str, list[str]] = {}
     for value, name in zip((u1, u2, u3), names, strict=True):
         if np.isfinite(value) and u[0] <= value <= u[-1]:
-            ax.plot([value], [0.0], "o", color=HIGHLIGHT)
-            ax.annotate(name, (value, 0.0), textcoords="offset points", xytext=(4, 6))
+            shown.setdefault(fmt(value), []).append(name)
+            if len(shown[fmt(value)]) == 1:
+                ax.plot([value], [0.0], "o", color=HIGHLIGHT)
+    for value, group in shown.items():
+        ax.annotate(" = ".join(sorted(group)), (float(value), 0.0), textcoords="offset points",
+                    xytext=(4, 6))
     if u[0] <= 1.0 <= u[-1]:
         ax.axvline(1.0, color=CONTEXT, linestyle=":", linewidth=1.0)
     if np.isfinite(b_over_a) and u[0] <= b_over_a <= u[-1]:
@@ -128,7 +136,12 @@ def cubic(u, f, *, u1, u2, u3, b_over_a, u0, xlabel="u = cos θ (dimensionless)"
         ax.set_ylim(-1.6 * top, 1.4 * top)
     ax.set_xlabel(xlabel)
     ax.set_ylabel("f(u) = (du/dt)²  [1/s²]")
-    ax.legend(loc="best")
+    # the shaded band fills the axes' height and the curve its corners: the legend under
+    # the axes (inside an axes the caller passed, where it covers least)
+    if len(fig.axes) == 1:
+        legend_below(fig, fontsize=9, max_columns=2)
+    else:
+        ax.legend(loc="best")
     return fig
 
 
@@ -137,13 +150,20 @@ def effective_potential(theta, V, *, energy, theta1, theta2, ylabel="V'(θ) [J]"
     fig, ax = new_figure(ax, figsize=(6.8, 4.4))
     ax.plot(theta, V, color=REFERENCE, label=ylabel.split(" [")[0])
     ax.axhline(energy, color=HIGHLIGHT, linestyle="--", label=f"energy {fmt(energy)} J")
-    for th, name in ((theta1, "θ1"), (theta2, "θ2")):
+    # one turning angle where they print alike (steady precession: no nutation)
+    turning = ((theta1, "θ1 = θ2"),) if fmt(theta1) == fmt(theta2) else \
+        ((theta1, "θ1"), (theta2, "θ2"))
+    for th, name in turning:
         if np.isfinite(th):
             ax.axvline(th, color=CONTEXT, linestyle=":")
             ax.annotate(name, (th, energy), textcoords="offset points", xytext=(4, 6))
     finite = V[np.isfinite(V)]
-    lo = float(np.min(finite))
+    lo = min(float(np.min(finite)), energy)
     span = max(energy - lo, 1e-12)
+    if span <= 1e-9 * max(abs(energy), abs(lo)):
+        # E' at the bottom of the well (steady precession): a window of round-off would
+        # show no curve; show the well up to a tenth of V's rise over the grid instead
+        span = max(0.1 * (float(np.median(finite)) - lo), 1e-12)
     top = energy + 1.5 * span
     ax.set_ylim(lo - 0.3 * span, top)
     # θ where the well shows under that window, with as much again on each side: a narrow
@@ -171,6 +191,10 @@ def time_series(t, theta, theta_closed, phi_dot, u_error, *, theta1, theta2,
         if np.isfinite(th):
             ax.axhline(th, color=CONTEXT, linestyle=":")
     ax.set_ylabel("θ [rad]")
+    ax.ticklabel_format(axis="y", useOffset=False)  # no "1e−12+1" offsets: θ as it is
+    lo, hi = float(np.nanmin(theta)), float(np.nanmax(theta))
+    if hi - lo <= 1e-6 * abs(hi):  # steady precession: round-off only, a band of ±2 %
+        ax.set_ylim(0.98 * lo, 1.02 * hi)
     # above the axes: θ(t) fills the band between the circles, peaks in every corner
     fig.legend(*ax.get_legend_handles_labels(), loc="outside upper center", ncol=2,
                frameon=False)
@@ -207,35 +231,48 @@ def steady_rates(omega3, slow, fast, *, omega3_min, omega3_config, rate_config, 
     return fig
 
 
-def sleeping_sweep(t, theta, ratios, *, theta_max, figsize=(11.0, 4.6)):
+def sleeping_sweep(t, theta, ratios, *, theta_max, figsize=(7.2, 4.0)):
     """Tilt θ(t) of nearly sleeping tops for several ω3/ω3_threshold, and the largest tilt."""
     fig = Figure(figsize=figsize, layout="constrained")
     ax1, ax2 = fig.subplots(1, 2)
-    cmap = _diverging(len(ratios))
+    cmap = _diverging(ratios)
     for k, r in enumerate(ratios):
         ax1.semilogy(t, np.maximum(theta[k], 1e-18), color=cmap[k],
                      label=f"ω3 = {fmt(r, 3)} × threshold")
     ax1.set_xlabel("time t [s]")
     ax1.set_ylabel("tilt θ [rad]")
-    ax1.set_title("growth of a small tilt")
-    place_legend(ax1, loc="lower right", outside="right", fontsize=8)
-    colours = [HIGHLIGHT if r < 1 else REFERENCE for r in ratios]
-    ax2.scatter(ratios, theta_max, c=colours, zorder=3)
+    # each top in the same colour in both panels: red shades below the threshold, blue above
+    ax2.scatter(ratios, theta_max, c=cmap, zorder=3)
     ax2.set_yscale("log")
     ax2.axvline(1.0, color=SEPARATRIX, linestyle="--", label="ω3² = 4 I1 M g l / I3² (10.50)")
     ax2.set_xlabel("ω3 / threshold ω3 (dimensionless)")
     ax2.set_ylabel("largest tilt θmax [rad]")
-    ax2.set_title("unstable (red) below, stable (blue) above")
-    fig.legend(*ax2.get_legend_handles_labels(), loc="outside lower center", ncol=2, fontsize=9,
-               frameon=False)
+    ax2.set_title("largest tilt\nunstable (red) below, stable (blue) above", fontsize=10)
+    ax1.set_title("growth of a small tilt\n", fontsize=10)
+    handles, labels = ax1.get_legend_handles_labels()
+    more = ax2.get_legend_handles_labels()
+    # under both panels: the curves fill the left one, the points the right one
+    fig.legend(handles + more[0], labels + more[1], loc="outside lower center", ncol=3,
+               fontsize=8.5, frameon=False)
     return fig
 
 
-def _diverging(n):
+def _diverging(ratios):
+    """A colour per ω3/threshold: shades of red below 1 (unstable), of blue above, the
+    palest kept clearly coloured (the middle of the map is grey)."""
     from matplotlib import colormaps
 
     cm = colormaps["coolwarm_r"]
-    return [cm(x) for x in np.linspace(0.05, 0.95, max(n, 2))][:n]
+    ratios = np.asarray(ratios, dtype=float)
+    colours = [None] * len(ratios)
+    for pick, lo, hi in ((ratios < 1.0, 0.0, 0.3), (ratios >= 1.0, 0.7, 1.0)):
+        idx = np.nonzero(pick)[0][np.argsort(ratios[pick])]
+        # in order of the ratio, the farthest from the threshold darkest
+        shades = np.linspace(lo, hi, max(len(idx), 2))
+        shades = shades[:len(idx)] if lo == 0.0 else shades[len(shades) - len(idx):]
+        for i, x in zip(idx, shades, strict=True):
+            colours[i] = cm(x)
+    return colours
 
 
 #: Fig. 4.3: the sphere is seen from this height above the horizon [rad], as printed

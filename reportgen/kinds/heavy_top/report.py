@@ -10,7 +10,7 @@ import numpy as np
 
 from ...lazy import lazy_module
 from ...scene.base import Section
-from ...scene.content import SectionContent, Table, fmt, fmt_err, member_text
+from ...scene.content import SectionContent, Table, fmt, fmt_err
 from ...scene.report import Report, kept_members
 from .config import BAND_CASES, MIN_SAMPLES_PER_PERIOD
 from .locus import FIG43_ELEVATION_DEG, locus_stretch
@@ -312,7 +312,7 @@ class HeavyTopReport(Report):
             theta1.append(a["theta1"][i])
             theta2.append(a["theta2"][i])
             azimuths.append(azimuth)
-            labels.append((str(case[i]) or f"member {i}", member_text(sweep, i, short=True)))
+            labels.append((str(case[i]) or f"member {i}", cls._member_label(sweep, i)))
         fig = plots.loci_family(loci, theta1=theta1, theta2=theta2, labels=labels,
                                 azimuths=azimuths,
                                 elevation=math.radians(FIG43_ELEVATION_DEG))
@@ -322,14 +322,28 @@ class HeavyTopReport(Report):
             "dashed: behind the sphere).")])
 
     @classmethod
+    def _member_label(cls, sweep, i) -> str:
+        """A member's swept values for a figure: the quantity's symbol and unit where the
+        kind declares it (``dφ/dt(0) = −1 rad/s``), else the config key's last part."""
+        parts = []
+        for path, values in sweep.values.items():
+            if path in SWEPT_RESULTS:
+                q = cls.schema.quantity(SWEPT_RESULTS[path])
+                parts.append(f"{q.math} = {fmt(float(values[i]), 4)} {q.unit}".rstrip())
+            else:
+                parts.append(f"{path.rsplit('.', 1)[-1]} = {fmt(float(values[i]), 4)}")
+        return ", ".join(parts)
+
+    @classmethod
     def section_nutation_locus(cls, data):
         run = data.runs["main"]
         a = data.analysis
         axis = np.column_stack([run["axis_x"], run["axis_y"], run["axis_z"]])
         fig = plots.nutation_locus(axis, run["theta"], theta1=a["theta1"], theta2=a["theta2"])
-        label = {"loops": "b/a inside (u1, u2): φ̇ changes sign, the axis loops (Fig. 4.3a)",
-                 "waves": "b/a outside [u1, u2]: φ̇ keeps its sign, the axis waves (Fig. 4.3b)",
-                 "cusps": "b/a = u2: φ̇ = 0 on the upper circle, cusps (Fig. 4.3c)",
+        label = {"loops": "b/a inside (u1, u2): φ̇ changes sign, the axis loops (Fig. 4.3a)",
+                 "waves": "b/a outside [u1, u2]: φ̇ never changes sign, the axis waves "
+                          "(Fig. 4.3b)",
+                 "cusps": "b/a = u2: φ̇ = 0 on the upper circle, cusps (Fig. 4.3c)",
                  "steady": "u1 = u2: no nutation, steady precession on one circle",
                  "sleeping": "the sleeping top: the axis stays vertical"}[a["case"]]
         # the figure draws one circle where θ1 and θ2 print alike (no nutation)
@@ -433,7 +447,7 @@ class HeavyTopReport(Report):
             facts=facts,
             figures=[cls.figure("f_of_u", fig, "f(u) = (1 − u²)(α − βu) − (b − au)² (10.31): "
                                 "the motion is confined to u1 ≤ u ≤ u2 where f ≥ 0; "
-                                "u3 > 1 is unphysical. Dashed: b/a, where φ̇ = 0.")],
+                                "u3 ≥ 1 lies outside it. Dashed: b/a, where φ̇ = 0.")],
             tables=[table, table2], notes=notes)
 
     @classmethod
@@ -445,7 +459,7 @@ class HeavyTopReport(Report):
                                          "and ℘ degenerates; nothing to show."])
         fig = plots.weierstrass_rectangle(wp["omega"], wp["omega_prime"], wp["x0"], wp["t_end"])
         rows = [
-            ["u = λ℘ + μ: λ = 4/β", fmt(wp["scale"]), ""],
+            ["u = λ℘ + μ: λ = 4/β", fmt(wp["scale"]), "s²"],
             ["μ = (u1 + u2 + u3)/3", fmt(wp["shift"]), ""],
             ["g2 = 2(e1² + e2² + e3²)", fmt(wp["g2"]), "1/s⁴"],
             ["g3 = 4 e1 e2 e3", fmt(wp["g3"]), "1/s⁶"],
@@ -548,7 +562,7 @@ class HeavyTopReport(Report):
         table = Table(caption=f"Tops started at a tilt of {fmt(sw['tilt'])} rad at rest "
                               f"(threshold ω3 = {fmt(data.analysis['sleeping_threshold_omega3'])}"
                               f" rad/s)",
-                      header=["ω3 / threshold", "ω3 [rad/s]", "(10.50)",
+                      header=["ω3 / threshold", "ω3 [rad/s]", "stability (10.50)",
                               "linear growth rate ½√(2β − a²) [1/s]", "largest tilt [rad]"],
                       rows=rows)
         return SectionContent(

@@ -483,7 +483,7 @@ class HeavyTopSimulation(IntegratingSimulation):
         sens = a.get("period_sensitivity", math.nan)
         if math.isfinite(sens) and sens > 1e-6:
             return (f"; ill-conditioned: the run's own energy drift alone moves T by "
-                    f"{fmt_err(sens)}")
+                    f"{fmt_err(sens)} (relative)")
         return ""
 
     def _sleeping_sweep(self) -> dict:

@@ -108,7 +108,7 @@ class InertiaReport(Report):
                           "of mass [kg m²]",
                   header=["", "x", "y", "z"],
                   rows=[[c] + fmt_matrix(T)[i] for i, c in enumerate("xyz")]),
-            Table(caption="Principal moments and axes about that point",
+            Table(caption="Principal moments and axes about that point.",
                   header=["axis", "moment [kg m²]", "direction"],
                   rows=[[f"{k + 1}", fmt(float(p["principal_moments"][k])),
                          "(" + ", ".join(fmt_matrix(p["principal_axes"][:, k])[0]) + ")"]
@@ -163,5 +163,5 @@ def stability_table_section(analysis: dict) -> SectionContent:
         case = ""
     return SectionContent(tables=[Table(
         caption="Free rotation about each principal axis, linearized (10.12)–(10.14)"
-                + ("" if spin is None else f" at spin Ω = {fmt(spin)} rad/s") + case,
+                + ("" if spin is None else f" at spin Ω = {fmt(spin)} rad/s") + case + ".",
         header=header, rows=rows)])

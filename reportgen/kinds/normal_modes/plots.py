@@ -127,12 +127,25 @@ def _bare(ax, box):
         ax.spines[side].set_visible(False)
 
 
-def _scaled(displacements, span, share):
+def _scaled(displacements, span, share, *, pos=None, bonds=(), stretch=None):
+    """Each displacement scaled so its largest atom moves ``share`` × span; with ``pos``
+    (n, k) and ``bonds``, also so no bond's length changes by more than ``stretch`` of
+    itself (CO₂'s stretches otherwise drew an O on top of the C)."""
     out = []
     for d in displacements:
         d = np.asarray(d, dtype=float)
         amp = float(np.max(np.linalg.norm(d, axis=1))) or 1.0
-        out.append(d * (share * span / amp))
+        factor = share * span / amp
+        if stretch is not None and pos is not None:
+            for i, j in bonds:
+                bond = pos[i] - pos[j]
+                length = float(np.linalg.norm(bond))
+                # the length change to first order: the relative motion along the bond
+                change = abs(float((d[i, :pos.shape[1]] - d[j, :pos.shape[1]]) @ bond)) / (
+                    length or 1.0)
+                if length > 0 and change > 0:
+                    factor = min(factor, stretch * length / change)
+        out.append(d * factor)
     return out
 
 
@@ -193,7 +206,7 @@ def molecule_snapshots(pos, masses, elements, bonds, displacements, titles):
     k = len(displacements)
     pos = np.asarray(pos, dtype=float)
     span = float(np.max(np.ptp(pos[:, :2], axis=0))) or 1.0
-    ds = _scaled(displacements, span, 0.25)
+    ds = _scaled(displacements, span, 0.25, pos=pos, bonds=bonds, stretch=0.3)
     views = []
     for d in ds:
         out_of_plane, in_plane = float(np.sum(d[:, 2] ** 2)), float(np.sum(d[:, 1] ** 2))

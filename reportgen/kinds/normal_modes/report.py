@@ -281,12 +281,18 @@ class NormalModesReport(Report):
             pos = np.asarray(a["drawing"]["positions"])
             disps = list(np.asarray(a["drawing"]["displacements"]))
             bonds = [tuple(b) for b in np.asarray(a["bonds"]).tolist()]
-            elems = list(a["elements"])
+            # an atom given by its mass alone ("X" in the archive) is labelled by its number
+            # in the configuration, so the mode shapes say which atom moves
+            elems = [str(e) if str(e) != "X" else str(i + 1)
+                     for i, e in enumerate(a["elements"])]
+            numbered = any(str(e) == "X" for e in a["elements"])
             fig = plots.molecule_modes(pos[:, :2], a["masses"], elems, bonds, disps, titles)
             figs.append(cls.figure("modes", fig, "Each vibration at equilibrium: arrows are the "
                                    "mass-normalized displacement η (scaled to be visible); faint "
                                    "atoms the extreme phases ωt = 0, π; ⊙/⊗ motion toward/away "
-                                   "from the viewer."))
+                                   "from the viewer."
+                                   + (" Atoms without an element are numbered in the order "
+                                      "of the configuration." if numbered else "")))
             shown = min(len(disps), 6)
             snap = plots.molecule_snapshots(pos, a["masses"], elems, bonds, disps[:shown],
                                             cls._frequency_titles(data, 4)[:shown])

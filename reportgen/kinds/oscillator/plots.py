@@ -31,7 +31,8 @@ def swap_phase_planes(q, p, Q_int, P_int, Q_map, P_map):
 
 
 def hamilton_jacobi(t, q_int, q_hj, energy, beta):
-    fig, axes = new_figure_grid(3, 1, figsize=(6.8, 6.4), sharex=True)
+    # short enough to share the page with the section's prose and facts
+    fig, axes = new_figure_grid(3, 1, figsize=(6.8, 5.2), sharex=True)
     ax_q, ax_e, ax_b = axes[:, 0]
     ax_q.plot(t, q_int, color=HIGHLIGHT, label="integrated")
     ax_q.plot(t, q_hj, color=REFERENCE, linestyle=(0, (4, 3)), label="Hamilton–Jacobi (7.38)")

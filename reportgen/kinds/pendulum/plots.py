@@ -29,7 +29,9 @@ def phase_portrait(theta, theta_dot, *, grid_theta, grid_theta_dot, energy, leve
     fig, ax = new_figure(ax, figsize=(6.8, 4.4))
     wrapped = np.mod(np.asarray(theta) + math.pi, 2 * math.pi) - math.pi
     TH, THD = np.meshgrid(grid_theta, grid_theta_dot)
-    ax.contour(TH, THD, energy, levels=np.sort(levels), colors=CONTEXT, linewidths=0.8)
+    # solid: a one-colour contour draws negative levels dashed, which nothing explains
+    ax.contour(TH, THD, energy, levels=np.sort(levels), colors=CONTEXT, linewidths=0.8,
+               linestyles="solid")
     ax.contour(TH, THD, energy, levels=[separatrix], colors=SEPARATRIX, linewidths=1.6)
     # break the orbit where it wraps so no line crosses the plot
     jumps = np.nonzero(np.abs(np.diff(wrapped)) > math.pi)[0] + 1

@@ -105,7 +105,10 @@ class PendulumReport(Report):
         return [
             ("parameters", f"g = {fmt(p.g)} m/s², l = {fmt(p.l)} m, m = {fmt(p.m)} kg"),
             ("initial state", f"θ0 = {fmt(ini.theta)} rad, θ̇0 = {fmt(ini.theta_dot)} rad/s"),
-            ("motion", f"{a['motion']}, k = {fmt(a['k'])}"),
+            # near the separatrix k prints as 1: its distance from 1 says which side
+            ("motion", f"{a['motion']}, " + (f"1 − k = {fmt_err(abs(1.0 - float(a['k'])))}"
+                                            if abs(1.0 - float(a["k"])) < cls.SEPARATRIX_GAP
+                                            else f"k = {fmt(a['k'])}")),
             ("period", f"{fmt(a['period'])} s exact; small-angle 2π/ω0 = "
                        f"{fmt(a['period_small_angle'])} s"),
             ("max |θ − θ_exact|", f"{fmt_err(a['theta_max_error'])} rad over the run"),

@@ -6,6 +6,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from ...lazy import lazy_module
 from ...scene.base import Section
 from ...scene.content import SectionContent, Table, fmt, fmt_err
@@ -20,6 +22,43 @@ plots = lazy_module("reportgen.rendering.plots.rigid_body")
 INVARIANT_NAMES = {"twice_energy": "2T", "L_squared": "L² (body frame)",
                    "L_x": "Lx (space)", "L_y": "Ly (space)", "L_z": "Lz (space)",
                    "quaternion_norm": "|q|"}
+
+
+def method_name(data, run) -> str:
+    """A run's integrator as a reader says it: the study table's label ("DOP853 (numba)"),
+    "axis splitting, order 4" for the splitting, else the method's words."""
+    from ...scene.report import method_words
+    method = str(run.attrs.get("method", ""))
+    if method.startswith("splitting") and method[len("splitting"):].isdigit():
+        return f"axis splitting, order {method[len('splitting'):]}"
+    study = data.study
+    if study is not None and len(study) and "label" in (study.dtype.names or ()):
+        for m, label in zip(study["method"], study["label"], strict=True):
+            if str(m) == method:
+                return str(label)
+    return method_words(method)
+
+
+def omega_errors(run, exact) -> tuple[dict, list[int]]:
+    """|ω_k − exact| per component, and the components (1-based) whose error is exactly
+    zero over the run (ω along a symmetric body's figure axis is constant, integrated to
+    the last bit): a log axis cannot show those, the caption names them instead."""
+    errors, zero = {}, []
+    for k, n in enumerate(["omega_1", "omega_2", "omega_3"]):
+        err = run[n] - exact[n]
+        if float(np.max(np.abs(err))) == 0.0:
+            zero.append(k + 1)
+        else:
+            errors[f"|ω{k + 1} − exact|"] = err
+    return errors, zero
+
+
+def zero_error_words(zero: list[int]) -> str:
+    if not zero:
+        return ""
+    names = " and ".join(f"ω{k}" for k in zero)
+    return (f" The error of {names} is exactly zero over the whole run (constant, integrated "
+            "without rounding), so it has no line on the log axis.")
 
 
 def axes_by_moment(analysis) -> tuple[int, int, int]:
@@ -48,6 +87,11 @@ class RigidBodyReport(Report):
         if omega is None:
             return super().gallery_headline(data)
         exact = "the exact " + gallery.reference_words(omega.source)
+        precession = gallery.worst_check(data, "body-frame precession rate Ω")
+        if precession is not None:  # the symmetric case in words (a light read: checks)
+            return (f"ω precesses about the figure axis at Ω = "
+                    f"{fmt(precession.reference, 4)} rad/s; ω(t) "
+                    f"{gallery.from_reference(omega.rel_error, 'the exact uniform precession')}")
         return f"ω(t) {gallery.from_reference(omega.rel_error, exact)}"
 
     sections = (
@@ -127,13 +171,14 @@ class RigidBodyReport(Report):
             run.t, {n: run[n] for n in names}, {n: exact[n] for n in names},
             ylabels={n: f"ω{k + 1} [rad/s]" for k, n in enumerate(names)},
             reference_label=data.analysis["reference"])
-        err = common_plots.error_against_time(
-            run.t, {f"|ω{k + 1} − exact|": run[n] - exact[n] for k, n in enumerate(names)},
-            ylabel="absolute error [rad/s]")
+        errors, zero = omega_errors(run, exact)
+        err = common_plots.error_against_time(run.t, errors, ylabel="absolute error",
+                                              unit="rad/s")
         return SectionContent(figures=[
             cls.figure("omega", fig, "Body-frame angular velocity integrated (Euler's equations "
                        "(10.5)) against the exact solution."),
-            cls.figure("omega_error", err, "Error of ω against the exact solution.")],
+            cls.figure("omega_error", err, "Error of ω against the exact solution."
+                       + zero_error_words(zero))],
             facts=[("max |ω − exact ω|", f"{fmt_err(data.analysis['omega_max_error'])} rad/s")])
 
     @classmethod
@@ -177,8 +222,10 @@ class RigidBodyReport(Report):
                 "polhode_ellipsoid", fig,
                 "Polhodes on the energy ellipsoid ω·Iω = 2T (the inertia ellipsoid scaled by "
                 "√(2T)), body frame: each is its intersection with ω·I²ω = L². Grey: a ladder "
-                f"of L² between 2T·I{smallest} and 2T·I{largest} (the smallest and the largest "
-                "moment); "
+                + (f"of L² between 2T·I{smallest} and 2T·I{largest} (the smallest and the "
+                   "largest moment); " if symmetric is None else
+                   f"of L² between 2T·I{int(symmetric['axis'])} and 2T·I⊥ (the figure-axis "
+                   "and the transverse moment); ")
                 + (f"orange: the separatrices L² = 2T·I{mid}; " if len(p["separatrices"])
                    else "")
                 + "red: ω of this scene as integrated.")],
@@ -238,10 +285,25 @@ class RigidBodyReport(Report):
     @classmethod
     def section_symmetric_precession(cls, data):
         s = data.analysis["symmetric"]
-        return SectionContent(facts=[
+        figures = []
+        if math.isfinite(float(s["Omega_measured"])):  # ω⊥ = 0: no phase to draw
+            run = data.runs["main"]
+            axis = int(s["axis"])
+            b, c = axis % 3 + 1, (axis + 1) % 3 + 1
+            sense = ("with the spin (prograde)" if float(s["Omega"]) * float(
+                run.y[0, axis - 1]) < 0 else "against the spin (retrograde)")
+            fig = plots.symmetric_precession(run.t, run.y[:, :3], axis, float(s["Omega"]))
+            figures.append(cls.figure(
+                "symmetric_precession", fig,
+                f"Left: the tip of ω⊥ = (ω{b}, ω{c}) in the body plane perpendicular to the "
+                f"figure axis {axis}, as integrated, on the dashed circle |ω⊥| = "
+                f"{fmt(float(s['omega_perp']))} rad/s; the arrow shows it turning "
+                f"{sense}. Right: its unwrapped phase against time, a straight line of slope "
+                f"−Ω = {fmt(-float(s['Omega']))} rad/s (dashed: (10.10))."))
+        return SectionContent(figures=figures, facts=[
             ("symmetry axis", str(s["axis"])),
             ("Ω (10.10)", f"{fmt(s['Omega'], against=s['Omega_measured'])} rad/s"),
-            ("Ω measured (slope of the phase of ω⊥)",
+            ("Ω measured (minus the slope of the phase of ω⊥)",
              f"{fmt(s['Omega_measured'], against=s['Omega'])} rad/s"),
             ("|ω⊥|", f"{fmt(s['omega_perp'])} rad/s (constant)"),
             ("precession of the figure axis about L, |L|/I⊥", f"{fmt(s['space_precession_rate'])}"
@@ -256,10 +318,9 @@ class RigidBodyReport(Report):
         split = data.runs["splitting"]
         a = data.analysis
         exact = split.reference
-        names = ["omega_1", "omega_2", "omega_3"]
-        fig = common_plots.error_against_time(
-            split.t, {f"|ω{k + 1} − exact|": split[n] - exact[n] for k, n in enumerate(names)},
-            ylabel="absolute error [rad/s]")
+        errors, zero = omega_errors(split, exact)
+        fig = common_plots.error_against_time(split.t, errors, ylabel="absolute error",
+                                              unit="rad/s")
         scales = {q: split.attrs[f"scale_{q}"] for q in split.invariants}
         # relative drifts: each invariant by its declared symbol, without a unit
         symbols = {q: cls.schema.invariant(q).math for q in split.invariants}
@@ -271,14 +332,15 @@ class RigidBodyReport(Report):
                 for name in split.invariants]
         return SectionContent(
             figures=[cls.figure("splitting_error", fig,
-                                f"Error of the {split.attrs['method']} axis splitting "
-                                f"(h = {fmt(split.attrs['h'])} s) against the exact solution."),
+                                f"Error of the {method_name(data, split)} (h = "
+                                f"{fmt(split.attrs['h'])} s) against the exact solution."
+                                + zero_error_words(zero)),
                      cls.figure("splitting_invariants", inv, "Invariants under the splitting: "
                                 "L² and the space-frame L are kept to round-off, the energy "
                                 "error stays bounded.")],
-            tables=[Table(caption="Max relative drift of each invariant",
+            tables=[Table(caption="Max relative drift of each invariant.",
                           header=["quantity", "splitting", f"main run "
-                                  f"({data.runs['main'].attrs['method']})"], rows=rows)],
+                                  f"({method_name(data, data.runs['main'])})"], rows=rows)],
             facts=[("max |ω − exact ω| (splitting)", f"{fmt_err(a['splitting_omega_max_error'])}"
                     f" rad/s in {float(split.attrs['wall_time_s']) * 1e3:.3g} ms, "
                     f"{int(split.attrs['nsteps'])} steps")])

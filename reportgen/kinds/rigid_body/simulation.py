@@ -163,7 +163,7 @@ class RigidBodySimulation(IntegratingSimulation):
         for k in range(3):
             results.checks.append(Check(f"ω{k + 1}(t_end)", float(main.y[-1, k]),
                                         float(exact[-1, k]), "rad/s", ref_source, scale=spin))
-        results.checks.append(Check("max |q| − 1 over the run (before renormalization)",
+        results.checks.append(Check("|q| at its farthest from 1 over the run (before renormalization)",
                                     1.0 + q_dev, 1.0, "", "unit quaternion"))
         k2 = self.intermediate_axis
         if k2 is not None:
@@ -183,7 +183,7 @@ class RigidBodySimulation(IntegratingSimulation):
             analysis["behaviour"] = (
                 f"flip: rotation near the intermediate axis {k2 + 1} is unstable (growth rate "
                 f"{stability[k2]['growth_rate']:.3g} 1/s)"
-                + (f"; the body turns over every {half:.4g} s" if math.isfinite(half) else ""))
+                + (f"; the body turns over every {half:.4g} s" if math.isfinite(half) else "") + ".")
             if math.isfinite(f["half_period_measured"]):
                 results.checks.append(Check(f"time between flips (zero crossings of ω{k2 + 1})",
                                             f["half_period_measured"], f["half_period_exact"],
@@ -193,7 +193,8 @@ class RigidBodySimulation(IntegratingSimulation):
             if math.isfinite(sym["Omega_measured"]):
                 results.checks.append(Check("body-frame precession rate Ω",
                                             sym["Omega_measured"], sym["Omega"], "rad/s",
-                                            "Ω = (I1 − I3) ω3 / I1, (10.10)"))
+                                            f"Ω = (I⊥ − I{sym['axis']}) ω{sym['axis']} / I⊥, "
+                                            "(10.10)"))
         self._poinsot_geometry(analysis, results, main)
         if self.wants_splitting():
             split = self._splitting_run(y0, t, scales)

@@ -43,8 +43,15 @@ class RotationReport(Report):
         if not checks:
             return super().gallery_headline(data)
         worst = max(c.rel_error for c in checks)
-        return (f"{len(checks)} identities (axis–angle, Euler angles, SU(2)) checked: the "
-                f"largest discrepancy {gallery.distance(worst)}")
+        # only what this scene turns (the configured exercises; the gallery reads the
+        # archive light, without /analysis groups): rotation_euler has no SU(2)
+        topics = [words for key, words in (("axis_angle", "axis–angle"),
+                                           ("euler", "Euler angles and ω"),
+                                           ("su2", "SU(2)"))
+                  if data.config.get(key) is not None]
+        return (f"{len(checks)} identities"
+                + (f" ({', '.join(topics)})" if topics else "")
+                + f" checked: the largest discrepancy {gallery.distance(worst)}")
 
     sections = (
         Section("axis_angle", "Axis and angle ↔ rotation matrix (exercise 4.5)"),

@@ -67,6 +67,9 @@ class ThreeBodyReport(Report):
 
     #: a closest approach below this fraction of the initial size is a close encounter
     CLOSE_FRACTION = 0.05
+    #: a return after the configured period within this fraction of the initial size is a
+    #: periodic orbit (the figure-eight's initial data, known to 8 digits, return to ~1e-7)
+    PERIODIC_FRACTION = 1e-3
 
     @classmethod
     def prose_case(cls, data):
@@ -83,12 +86,20 @@ class ThreeBodyReport(Report):
         closest = float(a.get("min_pair_distance", math.nan))
         behaviour = str(a.get("behaviour", ""))
         ratios = a.get("mass_ratios") or {}
-        return {"preset": str(cfg.preset or ""), "periodic": "return_position_error" in a,
+        returned = float(a.get("return_position_error", math.nan))
+        # the preset's words only for the preset's physics: the figure-eight with one mass
+        # changed is not the figure-eight (its "period" is the preset's, not its own)
+        return {"preset": str(cls.preset_as_given(cfg) or ""),
+                "periodic": returned < cls.PERIODIC_FRACTION * size0,
+                "returned": math.isfinite(returned),
+                "return_error": fmt_err(returned),
                 "hierarchical": bool(a.get("hierarchical", False)),
                 "fate": behaviour.split(":", 1)[0] if behaviour else "",
                 "binary": "form a binary" in behaviour,
                 "chaotic": "lyapunov_time" in a,
                 "lyapunov_time": fmt(float(a.get("lyapunov_time", math.nan)), 3),
+                "study_t_end": (fmt(float(a["study_t_end"]), 3) if "study_t_end" in a
+                                else ""),
                 "equal_masses": len(set(masses)) == 1,
                 "masses": ", ".join(fmt(m, 4) for m in masses),
                 "at_rest": bool(np.all(y0[9:18] == 0.0)),
@@ -113,15 +124,17 @@ class ThreeBodyReport(Report):
             bodies = "Three equal masses" if c["equal_masses"] else f"Masses {c['masses']}"
             return (f"{bodies} on {what}, period {c['period']}: back at the start within "
                     f"{fmt_err(float(a['return_position_error']))} after one period")
+        start = "released at rest" if c["at_rest"] else "started in motion"
+        fate = fate_words(c, t_end)
+        if c["returned"]:  # a configured period the orbit does not return after
+            return (f"Masses {c['masses']} {start}, not periodic: after the configured "
+                    f"period T = {c['period']} the bodies are up to {c['return_error']} "
+                    f"from their start" + (f"; {fate}" if fate else ""))
         if c["hierarchical"]:
             n = c["names"]
             return (f"A hierarchical triple over {t_end}: {n[2]} about {n[1]} "
                     f"(a = {fmt(float(a['moon_semi_major_axis']), 3)} {cfg.length_unit}), "
                     f"the pair about {n[0]} (mass ratios {c['ratio_2']} and {c['ratio_3']})")
-        start = "released at rest" if c["at_rest"] else "started in motion"
-        fate = {"escape": "ending in an escape" + (" and a binary" if c["binary"] else ""),
-                "bound": f"still bound at t = {t_end}",
-                "collision": "ending in a collision"}.get(c["fate"], "")
         return (f"Masses {c['masses']} {start}"
                 + (f", closest approach {c['closest']} (of an initial size {c['size0']})"
                    if c["close"] else "")
@@ -267,6 +280,13 @@ class ThreeBodyReport(Report):
                                       caption=(
             "Drift of energy (relative to the initial potential energy), total momentum and "
             "angular momentum (relative to natural momentum scales)."))
+
+
+def fate_words(case, t_end):
+    """The fate of a scattering run in words: ``ending in an escape and a binary``."""
+    return {"escape": "ending in an escape" + (" and a binary" if case["binary"] else ""),
+            "bound": f"still bound at t = {t_end}",
+            "collision": "ending in a collision"}.get(case["fate"], "")
 
 
 def _plain(text):

@@ -226,13 +226,20 @@ class TwoCenterReport(Report):
                          f"down to {fmt(float(a['closest_approach_run']))}"])
         table = Table(caption=f"The region of motion of this {a['family']} orbit: the bounds "
                               "from the separated equations (7.59) and what the sampled run "
-                              "reaches",
+                              "reaches.",
                       header=["coordinate", "bounds from (7.59)", "sampled run"], rows=rows)
-        return SectionContent(figures=[cls.figure(
-            "orbit", fig, "The orbit over the elliptic-coordinate grid: confocal ellipses "
-            "ξ = (r1 + r2)/2a = const and hyperbolas η = (r1 − r2)/2a = const with foci at the "
-            "two centres. Dashed: the coordinate lines where the momentum conjugate to ξ or "
-            "to η vanishes, which bound the motion.")], tables=[table])
+        # the dashed bounds are drawn only where (7.59) has them: none for an unbound orbit,
+        # no hyperbola for a satellite orbit (η is free)
+        dashed = [w for w, key in (("ξ", "ellipses"), ("η", "hyperbolas")) if key in bound]
+        caption = ("The orbit over the elliptic-coordinate grid: confocal ellipses "
+                   "ξ = (r1 + r2)/2a = const and hyperbolas η = (r1 − r2)/2a = const with foci "
+                   "at the two centres.")
+        if dashed:
+            caption += (" Dashed: the coordinate lines where the momentum conjugate to "
+                        + " or to ".join(dashed) + " vanishes, which bound the motion.")
+        elif a["family"] == "unbound":
+            caption += " No coordinate line bounds an unbound orbit: ξ grows without limit."
+        return SectionContent(figures=[cls.figure("orbit", fig, caption)], tables=[table])
 
     @classmethod
     def section_invariants(cls, data):

@@ -62,9 +62,9 @@ SCHEMA = ResultsSchema(
           ("eta_bound_branch", *_HYPERBOLA), optional=True),
         Q("motion_bounds/hyperbolas/y", "y", "m", "bounding hyperbolas (both branches), y",
           ("eta_bound_branch", *_HYPERBOLA), optional=True),
-        Q("closest_approach_bound", r"d_\mathrm{min}", "m",
+        Q("closest_approach_bound", r"d_{\mathrm{min}}", "m",
           "closest approach to a centre the region of motion (7.59) allows"),
-        Q("closest_approach_run", r"d_\mathrm{run}", "m",
+        Q("closest_approach_run", r"d_{\mathrm{run}}", "m",
           "closest approach to a centre in the sampled run"),
         # a sweep member's crossings of y = 0 (the family's surface of section)
         Q("poincare/t", "t", "s", "times of the crossings of y = 0 upward", ("crossing",),

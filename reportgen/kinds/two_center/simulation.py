@@ -182,11 +182,12 @@ class TwoCenterSimulation(IntegratingSimulation):
                             ("separation_constant", "separation constant C(t_end)")):
             v = main.invariants[name]
             results.checks.append(Check(label, float(v[-1]), float(v[0]), "",
-                                        "value at t = 0, conserved (7.59)"
+                                        "value at t = 0, conserved (7.59); error "
+                                        "relative to max(|L₁L₂|, 2aμ)"
                                         if name != "energy" else "E(0), conserved",
                                         scale=scales[name]))
         if bounds["family"] != "unbound":
-            results.checks.append(Check("ξ_max reached by the run (sampled)",
+            results.checks.append(Check("largest ξ reached by the run (sampled)",
                                         float(np.max(xi)), bounds["xi_max"], "",
                                         "largest root of 2a²Eξ² + 4aμξ + β (7.59)"))
         t_study = np.linspace(0.0, run.t_end, 201)

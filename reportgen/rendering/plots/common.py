@@ -82,9 +82,18 @@ def error_against_time(t, errors: dict[str, np.ndarray], *, time_unit="s",
     ``unit``: the errors' common unit for the y label; None when each series names its
     own in its label ("|θ − θ_exact| [rad]"), and the label says so."""
     fig, ax = new_figure(ax)
+    exact = []
     for name, err in errors.items():
         err = np.abs(np.asarray(err))
-        ax.semilogy(*envelope(t, np.maximum(err, 1e-18)), label=name)
+        if not np.any(err > 0):
+            exact.append(name)  # nothing to draw on a log scale: said in words instead
+            continue
+        tt, ee = envelope(t, np.maximum(err, 1e-300))
+        # an error of exactly 0 is a gap in the line, not a floor drawn as a solid block
+        ax.semilogy(tt, np.where(ee > 1e-300, ee, np.nan), label=name)
+    if exact:
+        ax.text(0.02, 0.03, "exactly 0 throughout: " + ", ".join(exact),
+                transform=ax.transAxes, fontsize=8, color="0.3")
     ax.set_xlabel(time_label(time_unit))
     ax.set_ylabel(f"{ylabel} [{unit if unit is not None else 'unit of each series'}]")
     place_legend(ax)

@@ -64,12 +64,13 @@ def relative_orbit(x, y, *, reference=None, pericentres=None, lrl=None, length_u
     return fig
 
 
-def two_body_tracks(r1, r2, *, m1, m2, length_unit="m", ax=None):
+def two_body_tracks(r1, r2, *, m1, m2, length_unit="m", mass_unit="kg", ax=None):
     """Both bodies' tracks about their fixed centre of mass (3.19)."""
     fig, ax = new_figure(ax, figsize=(6.4, 5.2))
     for r, m, c, name in ((r1, m1, BODY_COLOURS[0], "body 1"), (r2, m2, BODY_COLOURS[1],
                                                                "body 2")):
-        ax.plot(r[:, 0], r[:, 1], color=c, lw=1.0, label=f"{name} (m = {m:g})")
+        label = f"{name} (m = {m:g} {mass_unit})".replace(" )", ")")
+        ax.plot(r[:, 0], r[:, 1], color=c, lw=1.0, label=label)
         ax.plot([r[0, 0]], [r[0, 1]], marker="o", color=c, ms=5, ls="none")
     ax.plot([0], [0], marker="x", color="k", ms=8, ls="none", label="centre of mass")
     _equal_box(ax, length_unit)
@@ -148,23 +149,27 @@ def encounter_zoom(t, positions, box, *, labels, length_unit="", time_unit="", c
     positions : (N, 3, 3) time, body, xyz; box : (x0, x1, y0, y1) the zoomed region."""
     from matplotlib.collections import LineCollection
     from matplotlib.colors import Normalize
+    from matplotlib.lines import Line2D
 
     fig, axes = new_figure_grid(1, 2, figsize=(8.6, 4.6))
     full, zoom = axes[0]
     t = np.asarray(t, dtype=float)
     norm = Normalize(float(t[0]), float(t[-1]))
+    x0, x1, y0, y1 = box
+    styles = []
     for b in range(positions.shape[1]):
         xy = positions[:, b, :2]
         full.plot(xy[:, 0], xy[:, 1], color=BODY_COLOURS[b % len(BODY_COLOURS)], lw=0.7,
                   label=labels[b])
-        segments = np.stack([xy[:-1], xy[1:]], axis=1)
-        lines = LineCollection(segments, cmap=cmap, norm=norm, linewidths=1.1,
+        # polylines a 25th of the box long, each one colour (its mean time): a dash
+        # pattern restarts on every piece, so one piece per sample drew every style solid
+        pieces, times = _arc_pieces(xy, t, (x1 - x0) / 25.0)
+        lines = LineCollection(pieces, cmap=cmap, norm=norm, linewidths=1.3,
                                linestyles=BODY_STYLES[b % len(BODY_STYLES)])
-        lines.set_array(0.5 * (t[:-1] + t[1:]))
+        lines.set_array(times)
         zoom.add_collection(lines)
-        zoom.plot([], [], color=INK, linestyle=BODY_STYLES[b % len(BODY_STYLES)],
-                  label=labels[b])
-    x0, x1, y0, y1 = box
+        styles.append(Line2D([], [], color=INK, lw=1.3,
+                             linestyle=BODY_STYLES[b % len(BODY_STYLES)], label=labels[b]))
     full.plot([x0, x1, x1, x0, x0], [y0, y0, y1, y1, y0], color="k", lw=0.9, ls="--",
               label="zoomed region")
     full.set_aspect("equal", adjustable="datalim")
@@ -176,11 +181,29 @@ def encounter_zoom(t, positions, box, *, labels, length_unit="", time_unit="", c
         ax.set_ylabel(length_label("y", length_unit))
     full.set_title("whole tracks", fontsize=10)
     zoom.set_title("close encounters, coloured by time", fontsize=10)
-    place_legend(full, fontsize=8)
-    place_legend(zoom, fontsize=8)
+    place_legend(full, fontsize=9)
+    # the bodies' line styles under the figure: inside or above the enlargement they
+    # covered its tracks or its title
+    fig.legend(handles=styles, loc="outside lower center", ncols=len(styles), fontsize=9,
+               frameon=False, title="line style in the enlargement", title_fontsize=9)
     bar = fig.colorbar(lines, ax=zoom, shrink=0.8)
     bar.set_label(f"time t [{time_unit}]" if time_unit else "time t (dimensionless)")
     return fig
+
+
+def _arc_pieces(xy, t, length):
+    """The track ``xy`` cut into polylines about ``length`` long (sharing end points),
+    with each piece's mean time."""
+    step = np.hypot(*np.diff(xy, axis=0).T)
+    arc = np.concatenate([[0.0], np.cumsum(np.where(np.isfinite(step), step, 0.0))])
+    cut = np.searchsorted(arc, np.arange(0.0, arc[-1], max(length, 1e-300)))
+    cut = np.unique(np.concatenate([cut, [len(xy) - 1]]))
+    pieces, times = [], []
+    for i, j in zip(cut[:-1], cut[1:], strict=True):
+        if j > i:
+            pieces.append(xy[i:j + 1])
+            times.append(float(np.mean(t[i:j + 1])))
+    return pieces, np.asarray(times)
 
 
 def relative_track(dx, dy, *, label, centre_label, length_unit="", ax=None):
@@ -227,7 +250,7 @@ def elliptic_grid_orbit(x, y, *, a, grid, xi_bounds=None, eta_bounds=None, lengt
     for i, (bx, by) in enumerate(eta_bounds or ()):
         ax.plot(bx, by, color=REFERENCE, lw=1.5, linestyle=(0, (4, 2)), zorder=3,
                 label="η bounds of the motion" if i == 0 else None)
-    ax.plot(x, y, color=HIGHLIGHT, lw=0.7, label="orbit")
+    ax.plot(x, y, color=HIGHLIGHT, lw=0.7, label="orbit", zorder=4)  # above the bounds
     ax.plot([-a, a], [0, 0], marker="o", color="k", ms=6, ls="none", label="fixed centres")
     ax.plot([x[0]], [y[0]], marker="o", color=HIGHLIGHT, ms=5, ls="none")
     lim = 1.05 * max(np.max(np.abs(x)), np.max(np.abs(y)), 1.2 * a)

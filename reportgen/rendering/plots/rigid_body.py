@@ -220,6 +220,52 @@ def flips(t, omega, *, envelope=None, ax=None):
     return fig
 
 
+def symmetric_precession(t, omega, axis: int, Omega: float, *, figsize=(8.4, 3.9)):
+    """The symmetric body's transverse ω⊥ = ω_b + i ω_c (b, c the axes after the figure
+    axis ``axis``, 1-based, in cyclic order) as integrated: left, its tip in the body
+    plane with the closed-form circle |ω⊥| = |ω⊥(0)| and the sense it turns; right, its
+    unwrapped phase against time over the line φ(0) − Ωt of (10.10).
+
+    t : (N,) [s]; omega : (N, 3) body-frame ω [rad/s]; Omega : Ω [rad/s]."""
+    from .style import new_figure_grid
+
+    s = int(axis) - 1
+    b, c = (s + 1) % 3, (s + 2) % 3
+    t = np.asarray(t, dtype=float)
+    omega = np.asarray(omega, dtype=float)
+    wb, wc = omega[:, b], omega[:, c]
+    fig, axes = new_figure_grid(1, 2, figsize=figsize)
+    ax, axp = axes[0, 0], axes[0, 1]
+    r = float(np.hypot(wb[0], wc[0]))
+    phi = np.linspace(0.0, 2 * np.pi, 181)
+    ax.plot(wb, wc, color=HIGHLIGHT, linewidth=2.0, label="integrated")
+    ax.plot(r * np.cos(phi), r * np.sin(phi), color=REFERENCE, linestyle=(0, (4, 3)),
+            linewidth=1.0, label="|ω⊥| = |ω⊥(0)|")
+    ax.plot(wb[0], wc[0], "o", color="k", markersize=5, label="t = 0")
+    # the sense of turning: an arrow a tenth of a turn along the closed form from t = 0
+    phase0 = float(np.arctan2(wc[0], wb[0]))
+    turn = -np.sign(Omega) * 0.6
+    ax.annotate("", xy=(r * np.cos(phase0 + turn), r * np.sin(phase0 + turn)),
+                xytext=(r * np.cos(phase0), r * np.sin(phase0)),
+                arrowprops={"arrowstyle": "->", "color": "k", "linewidth": 1.2,
+                            "connectionstyle": f"arc3,rad={0.3 * np.sign(turn)}"})
+    ax.set_aspect("equal", adjustable="box")  # its limits are fixed
+    lim = 1.25 * r
+    ax.set_xlim(-lim, lim)
+    ax.set_ylim(-lim, lim)
+    ax.set_xlabel(f"ω{b + 1} [rad/s]")
+    ax.set_ylabel(f"ω{c + 1} [rad/s]")
+    angle = np.unwrap(np.arctan2(wc, wb))
+    axp.plot(t, angle, color=HIGHLIGHT, linewidth=2.0, label="phase of ω⊥ integrated")
+    axp.plot(t, angle[0] - Omega * t, color=REFERENCE, linestyle=(0, (4, 3)),
+             linewidth=1.2, label=f"φ(0) − Ωt, Ω = {Omega:.4g} rad/s".replace("-", "−"))
+    axp.set_xlabel("time t [s]")
+    axp.set_ylabel("phase of ω⊥ [rad]")
+    place_legend(ax, loc="center", fontsize=8)  # inside the circle, clear of it
+    place_legend(axp)
+    return fig
+
+
 def inertia_ellipsoid(moments, axes, surface, semi_axes, *, points=None, masses=None,
                       ax=None):
     """The inertia ellipsoid Σ I_k x_k² = 1 with its principal axes.
@@ -232,8 +278,11 @@ def inertia_ellipsoid(moments, axes, surface, semi_axes, *, points=None, masses=
     m = np.asarray(moments, dtype=float)
     semi = np.asarray(semi_axes, dtype=float)
     lab = np.asarray(surface, dtype=float)
-    ax.plot_surface(lab[..., 0], lab[..., 1], lab[..., 2], color=REFERENCE, alpha=0.18,
-                    linewidth=0.2, edgecolor=REFERENCE, rasterized=True)
+    # a shaded body with its mesh: a flat-filled outline of a prolate ellipsoid seen
+    # side-on reads as a tilted disc; the curved mesh lines show the third dimension
+    ax.plot_surface(lab[..., 0], lab[..., 1], lab[..., 2], color=REFERENCE, alpha=0.22,
+                    linewidth=0, shade=True, rasterized=True)
+    _rings_about_long_axis(ax, np.asarray(axes, dtype=float), semi)
     for k in range(3):
         d = np.asarray(axes)[:, k] * semi[k] * 1.25
         ax.plot([-d[0], d[0]], [-d[1], d[1]], [-d[2], d[2]], color=AXIS_COLOURS[k],
@@ -258,6 +307,25 @@ def inertia_ellipsoid(moments, axes, surface, semi_axes, *, points=None, masses=
     return fig
 
 
+def _rings_about_long_axis(ax, axes, semi, n_rings: int = 7, n_meridians: int = 6):
+    """Circles of latitude and meridians of the ellipsoid (semi-axes ``semi`` along the
+    columns of ``axes``) about its longest axis: a cigar then reads as a cigar, where
+    rings about a short axis seen end-on look like a disc."""
+    order = np.argsort(semi)
+    e_long, e_a, e_b = (axes[:, k] for k in (order[2], order[0], order[1]))
+    s_long, s_a, s_b = semi[order[2]], semi[order[0]], semi[order[1]]
+    phi = np.linspace(0.0, 2 * np.pi, 121)
+    for z in np.linspace(-0.85, 0.85, n_rings):
+        r = np.sqrt(1.0 - z * z)
+        pts = (z * s_long * e_long[:, None] + r * (s_a * np.cos(phi) * e_a[:, None]
+                                                   + s_b * np.sin(phi) * e_b[:, None]))
+        ax.plot(*pts, color=CONTEXT, linewidth=0.5, alpha=0.8)
+    for ang in np.arange(n_meridians) * np.pi / n_meridians:
+        across = s_a * np.cos(ang) * e_a + s_b * np.sin(ang) * e_b
+        pts = s_long * np.cos(phi) * e_long[:, None] + np.sin(phi) * across[:, None]
+        ax.plot(*pts, color=CONTEXT, linewidth=0.5, alpha=0.8)
+
+
 def ellipsoid_view(axes, semi_axes) -> tuple[float, float]:
     """(elevation, azimuth) [deg] of a view that shows an ellipsoid's shape: looking
     mostly along its shortest semi-axis, so the longest and the middle one lie across the
@@ -265,11 +333,34 @@ def ellipsoid_view(axes, semi_axes) -> tuple[float, float]:
     toward the middle one so it still reads as a solid; from above (z ≥ 0) when the
     direction allows.  ``axes`` (3, 3): the semi-axes' directions as columns."""
     axes = np.asarray(axes, dtype=float)
-    order = np.argsort(np.asarray(semi_axes, dtype=float))  # shortest, middle, longest
-    view = 0.9 * axes[:, order[0]] + 0.45 * axes[:, order[1]]
-    view /= np.linalg.norm(view)
-    if view[2] < 0:
-        view = -view
-    elevation = float(np.degrees(np.arcsin(np.clip(view[2], -1.0, 1.0))))
-    azimuth = float(np.degrees(np.arctan2(view[1], view[0])))
-    return elevation, azimuth
+    semi = np.asarray(semi_axes, dtype=float)
+    order = np.argsort(semi)  # shortest, middle, longest
+    short, middle = axes[:, order[0]], axes[:, order[1]]
+    # two equal short semi-axes (a prolate body): any direction across the long axis is
+    # as good, so turn within that plane too; otherwise keep the view mostly along the
+    # shortest semi-axis, tilted 15°–40° toward the middle one
+    prolate = np.isclose(semi[order[0]], semi[order[1]], rtol=1e-6)
+    tilts = np.radians(np.arange(0.0, 360.0, 5.0) if prolate else
+                       np.concatenate([np.arange(15.0, 41.0, 5.0),
+                                       -np.arange(15.0, 41.0, 5.0)]))
+    long_axis = axes[:, order[2]]
+    # not prolate: a little of the long axis may come in too, to take the camera off a
+    # lab axis (an octahedron's principal axes are the lab axes)
+    leans = (0.0,) if prolate else (0.0, 0.25, -0.25, 0.45, -0.45)
+    best, best_cost = None, np.inf
+    for tilt, lean in ((tilt, lean) for tilt in tilts for lean in leans):
+        view = np.cos(tilt) * short + np.sin(tilt) * middle + lean * long_axis
+        view /= np.linalg.norm(view)
+        if view[2] < 0:
+            view = -view
+        elevation = float(np.degrees(np.arcsin(np.clip(view[2], -1.0, 1.0))))
+        azimuth = float(np.degrees(np.arctan2(view[1], view[0])))
+        # a camera from high above or square along a lab axis stacks the tick labels of
+        # the axis it looks along: prefer a moderate elevation, an azimuth off the axes
+        off_axis = min(abs((azimuth % 90.0) - 0.0), abs((azimuth % 90.0) - 90.0))
+        cost = (abs(elevation - 25.0) + 2.0 * max(0.0, 15.0 - off_axis)
+                + 0.1 * abs(np.degrees(tilt) - 27.0 * np.sign(np.degrees(tilt) or 1.0))
+                + 20.0 * abs(lean))
+        if cost < best_cost:
+            best, best_cost = (elevation, azimuth), cost
+    return best

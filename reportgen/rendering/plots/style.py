@@ -169,13 +169,19 @@ def place_legend(ax, *, loc: str | None = None, outside: str = "above", margin: 
     kwargs.pop("ncol", None)
     # above a linear y axis, clear of its offset text ("1e−11") at the top left
     pad = 1.3 if ax.get_yscale() == "linear" else 0.0
+    if ax.get_aspect() != "auto" and ax.get_adjustable() == "box":
+        ax.apply_aspect()  # an equal-aspect axes' frame is only final once applied
     for ncols in range(min(n, 4), 0, -1):
+        # measured at its natural width: "expand" stretches any legend to the axes' width,
+        # so four long entries squeezed into one row would pass as fitting and overprint
         legend = ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0, 1.0, 0.1),
-                           mode="expand" if ncols > 1 else None, borderaxespad=pad,
-                           ncols=ncols, **kwargs)
-        if ncols == 1 or legend.get_window_extent(renderer).width <= ax.bbox.width * 1.001:
-            return legend
+                           borderaxespad=pad, ncols=ncols, **kwargs)
+        fits = legend.get_window_extent(renderer).width <= ax.bbox.width * 1.001
         legend.remove()
+        if ncols == 1 or fits:
+            return ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0, 1.0, 0.1),
+                             mode="expand" if ncols > 1 else None, borderaxespad=pad,
+                             ncols=ncols, **kwargs)
     return legend
 
 
