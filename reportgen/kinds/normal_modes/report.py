@@ -130,6 +130,12 @@ class NormalModesReport(Report):
         return z, np.asarray(a["frequencies"])[z:], list(a["mode_type"])[z:]
 
     @classmethod
+    def prose_case(cls, data):
+        """Whether the system is a molecule (its valence force field explained) or pendula,
+        a chain or given matrices."""
+        return {"molecule": data.analysis.get("source") == "molecule"}
+
+    @classmethod
     def describe(cls, data):
         """``A linear triatomic molecule, CO₂: 3 atoms, 2 bonds, 1 bending angle``."""
         a = data.analysis
