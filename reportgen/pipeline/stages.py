@@ -735,9 +735,11 @@ def gallery_groups(entries: list[dict]) -> list[dict]:
 
 
 def _kind_heading(kind: str) -> str:
-    """A kind's human name: its report's ``gallery_name``, else its id in words."""
+    """A kind's human name: its report's ``gallery_name``, else the kind's
+    ``name_in_words``, else its id in words."""
     cls = KINDS.get(kind)
-    name = getattr(cls, "gallery_name", "") if cls is not None else ""
+    name = (getattr(cls, "gallery_name", "") or getattr(cls, "name_in_words", "")
+            if cls is not None else "")
     return name or (kind.replace("_", " ").capitalize() if kind else "Unknown kind")
 
 

@@ -48,7 +48,9 @@ class Report(Scene):
     """Base class of a kind's report (see the module docstring for the contract)."""
 
     faces: ClassVar[frozenset[str]] = frozenset({"report"})
-    #: the gallery's heading over this kind's cards ("Heavy symmetric top")
+    #: the gallery's heading over this kind's cards, where it differs from the kind's
+    #: ``name_in_words`` (a heading for a group: "Three bodies", not "Three gravitating
+    #: bodies"); empty: ``name_in_words``
     gallery_name: ClassVar[str] = ""
     #: the gallery's thumbnail: figure names (as given to :meth:`figure`) in order of
     #: preference, the first one drawn wins; none drawn (or ()): the report's first figure

@@ -20,7 +20,6 @@ class FputReport(Report):
     """The FPUT chain's sections, drawn from the archive alone."""
 
     schema = SCHEMA
-    gallery_name = "Fermi–Pasta–Ulam–Tsingou chain"
     gallery_figures = ("energy_exchange",)
 
     @classmethod

@@ -44,7 +44,6 @@ class HeavyTopReport(Report):
                             "θmax/θ0, so later differences measure that instability, not the "
                             "method. The run is compared with its closed form over the same "
                             "period.")
-    gallery_name = "Heavy symmetric top"
     gallery_figures = ("fig4_3", "loci_family", "nutation_locus")
 
     @classmethod

@@ -19,7 +19,6 @@ class InertiaReport(Report):
     """The inertia kind's sections, drawn from the archive alone."""
 
     schema = SCHEMA
-    gallery_name = "Inertia tensor"
     gallery_figures = ("inertia_ellipsoid",)
 
     @classmethod

@@ -21,7 +21,6 @@ class NormalModesReport(Report):
     """The normal modes' sections; units follow the system's (:func:`schema_for`)."""
 
     schema = SCHEMA
-    gallery_name = "Normal modes"
     gallery_figures = ("modes",)
 
     @classmethod

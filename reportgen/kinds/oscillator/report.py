@@ -20,7 +20,6 @@ class OscillatorReport(Report):
     """The oscillator's sections, drawn from the archive alone."""
 
     schema = SCHEMA
-    gallery_name = "Harmonic oscillator"
     gallery_figures = ("swap", "qp")
 
     @classmethod

@@ -22,7 +22,6 @@ class PendulumReport(Report):
     """The pendulum's sections, drawn from the archive alone."""
 
     schema = SCHEMA
-    gallery_name = "Plane pendulum"
     gallery_figures = ("phase", "period_family", "period")
 
     @classmethod

@@ -73,7 +73,6 @@ class RigidBodyReport(Report):
     """The rigid body's sections, drawn from the archive alone."""
 
     schema = SCHEMA
-    gallery_name = "Torque-free rigid body"
     gallery_figures = ("polhode_ellipsoid", "polhodes")
 
     @classmethod

@@ -33,7 +33,6 @@ class RotationReport(Report):
     """The rotation kind's sections, drawn from the archive alone."""
 
     schema = SCHEMA
-    gallery_name = "Rotations"
     gallery_figures = ("rotation_formula", "line_of_nodes")
 
     @classmethod
