@@ -60,6 +60,28 @@ def without_study(path: Path, target: Path) -> Path:
     return target
 
 
+@pytest.fixture(scope="module")
+def shipped_archives(tmp_path_factory):
+    """archive(name) -> the archive of ``configs/<name>.toml``, simulated without its study
+    once per test module, on first request."""
+    from reportgen.archive.store import read_archive
+    from reportgen.pipeline.stages import run_scene
+
+    folder = tmp_path_factory.mktemp("shipped-archives")
+    made = {}
+
+    def archive(name: str):
+        if name not in made:
+            source = without_study(REPO / "configs" / f"{name}.toml", folder / f"{name}.toml")
+            outcome = run_scene(str(source), str(folder / "out"), force=True,
+                                formats=("html",))
+            assert outcome.status in ("ok", "unstable"), outcome.message
+            made[name] = read_archive(folder / "out" / name / "run.h5")
+        return made[name]
+
+    return archive
+
+
 def cli_without_core(*args) -> subprocess.CompletedProcess:
     """`reportgen args` in a fresh process in which ``reportgen.core`` cannot be imported:
     whatever it does, it does from an archive alone."""

@@ -16,9 +16,6 @@ import pytest
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.colors import to_rgb
 
-from conftest import without_study
-from reportgen.archive.store import read_archive
-from reportgen.pipeline.stages import run_scene
 from reportgen.rendering.report import kind_of_archive
 
 REPO = Path(__file__).resolve().parent.parent
@@ -27,21 +24,9 @@ CONFIG_KEY = re.compile(r"\b(?:initial|params)\.\w+")
 
 
 @pytest.fixture(scope="module")
-def archives(tmp_path_factory):
+def archives(shipped_archives):
     """scene name -> its archive, simulated once for the module (no study)."""
-    folder = tmp_path_factory.mktemp("figure-rules")
-    made = {}
-
-    def archive(name: str):
-        if name not in made:
-            source = without_study(REPO / "configs" / f"{name}.toml", folder / f"{name}.toml")
-            outcome = run_scene(str(source), str(folder / "out"), force=True,
-                                formats=("html",))
-            assert outcome.status in ("ok", "unstable"), outcome.message
-            made[name] = read_archive(folder / "out" / name / "run.h5")
-        return made[name]
-
-    return archive
+    return shipped_archives
 
 
 def figures(data, section: str) -> dict:

@@ -13,12 +13,9 @@ import numpy as np
 import pytest
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 
-from conftest import without_study
-from reportgen.archive.store import read_archive
 from reportgen.core import heavy_top_theory as theory
 from reportgen.kinds.heavy_top import plots as top_plots
 from reportgen.kinds.heavy_top import report as top_report
-from reportgen.pipeline.stages import run_scene
 from reportgen.rendering.gate import figure_findings
 from reportgen.rendering.report import kind_of_archive
 from reportgen.scene.content import fmt
@@ -27,21 +24,9 @@ REPO = Path(__file__).resolve().parent.parent
 
 
 @pytest.fixture(scope="module")
-def archives(tmp_path_factory):
+def archives(shipped_archives):
     """scene name -> its archive, simulated once for the module (no study)."""
-    folder = tmp_path_factory.mktemp("mechanics-figures")
-    made = {}
-
-    def archive(name: str):
-        if name not in made:
-            source = without_study(REPO / "configs" / f"{name}.toml", folder / f"{name}.toml")
-            outcome = run_scene(str(source), str(folder / "out"), force=True,
-                                formats=("html",))
-            assert outcome.status in ("ok", "unstable"), outcome.message
-            made[name] = read_archive(folder / "out" / name / "run.h5")
-        return made[name]
-
-    return archive
+    return shipped_archives
 
 
 def drawn(data, section: str) -> dict:

@@ -502,6 +502,26 @@ class Report(Scene):
 
 
 
+def no_period_reason(data: ArchiveData, period: float, *, noun: str, min_samples: int,
+                     fallback: str) -> str:
+    """Why a period was not measured on the archived main run, from its span and samples
+    against the closed-form ``period`` (``noun``: "periods", "nutation periods"): fewer
+    than two periods, or fewer than ``min_samples`` samples per period; else
+    ``fallback`` (the run's own reason, e.g. too few turning points)."""
+    run = data.runs.get("main")
+    if run is None or len(run.t) < 2:
+        return "the archive holds no integrated run to measure it on"
+    periods = float(run.t[-1] - run.t[0]) / period
+    per_period = (len(run.t) - 1) / periods
+    reasons = []
+    if periods < 2:
+        reasons.append(f"the run covers {fmt(periods, 3)} {noun}, fewer than two")
+    if per_period < min_samples:
+        reasons.append(f"it stores {fmt(per_period, 3)} samples per period, fewer than "
+                       f"{min_samples}")
+    return "; ".join(reasons) or fallback
+
+
 def section_colours(sweep, points, legend_members: int):
     """How a family's surface of section tells its members apart: (crossing members,
     colour key, colour per member, labels or None).  One swept key (or zipped keys) colours

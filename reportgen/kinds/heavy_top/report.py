@@ -11,7 +11,7 @@ import numpy as np
 from ...lazy import lazy_module
 from ...scene.base import Section
 from ...scene.content import SectionContent, Table, fmt, fmt_err
-from ...scene.report import Report, kept_members
+from ...scene.report import Report, kept_members, no_period_reason
 from .config import BAND_CASES, MIN_SAMPLES_PER_PERIOD
 from .locus import FIG43_ELEVATION_DEG, locus_stretch
 from .results import SCHEMA
@@ -359,22 +359,14 @@ class HeavyTopReport(Report):
 
     @classmethod
     def _no_period_reason(cls, data) -> str:
-        """Which of the reasons for a missing measured nutation period applies, from the
-        archived run's span and samples against the closed-form period."""
-        period, run = float(data.analysis["nutation_period"]), data.runs.get("main")
+        """Which reason for a missing measured nutation period applies."""
+        period = float(data.analysis["nutation_period"])
         if not math.isfinite(period) or period <= 0:
             return "the closed-form nutation period is not finite"
-        if run is None or len(run.t) < 2:
-            return "the archive holds no integrated run to measure it on"
-        periods = float(run.t[-1] - run.t[0]) / period
-        per_period = (len(run.t) - 1) / periods
-        reasons = []
-        if periods < 2:
-            reasons.append(f"the run covers {fmt(periods, 3)} nutation periods, fewer than two")
-        if per_period < MIN_SAMPLES_PER_PERIOD:
-            reasons.append(f"it stores {fmt(per_period, 3)} samples per period, fewer than "
-                           f"{MIN_SAMPLES_PER_PERIOD}")
-        return "; ".join(reasons) or "θ(t) has fewer than two turning points to measure between"
+        return no_period_reason(data, period, noun="nutation periods",
+                                min_samples=MIN_SAMPLES_PER_PERIOD,
+                                fallback="θ(t) has fewer than two turning points to measure "
+                                         "between")
 
     @classmethod
     def section_cubic(cls, data):

@@ -10,7 +10,7 @@ import numpy as np
 from ...lazy import lazy_module
 from ...scene.base import Section
 from ...scene.content import SectionContent, Table, fmt, fmt_err
-from ...scene.report import Report
+from ...scene.report import Report, no_period_reason
 from .config import MIN_SAMPLES_PER_PERIOD
 from .results import SCHEMA
 
@@ -170,22 +170,13 @@ class PendulumReport(Report):
 
     @classmethod
     def _no_period_reason(cls, data) -> str:
-        """Which of the reasons for a missing measured period applies, from the archived
-        run's span and samples against the exact period."""
-        period, run = float(data.analysis["period"]), data.runs.get("main")
+        """Which reason for a missing measured period applies."""
+        period = float(data.analysis["period"])
         if not math.isfinite(period):
             return "the exact period is infinite (the pendulum is on the separatrix)"
-        if run is None or len(run.t) < 2:
-            return "the archive holds no integrated run to measure it on"
-        periods = float(run.t[-1] - run.t[0]) / period
-        per_period = (len(run.t) - 1) / periods
-        reasons = []
-        if periods < 2:
-            reasons.append(f"the run covers {fmt(periods, 3)} periods, fewer than two")
-        if per_period < MIN_SAMPLES_PER_PERIOD:
-            reasons.append(f"it stores {fmt(per_period, 3)} samples per period, fewer than "
-                           f"{MIN_SAMPLES_PER_PERIOD}")
-        return "; ".join(reasons) or "θ(t) crosses its centre upward fewer than twice"
+        return no_period_reason(data, period, noun="periods",
+                                min_samples=MIN_SAMPLES_PER_PERIOD,
+                                fallback="θ(t) crosses its centre upward fewer than twice")
 
     @classmethod
     def section_period_family(cls, data):
