@@ -170,8 +170,9 @@ _GREEK_LETTERS = {
     "τ": "tau", "υ": "upsilon", "φ": "varphi", "ϕ": "phi", "χ": "chi", "ψ": "psi",
     "ω": "omega", "Γ": "Gamma", "Δ": "Delta", "Θ": "Theta", "Λ": "Lambda", "Ξ": "Xi",
     "Π": "Pi", "Σ": "Sigma", "Φ": "Phi", "Ψ": "Psi", "Ω": "Omega"}
-_TEX_GREEK = {tex: char for char, tex in _GREEK_LETTERS.items()} | {"phi": "φ",
-                                                                    "epsilon": "ε"}
+#: Greek letters by their TeX names (``theta`` -> θ; ``phi`` and ``varphi`` both -> φ):
+#: also how a formula config spells them (kinds/hamiltonian/symbols.py)
+TEX_GREEK = {tex: char for char, tex in _GREEK_LETTERS.items()} | {"phi": "φ", "epsilon": "ε"}
 _TEX_WORDS = {"langle": "⟨", "rangle": "⟩", "infty": "∞", "cdot": "·", "times": "×",
               "ell": "ℓ", "hbar": "ħ", "nabla": "∇", "partial": "∂", "min": "min",
               "max": "max", "cos": "cos", "sin": "sin", "ln": "ln", "exp": "exp"}
@@ -205,7 +206,7 @@ def symbol_text(tex: str) -> str | None:
     if not s:
         return None
     s = re.sub(r"\\([A-Za-z]+)",
-               lambda m: _TEX_GREEK.get(m.group(1), _TEX_WORDS.get(m.group(1), m.group(0))), s)
+               lambda m: TEX_GREEK.get(m.group(1), _TEX_WORDS.get(m.group(1), m.group(0))), s)
     s = re.sub(r"\\(?:mathrm|mathit|text|operatorname|mathbf)\{([^{}]*)\}", r"\1", s)
     s = s.replace("\\,", " ").replace("\\ ", " ").replace("\\!", "")
     for _ in range(3):  # accents, innermost first

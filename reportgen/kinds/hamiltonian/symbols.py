@@ -14,13 +14,10 @@ from __future__ import annotations
 import re
 import unicodedata
 
-#: Greek letters by their names, as a config spells them
-GREEK = {"alpha": "α", "beta": "β", "gamma": "γ", "delta": "δ", "epsilon": "ε", "zeta": "ζ",
-         "eta": "η", "theta": "θ", "iota": "ι", "kappa": "κ", "lambda": "λ", "mu": "μ",
-         "nu": "ν", "xi": "ξ", "pi": "π", "rho": "ρ", "sigma": "σ", "tau": "τ",
-         "upsilon": "υ", "phi": "φ", "chi": "χ", "psi": "ψ", "omega": "ω", "Gamma": "Γ",
-         "Delta": "Δ", "Theta": "Θ", "Lambda": "Λ", "Xi": "Ξ", "Pi": "Π", "Sigma": "Σ",
-         "Phi": "Φ", "Psi": "Ψ", "Omega": "Ω"}
+from ...scene.schema import TEX_GREEK
+
+#: Greek letters by their names, as a config spells them (TeX's names)
+GREEK = TEX_GREEK
 #: the characters Unicode has a subscript of (no b, c, d, f, g, q, w, y, z, nor θ)
 _SUBSCRIPTS = str.maketrans("0123456789,aehijklmnoprstuvxβγρφχ",
                             "₀₁₂₃₄₅₆₇₈₉,ₐₑₕᵢⱼₖₗₘₙₒₚᵣₛₜᵤᵥₓᵦᵧᵨᵩᵪ")
