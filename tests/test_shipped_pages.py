@@ -11,7 +11,8 @@ distinguishable, legends off the data, axes with symbols and units, marked point
 the limits (reportgen/rendering/gate.py; each rule's seeded defect is in
 test_document_gate.py).  The words of every PDF are also measured as an outside reader
 would (``pdftotext -bbox``): none within half an inch of the paper's right edge, no
-fallback title "kind (slug)".
+fallback title "kind (slug)".  Every archive opens in xarray with named dimensions (no
+``phony_dim``, no warning) and ``units`` on every variable.
 """
 
 from __future__ import annotations
@@ -24,6 +25,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import h5py
 import pytest
 
 from reportgen.rendering.gate import GATE_FILE
@@ -79,3 +81,25 @@ def test_no_word_near_the_paper_edge_and_a_real_title(config, reports):
                            text=True, timeout=60).stdout
     title = next(line.strip() for line in first.splitlines() if line.strip())
     assert not re.fullmatch(r"[a-z ]+ \(" + re.escape(config.stem) + r"\)", title), title
+
+
+@pytest.mark.parametrize("config", SCENES, ids=[p.stem for p in SCENES])
+def test_every_archive_opens_in_xarray_with_units(config, reports):
+    import warnings
+
+    import xarray as xr
+
+    path = reports / config.stem / "run.h5"
+    with h5py.File(path, "r") as f:
+        groups = [g for g in ("runs/main", "study", "sweep", "sweep/values", "sweep/analysis")
+                  if g in f]
+    # a kind that integrates nothing (inertia, normal modes, rotations) has no run group:
+    # its root group (checks, config) is what opens
+    for group in groups or [None]:
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")  # the phony_dims warning (or any other) fails
+            ds = xr.open_dataset(path, group=group, engine="h5netcdf")
+        with ds:
+            assert not [d for d in ds.dims if str(d).startswith("phony")], (group, ds.dims)
+            bare = [n for n, v in ds.variables.items() if "units" not in v.attrs]
+            assert not bare, f"{config.stem}:{group}: no units on {bare}"

@@ -310,7 +310,7 @@ def test_an_energy_below_the_potential_is_named_with_the_floor(tmp_path, cli):
     path.write_text(family().replace("[2.3, 2.6, 2.95]", "[2.3, 10.0]"))
     code, _, err = cli("validate", path)
     assert code == 2 and "key 'sweep': the member with initial.x = 10 is invalid" in err, err
-    assert "initial.energy: must be at least V(x, y) + vx²/2 = -0.20202020202" in err, err
+    assert "key 'initial.energy': must be at least V(x, y) + vx²/2 = -0.20202020202" in err, err
     assert "(got -0.5)" in err
 
 

@@ -19,7 +19,9 @@ Layout (``format_version`` 2, see SPEC.md "Archive")::
                               two hard links, e.g. /runs/main = /runs/loops)
     /analysis                 attrs (scalars, strings) and datasets (arrays); sub-dicts are groups
     /checks                   table: quantity, value, reference, abs_error, rel_error, unit, source
-    /study/error_vs_runtime   table (one row per method x tolerance), attrs reference_kind
+                              on the dimension scale /check (its row numbers)
+    /study/error_vs_runtime   table (one row per method x tolerance), attrs reference_kind,
+                              on the dimension scale /study/row
     /sweep                    a family of runs ([sweep], see reportgen.scene.sweep), on the
                               dimension scale /sweep/member: status, message (M,) strings,
                               values/<config path>, analysis/<result> (M,) float64,
@@ -211,12 +213,14 @@ def _write_contents(f: h5py.File, *, kind, title, scene, config_text, config_sha
         _write_run(runs.create_group(name), run, schema)
     write_mapping(f.create_group("analysis"), results.analysis,
                   describe=lambda name: _quantity(schema.result, name).cf_attrs)
-    described(table(f, "checks", _checks_records(results.checks)),
-              "headline numbers against their exact or independent references")
+    checks = described(table(f, "checks", _checks_records(results.checks)),
+                       "headline numbers against their exact or independent references")
+    _row_scale(f, checks, "check", "row of the checks table")
     if results.study is not None:
         study = f.create_group("study")
         study_table = described(table(study, "error_vs_runtime", results.study),
                                 "error against run time: one row per method and tolerance")
+        _row_scale(study, study_table, "row", "method and tolerance of the study")
         for key, value in results.study_attrs.items():
             study_table.attrs[key] = attr_value(value)
     if results.sweep is not None:
@@ -225,6 +229,14 @@ def _write_contents(f: h5py.File, *, kind, title, scene, config_text, config_sha
 
 #: the schema of a kind that declares none: every dataset still gets CF attributes
 UNDECLARED = ResultsSchema()
+
+
+def _row_scale(g: h5py.Group, tab: h5py.Dataset, name: str, long_name: str) -> None:
+    """A table's rows on the dimension scale ``name`` beside it, so that no dataset of the
+    archive has an unnamed dimension (xarray's h5netcdf engine then needs no phony ones)."""
+    scale = described(dataset(g, name, np.arange(len(tab), dtype=np.int64)), long_name, "1")
+    scale.make_scale(name)
+    tab.dims[0].attach_scale(scale)
 
 
 def described(ds: h5py.Dataset, long_name: str, units: str = "", symbol: str = ""):

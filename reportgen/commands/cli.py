@@ -130,7 +130,8 @@ def build_parser() -> argparse.ArgumentParser:
     fig = sub.add_parser("figures", help="a scene's figures as PNG, SVG and PDF files for "
                                          "slides and print, drawn from its archive")
     fig.add_argument("path", metavar="PATH", help="a run.h5 archive, or a config (its archive "
-                     "under --root is used; the scene is run first if that is missing or stale)")
+                     "under the output folder --out is used, as `reportgen run --out` wrote "
+                     "it; the scene is run first if that is missing or stale)")
     fig.add_argument("--size", default="report", metavar="SIZE",
                      help="slide (10x5.625 in, larger text), print (6.5 in wide), WxH in "
                           "inches, or report (as in the report; the default)")
@@ -142,9 +143,11 @@ def build_parser() -> argparse.ArgumentParser:
                      help="only figures whose id matches this shell pattern (repeatable), "
                           "e.g. 'nutation*'")
     fig.add_argument("--out", default=None, metavar="DIR",
-                     help="folder for the files (default: figures-SIZE beside the archive)")
-    fig.add_argument("--root", default="output", metavar="DIR",
-                     help="with a config: the output folder it was run into (default: output)")
+                     help="with a config: the output folder, as in `reportgen run` (default: "
+                          "output); the files go to figures-SIZE beside the archive. With an "
+                          "archive: the folder for the files (default: figures-SIZE beside it)")
+    fig.add_argument("--root", default=None, metavar="DIR",
+                     help="with a config: the output folder (the older name of --out)")
 
     ani = sub.add_parser("animate", help="the scene's motion as a GIF (and MP4 with the "
                                          "'video' extra), drawn from its archive")
@@ -163,10 +166,17 @@ def build_parser() -> argparse.ArgumentParser:
     ins = sub.add_parser("inspect", help="summary of an archive, checksums verified")
     ins.add_argument("archive", metavar="ARCHIVE.h5")
 
-    sub.add_parser("kinds", help="scene kinds, their keys, presets and sections")
+    kin = sub.add_parser("kinds", help="scene kinds, their keys, presets and sections")
+    kin.add_argument("kind", nargs="?", default=None, metavar="KIND",
+                     help="only this kind (its keys, sections and presets)")
+    kin.add_argument("--presets", action="store_true",
+                     help="each preset in words and the keys it sets (of KIND, or of all)")
 
     val = sub.add_parser("validate", help="check configs, run nothing")
     val.add_argument("paths", nargs="+", metavar="PATH")
+    val.add_argument("--resolved", action="store_true",
+                     help="print each config as run sees it (preset, the config's keys and "
+                          "the defaults) as TOML")
 
     audit = sub.add_parser("audit", help="stability audit on stiff and extreme cases")
     audit.add_argument("paths", nargs="*", metavar="PATH")
@@ -385,12 +395,18 @@ def cmd_figures(args) -> int:
 
     try:
         size, formats = parse_size(args.size), parse_formats(args.format)
-        archive = _archive_of(Path(args.path), Path(args.root))
+        is_config = Path(args.path).suffix.lower() == ".toml"
+        if is_config and args.out and args.root and Path(args.out) != Path(args.root):
+            raise UsageError("figures: --out and --root both name the output folder of a "
+                             f"config; give one (got --out {args.out}, --root {args.root})")
+        root = Path(args.out or args.root or "output") if is_config else None
+        archive = _archive_of(Path(args.path), root)
     except UsageError as exc:
         return _usage(str(exc))
     if archive is None:
         return EXIT_FAILED
-    out = Path(args.out) if args.out else archive.parent / f"figures-{size.label}"
+    out = (Path(args.out) if args.out and not is_config
+           else archive.parent / f"figures-{size.label}")
 
     def report(path: Path) -> None:
         _err(f"wrote {path}")
@@ -412,7 +428,7 @@ def cmd_figures(args) -> int:
     return EXIT_OK
 
 
-def _archive_of(path: Path, root: Path) -> Path | None:
+def _archive_of(path: Path, root: Path | None) -> Path | None:
     """The archive ``reportgen figures PATH`` draws from: PATH itself, or the archive of
     the config PATH under ``root``, which is brought up to date first (run, as
     ``reportgen run`` would, only if it is missing or its physics changed).  None when
@@ -491,9 +507,12 @@ def cmd_inspect(args) -> int:
 
 
 def cmd_kinds(args) -> int:
-    from ..scene.catalogue import describe_kinds
+    from ..scene.catalogue import describe_kind, describe_kinds, describe_presets
 
-    _say(describe_kinds())
+    if args.presets:
+        _say(describe_presets(args.kind))
+    else:
+        _say(describe_kind(args.kind) if args.kind else describe_kinds())
     return EXIT_OK
 
 
@@ -504,6 +523,13 @@ def cmd_validate(args) -> int:
         scenes = validate_all(collect_configs(args.paths))
     except UsageError as exc:
         return _usage(str(exc))
+    if args.resolved:
+        from ..scene.config import to_toml
+
+        for scene in scenes:
+            _say(f"# {scene.source.path}: resolved (preset, keys given, defaults)\n"
+                 + to_toml(_given(scene.resolved_config())))
+        return EXIT_OK
     for scene in scenes:
         asked = scene.config.report.sections
         if scene.sweep is not None:
@@ -514,6 +540,15 @@ def cmd_validate(args) -> int:
             sections = ", ".join(asked) if asked else "the kind's default sections"
         _say(f"{scene.source.path}: ok ({scene.kind}: {sections})")
     return EXIT_OK
+
+
+def _given(data):
+    """``data`` without its None values (keys left unset: TOML has no null)."""
+    if isinstance(data, dict):
+        return {k: _given(v) for k, v in data.items() if v is not None}
+    if isinstance(data, list):
+        return [_given(v) for v in data]
+    return data
 
 
 def cmd_bench(args) -> int:

@@ -15,7 +15,7 @@ import importlib
 import pkgutil
 
 from ..scene.base import REGISTRY, Scene
-from ..scene.config import ConfigError, SourceConfig
+from ..scene.config import ConfigError, SourceConfig, did_you_mean
 
 
 def _discover() -> dict[str, type[Scene]]:
@@ -39,6 +39,19 @@ def load_scene(source: SourceConfig) -> Scene:
         raise ConfigError([f"{source.label}: key 'kind': required key is missing "
                            f"(one of: {', '.join(KINDS)})"])
     if not isinstance(kind, str) or kind not in REGISTRY:
-        raise ConfigError([f"{source.label}: key 'kind': must be one of "
-                           f"{', '.join(KINDS)} (got {kind!r})"])
+        raise ConfigError([f"{source.label}: key 'kind': must be one of {', '.join(KINDS)}"
+                           f"{did_you_mean(kind, KINDS)} (got {kind!r})"])
     return REGISTRY[kind].from_source(source)
+
+
+class _KindsPackage(type(importlib)):
+    """This package, callable: ``reportgen.kinds()`` is the Python API's listing
+    (:func:`reportgen.api.kinds`), which the package's name shadows once imported.
+    Imported on call by a computed name: the API imports this package, not the other way
+    round, and no kind's code stamp follows it (see reportgen/__init__.py)."""
+
+    def __call__(self) -> list[dict]:
+        return importlib.import_module(f"{__name__.rpartition('.')[0]}.api").kinds()
+
+
+importlib.import_module(__name__).__class__ = _KindsPackage

@@ -37,6 +37,7 @@ from .config import (
     SourceConfig,
     Strict,
     deep_merge,
+    did_you_mean,
     format_validation_error,
 )
 from .schema import ResultsSchema
@@ -156,7 +157,8 @@ class Scene:
             if not isinstance(preset, str) or preset not in cls.presets:
                 known = ", ".join(sorted(cls.presets)) or "none"
                 raise ConfigError(
-                    [f"{source.label}: key 'preset': must be one of {known} (got {preset!r})"]
+                    [f"{source.label}: key 'preset': must be one of {known}"
+                     f"{did_you_mean(preset, cls.presets)} (got {preset!r})"]
                 )
             data = deep_merge(cls.presets[preset], data)
         sweep_table = data.pop("sweep", None)

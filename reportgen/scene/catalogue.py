@@ -9,6 +9,7 @@ described once at the end.
 
 from __future__ import annotations
 
+import difflib
 import json
 import re
 import types
@@ -17,6 +18,7 @@ import typing
 from pydantic import BaseModel
 from pydantic.fields import FieldInfo
 
+from ..errors import UsageError
 from ..kinds import KINDS
 from .config import ReportConfig, RunConfig
 
@@ -91,6 +93,17 @@ def _type_name(annotation, metadata: list = ()) -> str:
     else:
         name = getattr(annotation, "__name__", str(annotation))
     return f"{name} {rules}" if rules else name
+
+
+def _free_table(annotation) -> str | None:
+    """``"name = number"`` for a table of free keys (``dict[str, float]``), ``"name =
+    text"`` for ``dict[str, str]``; None for any other annotation."""
+    annotation = _unwrap(annotation)[0]
+    if typing.get_origin(annotation) is not dict:
+        return None
+    value = _unwrap(typing.get_args(annotation)[1])[0]
+    return "name = " + {float: "number", int: "whole number", str: "text"}.get(
+        value, _type_name(value))
 
 
 def _is_model(annotation) -> bool:
@@ -189,7 +202,12 @@ def _field_rows(path: str, fields: dict[str, FieldInfo], indent: int,
         models, array = _table_models(info.annotation)
         sub = f"{path}.{key}" if path else key
         status = "required" if info.is_required() else "optional"
-        if len(models) == 1 and models[0] in _SHARED_TABLES:
+        free = _free_table(info.annotation)
+        if free is not None:  # [params] of free names: a table, not a dict-valued key
+            meaning = info.description or ""
+            tables.append((indent, f"[{sub}]", "", "", f"{status} table of free keys: {free}"
+                           + (f" — {meaning}" if meaning else "")))
+        elif len(models) == 1 and models[0] in _SHARED_TABLES:
             shared.append((key_indent, f"[{sub}]", "", "", f"{status} table — keys under "
                            f"[{_SHARED_TABLES[models[0]]}] at the end"))
         elif models:
@@ -236,6 +254,78 @@ def _kind_lines(cls) -> list[str]:
     return lines
 
 
+def _shared_lines() -> list[str]:
+    """``[run]`` and ``[report]``, which every kind shares."""
+    out = []
+    for model, name in _SHARED_TABLES.items():
+        out += _format(_table_rows(name, [model], False, 0, "", _doc_line(model)))
+    return out
+
+
+def kind_class(name: str):
+    """The kind called ``name``; a UsageError naming the kinds (and the closest) if none is."""
+    if name in KINDS:
+        return KINDS[name]
+    close = difflib.get_close_matches(name, list(KINDS), n=1)
+    hint = f"did you mean '{close[0]}'? " if close else ""
+    raise UsageError(f"kinds: no kind {name!r}; {hint}(kinds: {', '.join(KINDS)})")
+
+
+def describe_kind(name: str) -> str:
+    """One kind: its keys, tables, sections and presets (each in words), then the shared
+    ``[run]`` and ``[report]`` tables."""
+    cls = kind_class(name)
+    out = _kind_lines(cls)
+    out.append("    presets: " + ("none" if not cls.presets else
+                                  "(`reportgen kinds " + cls.kind + " --presets` shows their keys)"))
+    out += [f"      {preset:<18} {_preset_title(cls, preset)}" for preset in cls.presets]
+    return "\n".join([*out, "", *_shared_lines()])
+
+
+def _preset_title(cls, preset: str) -> str:
+    """A preset in words: the title the kind gives a config that is the preset alone."""
+    from .config import ConfigError, SourceConfig
+
+    try:
+        scene = cls.from_source(SourceConfig(None, "", {"kind": cls.kind, "preset": preset}))
+    except ConfigError:  # a preset that needs more keys than it holds
+        return "(needs more keys than the preset gives)"
+    return scene.title
+
+
+def _flat(data: dict, prefix: str = "") -> list[tuple[str, str]]:
+    """(dotted key, TOML value) for every key of a nested table."""
+    rows = []
+    for key, value in data.items():
+        if isinstance(value, dict):
+            rows += _flat(value, f"{prefix}{key}.")
+        elif isinstance(value, list) and value and all(isinstance(v, dict) for v in value):
+            for i, item in enumerate(value):
+                rows += _flat(item, f"{prefix}{key}.{i}.")
+        else:
+            rows.append((prefix + key, _toml(value)))
+    return rows
+
+
+def describe_presets(name: str | None = None) -> str:
+    """Every preset of one kind (``name``) or of all kinds: a line in words, then the keys
+    it sets, as they would be written in the config."""
+    classes = [kind_class(name)] if name is not None else list(KINDS.values())
+    out = []
+    for cls in classes:
+        if not cls.presets:
+            if name is not None:
+                out.append(f"{cls.kind}: no presets")
+            continue
+        out.append(f"{cls.kind} — preset = \"name\" starts from these keys; keys given "
+                   "in the config override them")
+        for preset, data in cls.presets.items():
+            out.append(f"  {preset} — {_preset_title(cls, preset)}")
+            out += [f"      {key} = {value}" for key, value in _flat(data)]
+        out.append("")
+    return "\n".join(out).rstrip("\n")
+
+
 def describe_kinds() -> str:
     from ..core.integrators import METHODS
 
@@ -244,8 +334,7 @@ def describe_kinds() -> str:
            "and rule, default and meaning.  [run] and [report] are described at the end.", ""]
     for cls in KINDS.values():
         out += _kind_lines(cls) + [""]
-    for model, name in _SHARED_TABLES.items():
-        out += _format(_table_rows(name, [model], False, 0, "", _doc_line(model)))
+    out += _shared_lines()
     out.append("")
     out.append("Integrators ([run] method):  auto — chosen from the scene's structure")
     for name, method in METHODS.items():

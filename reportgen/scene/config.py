@@ -9,6 +9,7 @@ tables every kind shares (``[run]``, ``[report]``) live here.
 from __future__ import annotations
 
 import copy
+import difflib
 import hashlib
 import json
 import math
@@ -20,16 +21,30 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Any, Literal
 
-from pydantic import AfterValidator, BaseModel, ConfigDict, Field, ValidationError
+from pydantic import (
+    AfterValidator,
+    BaseModel,
+    ConfigDict,
+    Field,
+    ValidationError,
+    model_validator,
+)
 
 from ..errors import ConfigError  # noqa: F401 - part of this module's interface
 from ..support.layout import printable, scene_name
+from .units import convert_table
 
 
 class Strict(BaseModel):
     """Base of every config table: unknown keys, wrong types, NaN and inf are errors."""
 
     model_config = ConfigDict(extra="forbid", strict=True, frozen=True, allow_inf_nan=False)
+
+    @model_validator(mode="before")
+    @classmethod
+    def _units(cls, data: Any) -> Any:
+        """Text with a unit ("40 deg") as the number in the field's declared unit."""
+        return convert_table(cls, data)
 
 
 def _finite(x: float) -> float:
@@ -224,6 +239,12 @@ def config_key(loc: tuple, model: type[BaseModel] | None = None) -> str:
     fields, so the tags pydantic adds for the member of a union that failed (``cone``,
     ``list[function-after[...]]``) are dropped; without it only schema labels are dropped.
     """
+    return ".".join(_follow(loc, model)[0])
+
+
+def _follow(loc: tuple, model: type[BaseModel] | None) -> tuple[list[str], Any]:
+    """:func:`config_key`'s walk: the key's parts and the annotation ``loc`` ends at
+    (None where the model does not say)."""
     parts, annotation = [], model
     for item in loc:
         annotation = _unwrap(annotation)
@@ -249,7 +270,13 @@ def config_key(loc: tuple, model: type[BaseModel] | None = None) -> str:
             annotation = typing.get_args(annotation)[1]
         else:
             annotation = None
-    return ".".join(parts)
+    return parts, annotation
+
+
+def _known_keys(loc: tuple, model: type[BaseModel] | None) -> list[str]:
+    """The keys the table at ``loc`` accepts (``[]`` if it is not a model's table)."""
+    annotation = _unwrap(_follow(loc, model)[1]) if model is not None else None
+    return list(annotation.model_fields) if _is_model(annotation) else []
 
 
 #: "initial.theta / initial.theta_dot: ..." — a scene's cross-key rule naming its own keys
@@ -276,6 +303,39 @@ def _rule(err: dict) -> str:
     return msg
 
 
+def did_you_mean(word: Any, choices) -> str:
+    """``"; did you mean 'x'?"`` for the choice closest to ``word``, or "" if none is close."""
+    close = (difflib.get_close_matches(word, list(choices), n=1, cutoff=0.6)
+             if isinstance(word, str) else [])
+    return f"; did you mean '{close[0]}'?" if close else ""
+
+
+def _did_you_mean(errors: list[dict], model: type[BaseModel] | None
+                  ) -> tuple[dict[tuple, str], set[tuple]]:
+    """For each unknown key close to a key of its table, ``"; did you mean 'x'?"`` (a
+    missing required key of the same table preferred), and the missing keys so explained
+    (their own "required key is missing" would say the same thing twice)."""
+    missing: dict[tuple, list[str]] = {}
+    for err in errors:
+        if err["type"] == "missing" and err["loc"] and isinstance(err["loc"][-1], str):
+            missing.setdefault(tuple(err["loc"][:-1]), []).append(err["loc"][-1])
+    hints, meant = {}, set()
+    for err in errors:
+        loc = tuple(err["loc"])
+        if err["type"] != "extra_forbidden" or not loc or not isinstance(loc[-1], str):
+            continue
+        table, name = loc[:-1], loc[-1]
+        close = (difflib.get_close_matches(name, missing.get(table, []), n=1, cutoff=0.6)
+                 or difflib.get_close_matches(name, _known_keys(table, model), n=1,
+                                              cutoff=0.6))
+        if close:
+            hints[loc] = f"; did you mean '{close[0]}'?"
+            if close[0] in missing.get(table, []):
+                missing[table].remove(close[0])  # one misspelling explains one missing key
+                meant.add((*table, close[0]))
+    return hints, meant
+
+
 def format_validation_error(label: str, exc: ValidationError,
                             model: type[BaseModel] | None = None) -> list[str]:
     """One line per problem: ``file: key 'a.b': rule (got value)``.
@@ -285,9 +345,13 @@ def format_validation_error(label: str, exc: ValidationError,
     member of a union accepts is one problem: its rules are joined with "or".
     """
     problems: dict[str, tuple[str, list[str], str]] = {}  # by key: (where, rules, got)
-    for err in exc.errors(include_url=False):
+    errors = exc.errors(include_url=False)
+    hints, meant = _did_you_mean(errors, model)
+    for err in errors:
+        if err["type"] == "missing" and tuple(err["loc"]) in meant:
+            continue  # said once, as the misspelled key's "did you mean"
         key = config_key(tuple(err["loc"]), model)
-        rule = _rule(err)
+        rule = _rule(err) + hints.get(tuple(err["loc"]), "")
         got = "" if err["type"] == "missing" else f" (got {_short(err.get('input'))})"
         ctx = err.get("ctx") or {}
         if err["type"] == "union_tag_invalid":
@@ -302,8 +366,10 @@ def format_validation_error(label: str, exc: ValidationError,
         elif err["type"] in ("value_error", "assertion_error"):
             if isinstance(err.get("input"), dict):  # the whole table: the rule says what
                 got = ""
-            if _NAMED_KEYS.match(rule):  # a rule across keys: the scene's message names them
-                key = ""
+            named = _NAMED_KEYS.match(rule)
+            if named:  # the scene's message names its keys ("a.b / c.d: rule"): as any key
+                key = re.sub(r"\[(\d+)\]", r".\1", rule[:named.end() - 2])  # atoms.0
+                rule = rule[named.end():]
         where = f"key '{key}'" if key else ""
         _, rules, _ = problems.setdefault(where or rule, (where, [], got))
         if rule not in rules:

@@ -70,8 +70,11 @@ class HamiltonianSimulation(HamiltonianAnalysis, IntegratingSimulation):
 
     def build_models(self) -> None:
         """As every kind's, and with ``initial.energy`` the left-out momentum or velocity
-        solved, so that an energy no state reaches is refused before anything runs."""
+        solved, so that an energy no state reaches is refused before anything runs; an L
+        is Legendre-transformed (SymPy, nothing integrated), so a singular one is refused too."""
         super().build_models()
+        if self.config.system.L is not None:
+            self.system()
         if "energy" in self.config.initial:
             ini = dict(self.config.initial)
             energy = ini.pop("energy")

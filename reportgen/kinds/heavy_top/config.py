@@ -11,6 +11,7 @@ from pydantic import Field, model_validator
 from ...lazy import lazy_module
 from ...scene.base import SceneConfig
 from ...scene.config import Positive, Real, RunConfig, Strict
+from ...scene.units import angle_hint
 
 theory = lazy_module("reportgen.core.heavy_top_theory")  # validation solves for the band
 
@@ -119,7 +120,8 @@ class HeavyTopConfig(SceneConfig):
         p, band = self.params, self.band
         if not 0.0 < band.theta_min < band.theta_max < math.pi:
             raise ValueError(f"band.theta_min / band.theta_max: need 0 < θmin < θmax < π "
-                             f"(got θmin = {band.theta_min}, θmax = {band.theta_max})")
+                             f"(got θmin = {band.theta_min}, θmax = {band.theta_max})"
+                             + angle_hint(band.theta_min, band.theta_max))
         if self.expect_case is not None:
             raise ValueError(f"expect_case: not with [band], whose case says it "
                              f"(got expect_case = {self.expect_case!r})")
@@ -134,7 +136,8 @@ class HeavyTopConfig(SceneConfig):
     def _check_initial(self) -> None:
         p, ini = self.params, self.initial
         if not 0.0 <= ini.theta < math.pi:
-            raise ValueError(f"initial.theta: must satisfy 0 ≤ θ < π (got {ini.theta})")
+            raise ValueError(f"initial.theta: must satisfy 0 ≤ θ < π (got {ini.theta})"
+                             + angle_hint(ini.theta))
         if ini.steady is not None:
             if ini.phi_dot is not None:
                 raise ValueError("initial.phi_dot / initial.steady: give one of them "

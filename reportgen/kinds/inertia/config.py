@@ -24,7 +24,8 @@ rotations = lazy_module("reportgen.core.rotations")
 
 class _ShapeBase(Strict):
     euler_angles: list[Real] | None = Field(
-        None, description="[φ, θ, ψ] (z-x-z, rad): orientation of the shape in the lab frame")
+        None, description="[φ, θ, ψ] (z-x-z): orientation of the shape in the lab frame "
+                          "[rad]")
     about: list[Real] | None = Field(
         None, description="[x, y, z] lab-frame point for the parallel-axis shift (8.49) [m]")
 

@@ -15,6 +15,7 @@ from pydantic import Field, model_validator
 from ...lazy import lazy_module
 from ...scene.base import SceneConfig
 from ...scene.config import Positive, Real, Strict
+from ...scene.units import convert_items
 
 core = lazy_module("reportgen.core.normal_modes")
 geometry = lazy_module("reportgen.core.molecule_geometry")  # no scipy: validation uses it
@@ -74,6 +75,16 @@ def flat_values(value) -> list[float] | None:
     return [float(x) for x in value]
 
 
+#: the units a molecule's numbers are in, by unit system: a value given as text with a
+#: unit ("500 N/m") is converted to these (a dimensionless system takes plain numbers)
+SYSTEM_UNITS = {
+    "SI": {("atoms", "mass"): "kg", ("atoms", "position"): "m", ("bonds", "k"): "N/m",
+           ("angles", "k"): "J/rad^2"},
+    "molecular": {("atoms", "mass"): "u", ("atoms", "position"): "Å", ("bonds", "k"): "mdyn/Å",
+                  ("angles", "k"): "mdyn Å/rad^2"},
+}
+
+
 def unit_system(config) -> str:
     """The config's unit system (``units``), or its system's default: SI for pendula,
     molecular (u, Å, mdyn/Å) for a molecule, dimensionless for a chain or matrices."""
@@ -105,6 +116,16 @@ class NormalModesConfig(SceneConfig):
                           "and cm⁻¹, time in τ = 4.075 fs) or dimensionless (masses and springs "
                           "in units of a reference m₀ and k₀). Default: SI for pendula, "
                           "molecular for atoms, dimensionless for a chain or M and A")
+
+    @model_validator(mode="before")
+    @classmethod
+    def _quantities_in_system(cls, data: Any):
+        """Text quantities of atoms, bonds and angles ("500 N/m") in the unit system's units."""
+        if not isinstance(data, dict):
+            return data
+        system = data.get("units") or ("molecular" if data.get("atoms") else None)
+        return convert_items(data, SYSTEM_UNITS.get(system, {}) if isinstance(system, str)
+                             else {})
 
     @model_validator(mode="before")
     @classmethod

@@ -12,6 +12,7 @@ from pydantic import Field, model_validator
 from ...lazy import lazy_module
 from ...scene.base import SceneConfig
 from ...scene.config import Positive, Real, Strict
+from ...scene.units import angle_hint
 
 rotations = lazy_module("reportgen.core.rotations")  # an SU(2) element from its table
 
@@ -45,7 +46,7 @@ class AxisAngle(Strict):
         _unit("axis_angle.vector", self.vector)
         if not 0.0 < self.angle <= math.pi:
             raise ValueError(f"axis_angle.angle: must satisfy 0 < Φ ≤ π (got {self.angle}); "
-                             "turn about −n for a negative angle")
+                             "turn about −n for a negative angle" + angle_hint(self.angle))
         return self
 
 

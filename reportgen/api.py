@@ -1,0 +1,339 @@
+"""The Python API: run scenes, open their archives, look at them in a notebook.
+
+Three functions, exported lazily by :mod:`reportgen` (``import reportgen`` stays cheap):
+
+* :func:`run` - run a scene from a TOML file, a folder of them, or a dict with the keys of
+  a config; returns the :class:`~reportgen.pipeline.stages.Outcome` (a list for a folder).
+* :func:`open` - an archive (``run.h5`` or its scene folder) as a :class:`Run`, read
+  through the validating reader, with :meth:`Run.to_xarray`.
+* :func:`kinds` - the scene kinds with their presets and keys, as ``reportgen kinds``
+  lists them.
+
+>>> import reportgen
+>>> scene = {"kind": "pendulum", "title": "Small swing",
+...          "params": {"g": 9.81, "l": 1.0}, "initial": {"theta": 0.2},
+...          "run": {"t_end": 2.0, "samples": 201}}
+>>> outcome = reportgen.run(scene, out=str(tmp), formats=("html",))
+>>> outcome.name, outcome.status
+('small_swing', 'ok')
+>>> r = reportgen.open(outcome.folder)
+>>> r.kind, r.title, r.status
+('pendulum', 'Small swing', 'ok')
+>>> r.behaviour.split(":")[0]
+'libration'
+>>> ds = r.to_xarray()
+>>> ds.theta.attrs["units"], ds.theta.attrs["long_name"]
+('rad', 'angle from the downward vertical')
+>>> float(ds.theta.sel(t=0.0))
+0.2
+>>> reportgen.run({"kind": "pendulum"}, out=str(tmp), name="bad")
+Traceback (most recent call last):
+    ...
+reportgen.errors.ConfigError: ...
+"""
+
+from __future__ import annotations
+
+import html
+import json
+import re
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+from .errors import ConfigError
+
+__all__ = ["Run", "kinds", "open", "run"]
+
+#: how many of the report's figures :meth:`Run._repr_html_` shows inline
+REPR_FIGURES = 3
+
+
+# ---------------------------------------------------------------------- run
+def _slug(text: str) -> str:
+    """``"Pendulum — small (θ0 = 0.2)"`` -> ``"pendulum_small_0_0_2"``: a scene name."""
+    return re.sub(r"[^a-z0-9]+", "_", text.lower()).strip("_")
+
+
+def _write_source(config: Mapping, out: Path, name: str | None) -> Path:
+    """The dict ``config`` as ``out/<name>/<name>.toml`` (inside ``out``, never outside)."""
+    from .scene.config import to_toml
+    from .support.layout import printable, scene_name_problem
+
+    stem = name or _slug(str(config.get("title") or "")) or _slug(str(config.get("kind", "")))
+    if not stem:
+        raise ConfigError(["the config dict has no title or kind to name the scene by "
+                           "(pass name=...)"])
+    problem = scene_name_problem(stem)
+    if problem is not None:  # a name leading out of ``out``: nothing written
+        raise ConfigError([f"scene name {printable(repr(stem))} {problem}"])
+    path = out / stem / f"{stem}.toml"
+    try:
+        text = to_toml(dict(config))
+    except (TypeError, ValueError) as exc:
+        raise ConfigError([f"config dict {stem!r}: {exc}"]) from None
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def run(source: str | Path | Mapping, out: str | Path = "output", *, force: bool = False,
+        formats: tuple[str, ...] = ("html", "pdf"), name: str | None = None):
+    """Run scenes as ``reportgen run`` does, each stage only when its inputs changed.
+
+    ``source``: a TOML config, a folder (every ``*.toml`` below it) or a dict with the
+    keys of a config, written as TOML to ``out/<name>/<name>.toml`` (``name``: the
+    argument, else the dict's title as a slug).  Returns the scene's
+    :class:`~reportgen.pipeline.stages.Outcome` (a list of them for a folder); a bad
+    config raises :class:`~reportgen.errors.ConfigError` before anything runs, a failed
+    simulation comes back as the outcome's ``status`` and ``message``.
+    """
+    from .pipeline.stages import run_scene, validate_all
+    from .support.layout import collect_configs
+
+    out = Path(out)
+    if isinstance(source, Mapping):
+        paths = [_write_source(source, out, name)]
+    else:
+        from .errors import UsageError
+
+        try:
+            paths = collect_configs([source])
+        except UsageError as exc:
+            raise ConfigError([str(exc)]) from None
+    validate_all(paths)
+    outcomes = []
+    for path in paths:
+        outcome = run_scene(str(path), str(out), force, tuple(formats))
+        if outcome.config_error:
+            raise ConfigError([outcome.message])
+        outcomes.append(outcome)
+    single = isinstance(source, Mapping) or Path(source).is_file()
+    return outcomes[0] if single else outcomes
+
+
+# ---------------------------------------------------------------------- open
+def _ident(name: str, taken: set[str]) -> str:
+    """``name`` as a Python identifier (``initial.theta`` -> ``initial_theta``), unique in
+    ``taken`` (which it joins)."""
+    out = re.sub(r"\W", "_", name) or "_"
+    if out[0].isdigit():
+        out = "_" + out
+    base, n = out, 1
+    while out in taken:
+        n += 1
+        out = f"{base}_{n}"
+    taken.add(out)
+    return out
+
+
+def _plain(value):
+    """An attribute value as Python (str, not bytes; lists, not string arrays)."""
+    import numpy as np
+
+    if isinstance(value, bytes):
+        return value.decode("utf-8")
+    if isinstance(value, np.ndarray):
+        return [_plain(v) for v in value.tolist()] if value.dtype.kind in "OSU" else value
+    if isinstance(value, np.generic):
+        return value.item()
+    return value
+
+
+def _group_attrs(path: Path, group: str) -> dict[str, dict[str, Any]]:
+    """The attributes of every variable of ``group`` in the archive (validated already)."""
+    import xarray as xr
+
+    try:
+        with xr.open_dataset(path, group=group, engine="h5netcdf", phony_dims="access",
+                             decode_cf=False) as raw:
+            return {k: {a: _plain(v) for a, v in raw[k].attrs.items()} for k in raw.variables}
+    except (OSError, ValueError, KeyError):
+        return {}
+
+
+def _cf(attrs: dict[str, Any]) -> dict[str, Any]:
+    return {k: attrs[k] for k in ("units", "long_name", "symbol") if k in attrs}
+
+
+class Run:
+    """A scene's archive read through the validating reader (a bad file raises
+    :class:`~reportgen.archive.h5io.ArchiveError`).
+
+    ``config`` (the resolved config, a dict), ``kind``, ``title``, ``status``,
+    ``message``, ``behaviour`` (the ``/analysis`` verdict, or None), ``results`` (the
+    scalar analysis results), ``checks`` (dicts: quantity, value, reference, abs_error,
+    rel_error, unit, source) and ``h5`` (the archive's path).
+    """
+
+    def __init__(self, path: str | Path):
+        from .archive.store import read_archive
+
+        path = Path(path)
+        self.h5 = path / "run.h5" if path.is_dir() else path
+        self.data = read_archive(self.h5)
+        d = self.data
+        self.config: dict[str, Any] = json.loads(json.dumps(d.config))
+        self.kind, self.title, self.status, self.message = d.kind, d.title, d.status, d.message
+        behaviour = d.analysis.get("behaviour") if d.sweep is None else None
+        self.behaviour: str | None = str(behaviour) if behaviour else None
+        self.results: dict[str, Any] = {
+            k: _plain(v) for k, v in d.analysis.items()
+            if isinstance(_plain(v), (bool, int, float, str))}
+        self.checks: list[dict[str, Any]] = [
+            {"quantity": c.quantity, "value": c.value, "reference": c.reference,
+             "abs_error": c.abs_error, "rel_error": c.rel_error, "unit": c.unit,
+             "source": c.source} for c in d.checks]
+
+    def __repr__(self) -> str:
+        return f"<reportgen.Run {self.kind} {self.title!r} {self.status} ({self.h5})>"
+
+    # ------------------------------------------------------------- xarray
+    def to_xarray(self):
+        """The main run as an :class:`xarray.Dataset` on the coordinate ``t``: one
+        variable per state column (named by the column), the invariants and reference
+        solutions, each with its ``units`` and ``long_name``.  A sweep: one dataset on
+        ``member``, the swept values as coordinates (``initial.theta`` ->
+        ``initial_theta``) and per member its scalar results and ``status``."""
+        if self.data.sweep is not None:
+            return self._sweep_xarray()
+        if "main" not in self.data.runs:
+            raise ValueError(f"{self.h5}: the archive holds no main run "
+                             f"(runs: {', '.join(self.data.runs) or 'none'})")
+        import numpy as np
+        import xarray as xr
+
+        run = self.data.runs["main"]
+        attrs = _group_attrs(self.h5, "runs/main")
+        y = attrs.get("y", {})
+        n = len(run.t)
+        per_column = {key: list(y.get(f"column_{key}") or [""] * len(run.columns))
+                      for key in ("units", "long_names", "symbols")}
+        taken = {"t"}
+        variables = {}
+        table = np.asarray(run.y).reshape(n, -1)
+        for i, column in enumerate(run.columns):
+            variables[_ident(column, taken)] = ("t", table[:, i], {
+                "units": str(per_column["units"][i]),
+                "long_name": str(per_column["long_names"][i]) or column,
+                "symbol": str(per_column["symbols"][i])})
+        for q, values in run.invariants.items():
+            if np.ndim(values) == 1 and len(values) == n:
+                linked = q if q in attrs else f"invariant_{q}"
+                variables[_ident(q, taken)] = ("t", values, _cf(attrs.get(linked, {})))
+        for c, values in run.reference.items():
+            if np.ndim(values) == 1 and len(values) == n:
+                variables[_ident(f"reference_{c}", taken)] = (
+                    "t", values, _cf(attrs.get(f"reference_{c}", {})))
+        t_attrs = _cf(attrs.get("t", {})) or {"units": "s", "long_name": "time"}
+        return xr.Dataset(variables, coords={"t": ("t", np.asarray(run.t), t_attrs)},
+                          attrs=self._dataset_attrs())
+
+    def _dataset_attrs(self) -> dict[str, Any]:
+        out = {"kind": self.kind, "title": self.title, "status": self.status,
+               "message": self.message, "archive": str(self.h5)}
+        if self.behaviour:
+            out["behaviour"] = self.behaviour
+        return out
+
+    def _sweep_xarray(self):
+        import numpy as np
+        import xarray as xr
+
+        sweep = self.data.sweep
+        values_attrs = _group_attrs(self.h5, "sweep/values")
+        analysis_attrs = _group_attrs(self.h5, "sweep/analysis")
+        taken = {"member", "status", "message"}
+        coords: dict[str, Any] = {"member": ("member", np.arange(sweep.size),
+                                             {"long_name": "member of the sweep", "units": "1"})}
+        for key, values in sweep.values.items():
+            cf = _cf(values_attrs.get(key, {}))
+            cf.setdefault("long_name", f"swept value of {key}")
+            cf["config_key"] = key
+            coords[_ident(key, taken)] = ("member", np.asarray(values, dtype=float), cf)
+        variables: dict[str, Any] = {
+            "status": ("member", np.asarray([str(s) for s in sweep.status], dtype=str),
+                       {"long_name": "the member's run status", "units": ""}),
+            "message": ("member", np.asarray([str(s) for s in sweep.message], dtype=str),
+                        {"long_name": "why the member is not ok", "units": ""})}
+        for key, values in sweep.analysis.items():
+            variables[_ident(key, taken)] = ("member", np.asarray(values, dtype=float),
+                                             _cf(analysis_attrs.get(key, {})))
+        for key, values in sweep.labels.items():
+            variables[_ident(key, taken)] = ("member", np.asarray([str(v) for v in values],
+                                                                  dtype=str), {})
+        return xr.Dataset(variables, coords=coords, attrs=self._dataset_attrs())
+
+    # ------------------------------------------------------------- notebook
+    def headline(self) -> list[tuple[str, str]]:
+        """The kind's headline facts (label, value) as the report shows them."""
+        from .rendering.report import kind_of_archive
+
+        return [(str(a), str(b)) for a, b in kind_of_archive(self.data).headline(self.data)]
+
+    def figures(self) -> list[Path]:
+        """The report's SVG figures beside the archive (``figures/*.svg``), if drawn."""
+        return sorted((self.h5.parent / "figures").glob("*.svg"))
+
+    def _repr_html_(self) -> str:
+        e = html.escape
+        parts = [f"<h3>{e(self.title or self.kind)}</h3>",
+                 f"<p><b>{e(self.kind)}</b> &middot; status <b>{e(self.status)}</b>"
+                 + (f" &middot; {e(self.message)}" if self.message else "")
+                 + (f" &middot; {e(self.behaviour)}" if self.behaviour else "") + "</p>"]
+        try:
+            facts = self.headline()
+        except Exception as exc:  # a notebook view shows what it can
+            facts = [("headline", f"unavailable ({type(exc).__name__}: {exc})")]
+        if facts:
+            parts.append("<table>" + "".join(f"<tr><th style='text-align:left'>{e(a)}</th>"
+                                             f"<td>{e(b)}</td></tr>" for a, b in facts)
+                         + "</table>")
+        for svg in self.figures()[:REPR_FIGURES]:
+            text = svg.read_text(encoding="utf-8", errors="replace")
+            start = text.find("<svg")
+            if start >= 0:
+                parts.append(f"<div style='max-width:40em' title='{e(svg.name)}'>"
+                             f"{text[start:]}</div>")
+        return "\n".join(parts)
+
+
+def open(path: str | Path) -> Run:  # noqa: A001 - reportgen.open, like io.open
+    """The archive ``path`` (``run.h5``, or the scene folder holding it) as a :class:`Run`."""
+    return Run(path)
+
+
+# ---------------------------------------------------------------------- kinds
+_UNIT = re.compile(r"\s*\[([^\[\]]*)\]\s*$")
+
+
+def kinds() -> list[dict[str, Any]]:
+    """Every scene kind: ``name``, ``summary``, ``presets`` (names) and ``keys``, one dict
+    per key as ``reportgen kinds`` lists them (``key`` dotted, ``type``, ``default``,
+    ``description``, ``units`` when the description ends in one).
+
+    >>> pendulum = [k for k in kinds() if k["name"] == "pendulum"][0]
+    >>> [(k["key"], k["units"]) for k in pendulum["keys"] if k["key"].startswith("initial.")]
+    [('initial.theta', 'rad'), ('initial.theta_dot', 'rad/s')]
+    """
+    from .kinds import KINDS
+    from .scene.catalogue import _SHARED_KEYS, _field_rows
+
+    out = []
+    for cls in KINDS.values():
+        fields = cls.Config.model_fields
+        overrides = {key: {"meaning": fields[key].description or text}
+                     for key, text in _SHARED_KEYS.items() if key in fields}
+        keys, table = [], ""
+        for indent, key, kind, default, meaning in _field_rows("", fields, 4, overrides):
+            if not (kind or default):  # a table header: [params], [[bodies]]
+                table = key.strip("[]") if indent == 4 else table
+                continue
+            unit = _UNIT.search(meaning)
+            keys.append({"key": f"{table}.{key}" if indent > 4 and table else key,
+                         "type": kind, "default": default,
+                         "description": _UNIT.sub("", meaning) if unit else meaning,
+                         "units": unit.group(1) if unit else ""})
+        out.append({"name": cls.kind, "summary": cls.summary,
+                    "presets": list(cls.presets), "keys": keys})
+    return out

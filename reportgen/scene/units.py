@@ -1,0 +1,239 @@
+"""Units at the edges, SI inside: config values written with a unit.
+
+A numeric config key may be given as text with a unit (``theta = "40 deg"``,
+``k = "500 N/m"``, ``I1 = "1.3 kg m^2"``; in an array, ``omega = ["1 rad/s", 2.0]``).
+:func:`convert_field` turns such text into the number in the unit the key's field
+declares (the brackets ending its description, "initial angle [rad]": see
+:func:`reportgen.scene.schema.quantity_of_description`), so the validated config and
+the archive's resolved config hold plain numbers in the declared units.  A plain number
+keeps meaning the declared unit.
+
+Units are read by pint through one shared registry, made on the first value that carries
+a unit: validating a config of plain numbers never imports pint.  A declared unit pint
+cannot read ("u or kg", "energy/rad²") leaves the key taking plain numbers only.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import re
+import types
+import typing
+from typing import Annotated, Any, Literal
+
+#: a number, then the rest of the text (the unit): "40 deg", "-1.5e3 kg m^2", ".5"
+_NUMBER = re.compile(r"\s*([+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?)\s*(.*?)\s*")
+#: what a unit may be written with (letters, powers, products, quotients, °, Å, µ)
+_UNIT_CHARS = re.compile(r"[\w °Åµμ·⋅*/^().⁰¹²³⁴⁵⁶⁷⁸⁹⁻-]*")
+#: longest unit text read (a hostile config cannot make pint work hard)
+MAX_UNIT_CHARS = 60
+#: declared units meaning "a pure number"
+DIMENSIONLESS = ("", "1", "dimensionless")
+#: the quantity a declared unit measures, for the error's rule
+_WHAT = {"m": "a length", "kg": "a mass", "s": "a time", "rad": "an angle",
+         "rad/s": "an angular velocity", "1/s": "a rate", "m/s": "a velocity",
+         "m/s^2": "an acceleration", "m/s²": "an acceleration", "kg m^2": "a moment of inertia",
+         "kg m²": "a moment of inertia", "kg·m²": "a moment of inertia",
+         "N/m": "a spring constant", "J": "an energy", "kg m/s": "a momentum",
+         "kg·m/s": "a momentum", "u": "a mass", "N": "a force"}
+#: an example of a value with a unit, for the error's rule
+_EXAMPLE = {"rad": "40 deg", "rad/s": "10 rpm", "m": "25 cm", "kg": "250 g", "s": "2 min"}
+
+
+@functools.cache
+def registry():
+    """The shared pint UnitRegistry (made, and pint imported, on first use)."""
+    import pint
+
+    return pint.UnitRegistry()
+
+
+@functools.cache
+def declared_unit(model: type, name: str) -> str | None:
+    """The unit the field ``name`` of ``model`` declares ("rad"), "" if none; None if the
+    field does not hold numbers (floats, or arrays of them)."""
+    field = model.model_fields.get(name)
+    if field is None or not _admits(field.annotation, float):
+        return None
+    from .schema import quantity_of_description
+
+    return quantity_of_description(field.description or "")[1]
+
+
+def _admits(annotation: Any, kind: type) -> bool:
+    """Whether ``annotation`` takes values of ``kind`` somewhere (in a union, an array)."""
+    while typing.get_origin(annotation) is Annotated:
+        annotation = typing.get_args(annotation)[0]
+    if annotation is kind:
+        return True
+    origin = typing.get_origin(annotation)
+    if origin is Literal:
+        return any(isinstance(a, kind) for a in typing.get_args(annotation))
+    if origin in (typing.Union, types.UnionType, list, tuple):
+        return any(_admits(a, kind) for a in typing.get_args(annotation))
+    return False
+
+
+def _has_text(value: Any, depth: int = 0) -> bool:
+    if isinstance(value, str):
+        return True
+    return depth < 3 and isinstance(value, list) and any(_has_text(v, depth + 1)
+                                                        for v in value)
+
+
+def convert_table(model: type, data: Any) -> Any:
+    """The table ``data`` of ``model`` (a pydantic model) with :func:`convert_field`
+    applied to each of its keys; a copy only if a value changed.  Every value that cannot
+    be converted is one error of a pydantic ValidationError, located at its key."""
+    if not isinstance(data, dict) or not any(_has_text(v) for v in data.values()):
+        return data
+    out, errors = dict(data), []
+    for name, value in data.items():
+        if not isinstance(name, str) or name not in model.model_fields:
+            continue
+        try:
+            out[name] = convert_field(model, name, value)
+        except ValueError as exc:
+            errors.append(_error(name, value, str(exc)))
+    if errors:
+        from pydantic import ValidationError
+
+        raise ValidationError.from_exception_data(model.__name__, errors)
+    return out
+
+
+def convert_items(data: Any, units: dict[tuple[str, str], str]) -> Any:
+    """``data`` (a table) with the text quantities of its arrays of tables converted:
+    ``units[(array, key)]`` is the unit ``data[array][i][key]`` is stored in (a kind whose
+    units depend on a unit-system key says them here).  Errors as :func:`convert_table`'s,
+    located at ``array.i.key``."""
+    if not isinstance(data, dict):
+        return data
+    out, errors = dict(data), []
+    for (array, key), unit in units.items():
+        items = out.get(array)
+        if not isinstance(items, list) or not any(
+                isinstance(item, dict) and _has_text(item.get(key)) for item in items):
+            continue
+        out[array] = items = [dict(item) if isinstance(item, dict) else item for item in items]
+        for i, item in enumerate(items):
+            if isinstance(item, dict) and _has_text(item.get(key)):
+                try:
+                    item[key] = _convert(item[key], unit, False, 0)
+                except ValueError as exc:
+                    errors.append(_error((array, i, key), item[key], str(exc)))
+    if errors:
+        from pydantic import ValidationError
+
+        raise ValidationError.from_exception_data("config", errors)
+    return out
+
+
+def _error(name: str | tuple, value: Any, message: str):
+    from pydantic_core import InitErrorDetails, PydanticCustomError
+
+    loc = name if isinstance(name, tuple) else (name,)
+    return InitErrorDetails(type=PydanticCustomError("value_error", "{rule}", {"rule": message}),
+                            loc=loc, input=value)
+
+
+def convert_field(model: type, name: str, value: Any) -> Any:
+    """``value`` of the field ``name`` of ``model`` with every text quantity in it (itself,
+    or items of an array) as the number in the field's declared unit; anything else
+    unchanged, for the field's own validation to judge.  ValueError names the rule."""
+    if not _has_text(value):
+        return value
+    unit = declared_unit(model, name)
+    if unit is None:
+        return value
+    field = model.model_fields[name]
+    takes_text = _admits(field.annotation, str)
+    return _convert(value, unit, takes_text, 0)
+
+
+def _convert(value: Any, unit: str, takes_text: bool, depth: int) -> Any:
+    if isinstance(value, list) and depth < 3:
+        return [_convert(v, unit, takes_text, depth + 1) for v in value]
+    if not isinstance(value, str):
+        return value
+    found = _NUMBER.fullmatch(value)
+    if found is None:
+        if takes_text or not value.strip() or not _UNIT_CHARS.fullmatch(value):
+            return value  # a keyword ("steady") or not a quantity: the field judges it
+        raise ValueError(rule(unit) + "; write a number, then its unit")
+    try:
+        return to_declared(float(found.group(1)), found.group(2), unit)
+    except ValueError:
+        if takes_text:  # text the field may hold ("2*q"): the field judges it
+            return value
+        raise
+
+
+def to_declared(number: float, given: str, unit: str) -> float:
+    """``number`` in the unit ``given`` as a number in the declared ``unit``."""
+    if not math.isfinite(number):
+        raise ValueError("must be a finite number")
+    if unit in DIMENSIONLESS and not given:
+        return number
+    if not given:
+        raise ValueError(f"must be a valid number, or text with its unit (\"{_example(unit)}\"); "
+                         f"a number alone is in {unit}")
+    if len(given) > MAX_UNIT_CHARS or not _UNIT_CHARS.fullmatch(given):
+        raise ValueError(rule(unit) + f"; {given[:20]!r} is not a unit")
+    if "rad" in unit and re.search(r"(?<![A-Za-z])[kMG]?Hz\b", given):
+        raise ValueError(rule(unit) + f"; {given} is ambiguous for an angle per time "
+                         "(1 Hz is 2π rad/s as a frequency, 1 rad/s to pint): give rad/s or rpm")
+    target = _pint_unit(unit)
+    if target is None:
+        raise ValueError(f"must be a plain number in {unit} (this key takes no unit text)")
+    try:
+        source = _pint_unit_strict(given)
+    except Exception:  # pint raises many kinds (UndefinedUnitError, SyntaxError, ...)
+        raise ValueError(rule(unit) + f"; {given!r} is not a known unit") from None
+    try:
+        out = float(registry().Quantity(number, source).to(target).magnitude)
+    except Exception:  # DimensionalityError, OffsetUnitCalculusError, OverflowError
+        raise ValueError(rule(unit) + f"; {given} measures {_dimension(source)}") from None
+    if not math.isfinite(out):
+        raise ValueError(f"must be a finite number ({number:g} {given} is {out} {unit})")
+    return out
+
+
+def angle_hint(*angles: float) -> str:
+    """For a kind's range error on angles: "; angles are in rad; write \"40 deg\" for
+    degrees" when one of ``angles`` (in rad) is a full turn or more - degrees, most
+    likely - else ""."""
+    big = [a for a in angles if math.isfinite(a) and abs(a) >= 2 * math.pi]
+    return f'; angles are in rad; write "{big[0]:g} deg" for degrees' if big else ""
+
+
+def rule(unit: str) -> str:
+    """The rule a key with the declared ``unit`` states: "must be an angle in rad; give
+    e.g. \"40 deg\""."""
+    if unit in DIMENSIONLESS:
+        return "must be a dimensionless number"
+    what = _WHAT.get(unit, "a quantity")
+    return f"must be {what} in {unit}; give e.g. \"{_example(unit)}\""
+
+
+def _example(unit: str) -> str:
+    return _EXAMPLE.get(unit, f"1.5 {unit}" if unit not in DIMENSIONLESS else "0.5")
+
+
+@functools.cache
+def _pint_unit(unit: str):
+    """The declared ``unit`` as a pint unit, None if pint cannot read it."""
+    try:
+        return _pint_unit_strict("dimensionless" if unit in DIMENSIONLESS else unit)
+    except Exception:
+        return None
+
+
+def _pint_unit_strict(text: str):
+    return registry().parse_units(text.replace("·", " ").replace("⋅", " "))
+
+
+def _dimension(source) -> str:
+    dims = str(source.dimensionality)
+    return "nothing (a pure number)" if dims == "dimensionless" else re.sub(r"[\[\]]", "", dims)

@@ -1,0 +1,257 @@
+"""The Python API (reportgen.run / open / kinds, Run.to_xarray) and xarray on archives."""
+
+from __future__ import annotations
+
+import doctest
+import math
+import subprocess
+import sys
+import warnings
+from pathlib import Path
+
+import h5py
+import numpy as np
+import pytest
+
+import reportgen
+from reportgen import api
+from reportgen.archive.h5io import ArchiveError
+from reportgen.errors import ConfigError
+
+ROOT = Path(__file__).resolve().parent.parent
+
+PENDULUM = {"kind": "pendulum", "title": "Pendulum — API test (θ0 = 0.3)",
+            "params": {"g": 9.81, "l": 1.0}, "initial": {"theta": 0.3},
+            "run": {"t_end": 4.0, "samples": 401}}
+SWEEP = {"kind": "pendulum", "title": "Three swings",
+         "params": {"g": 9.81, "l": 1.0}, "initial": {"theta": 1.0},
+         "run": {"t_end": 6.0, "samples": 601},
+         "sweep": {"initial": {"theta": {"start": 0.1, "stop": 1.5, "num": 3}}}}
+
+
+@pytest.fixture(scope="module")
+def out(tmp_path_factory):
+    root = tmp_path_factory.mktemp("api")
+    single = reportgen.run(PENDULUM, out=root, formats=("html",))
+    family = reportgen.run(SWEEP, out=root, formats=("html",))
+    assert single.ok and family.ok, (single.message, family.message)
+    return root, single, family
+
+
+def _files(root: Path) -> set[Path]:
+    return {p for p in root.rglob("*") if p.is_file()}
+
+
+def test_doctests(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    result = doctest.testmod(api, extraglobs={"tmp": tmp_path},
+                             optionflags=doctest.ELLIPSIS | doctest.IGNORE_EXCEPTION_DETAIL)
+    assert result.attempted >= 10 and result.failed == 0
+
+
+def test_run_from_dict_writes_its_source_inside_out(out):
+    root, single, _ = out
+    assert single.name == "pendulum_api_test_0_0_3"
+    source = root / single.name / f"{single.name}.toml"
+    assert "theta = 0.3" in source.read_text(encoding="utf-8")
+    assert Path(single.folder) == root / single.name
+    assert all(root in p.parents for p in _files(root))
+
+
+def test_run_twice_skips_the_stages(out):
+    root, single, _ = out
+    again = reportgen.run(PENDULUM, out=root, formats=("html",))
+    assert again.ok and again.stages == []
+
+
+def test_run_from_a_toml_file_and_a_folder(tmp_path):
+    cfg = tmp_path / "in" / "swing.toml"
+    cfg.parent.mkdir()
+    from reportgen.scene.config import to_toml
+
+    cfg.write_text(to_toml(PENDULUM), encoding="utf-8")
+    one = reportgen.run(cfg, out=tmp_path / "o", formats=("html",))
+    assert one.ok and one.name == "swing"
+    many = reportgen.run(cfg.parent, out=tmp_path / "o", formats=("html",))
+    assert [o.name for o in many] == ["swing"] and many[0].stages == []
+
+
+@pytest.mark.parametrize("name", ["../escape", ".hidden", "a/b"])
+def test_a_scene_name_leading_out_of_out_is_a_config_error(tmp_path, name):
+    out = tmp_path / "out"
+    with pytest.raises(ConfigError):
+        reportgen.run(PENDULUM, out=out, name=name, formats=("html",))
+    assert not _files(tmp_path)
+
+
+def test_a_bad_config_raises_config_error_with_one_line(tmp_path):
+    bad = {**PENDULUM, "initial": {"theta": "high"}}
+    with pytest.raises(ConfigError) as err:
+        reportgen.run(bad, out=tmp_path, name="bad", formats=("html",))
+    message = str(err.value)
+    assert "\n" not in message and "theta" in message
+    assert not (tmp_path / "bad" / "run.h5").exists()
+
+
+def test_open_reads_attributes(out):
+    _, single, _ = out
+    r = reportgen.open(single.folder)
+    assert isinstance(r, reportgen.Run)
+    assert (r.kind, r.title, r.status) == ("pendulum", PENDULUM["title"], "ok")
+    assert r.behaviour.startswith("libration")
+    assert r.config["params"]["g"] == 9.81 and r.config["initial"]["theta"] == 0.3
+    assert isinstance(r.config, dict) and type(r.config["params"]) is dict
+    assert all(isinstance(v, (bool, int, float, str)) for v in r.results.values())
+    # the exact period 4K(k)·sqrt(l/g), k = sin(θ0/2)
+    from scipy.special import ellipk
+
+    exact = 4 * ellipk(math.sin(0.15) ** 2) * math.sqrt(1.0 / 9.81)
+    assert r.results["period"] == pytest.approx(exact, rel=1e-12)
+    assert r.checks and {"quantity", "value", "reference", "abs_error", "rel_error", "unit",
+                         "source"} <= set(r.checks[0])
+
+
+def test_to_xarray_main_run(out):
+    _, single, _ = out
+    ds = reportgen.open(Path(single.folder) / "run.h5").to_xarray()
+    assert list(ds.sizes) == ["t"] and ds.sizes["t"] == 401
+    assert ds.t.attrs["units"] == "s"
+    assert ds.theta.attrs == {"units": "rad", "long_name": "angle from the downward vertical",
+                              "symbol": "\\theta"}
+    assert ds.theta_dot.attrs["units"] == "rad/s"
+    assert float(ds.theta[0]) == 0.3
+    # against the stored exact solution, and energy conserved (the invariant)
+    np.testing.assert_allclose(ds.theta, ds.reference_theta, atol=1e-9)
+    assert float(abs(ds.energy - ds.energy[0]).max()) < 1e-9 * abs(float(ds.energy[0]))
+    for name, var in ds.variables.items():
+        assert "units" in var.attrs and "long_name" in var.attrs, name
+    for key, value in ds.attrs.items():
+        assert not isinstance(value, bytes), key
+    assert ds.attrs["behaviour"].startswith("libration")
+
+
+def test_to_xarray_sweep(out):
+    _, _, family = out
+    r = reportgen.open(family.folder)
+    ds = r.to_xarray()
+    assert dict(ds.sizes) == {"member": 3}
+    np.testing.assert_allclose(ds.initial_theta, [0.1, 0.8, 1.5])
+    assert ds.initial_theta.attrs["units"] == "rad"
+    assert "initial_theta" in ds.coords
+    assert ds.status.dtype.kind == "U" and list(ds.status.values) == ["ok"] * 3
+    from scipy.special import ellipk
+
+    exact = [4 * ellipk(math.sin(a / 2) ** 2) * math.sqrt(1 / 9.81) for a in (0.1, 0.8, 1.5)]
+    np.testing.assert_allclose(ds.period, exact, rtol=1e-12)
+    assert ds.period.attrs["units"] == "s"
+    np.testing.assert_allclose(ds.period_measured.sel(member=2), exact[2], rtol=1e-8)
+    assert r.behaviour is None
+
+
+def test_repr_html_shows_title_status_headline_and_figures(out):
+    _, single, _ = out
+    page = reportgen.open(single.folder)._repr_html_()
+    assert "Pendulum — API test (θ0 = 0.3)" in page and "ok" in page
+    assert "libration" in page and "period" in page  # the headline facts
+    assert 1 <= page.count("<svg") <= api.REPR_FIGURES
+
+
+def test_repr_html_without_figures(out, tmp_path):
+    _, single, _ = out
+    alone = tmp_path / "run.h5"
+    alone.write_bytes((Path(single.folder) / "run.h5").read_bytes())
+    page = reportgen.open(alone)._repr_html_()
+    assert "<svg" not in page and "period" in page
+
+
+@pytest.mark.parametrize("damage", ["garbage", "truncated", "missing"])
+def test_open_a_bad_file_raises_the_archive_error(out, tmp_path, damage):
+    _, single, _ = out
+    path = tmp_path / "run.h5"
+    good = (Path(single.folder) / "run.h5").read_bytes()
+    if damage == "garbage":
+        path.write_bytes(b"not an archive" * 100)
+    elif damage == "truncated":
+        path.write_bytes(good[: len(good) // 2])
+    with pytest.raises(ArchiveError):
+        reportgen.open(path)
+
+
+def test_open_an_archive_missing_its_config_raises(out, tmp_path):
+    _, single, _ = out
+    path = tmp_path / "run.h5"
+    path.write_bytes((Path(single.folder) / "run.h5").read_bytes())
+    with h5py.File(path, "r+") as f:
+        del f["config"]
+    with pytest.raises(ArchiveError, match="config"):
+        reportgen.open(path)
+
+
+def test_kinds_lists_every_kind_with_presets_and_keys():
+    from reportgen.kinds import KINDS
+
+    listing = reportgen.kinds()
+    assert [k["name"] for k in listing] == list(KINDS)
+    for entry in listing:
+        assert entry["summary"] == KINDS[entry["name"]].summary
+        assert entry["presets"] == list(KINDS[entry["name"]].presets)
+        assert {"kind", "title"} <= {k["key"] for k in entry["keys"]}
+    pendulum = {k["key"]: k for k in listing[[k["name"] for k in listing].index("pendulum")]
+                ["keys"]}
+    assert pendulum["params.g"]["units"] == "m/s^2"
+    assert pendulum["params.g"]["description"] == "gravitational acceleration"
+    assert pendulum["params.m"]["default"] == "default 1.0"
+    assert "large_amplitude" in listing[0]["presets"]
+
+
+def test_import_reportgen_stays_light():
+    code = ("import sys, reportgen\nprint(' '.join(sorted(m for m in sys.modules)))")
+    loaded = set(subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                                check=True).stdout.split())
+    heavy = {"reportgen.api", "h5py", "xarray", "numpy", "numba", "reportgen.kinds"}
+    assert not loaded & heavy, sorted(loaded & heavy)
+    assert callable(reportgen.run) and "open" in dir(reportgen)
+    with pytest.raises(AttributeError):
+        reportgen.no_such_thing  # noqa: B018
+
+
+# ------------------------------------------------------------- xarray directly
+def _open_group_quietly(path: Path, group: str):
+    import xarray as xr
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # the phony_dims warning (or any other) fails
+        return xr.open_dataset(path, group=group, engine="h5netcdf")
+
+
+def _assert_named_dims_and_units(path: Path, group: str):
+    with _open_group_quietly(path, group) as ds:
+        assert not [d for d in ds.dims if str(d).startswith("phony")], ds.dims
+        for name, var in ds.variables.items():
+            assert "units" in var.attrs, f"{path}:{group}/{name} has no units"
+
+
+def test_xarray_opens_fresh_archives_without_phony_dims(out):
+    _, single, family = out
+    for group in ("runs/main", "study"):
+        _assert_named_dims_and_units(Path(single.folder) / "run.h5", group)
+    for group in ("sweep", "sweep/values", "sweep/analysis"):
+        _assert_named_dims_and_units(Path(family.folder) / "run.h5", group)
+
+
+# every shipped archive and every variant: tests/test_shipped_pages.py
+
+
+# ------------------------------------------------------------------- notebook
+def test_example_notebook_runs(tmp_path, monkeypatch):
+    nbformat = pytest.importorskip("nbformat")
+    nbclient = pytest.importorskip("nbclient")
+    notebook = nbformat.read(ROOT / "docs" / "example.ipynb", as_version=4)
+    monkeypatch.chdir(tmp_path)
+    nbclient.NotebookClient(notebook, timeout=120, kernel_name="python3",
+                            resources={"metadata": {"path": str(tmp_path)}}).execute()
+    outputs = [o for cell in notebook.cells if cell.cell_type == "code"
+               for o in cell.get("outputs", [])]
+    assert not [o for o in outputs if o.get("output_type") == "error"]
+    assert any("image/png" in o.get("data", {}) for o in outputs)  # the plot was drawn
+    assert all(tmp_path in p.parents for p in _files(tmp_path))
