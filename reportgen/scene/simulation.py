@@ -103,22 +103,11 @@ class Simulation(Scene):
 
     def config_unit(self, path: str) -> str:
         """The unit of the config key ``path`` ("params.g"), from its declared field
-        description ("... [m/s^2]"); "" when none is declared."""
-        import re
+        description ("... [m/s^2]", :func:`~reportgen.scene.schema.config_quantity`); ""
+        when none is declared."""
+        from .schema import config_quantity
 
-        model: Any = self.Config
-        field = None
-        for part in path.split("."):
-            fields = getattr(model, "model_fields", None)
-            if not fields or part not in fields:
-                return ""
-            field = fields[part]
-            model = field.annotation
-            for arg in getattr(model, "__args__", ()) or ():  # X | None
-                if hasattr(arg, "model_fields"):
-                    model = arg
-        found = re.search(r"\[([^\]]+)\]\s*$", (field.description or "") if field else "")
-        return found.group(1) if found else ""
+        return config_quantity(self.Config, path).unit
 
     # ------------------------------------------------------------------ sweeps
     def member(self, assignments: dict[str, float]) -> Scene:
