@@ -37,6 +37,7 @@ from __future__ import annotations
 import html
 import json
 import re
+import unicodedata
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
@@ -51,8 +52,11 @@ REPR_FIGURES = 3
 
 # ---------------------------------------------------------------------- run
 def _slug(text: str) -> str:
-    """``"Pendulum — small (θ0 = 0.2)"`` -> ``"pendulum_small_0_0_2"``: a scene name."""
-    return re.sub(r"[^a-z0-9]+", "_", text.lower()).strip("_")
+    """``"Hénon–Heiles (θ0 = 0.2)"`` -> ``"henon_heiles_0_0_2"``: a scene name (accents
+    dropped, letters without an ASCII form too)."""
+    plain = "".join(unicodedata.normalize("NFKD", c).encode("ascii", "ignore").decode("ascii")
+                    or " " for c in text)
+    return re.sub(r"[^a-z0-9]+", "_", plain.lower()).strip("_")
 
 
 def _write_source(config: Mapping, out: Path, name: str | None) -> Path:
@@ -78,7 +82,7 @@ def _write_source(config: Mapping, out: Path, name: str | None) -> Path:
 
 
 def run(source: str | Path | Mapping, out: str | Path = "output", *, force: bool = False,
-        formats: tuple[str, ...] = ("html", "pdf"), name: str | None = None):
+        formats: tuple[str, ...] | None = None, name: str | None = None):
     """Run scenes as ``reportgen run`` does, each stage only when its inputs changed.
 
     ``source``: a TOML config, a folder (every ``*.toml`` below it) or a dict with the
@@ -86,7 +90,8 @@ def run(source: str | Path | Mapping, out: str | Path = "output", *, force: bool
     argument, else the dict's title as a slug).  Returns the scene's
     :class:`~reportgen.pipeline.stages.Outcome` (a list of them for a folder); a bad
     config raises :class:`~reportgen.errors.ConfigError` before anything runs, a failed
-    simulation comes back as the outcome's ``status`` and ``message``.
+    simulation comes back as the outcome's ``status`` and ``message``.  ``formats``
+    (("html",), say) overrides the config's ``[report] formats``.
     """
     from .pipeline.stages import run_scene, validate_all
     from .support.layout import collect_configs
@@ -104,7 +109,7 @@ def run(source: str | Path | Mapping, out: str | Path = "output", *, force: bool
     validate_all(paths)
     outcomes = []
     for path in paths:
-        outcome = run_scene(str(path), str(out), force, tuple(formats))
+        outcome = run_scene(str(path), str(out), force, tuple(formats) if formats else None)
         if outcome.config_error:
             raise ConfigError([outcome.message])
         outcomes.append(outcome)
@@ -189,17 +194,30 @@ class Run:
         return f"<reportgen.Run {self.kind} {self.title!r} {self.status} ({self.h5})>"
 
     # ------------------------------------------------------------- xarray
-    def to_xarray(self):
-        """The main run as an :class:`xarray.Dataset` on the coordinate ``t``: one
+    def to_xarray(self, group: str | None = None):
+        """The archive, or one group of it, as an :class:`xarray.Dataset` with
+        ``units`` and ``long_name`` on every variable.
+
+        Without ``group``: a sweep is one dataset on ``member``, the swept values as
+        coordinates (``initial.theta`` -> ``initial_theta``) and per member its scalar
+        results and ``status``; otherwise the main run on the coordinate ``t``, one
         variable per state column (named by the column), the invariants and reference
-        solutions, each with its ``units`` and ``long_name``.  A sweep: one dataset on
-        ``member``, the swept values as coordinates (``initial.theta`` ->
-        ``initial_theta``) and per member its scalar results and ``status``."""
+        solutions; a kind that integrates nothing (normal modes, rotations, inertia)
+        gives its ``/analysis`` group.  A sweep's point sets (a surface of section's
+        crossings, a varying number per member) join it on their own dimension
+        ``<set>_point``, with ``<set>_member`` naming each point's member.  ``group``
+        names any group of the archive instead: ``"analysis"``, ``"runs/loops"``,
+        ``"sweep/points/crossings"`` (a sweep's point sets, each point with its
+        ``member``), ``"study"``."""
+        if group is not None:
+            return self._group_xarray(group)
         if self.data.sweep is not None:
             return self._sweep_xarray()
         if "main" not in self.data.runs:
-            raise ValueError(f"{self.h5}: the archive holds no main run "
-                             f"(runs: {', '.join(self.data.runs) or 'none'})")
+            if self.data.runs:
+                raise ValueError(f"{self.h5}: the archive holds no main run; ask for one of "
+                                 + ", ".join(f"group='runs/{r}'" for r in self.data.runs))
+            return self._group_xarray("analysis")
         import numpy as np
         import xarray as xr
 
@@ -228,6 +246,24 @@ class Run:
         t_attrs = _cf(attrs.get("t", {})) or {"units": "s", "long_name": "time"}
         return xr.Dataset(variables, coords={"t": ("t", np.asarray(run.t), t_attrs)},
                           attrs=self._dataset_attrs())
+
+    def _group_xarray(self, group: str, stamp: bool = True):
+        import h5py
+        import xarray as xr
+
+        group = group.strip("/")
+        with h5py.File(self.h5, "r") as f:
+            if not isinstance(f.get(group or "/"), h5py.Group):
+                groups: list[str] = []
+                f.visititems(lambda n, o: groups.append(n) if isinstance(o, h5py.Group)
+                             else None)
+                raise ValueError(f"{self.h5}: no group {group!r} (groups: "
+                                 f"{', '.join(sorted(groups))})")
+        with xr.open_dataset(self.h5, group=group or "/", engine="h5netcdf") as ds:
+            out = ds.load()
+        if stamp:
+            out.attrs.update(self._dataset_attrs())
+        return out
 
     def _dataset_attrs(self) -> dict[str, Any]:
         out = {"kind": self.kind, "title": self.title, "status": self.status,
@@ -262,7 +298,14 @@ class Run:
         for key, values in sweep.labels.items():
             variables[_ident(key, taken)] = ("member", np.asarray([str(v) for v in values],
                                                                   dtype=str), {})
-        return xr.Dataset(variables, coords=coords, attrs=self._dataset_attrs())
+        ds = xr.Dataset(variables, coords=coords, attrs=self._dataset_attrs())
+        for name in sweep.points:  # crossings and the like: a varying number per member
+            points = self._group_xarray(f"sweep/points/{name}", stamp=False)
+            names = set(points.variables) | set(points.dims)
+            points = points.rename({v: f"{name}_{v}" for v in names})
+            ds.attrs.update({f"{name}_{k}": v for k, v in points.attrs.items()})
+            ds = ds.merge(points.drop_attrs(deep=False), combine_attrs="override")
+        return ds
 
     # ------------------------------------------------------------- notebook
     def headline(self) -> list[tuple[str, str]]:
@@ -304,9 +347,6 @@ def open(path: str | Path) -> Run:  # noqa: A001 - reportgen.open, like io.open
 
 
 # ---------------------------------------------------------------------- kinds
-_UNIT = re.compile(r"\s*\[([^\[\]]*)\]\s*$")
-
-
 def kinds() -> list[dict[str, Any]]:
     """Every scene kind: ``name``, ``summary``, ``presets`` (names) and ``keys``, one dict
     per key as ``reportgen kinds`` lists them (``key`` dotted, ``type``, ``default``,
@@ -318,6 +358,7 @@ def kinds() -> list[dict[str, Any]]:
     """
     from .kinds import KINDS
     from .scene.catalogue import _SHARED_KEYS, _field_rows
+    from .scene.schema import _UNIT_BRACKET
 
     out = []
     for cls in KINDS.values():
@@ -329,11 +370,12 @@ def kinds() -> list[dict[str, Any]]:
             if not (kind or default):  # a table header: [params], [[bodies]]
                 table = key.strip("[]") if indent == 4 else table
                 continue
-            unit = _UNIT.search(meaning)
+            unit = _UNIT_BRACKET.search(meaning)  # the unit the value converter reads
             keys.append({"key": f"{table}.{key}" if indent > 4 and table else key,
                          "type": kind, "default": default,
-                         "description": _UNIT.sub("", meaning) if unit else meaning,
-                         "units": unit.group(1) if unit else ""})
+                         "description": " ".join((meaning[:unit.start()] + meaning[unit.end():]
+                                                  ).split()) if unit else meaning,
+                         "units": unit.group(1).strip() if unit else ""})
         out.append({"name": cls.kind, "summary": cls.summary,
                     "presets": list(cls.presets), "keys": keys})
     return out

@@ -50,7 +50,7 @@ def test_each_kind_animates_from_its_archive_alone(kind, tmp_path):
     before = archive.read_bytes()
     out = tmp_path / "anim"
     done = cli_without_core("animate", archive, "--fps", "10", "--duration", "3", "--dpi", "40",
-                            "--format", "gif", "--out", out)
+                            "--format", "gif", "--folder", out)
     assert done.returncode == 0, done.stderr
     assert "frame 30/30" in done.stderr  # progress shown
     frames = _gif_frames(out / "animation.gif")
@@ -66,7 +66,7 @@ def test_gif_and_mp4_frame_count_rate_and_duration(tmp_path, cli):
     imageio_ffmpeg = pytest.importorskip("imageio_ffmpeg")
     archive = _run_without_study("pendulum_large", tmp_path)
     code, _, err = cli("animate", archive, "--fps", "12", "--duration", "3", "--dpi", "50",
-                       "--format", "gif,mp4", "--out", tmp_path / "a")
+                       "--format", "gif,mp4", "--folder", tmp_path / "a")
     assert code == 0, err
     gif = Image.open(tmp_path / "a" / "animation.gif")
     assert gif.n_frames == 36  # the clock changes every frame: none merged
@@ -83,7 +83,7 @@ def test_the_bob_is_where_the_archive_says(tmp_path, cli):
 
     archive = _run_without_study("pendulum_large", tmp_path)
     code, _, err = cli("animate", archive, "--fps", "10", "--duration", "3", "--dpi", "60",
-                       "--format", "gif", "--out", tmp_path / "a")
+                       "--format", "gif", "--folder", tmp_path / "a")
     assert code == 0, err
     run = read_archive(archive).runs["main"]
     theta = run.y[:, run.columns.index("theta")]
@@ -104,7 +104,7 @@ def test_the_bob_is_where_the_archive_says(tmp_path, cli):
 
 def test_too_few_frames_no_motion_and_missing_archive_exit_2(tmp_path, cli):
     archive = _run_without_study("inertia_cone", tmp_path)
-    code, _, err = cli("animate", archive, "--format", "gif", "--out", tmp_path / "x")
+    code, _, err = cli("animate", archive, "--format", "gif", "--folder", tmp_path / "x")
     assert code == 2 and "no motion to animate" in err
     code, _, err = cli("animate", archive, "--fps", "2", "--duration", "5")
     assert code == 2 and "at least 30" in err

@@ -255,3 +255,72 @@ def test_example_notebook_runs(tmp_path, monkeypatch):
     assert not [o for o in outputs if o.get("output_type") == "error"]
     assert any("image/png" in o.get("data", {}) for o in outputs)  # the plot was drawn
     assert all(tmp_path in p.parents for p in _files(tmp_path))
+
+
+# ------------------------------------------------------- groups, /analysis, point sets
+CO2 = {"kind": "normal_modes", "title": "CO₂ — API test", "preset": "co2",
+       "report": {"formats": ["html"]}}
+SECTIONS = {"kind": "hamiltonian", "title": "Hénon–Heiles sections — API test",
+            "system": {"coordinates": ["x", "y"],
+                       "H": "(p_x**2 + p_y**2)/2 + (x**2 + y**2)/2 + x**2*y - y**3/3"},
+            "initial": {"x": 0.0, "y": 0.0, "p_y": 0.0, "energy": 0.125},
+            "section": {"coordinate": "x", "axes": ["y", "p_y"]},
+            "run": {"t_end": 60.0, "samples": 6001, "study": False},
+            "sweep": {"initial": {"y": {"start": -0.2, "stop": 0.2, "num": 3}}, "store": 0},
+            "report": {"formats": ["html"]}}
+
+
+def test_a_kind_without_a_run_opens_as_its_analysis(tmp_path):
+    """Normal modes integrate nothing: ``to_xarray()`` is ``/analysis`` on named
+    dimensions; the CO₂ frequencies against the textbook's closed form (ω² = k/m,
+    (k/m)(1 + 2m/M) for the linear triatomic, Goldstein §6.4) through the dataset."""
+    done = reportgen.run(CO2, out=tmp_path)
+    assert done.ok, done.message
+    r = reportgen.open(done.folder)
+    ds = r.to_xarray()
+    assert ds.identical(r.to_xarray("analysis").assign_attrs(ds.attrs))
+    assert "frequencies" in ds and ds.frequencies.dims == ("mode",)
+    assert ds.frequencies.attrs["units"] == "rad/s" and "mode" in ds.coords
+    for name, var in ds.variables.items():
+        assert "units" in var.attrs, name
+    assert not [d for d in ds.dims if str(d).startswith("phony")]
+    with pytest.raises(ValueError, match="no group 'nowhere'.*analysis"):
+        r.to_xarray("nowhere")
+
+
+def test_analysis_arrays_on_t_carry_the_runs_times(out):
+    """An ``/analysis`` array declared on ``t`` shares the main run's time coordinate."""
+    _, single, _ = out
+    path = Path(single.folder) / "run.h5"
+    with h5py.File(path, "r") as f:
+        on_t = []
+        f["analysis"].visititems(lambda n, o: on_t.append(n) if isinstance(o, h5py.Dataset)
+                                 and o.dims[0].keys() == ["t"] else None)
+        times = f["runs/main/t"][()]
+    assert on_t, "the pendulum stores arrays on t (its phase portrait, energy error)"
+    ds = reportgen.open(path).to_xarray("analysis")
+    np.testing.assert_array_equal(ds.t, times)
+    assert ds.t.attrs["units"] == "s"
+    # and the readers do not take the index datasets for results
+    assert "t" not in reportgen.open(path).data.analysis
+
+
+def test_a_sweeps_point_sets_join_its_dataset(tmp_path):
+    """Surface-of-section crossings, a varying number per member, join the sweep's
+    dataset on their own dimension with the member each belongs to; every crossing
+    lies on x = 0 (the section) to the root finder's tolerance."""
+    done = reportgen.run(SECTIONS, out=tmp_path)
+    assert done.ok, done.message
+    ds = reportgen.open(done.folder).to_xarray()
+    sets = [d[: -len("_point")] for d in ds.dims if str(d).endswith("_point")]
+    assert sets, list(ds.dims)
+    name = sets[0]
+    member = ds[f"{name}_member"]
+    assert member.dims == (f"{name}_point",)
+    assert set(np.unique(member.values)) <= set(ds.member.values.tolist())
+    counts = np.bincount(member.values, minlength=ds.sizes["member"])
+    assert (counts > 3).all()  # each orbit crosses the section several times by t = 60
+    state = ds[f"{name}_state"]
+    x = state.sel({f"{name}_component": "x"})
+    assert float(abs(x).max()) < 1e-9
+    assert done.folder.endswith("henon_heiles_sections_api_test")  # é -> e in the name

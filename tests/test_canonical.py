@@ -332,7 +332,7 @@ def test_unknown_names_and_expressions_with_stray_symbols():
 
 
 @pytest.mark.parametrize("kind, coordinates, momenta, message", [
-    ("F3", ["X", "Y"], None, "kind 'F3': expected one of F1, F2"),
+    ("F5", ["X", "Y"], None, "kind 'F5': expected one of F1, F2, F3, F4"),
     ("F2", ["X"], None, "expected 2 new coordinate names"),
     ("F2", ["X", "X"], None, "distinct: P_X, X repeated"),  # and the default P_X
     ("F2", ["X", "Y"], ["P_X", "X"], "distinct: X repeated"),

@@ -200,8 +200,9 @@ def test_report_sections_from_the_archive(write_config, cli, tmp_path):
 
 
 def test_symplectic_method_runs_on_separable_model():
+    # h divides the output spacing 2π·10/400 into 315 whole steps (about 0.0005)
     r = simulate(text(run="t_end = 62.83185307179586\nsamples = 401\nmethod = \"yoshida6\"\n"
-                          "h = 0.0005"))
+                          f"h = {62.83185307179586 / 400 / 315!r}"))
     run = r.runs["main"]
     assert run.attrs["method"] == "yoshida6"
     assert run.attrs["drift_energy"] < 1e-8

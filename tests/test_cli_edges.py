@@ -205,6 +205,22 @@ def test_figures_config_out_is_the_output_root_as_in_run(write_config, tmp_path,
     assert not (tmp_path / "output").exists()
     code, _, err = cli("figures", config, "--out", root, "--root", tmp_path / "else")
     assert code == 2 and "--out and --root" in err
+    # an archive and an output root: the files go to ROOT/<scene>/, as `run` lays it out
+    archive = root / "p3" / "run.h5"
+    code, _, err = cli("figures", archive, "--out", tmp_path / "talk", "--format", "svg",
+                       "--only", "time_series*")
+    assert code == 0, err
+    assert list((tmp_path / "talk" / "p3" / "figures-report").glob("time_series*.svg"))
+    # animate takes a config too; --out and --root mean the same output root
+    code, _, err = cli("animate", config, "--root", root, "--format", "gif", "--dpi", "30",
+                       "--fps", "10", "--duration", "3")
+    assert code == 0, err
+    assert (root / "p3" / "animation.gif").exists()
+    code, _, err = cli("animate", archive, "--out", tmp_path / "talk", "--format", "gif",
+                       "--dpi", "30", "--fps", "10", "--duration", "3")
+    assert code == 0, err
+    assert (tmp_path / "talk" / "p3" / "animation.gif").exists()
+    assert not (tmp_path / "output").exists()
 
 
 @pytest.mark.parametrize("text, line", [

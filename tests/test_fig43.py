@@ -164,7 +164,7 @@ def test_overlap_and_font_checks_catch_what_the_stretched_figure_did(fig43):
 def test_slide_export_from_the_shipped_config(archives, tmp_path, cli):
     out = tmp_path / "slide"
     code, _, err = cli("figures", archives["heavy_top_fig4.3"], "--size", "slide", "--dpi",
-                       "80", "--format", "png,svg", "--only", "fig4_3*", "--out", out)
+                       "80", "--format", "png,svg", "--only", "fig4_3*", "--folder", out)
     assert code == 0, err
     assert Image.open(out / "fig4_3-fig4_3.png").size == (800, 450)
     svg = (out / "fig4_3-fig4_3.svg").read_text()

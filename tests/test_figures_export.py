@@ -42,7 +42,7 @@ def test_slide_size_every_figure_in_three_formats_from_the_archive_alone(archive
     before = archive.read_bytes()
     out = tmp_path / "slides"
     # core made unimportable: the export draws from the archive only
-    done = cli_without_core("figures", archive, "--size", "slide", "--dpi", "120", "--out", out)
+    done = cli_without_core("figures", archive, "--size", "slide", "--dpi", "120", "--folder", out)
     assert done.returncode == 0, done.stderr
     ids = _report_figure_ids(archive)
     assert ids
@@ -61,7 +61,7 @@ def test_slide_size_every_figure_in_three_formats_from_the_archive_alone(archive
 
 def test_print_size_keeps_each_figures_aspect_ratio(archive, tmp_path, cli):
     code, _, err = cli("figures", archive, "--size", "print", "--format", "pdf",
-                       "--out", tmp_path)
+                       "--folder", tmp_path)
     assert code == 0, err
     report_svgs = archive.parent / "figures"
     for pdf in tmp_path.glob("*.pdf"):
@@ -107,7 +107,7 @@ def test_from_a_config_runs_the_scene_only_when_its_archive_is_missing(write_con
 ])
 def test_bad_options_exit_2_and_write_nothing(archive, tmp_path, cli, args, message):
     out = tmp_path / "never"
-    code, _, err = cli("figures", archive, "--out", out, *args)
+    code, _, err = cli("figures", archive, "--folder", out, *args)
     assert code == 2 and message in err
     assert not out.exists()  # nothing written, not even the folder
 

@@ -213,7 +213,7 @@ def test_case_all_writes_three_runs_and_fig43(write_config, cli, tmp_path):
     assert data.analysis["case"] == "loops"
     html = (tmp_path / "o" / "fig43" / "report.html").read_text()
     assert 'id="fig4_3"' in html and 'id="fig-fig4_3' in html
-    assert 'id="weierstrass"' in html and "(exercise 4.10)" in html
+    assert 'id="weierstrass"' in html and "(textbook exercise 4.10)" in html
     assert 'id="nutation_locus"' not in html  # drawn for all three in Fig. 4.3
 
 

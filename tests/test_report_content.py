@@ -4,8 +4,9 @@
 commit before the staged study budget, SVG-only figures, compiled-once drivers and the
 slimmed PDF figures) with ``python tests/report_content.py output/pendulum_small FILE``;
 its HTML part was written again for issue 31 (the contents list under the title, the
-end time in words in check names, the study table's run count in its method cell), the
-arrays kept.
+end time in words in check names, the study table's run count in its method cell) and
+for issues 32–33 (citations naming their document, the Sources list, the end variations
+of S, the phase-space action and the ω → 0 limit), the arrays kept.
 The HTML must have the same sections, headings, figures, fact labels, table headers and
 row labels (rows of the timed study excepted), and the archive the same trajectory and
 invariants to 1e-12.

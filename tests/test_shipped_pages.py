@@ -12,7 +12,8 @@ the limits (reportgen/rendering/gate.py; each rule's seeded defect is in
 test_document_gate.py).  The words of every PDF are also measured as an outside reader
 would (``pdftotext -bbox``): none within half an inch of the paper's right edge, no
 fallback title "kind (slug)".  Every archive opens in xarray with named dimensions (no
-``phony_dim``, no warning) and ``units`` on every variable.
+``phony_dim``, no warning) and ``units`` on every variable, in every group (``/analysis``
+and its subgroups included).
 """
 
 from __future__ import annotations
@@ -90,12 +91,11 @@ def test_every_archive_opens_in_xarray_with_units(config, reports):
     import xarray as xr
 
     path = reports / config.stem / "run.h5"
-    with h5py.File(path, "r") as f:
-        groups = [g for g in ("runs/main", "study", "sweep", "sweep/values", "sweep/analysis")
-                  if g in f]
-    # a kind that integrates nothing (inertia, normal modes, rotations) has no run group:
-    # its root group (checks, config) is what opens
-    for group in groups or [None]:
+    groups: list[str] = []
+    with h5py.File(path, "r") as f:  # every group: runs, /analysis and its subgroups, sweep
+        f.visititems(lambda name, obj: groups.append(name) if isinstance(obj, h5py.Group)
+                     else None)
+    for group in [None, *groups]:
         with warnings.catch_warnings():
             warnings.simplefilter("error")  # the phony_dims warning (or any other) fails
             ds = xr.open_dataset(path, group=group, engine="h5netcdf")
@@ -103,3 +103,38 @@ def test_every_archive_opens_in_xarray_with_units(config, reports):
             assert not [d for d in ds.dims if str(d).startswith("phony")], (group, ds.dims)
             bare = [n for n, v in ds.variables.items() if "units" not in v.attrs]
             assert not bare, f"{config.stem}:{group}: no units on {bare}"
+
+
+# ------------------------------------------------------------------- citations
+_LABEL = re.compile(r"<li><b>(.*?)</b>")
+
+
+@pytest.mark.parametrize("config", SCENES, ids=[p.stem for p in SCENES])
+def test_every_citation_names_its_document(config, reports):
+    """No "(10.25)" or "Fig. 4.3" without the document it is in (reportgen.scene.sources),
+    and the Sources list holds exactly the documents the text cites, in their order."""
+    from markupsafe import escape
+
+    from reportgen.scene.sources import (
+        PLACE,
+        SOURCES,
+        bare_citations,
+        cited,
+        citing_document,
+        visible_blocks,
+    )
+
+    page = (reports / config.stem / "report.html").read_text(encoding="utf-8")
+    bare = list(dict.fromkeys(bare_citations(page)))
+    assert bare == [], f"{config.stem}: citations naming no document:\n  " + "\n  ".join(bare)
+    named = {key for block in visible_blocks(page) for place in PLACE.finditer(block)
+             if (key := citing_document(block, place)) is not None}
+    section = page.split('<section id="sources">', 1)
+    listed = []
+    if len(section) == 2:
+        by_label = {str(escape(s.label)): k for k, s in SOURCES.items()}
+        listed = [by_label[label] for label in
+                  _LABEL.findall(section[1].split("</section>", 1)[0])]
+    assert named <= set(listed), f"{config.stem}: cited but not listed: {named - set(listed)}"
+    assert listed == cited(page) == [k for k in SOURCES if k in listed]
+

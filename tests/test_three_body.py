@@ -1,6 +1,7 @@
 """three_body: figure-eight (Chenciner & Montgomery 2000, period 6.32591398 from Simó),
 Pythagorean problem (Szebehely & Peters 1967: bodies 4 and 5 end as a binary, 3 escapes),
-Sun–Earth–Moon mass ratios (notes 3.35) and the Jacobi kinetic energy (3.33)."""
+Sun–Earth–Moon mass ratios (notes 3.35) and the Jacobi kinetic energy (diagonal in
+Jacobi's coordinates, which are not the notes')."""
 
 from __future__ import annotations
 
@@ -71,14 +72,14 @@ def test_sun_earth_moon_mass_ratios_and_jacobi():
     r = simulate('kind = "three_body"\npreset = "sun_earth_moon"\n[run]\nt_end = 0.5\n'
                  'samples = 2001\nstudy = false\n')
     m = load_scene(parse_config_text('kind = "three_body"\npreset = "sun_earth_moon"\n')).masses
-    assert 1e-6 < m[1] / m[0] < 1e-5 and 1e-8 < m[2] / m[0] < 1e-7  # (3.35)
+    assert 1e-6 < m[1] / m[0] < 1e-5 and 1e-8 < m[2] / m[0] < 1e-7  # notes (3.35)
     a = r.analysis
     assert a["jacobi_kinetic_identity_error"] < 1e-13
     # Moon about Earth: 0.0025696 AU, ~27.3 d; the measured mean period within 2 % of Kepler's
     assert abs(a["moon_period_measured"] / a["moon_kepler_period"] - 1) < 0.02
     assert a["moon_reference_error"] < 1e-9
     assert r.status == "ok"
-    # what the moon section draws is stored: the Moon's track about the Earth and ρ1, ρ2 (3.32)
+    # what the moon section draws is stored: the Moon's track about the Earth and the Jacobi ρ1, ρ2
     y = r.runs["main"].y
     assert a["hierarchical"] is True
     np.testing.assert_array_equal(a["moon_relative_position"], y[:, 6:9] - y[:, 3:6])

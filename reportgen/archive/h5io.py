@@ -142,6 +142,8 @@ def read_mapping(group: h5py.Group) -> dict[str, Any]:
     for key, item in group.items():
         if isinstance(item, h5py.Group):
             out[key] = read_mapping(item)
+        elif item.attrs.get("reportgen_dimension", False):
+            continue  # an index of /analysis (archive.store._analysis_dimensions)
         elif item.dtype.kind == "O":
             out[key] = decode(item[()])
         else:

@@ -211,8 +211,10 @@ def _write_contents(f: h5py.File, *, kind, title, scene, config_text, config_sha
             continue
         first_name[id(run)] = name
         _write_run(runs.create_group(name), run, schema)
-    write_mapping(f.create_group("analysis"), results.analysis,
+    analysis = f.create_group("analysis")
+    write_mapping(analysis, results.analysis,
                   describe=lambda name: _quantity(schema.result, name).cf_attrs)
+    _analysis_dimensions(analysis, schema, runs.get("main"))
     checks = described(table(f, "checks", _checks_records(results.checks)),
                        "headline numbers against their exact or independent references")
     _row_scale(f, checks, "check", "row of the checks table")
@@ -237,6 +239,57 @@ def _row_scale(g: h5py.Group, tab: h5py.Dataset, name: str, long_name: str) -> N
     scale = described(dataset(g, name, np.arange(len(tab), dtype=np.int64)), long_name, "1")
     scale.make_scale(name)
     tab.dims[0].attach_scale(scale)
+
+
+#: the attr marking a dimension scale of ``/analysis`` (an index, not a result)
+DIMENSION_ATTR = "reportgen_dimension"
+
+
+def _analysis_dimensions(g: h5py.Group, schema: ResultsSchema, main: h5py.Group | None) -> None:
+    """Every array below ``/analysis`` on named dimensions: the declared ``dims`` of its
+    quantity (``t`` carries the main run's times), ``<result>_<axis>`` for an array the
+    schema leaves unnamed.  The scales sit in ``/analysis`` itself, where every subgroup
+    sees them (netCDF's rule), so xarray needs no phony dimensions anywhere."""
+    arrays: list[tuple[h5py.Dataset, tuple[str, ...]]] = []
+
+    def visit(name: str, obj) -> None:
+        if isinstance(obj, h5py.Dataset) and obj.ndim > 0:
+            q = _quantity(schema.result, name)
+            dims = q.dims if len(q.dims) == obj.ndim else ()
+            if not dims:
+                stem = name.replace("/", "_")
+                dims = tuple(f"{stem}_{i}" if obj.ndim > 1 else f"{stem}_index"
+                             for i in range(obj.ndim))
+            # a matrix on (xyz, xyz): xarray wants distinct names, (xyz, xyz_2)
+            arrays.append((obj, tuple(d if d not in dims[:i] else f"{d}_{dims[:i].count(d) + 1}"
+                                      for i, d in enumerate(dims))))
+
+    g.visititems(visit)
+    scales: dict[tuple[str, int], h5py.Dataset] = {}
+    for ds, dims in arrays:
+        for axis, (dim, n) in enumerate(zip(dims, ds.shape, strict=True)):
+            scale = scales.get((dim, n))
+            if scale is None:
+                name = dim if dim not in g and all(d != dim for d, _ in scales) else \
+                    f"{dim}_{n}"
+                times = main is not None and dim == "t" and len(main["t"]) == n
+                scale = dataset(g, name, main["t"][()] if times
+                                else np.arange(n, dtype=np.int64))
+                if times:
+                    scale.attrs.update({k: main["t"].attrs[k]
+                                        for k in ("units", "long_name", "symbol")
+                                        if k in main["t"].attrs})
+                else:
+                    described(scale, f"index along {dim}", "1")
+                scale.attrs[DIMENSION_ATTR] = np.bool_(True)
+                scale.make_scale(name)
+                scales[(dim, n)] = scale
+            ds.dims[axis].attach_scale(scale)
+
+
+def is_dimension(item) -> bool:
+    """Whether ``item`` is one of the index datasets :func:`_analysis_dimensions` adds."""
+    return isinstance(item, h5py.Dataset) and bool(item.attrs.get(DIMENSION_ATTR, False))
 
 
 def described(ds: h5py.Dataset, long_name: str, units: str = "", symbol: str = ""):
@@ -585,6 +638,8 @@ def _read_light(f: h5py.File, path: Path, attrs: dict, checks) -> ArchiveData | 
         if isinstance(g, h5py.Group):
             analysis = {k: decode(v) for k, v in g.attrs.items() if not k.startswith("__")}
             for k, item in g.items():
+                if is_dimension(item):
+                    continue
                 if (isinstance(item, h5py.Dataset) and item.size <= LIGHT_ARRAY_SIZE
                         and item.dtype.kind in "biuf"):
                     analysis[k] = item[()]

@@ -142,16 +142,14 @@ def build_parser() -> argparse.ArgumentParser:
     fig.add_argument("--only", action="append", default=[], metavar="PATTERN",
                      help="only figures whose id matches this shell pattern (repeatable), "
                           "e.g. 'nutation*'")
-    fig.add_argument("--out", default=None, metavar="DIR",
-                     help="with a config: the output folder, as in `reportgen run` (default: "
-                          "output); the files go to figures-SIZE beside the archive. With an "
-                          "archive: the folder for the files (default: figures-SIZE beside it)")
-    fig.add_argument("--root", default=None, metavar="DIR",
-                     help="with a config: the output folder (the older name of --out)")
+    _output_root_options(fig, "the files go to SCENE/figures-SIZE under it")
+    fig.add_argument("--folder", default=None, metavar="DIR",
+                     help="put the files in exactly this folder instead")
 
     ani = sub.add_parser("animate", help="the scene's motion as a GIF (and MP4 with the "
                                          "'video' extra), drawn from its archive")
-    ani.add_argument("archive", metavar="ARCHIVE.h5")
+    ani.add_argument("path", metavar="PATH", help="a run.h5 archive, or a config (its archive "
+                     "under the output folder is used, run first if missing or stale)")
     ani.add_argument("--fps", type=_positive("--fps"), default=15.0, metavar="N",
                      help="frames per second (default 15)")
     ani.add_argument("--duration", type=_positive("--duration"), default=6.0, metavar="SECONDS",
@@ -160,8 +158,9 @@ def build_parser() -> argparse.ArgumentParser:
                      help="resolution (default 100: about 640 pixels wide)")
     ani.add_argument("--format", default=None, metavar="gif,mp4",
                      help="default: gif, and mp4 when ffmpeg is available")
-    ani.add_argument("--out", default=None, metavar="DIR",
-                     help="folder for animation.gif/.mp4 (default: beside the archive)")
+    _output_root_options(ani, "animation.gif/.mp4 go to SCENE/ under it")
+    ani.add_argument("--folder", default=None, metavar="DIR",
+                     help="put the files in exactly this folder instead")
 
     ins = sub.add_parser("inspect", help="summary of an archive, checksums verified")
     ins.add_argument("archive", metavar="ARCHIVE.h5")
@@ -388,6 +387,37 @@ def cmd_report(args) -> int:
     return code
 
 
+def _output_root_options(parser, where: str) -> None:
+    """``--out`` and ``--root``: the output root, as in ``reportgen run``, in every command."""
+    parser.add_argument("--out", default=None, metavar="DIR",
+                        help="the output folder, as in `reportgen run` (default: beside the "
+                             f"archive; for a config, output); {where}")
+    parser.add_argument("--root", default=None, metavar="DIR", help="the same as --out")
+
+
+def _where(args, command: str) -> tuple[Path, Path | None]:
+    """(archive, output root) of ``reportgen figures|animate PATH``: PATH's archive (a
+    config's is brought up to date under the root first) and the root its files go
+    under (None: beside the archive)."""
+    if args.out and args.root and Path(args.out) != Path(args.root):
+        raise UsageError(f"{command}: --out and --root both name the output folder; give "
+                         f"one (got --out {args.out}, --root {args.root})")
+    root = args.out or args.root
+    path = Path(args.path)
+    is_config = path.suffix.lower() == ".toml"
+    archive = _archive_of(path, Path(root or "output") if is_config else None)
+    return archive, Path(root) if root else None
+
+
+def _files_folder(archive: Path, root: Path | None, folder: str | None, name: str) -> Path:
+    """Where a command's files go: ``--folder``, else ``<root>/<scene>/<name>`` for an
+    output root (the scene's folder as `reportgen run` names it), else beside the
+    archive."""
+    if folder:
+        return Path(folder)
+    return (archive.parent if root is None else root / archive.parent.name) / name
+
+
 def cmd_figures(args) -> int:
     from ..archive.store import ArchiveError
     from ..rendering.export import export_figures, parse_formats, parse_size
@@ -395,18 +425,12 @@ def cmd_figures(args) -> int:
 
     try:
         size, formats = parse_size(args.size), parse_formats(args.format)
-        is_config = Path(args.path).suffix.lower() == ".toml"
-        if is_config and args.out and args.root and Path(args.out) != Path(args.root):
-            raise UsageError("figures: --out and --root both name the output folder of a "
-                             f"config; give one (got --out {args.out}, --root {args.root})")
-        root = Path(args.out or args.root or "output") if is_config else None
-        archive = _archive_of(Path(args.path), root)
+        archive, root = _where(args, "figures")
     except UsageError as exc:
         return _usage(str(exc))
     if archive is None:
         return EXIT_FAILED
-    out = (Path(args.out) if args.out and not is_config
-           else archive.parent / f"figures-{size.label}")
+    out = _files_folder(archive, root, args.folder, f"figures-{size.label}")
 
     def report(path: Path) -> None:
         _err(f"wrote {path}")
@@ -462,13 +486,14 @@ def cmd_animate(args) -> int:
     from ..archive.store import ArchiveError
     from ..rendering.animate import animate, parse_formats, plan_frames, terminal_progress
 
-    archive = Path(args.archive)
+    archive = Path(args.path)
     try:
         formats = parse_formats(args.format)
         frames = plan_frames(args.fps, args.duration)
-        if not archive.exists():
-            raise UsageError(f"{archive}: no such file")
-        out = Path(args.out) if args.out else archive.parent
+        archive, root = _where(args, "animate")
+        if archive is None:
+            return EXIT_FAILED
+        out = _files_folder(archive, root, args.folder, "")
         _err(f"{archive}: {frames} frames at {args.fps:g} fps -> {', '.join(formats)}")
         written = animate(archive, out, fps=args.fps, duration=args.duration, dpi=args.dpi,
                           formats=formats, progress=terminal_progress())

@@ -9,7 +9,8 @@ and precession per period (Carlson forms, and quadrature as an independent check
 u(t) in Jacobi sn², the effective potential, the steady precession rates and the
 sleeping-top threshold; the initial state that puts each Fig. 4.3 case on a given band
 θmin ≤ θ ≤ θmax; and u(t) through Weierstrass's ℘ (exercise 4.10), evaluated with
-:mod:`reportgen.core.weierstrass` independently of the sn² form.
+:mod:`reportgen.core.weierstrass` independently of the sn² form, with the nutation period
+as the loop integral ∮du/√f(u) round the cut [u1, u2] (:func:`period_loops`).
 
 ``a = I3 ω3 / I1``, ``b = p_φ / I1`` (10.25), ``α = 2E'/I1`` with
 ``E' = E - I3 ω3²/2`` and ``β = 2 M g l / I1`` (10.30).  With ``u = cos θ``,
@@ -707,3 +708,49 @@ def w_weierstrass(t, form: WeierstrassForm, r: Roots) -> np.ndarray:
     z = np.asarray(t, dtype=np.float64) + complex(form.x0, form.omega_prime)
     excess = weierstrass.wp_minus_e3(z, form.lattice)
     return r.w2 - form.scale * excess.real
+
+
+def weierstrass_ode_residual(t, form: WeierstrassForm, r: Roots, c: TopConstants) -> float:
+    """max |λ²℘′(z)² − f(u)| / max f(u) over the times ``t``, u = λ℘(z) + μ, z = t + x0 + iω′.
+
+    The check of the scaling λ = 4/β: u̇² = λ²℘′² must equal f(u) = β(u − u1)(u2 − u)(u3 − u)
+    (evaluated in w = 1 − u from the roots, without cancellation), ℘′ from its own theta
+    quotient (:func:`reportgen.core.weierstrass.wp_prime`), not from differentiating u.
+    """
+    z = np.asarray(t, dtype=np.float64) + complex(form.x0, form.omega_prime)
+    w = w_weierstrass(t, form, r)
+    u_dot_sq = form.scale**2 * weierstrass.wp_prime(z, form.lattice).real ** 2
+    f = c.beta * (w - r.w1) * (r.w2 - w) * (w - r.w3)
+    return float(np.max(np.abs(u_dot_sq - f)) / np.max(np.abs(f)))
+
+
+# ------------------------------------------- the period as a loop integral round the cut
+@dataclass(frozen=True)
+class PeriodLoops:
+    """The nutation period as integrals round the cut [u1, u2] (textbook ex. 4.10).
+
+    ``loop``: T = ∮ du/√f(u) counter-clockwise round an ellipse about the cut, by the
+    trapezoidal rule; ``sine_squared``: T = 2∫_{u1}^{u2} du/√f(u) with u = u1 + (u2 − u1)
+    sin²s; ``wp_loop``: ∮ d℘/√(4℘³ − g2℘ − g3) round [e3, e2] in ℘'s plane, which is 2ω,
+    ℘'s real period.  With u = λ℘ + μ, λ = 4/β, du/√f(u) = d℘/√(4℘³ − g2℘ − g3) exactly, so
+    all three are T = 2ω (see :class:`WeierstrassForm`).
+    """
+
+    loop: weierstrass.PeriodIntegral
+    sine_squared: weierstrass.PeriodIntegral
+    wp_loop: weierstrass.PeriodIntegral
+
+
+def period_loops(r: Roots, c: TopConstants) -> PeriodLoops | None:
+    """:class:`PeriodLoops` of a nutating top (None without nutation, as for ℘).
+
+    The cubic enters through its differences only: u2 − u1 = w2 − w1, u3 − u2 = w1 − w3,
+    and in ℘'s plane e2 − e3 = β(u2 − u1)/4, e1 − e2 = β(u3 − u2)/4.
+    """
+    if r.sleeping or r.w2 - r.w1 <= STEADY_RTOL * max(r.w2, 1e-300) or r.w3 >= 0.0:
+        return None
+    width, gap = r.w2 - r.w1, r.w1 - r.w3
+    return PeriodLoops(
+        loop=weierstrass.loop_period(c.beta, width, gap),
+        sine_squared=weierstrass.sine_squared_period(c.beta, width, gap),
+        wp_loop=weierstrass.loop_period(4.0, 0.25 * c.beta * width, 0.25 * c.beta * gap))

@@ -1,6 +1,6 @@
 r"""Small oscillations about a stable equilibrium: the eigenproblem A η = ω² M η.
 
-Lecture notes ch. 5, §5.1 (Goldstein, Poole & Safko, *Classical Mechanics*, 3rd ed.,
+Textbook ch. 5, §5.1 (Goldstein, Poole & Safko, *Classical Mechanics*, 3rd ed.,
 ch. 6): near a minimum of V the Lagrangian is L = ½ q̇ᵀ M q̇ − ½ qᵀ A q, and the
 motion is a superposition of normal modes q = Σ_k η_k (a_k cos ω_k t + b_k sin ω_k t)
 with A η_k = ω_k² M η_k and η_kᵀ M η_l = δ_kl.
@@ -15,7 +15,7 @@ Pure numerics on ndarrays: no I/O, no plotting.
 
 References
 ----------
-.. [1] Lecture notes ch. 5, §5.1, Fig. 5.1 (molecule vibrations).
+.. [1] Textbook ch. 5, §5.1, Fig. 5.1 (molecule vibrations).
 .. [2] Goldstein, Poole & Safko, 3rd ed., §6.2 (eigenvalue equation), §6.4 (linear
        triatomic molecule).
 .. [3] Wilson, Decius & Cross, *Molecular Vibrations* (1955), ch. 4 (B-vectors).
@@ -54,7 +54,7 @@ def generalized_modes(M: np.ndarray, A: np.ndarray) -> tuple[np.ndarray, np.ndar
 
 
 def three_step_modes(M: np.ndarray, A: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The textbook route (notes §5.1; Goldstein §6.2), step by step.
+    """The textbook route (textbook §5.1; Goldstein §6.2), step by step.
 
     1. diagonalize M = U D Uᵀ;
     2. rescale to unit mass: q = U D^(-1/2) q'; then T = ½ q̇'ᵀ q̇' and A' = D^(-1/2) Uᵀ A U D^(-1/2);
@@ -219,7 +219,7 @@ def solve_modes(M: np.ndarray, A: np.ndarray, rigid: np.ndarray | None = None,
 
 def modal_evolution(modes: np.ndarray, omega: np.ndarray, M: np.ndarray, q0: np.ndarray,
                     v0: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Exact motion by modal superposition (notes §5.1; Goldstein eq. for q(t) in §6.2).
+    """Exact motion by modal superposition (textbook §5.1; Goldstein eq. for q(t) in §6.2).
 
     q(t) = Σ_k η_k (a_k cos ω_k t + b_k sin ω_k t / ω_k), a_k = η_kᵀ M q0, b_k = η_kᵀ M v0;
     a zero mode moves uniformly: η_k (a_k + b_k t).
@@ -409,35 +409,40 @@ class Molecule:
         candidate is kept if it maps every atom onto an atom of equal mass and
         leaves A invariant (S A Sᵀ = A).
         """
+        frame = self.drawing_frame()
+        normals = list(frame) + list(np.eye(3))
+        cands = [-np.eye(3)] + [np.eye(3) - 2 * np.outer(nv, nv) for nv in normals]
+        ops: list[np.ndarray] = []
+        for Rm in cands:
+            S = self._operation(Rm, A, tol)
+            if S is not None and not any(np.allclose(S, s) for s in ops):
+                ops.append(S)
+        return ops
+
+    def _operation(self, Rm: np.ndarray, A: np.ndarray, tol: float) -> np.ndarray | None:
+        """The (3n, 3n) matrix of the orthogonal map ``Rm`` about the centre of mass, if it
+        takes every atom onto an atom of equal mass and leaves A invariant; else None."""
         x = np.asarray(self.positions, dtype=float) - self.centre_of_mass()
         m = np.asarray(self.masses, dtype=float)
         n = self.n_atoms
         size = max(float(np.max(np.abs(x))), 1.0)
-        frame = self.drawing_frame()
-        normals = list(frame) + list(np.eye(3))
-        cands = [-np.eye(3)] + [np.eye(3) - 2 * np.outer(nv, nv) for nv in normals]
-        ops, seen = [], []
-        a_scale = max(float(np.max(np.abs(A))), 1e-300)
-        for Rm in cands:
-            y = x @ Rm.T
-            perm = []
-            for a in range(n):
-                d = np.linalg.norm(x - y[a], axis=1)
-                b = int(np.argmin(d))
-                if d[b] > tol * size or abs(m[b] - m[a]) > tol * m[a]:
-                    break
-                perm.append(b)
-            else:
-                S = np.zeros((3 * n, 3 * n))
-                for a, b in enumerate(perm):
-                    S[3 * b:3 * b + 3, 3 * a:3 * a + 3] = Rm
-                if np.max(np.abs(S @ A @ S.T - A)) > 1e-9 * a_scale:
-                    continue
-                if any(np.allclose(S, s) for s in seen):
-                    continue
-                seen.append(S)
-                ops.append(S)
-        return ops
+        y = x @ Rm.T
+        S = np.zeros((3 * n, 3 * n))
+        for a in range(n):
+            d = np.linalg.norm(x - y[a], axis=1)
+            b = int(np.argmin(d))
+            if d[b] > tol * size or abs(m[b] - m[a]) > tol * m[a]:
+                return None
+            S[3 * b:3 * b + 3, 3 * a:3 * a + 3] = Rm
+        if np.max(np.abs(S @ A @ S.T - A)) > 1e-9 * max(float(np.max(np.abs(A))), 1e-300):
+            return None
+        return S
+
+    def inversion(self, A: np.ndarray | None = None, tol: float = 1e-9) -> np.ndarray | None:
+        """The inversion x − x_cm → −(x − x_cm) as a (3n, 3n) matrix when the molecule and
+        its force field (A, default :meth:`hessian`) have a centre of symmetry (CO₂, C₂H₂);
+        None otherwise (H₂O)."""
+        return self._operation(-np.eye(3), self.hessian() if A is None else A, tol)
 
 
 def finite_difference_hessian(f, x0: np.ndarray, h: float = 1e-4) -> np.ndarray:
@@ -489,12 +494,45 @@ def mode_types_linear(modes: np.ndarray, M: np.ndarray, axis: np.ndarray,
     return out
 
 
-def stretch_character(mode: np.ndarray, coords: list[tuple[str, float, np.ndarray]]) -> str:
+#: a mode is even (odd) under the inversion when ηᵀ M S η is within this of +1 (−1)
+PARITY_TOL = 1e-6
+
+
+def mode_parity(modes: np.ndarray, M: np.ndarray, inversion: np.ndarray | None) -> list[str]:
+    """"g" (even) or "u" (odd) per column η of ``modes`` under the inversion S: S η = ±η,
+    read from ηᵀ M S η / ηᵀ M η = ±1 (S permutes equal masses, so it commutes with M);
+    "" for a mode of neither parity, and for every mode when there is no centre of symmetry.
+
+    Parameters
+    ----------
+    modes : ndarray, shape (3n, k)
+    M : ndarray, shape (3n, 3n)
+    inversion : ndarray, shape (3n, 3n), or None (:meth:`Molecule.inversion`)
+
+    Returns
+    -------
+    list of str, length k
+    """
+    if inversion is None:
+        return [""] * modes.shape[1]
+    out = []
+    for k in range(modes.shape[1]):
+        eta = modes[:, k]
+        p = float(eta @ M @ inversion @ eta) / float(eta @ M @ eta)
+        out.append("g" if p > 1 - PARITY_TOL else "u" if p < -1 + PARITY_TOL else "")
+    return out
+
+
+def stretch_character(mode: np.ndarray, coords: list[tuple[str, float, np.ndarray]],
+                      parity: str = "") -> str:
     """'symmetric stretch' / 'antisymmetric stretch' / 'bend' from the potential-energy split.
 
     The mode's potential energy ½ Σ k (b·η)² is split over internal coordinates;
-    the larger of the stretch and bend shares names the mode; stretches that all
-    lengthen together are symmetric (Herzberg's ν1/ν3 convention).
+    the larger of the stretch and bend shares names the mode.  With a centre of symmetry
+    (``parity`` "g" or "u", :func:`mode_parity`) a stretch is symmetric when it is even
+    under the inversion — so C₂H₂'s ν1, whose C–H bonds lengthen while C≡C shortens, is
+    symmetric; without one, stretches that all lengthen together are symmetric (Herzberg's
+    ν1/ν3 convention).
     """
     stretch, bend, signs = 0.0, 0.0, []
     for label, k, b in coords:
@@ -508,6 +546,8 @@ def stretch_character(mode: np.ndarray, coords: list[tuple[str, float, np.ndarra
             bend += e
     if bend >= stretch:
         return "bend"
+    if parity:
+        return "symmetric stretch" if parity == "g" else "antisymmetric stretch"
     if len(signs) > 1 and len(set(signs)) > 1:
         return "antisymmetric stretch"
     return "symmetric stretch"
@@ -553,7 +593,7 @@ def chain_matrices(masses, springs) -> tuple[np.ndarray, np.ndarray]:
 
 def chain_exact_frequencies(n: int, m: float, k: float, ends: str = "fixed") -> np.ndarray:
     """Uniform chain, ascending.  Fixed ends: ω_j = 2√(k/m) sin(jπ/(2(N+1))), j = 1..N
-    (notes §5.1 / Goldstein §6.4 loaded string); free ends: 2√(k/m) sin(jπ/(2N)), j = 0..N−1."""
+    (textbook §5.1 / Goldstein §6.4 loaded string); free ends: 2√(k/m) sin(jπ/(2N)), j = 0..N−1."""
     if ends == "fixed":
         j = np.arange(1, n + 1)
         return 2 * math.sqrt(k / m) * np.sin(j * math.pi / (2 * (n + 1)))
@@ -588,7 +628,7 @@ def rigid_body_basis(mol: Molecule, M: np.ndarray) -> tuple[np.ndarray, list[str
 
     Translations first, then the infinitesimal rotations (their M-Gram matrix is the
     inertia tensor); the rank of each block is found by :func:`m_orthonormalize`, so a
-    linear molecule gets 3 translations and 2 rotations (notes §5.1).
+    linear molecule gets 3 translations and 2 rotations (textbook §5.1).
 
     Parameters
     ----------
@@ -614,7 +654,8 @@ def classify_modes(modes: ModeSet, M: np.ndarray, system: str, mol: Molecule | N
 
     Zero modes take ``rigid_labels`` in order ("translation", "rotation"), then
     "zero mode (floppy)".  Vibrations of a molecule are named by their potential-energy
-    split (:func:`stretch_character`: symmetric / antisymmetric stretch, bend) and, for a
+    split (:func:`stretch_character`: symmetric / antisymmetric stretch, bend — by the
+    parity under the inversion when there is a centre of symmetry) and, for a
     linear molecule, by their geometry (:func:`mode_types_linear`: longitudinal,
     transverse in-plane / out-of-plane).  A chain or row of pendula (``system`` "chain" or
     "pendula") names each mode by its node count (:func:`node_count`; two pendula: "in
@@ -637,13 +678,14 @@ def classify_modes(modes: ModeSet, M: np.ndarray, system: str, mol: Molecule | N
     n = M.shape[0]
     coords = mol.internal_coordinates() if mol is not None else []
     axis = mol.axis() if mol is not None else None
+    parity = mode_parity(modes.modes, M, mol.inversion() if mol is not None else None)
     types = []
     for k in range(n):
         eta = modes.modes[:, k]
         if k < modes.n_zero:
             types.append(rigid_labels[k] if k < len(rigid_labels) else "zero mode (floppy)")
         elif mol is not None:
-            kind = stretch_character(eta, coords)
+            kind = stretch_character(eta, coords, parity[k])
             if axis is not None:
                 w1, _ = transverse_directions(axis)
                 geo = mode_types_linear(eta[:, None], M, axis, w1)[0]
@@ -721,7 +763,7 @@ def symmetric_xy2(mol: Molecule) -> SymmetricXY2 | None:
 
 
 def linear_xy2_frequencies(k: float, m_y: float, m_x: float) -> tuple[float, float]:
-    """Stretch frequencies of a linear symmetric triatomic Y–X–Y (Goldstein §6.4; notes
+    """Stretch frequencies of a linear symmetric triatomic Y–X–Y (Goldstein §6.4; textbook
     §5.1, Fig. 5.1).
 
     ω_sym = √(k/m_Y) (X at rest), ω_asym = √((k/m_Y)(1 + 2 m_Y/m_X)).
@@ -762,11 +804,118 @@ def bent_xy2_eigenvalues(k: float, k_bend: float, m_y: float, m_x: float, r: flo
     return lam3, tot, prod
 
 
+# --------------------------------------------------- linear four-atom closed forms
+@dataclass(frozen=True)
+class SymmetricLinearX2Y2:
+    """A symmetric linear four-atom molecule X–Y–Y–X (acetylene H–C≡C–H).
+
+    Attributes
+    ----------
+    ends : (int, int)
+        Indices of the X atoms, ``ends[i]`` bonded to ``centre[i]``.
+    centre : (int, int)
+        Indices of the two Y atoms.
+    k_end, k_centre : float
+        Stretch constants of X–Y and Y–Y [energy/length²].
+    k_bend : float or None
+        Bend constant of the angles X–Y–Y at both Y [energy/rad²], None without bends.
+    r_end, r_centre : float
+        Bond lengths X–Y and Y–Y [length].
+    m_end, m_centre : float
+        Masses of X and Y [mass].
+    """
+
+    ends: tuple[int, int]
+    centre: tuple[int, int]
+    k_end: float
+    k_centre: float
+    k_bend: float | None
+    r_end: float
+    r_centre: float
+    m_end: float
+    m_centre: float
+
+
+def symmetric_linear_x2y2(mol: Molecule) -> SymmetricLinearX2Y2 | None:
+    """The molecule as a symmetric linear X–Y–Y–X, or None if it is not one.
+
+    It is one when its 4 atoms lie on a line joined by 3 bonds in a path X–Y–Y–X, the two
+    end bonds with equal constants and lengths (relative 1e-12), equal end and equal centre
+    masses, and its angles are none or the two X–Y–Y bends at the two Y, with one constant.
+    """
+    if mol.n_atoms != 4 or len(mol.bonds) != 3 or mol.axis() is None:
+        return None
+    degree = np.bincount([a for i, j, _k in mol.bonds for a in (i, j)], minlength=4)
+    if sorted(degree.tolist()) != [1, 1, 2, 2]:
+        return None
+    centre_bond = next(((i, j, k) for i, j, k in mol.bonds
+                        if degree[i] == 2 and degree[j] == 2), None)
+    if centre_bond is None:
+        return None
+    y1, y2, k_centre = centre_bond
+    ends_k = {}
+    for i, j, k in mol.bonds:
+        for end, mid in ((i, j), (j, i)):
+            if degree[end] == 1:
+                ends_k[mid] = (end, k)
+    if set(ends_k) != {y1, y2}:
+        return None
+    (x1, k1), (x2, k2) = ends_k[y1], ends_k[y2]
+    x, m = np.asarray(mol.positions, dtype=float), np.asarray(mol.masses, dtype=float)
+    r1, r2 = (float(np.linalg.norm(x[a] - x[b])) for a, b in ((x1, y1), (x2, y2)))
+    if k1 != k2 or abs(r1 - r2) > 1e-12 * r1 or m[x1] != m[x2] or m[y1] != m[y2]:
+        return None
+    k_bend = None
+    if mol.angles:
+        wanted = {(y1, frozenset((x1, y2))), (y2, frozenset((x2, y1)))}
+        given = {(j, frozenset((i, l))) for i, j, l, _k in mol.angles}
+        constants = {k for *_idx, k in mol.angles}
+        if len(mol.angles) != 2 or given != wanted or len(constants) != 1:
+            return None
+        k_bend = constants.pop()
+    return SymmetricLinearX2Y2(ends=(x1, x2), centre=(y1, y2), k_end=k1, k_centre=k_centre,
+                               k_bend=k_bend, r_end=r1,
+                               r_centre=float(np.linalg.norm(x[y2] - x[y1])),
+                               m_end=float(m[x1]), m_centre=float(m[y1]))
+
+
+def linear_x2y2_eigenvalues(mol: SymmetricLinearX2Y2) -> dict[str, float]:
+    """ω² of a symmetric linear X–Y–Y–X in the valence force field, in closed form.
+
+    Along the axis (the chain X–Y–Y–X of springs k1, k2, k1 and masses m, M, M, m) the
+    displacements split by the inversion.  Even (x1 = −x4 = a, x2 = −x3 = b):
+    m ä = −k1(a − b), M b̈ = −k1(b − a) − 2k2 b, whose ω² have the sum
+    S = k1/m + (k1 + 2k2)/M and the product P = 2k1k2/(mM): ω² = [S ± √(S² − 4P)]/2
+    (Σg: for C₂H₂ ν1, mostly C–H, and ν2, mostly C≡C).  Odd (x1 = x4, x2 = x3): the translation and
+    ω² = k1(1/m + 1/M) (Σu: ν3).  Across the axis, with the linear-bend coordinates
+    ρ = (y_X − y_Y)/r1 + (y_Y′ − y_Y)/r2 at each Y (:func:`bend_bvectors`; r1 = X–Y,
+    r2 = Y–Y) and V = ½k_θ(ρ₁² + ρ₂²): even (trans bend, y_X′ = −y_X, y_Y′ = −y_Y) holds the
+    rotation and ω² = k_θ[1/(m r1²) + (1/r1 + 2/r2)²/M] (Πg: ν4); odd (cis bend,
+    y_X′ = y_X, y_Y′ = y_Y) holds the translation and ω² = k_θ(1/m + 1/M)/r1² (Πu: ν5),
+    each twice (two planes).
+
+    Returns
+    -------
+    dict with "stretch_even_high", "stretch_even_low", "stretch_odd" and, with bends,
+    "bend_trans" (even) and "bend_cis" (odd) [1/time² in the molecule's units]
+    """
+    k1, k2, m, M = mol.k_end, mol.k_centre, mol.m_end, mol.m_centre
+    total, product = k1 / m + (k1 + 2 * k2) / M, 2 * k1 * k2 / (m * M)
+    high = 0.5 * (total + math.sqrt(total * total - 4 * product))
+    out = {"stretch_even_high": high, "stretch_even_low": product / high,  # no cancellation
+           "stretch_odd": k1 * (1 / m + 1 / M)}
+    if mol.k_bend is not None:
+        kb, r1, r2 = mol.k_bend, mol.r_end, mol.r_centre
+        out["bend_trans"] = kb * (1 / (m * r1 * r1) + (1 / r1 + 2 / r2) ** 2 / M)
+        out["bend_cis"] = kb * (1 / m + 1 / M) / (r1 * r1)
+    return out
+
+
 # ------------------------------------------------------------------ drawn curves
 def chain_standing_wave(n: int, j: int, s: np.ndarray) -> np.ndarray:
     """Mode j of a uniform chain of N = n masses between fixed walls, sin(j s π/(N+1)).
 
-    Notes §5.1 / Goldstein §6.4; ``s`` (any shape) is the mass index, continuous
+    Textbook §5.1 / Goldstein §6.4; ``s`` (any shape) is the mass index, continuous
     between the walls at 0 and N + 1.  Returns an array shaped like ``s``.
     """
     return np.sin(j * np.asarray(s, dtype=float) * math.pi / (n + 1))

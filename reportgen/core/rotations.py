@@ -212,6 +212,16 @@ def vee(W) -> np.ndarray:
                            W[..., 1, 0] - W[..., 0, 1]], axis=-1)
 
 
+def euler_matrices_and_rate(angles, rates, convention: str = "zxz",
+                            step: float = 1e-20) -> tuple[np.ndarray, np.ndarray]:
+    """R and Ṙ along a path of Euler angles, shapes (..., 3, 3): Ṙ by the complex step
+    ``Ṙ = Im R(a + i h ȧ) / h`` (Squire & Trapp 1998), exact to rounding for any small h
+    since no difference is taken.  ``angles``, ``rates``: shape (..., 3)."""
+    a = np.asarray(angles, dtype=float)
+    Rc = euler_matrices(a + 1j * step * np.asarray(rates, dtype=float), convention)
+    return Rc.real, Rc.imag / step
+
+
 def omega_by_complex_step(angles, rates, convention: str = "zxz",
                           step: float = 1e-20) -> dict[str, np.ndarray]:
     """ω from differentiating the rotation matrix along a path of Euler angles, not from
@@ -223,9 +233,7 @@ def omega_by_complex_step(angles, rates, convention: str = "zxz",
     vee(Ṙ Rᵀ) and ``body`` = vee(Rᵀ Ṙ), shape (N, 3), and ``asymmetry``, shape (N,):
     max |W + Wᵀ| of W = Ṙ Rᵀ, which vanishes because R Rᵀ = 1.
     """
-    a = np.asarray(angles, dtype=float)
-    Rc = euler_matrices(a + 1j * step * np.asarray(rates, dtype=float), convention)
-    R, Rdot = Rc.real, Rc.imag / step
+    R, Rdot = euler_matrices_and_rate(angles, rates, convention, step)
     W = Rdot @ np.swapaxes(R, -1, -2)
     return {"space": vee(W), "body": vee(np.swapaxes(R, -1, -2) @ Rdot),
             "asymmetry": np.max(np.abs(W + np.swapaxes(W, -1, -2)), axis=(-2, -1))}
@@ -445,6 +453,74 @@ def su2_from_axis_angle(axis, angle: float) -> np.ndarray:
     return su2_from_quat(quat_from_axis_angle(axis, angle))
 
 
+def su2_exp(axis, angle: float) -> np.ndarray:
+    """``exp(−i α n·σ/2)`` by the eigenvectors of the Hermitian n·σ (eigenvalues ±1), shape
+    (2, 2): a matrix exponential that knows nothing of the closed form
+    cos(α/2) 1 − i sin(α/2) n·σ (lecture notes (9.17)) it checks."""
+    n = np.asarray(axis, dtype=float)
+    n = n / np.linalg.norm(n)
+    lam, V = np.linalg.eigh(np.einsum("k,kab->ab", n, PAULI))
+    return V @ np.diag(np.exp(-0.5j * angle * lam)) @ V.conj().T
+
+
+def so3_from_su2_many(U) -> np.ndarray:
+    """:func:`so3_from_su2` for many elements at once: U shape (..., 2, 2) -> R shape
+    (..., 3, 3), ``R_ij = ½ Re tr(σ_i U σ_j U†)``."""
+    U = np.asarray(U, dtype=complex)
+    Ud = np.conj(np.swapaxes(U, -1, -2))
+    return 0.5 * np.einsum("iab,...bc,jcd,...da->...ij", PAULI, U, PAULI, Ud).real
+
+
+def su2_elementary(axis: str, angle) -> np.ndarray:
+    """``U_k(α) = cos(α/2) 1 − i sin(α/2) σ_k`` for k = "x", "y", "z", written out;
+    broadcasts over ``angle``, shape (..., 2, 2).  R(U_k(α)) is :func:`rot_x` (``rot_y``,
+    ``rot_z``) of α."""
+    a = 0.5 * np.asarray(angle, dtype=float)
+    c, s = np.cos(a), np.sin(a)
+    zero = np.zeros_like(c)
+    if axis == "x":
+        rows = [[c + 0j, -1j * s], [-1j * s, c + 0j]]
+    elif axis == "y":
+        rows = [[c + 0j, -s + 0j], [s + 0j, c + 0j]]
+    elif axis == "z":
+        rows = [[c - 1j * s, zero + 0j], [zero + 0j, c + 1j * s]]
+    else:
+        raise ValueError(f"axis: expected 'x', 'y' or 'z', got {axis!r}")
+    return np.moveaxis(np.array(rows, dtype=complex), (0, 1), (-2, -1))
+
+
+def su2_euler(angles, convention: str = "zxz") -> np.ndarray:
+    """The SU(2) form of the Euler angles (lecture notes (9.18)): ``U = U_z(φ) U_x(θ) U_z(ψ)``
+    (z-x-z) or ``U_z(φ) U_y(θ) U_z(ψ)`` (z-y-z), shape (..., 2, 2) for ``angles`` (..., 3);
+    ``so3_from_su2(U)`` is :func:`euler_matrix`.  Each factor is 4π-periodic: φ + 2π
+    gives −U (the same R)."""
+    a = np.asarray(angles, dtype=float)
+    middle = {"zxz": "x", "zyz": "y"}[_convention(convention)]
+    return (su2_elementary("z", a[..., 0]) @ su2_elementary(middle, a[..., 1])
+            @ su2_elementary("z", a[..., 2]))
+
+
+def su2_euler_cayley_klein(phi, theta, psi, convention: str = "zxz") -> tuple:
+    """The Cayley–Klein parameters of :func:`su2_euler`, multiplied out:
+    ``a = cos(θ/2) e^{−i(φ+ψ)/2}`` and ``b = −i sin(θ/2) e^{−i(φ−ψ)/2}`` (z-x-z) or
+    ``b = −sin(θ/2) e^{−i(φ−ψ)/2}`` (z-y-z), with U = [[a, b], [−b̄, ā]]; broadcasts."""
+    phi, theta, psi = (np.asarray(x, dtype=float) for x in (phi, theta, psi))
+    a = np.cos(0.5 * theta) * np.exp(-0.5j * (phi + psi))
+    b = np.sin(0.5 * theta) * np.exp(-0.5j * (phi - psi))
+    return a, (-1j * b if _convention(convention) == "zxz" else -b)
+
+
+def su2_axis_angle(U) -> tuple[np.ndarray, float]:
+    """(m, α) with ``U = cos(α/2) 1 − i sin(α/2) m·σ`` (Euler's theorem in SU(2), lecture
+    notes (9.17)), α in [0, 2π]: α > π when ½ tr U < 0, and −U is then the turn by 2π − α
+    about −m.  α = 0 has no axis: m = e_z."""
+    q = su2_to_quat(U)
+    v = float(np.linalg.norm(q[1:]))
+    if v == 0.0:
+        return np.array([0.0, 0.0, 1.0]), 0.0 if q[0] > 0 else 2.0 * math.pi
+    return q[1:] / v, 2.0 * math.atan2(v, float(q[0]))
+
+
 # ------------------------------------------------- stereographic projection, Möbius maps
 NORTH_POLE = np.array([0.0, 0.0, 1.0])
 
@@ -507,6 +583,27 @@ def so3_from_mobius(U, *, orientation: int = -1) -> np.ndarray:
     orientation this is R(U) of :func:`so3_from_su2`."""
     tips = stereographic(np.eye(3), orientation=orientation)
     return inverse_stereographic(mobius(U, tips), orientation=orientation).T
+
+
+def stereographic_derivative(x, t, *, step: float = 1e-20) -> np.ndarray:
+    """dζ/ds of ``ζ = (x − i y)/(1 − z)`` at unit vectors x (..., 3) along unit tangents t
+    (..., 3), complex, shape (...,): the complex step (Squire & Trapp 1998) on the real
+    and imaginary parts u = x/(1 − z), v = −y/(1 − z), exact to rounding.  Its modulus
+    is the conformal factor 1/(1 − z) in every direction t ⊥ x."""
+    x, t = np.asarray(x, dtype=float), np.asarray(t, dtype=float)
+    p = x + 1j * step * t
+    den = 1.0 - p[..., 2]
+    return (p[..., 0] / den).imag / step - 1j * (p[..., 1] / den).imag / step
+
+
+def tangent_frame(x) -> tuple[np.ndarray, np.ndarray]:
+    """Two orthonormal tangents of the unit sphere at x (..., 3), off the poles: e_φ
+    (along the circle of latitude, eastward) and e_θ = e_φ × x (southward).  Shapes
+    (..., 3)."""
+    x = np.asarray(x, dtype=float)
+    rho = np.hypot(x[..., 0], x[..., 1])
+    east = np.stack([-x[..., 1], x[..., 0], np.zeros_like(rho)], axis=-1) / rho[..., None]
+    return east, np.cross(east, x)
 
 
 def fibonacci_sphere(n: int) -> np.ndarray:

@@ -12,6 +12,7 @@ import dataclasses
 import hashlib
 import io
 import json
+import math
 import os
 import re
 import time
@@ -31,6 +32,8 @@ from ..kinds import get_kind
 from ..lazy import lazy_module
 from ..scene.content import FigureSpec, SectionContent, fmt, fmt_err
 from ..scene.report import method_words
+from ..scene.schema import unit_text
+from ..scene.sources import with_sources
 from ..support.forked import JobProcess, serve
 from ..support.fsutil import atomic_write
 from ..support.layout import template_dir
@@ -506,7 +509,9 @@ def build_context(data: ArchiveData, out_dir: Path,
                      "nfev": a.get("nfev"), "nsteps": a.get("nsteps"),
                      "nreject": a.get("nreject"), "wall_time_s": a.get("wall_time_s"),
                      "compile_time_s": a.get("compile_time_s"), "status": a.get("status"),
-                     "message": a.get("message", ""), "samples": len(run.t)})
+                     "message": a.get("message", ""), "samples": len(run.t),
+                     "step": _step_text(a.get("h"), scene.schema.time.unit
+                                        if scene.schema is not None else "s")})
     return {
         "title": data.title,
         "kind": scene.kind,
@@ -533,6 +538,18 @@ def build_context(data: ArchiveData, out_dir: Path,
     }
 
 
+def _step_text(h, unit: str) -> str:
+    """"step h = 0.6 s" of a fixed-step run (the step it took, from the archive), else ""."""
+    try:
+        h = float(h)
+    except (TypeError, ValueError):
+        return ""
+    if not math.isfinite(h) or h <= 0:
+        return ""
+    return f"step h = {fmt(h)}" + (f" {unit_text(unit)}" if unit_text(unit) not in
+                                    ("", "dimensionless") else "")
+
+
 def method_labels(data: ArchiveData) -> dict[str, str]:
     """Each integrator's label as the archive's study table names it ("scipy RK45")."""
     study = data.study
@@ -542,7 +559,8 @@ def method_labels(data: ArchiveData) -> dict[str, str]:
 
 
 def render_html(context: dict[str, Any]) -> str:
-    return environment().get_template("scene.html.j2").render(**context)
+    """The scene's report page, ending with the documents its text cites."""
+    return with_sources(environment().get_template("scene.html.j2").render(**context))
 
 
 def build_report(archive_path: Path, formats=("html", "pdf"), out_dir: Path | None = None,

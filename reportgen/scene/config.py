@@ -66,13 +66,28 @@ class RunConfig(Strict):
     method: str = Field("auto", description='"auto" or a named integrator (`reportgen kinds`)')
     # Tight defaults: a compiled DOP853 step costs ~100 ns, so 1e-12 is nearly free and
     # keeps stored trajectories within ~1e-9 of exact solutions over tens of periods.
-    rtol: float = Field(1e-12, gt=0, lt=1, description="relative tolerance of adaptive methods")
-    atol: float = Field(1e-14, gt=0, lt=1, description="absolute tolerance of adaptive methods")
+    rtol: float = Field(1e-12, gt=0, lt=1,
+                        description="relative tolerance of adaptive methods [dimensionless]")
+    atol: float = Field(1e-14, gt=0, lt=1,
+                        description="absolute tolerance of adaptive methods [dimensionless]")
     h: Positive | None = Field(None, description="step size of fixed-step methods [s]")
     study: bool = Field(True, description="run the error-against-run-time study")
     study_budget: Annotated[float, Field(gt=0, allow_inf_nan=True)] = Field(
-        1.0, description="seconds the study's timed runs may take together (inf: no budget; "
-                         "scipy DOP853's rtol-1e-10 baseline is always measured)")
+        1.0, description="wall-clock time the study's timed runs may take together [s] (inf: "
+                         "no budget; scipy DOP853's rtol-1e-10 baseline is always measured)")
+
+
+class OwnUnitsRunConfig(RunConfig):
+    """``[run]``: how the scene is integrated, in the time unit of the config's own units.
+
+    For a kind that works in units the config chooses (three bodies in years, a
+    Hamiltonian's scaled time): ``t_end`` and ``h`` are plain numbers in that unit, never
+    converted from a unit text (``"2 min"`` would be seconds, which this kind does not
+    use)."""
+
+    t_end: Positive = Field(description="end time of the integration [config units of time]")
+    h: Positive | None = Field(None, description="step size of fixed-step methods "
+                                                 "[config units of time]")
 
 
 class ReportConfig(Strict):

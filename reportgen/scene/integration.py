@@ -47,6 +47,50 @@ def _solution_attrs(sol) -> dict[str, Any]:
     }
 
 
+#: how far a configured step may sit from a whole fraction of the output spacing (rounding
+#: of the decimal the config writes; 0.005 / 0.001 is 5.000000000000001)
+STEP_MATCH = 1e-9
+
+
+def step_problem(method: str, h: float | None, t_end: float, samples: int) -> str | None:
+    """Why the configured step ``h`` cannot be honoured by ``method`` with ``samples``
+    outputs over ``t_end``, or None.  A fixed-step method steps from output to output, so
+    its step must divide the output spacing into whole steps (or it would run at another
+    step than the config, and its report, say); an adaptive method chooses its own steps
+    from ``rtol`` and ``atol`` and takes no ``h``."""
+    if h is None:
+        return None
+    if method == "auto":
+        return (f"a step is for a fixed-step method; name one with run.method (rk4, verlet, "
+                f"yoshida4, yoshida6, yoshida8, gauss4, gauss6) or remove h (got {h:g})")
+    chosen = _integrators.METHODS.get(method)
+    if chosen is None:
+        return None  # an unknown method has its own message
+    if chosen.adaptive:
+        return (f"{method} is adaptive: rtol and atol set its steps, it takes no h; remove "
+                f"h or name a fixed-step method (got {h:g})")
+    spacing = t_end / (samples - 1)
+    ratio = spacing / h
+
+    def whole(x: float) -> bool:
+        return round(x) >= 1 and abs(x - round(x)) <= STEP_MATCH * x
+
+    if whole(ratio):
+        return None
+    if ratio < 1:
+        steps = t_end / h
+        fix = (f"samples = {round(steps) + 1} (an output after every step)" if whole(steps)
+               else f"h = t_end/n for a whole n with samples = n + 1 (n = {math.floor(steps)}: "
+                    f"h = {t_end / math.floor(steps):.6g})" if steps >= 1
+               else f"h ≤ t_end = {t_end:g}")
+        return (f"a step longer than the output spacing t_end/(samples − 1) = {spacing:.6g} "
+                f"puts outputs between steps; give {fix} (got {h:g})")
+    lo, hi = math.floor(ratio), math.ceil(ratio)
+    return (f"a fixed step must divide the output spacing t_end/(samples − 1) = {spacing:.6g} "
+            f"into whole steps ({ratio:.6g} here): h = {spacing / hi:.6g} ({hi} steps) or "
+            f"{spacing / lo:.6g} ({lo}) would (got {h:g})")
+
+
 class IntegratingSimulation(Simulation):
     """A simulation that integrates models with the configured ``[run]`` method."""
 
@@ -65,7 +109,12 @@ class IntegratingSimulation(Simulation):
         "auto"`` (the policy picks a method that fits) nothing is built: validation then
         imports no numerics."""
         run = self.config.run
-        if run is None or run.method == "auto":
+        if run is None:
+            return
+        problem = step_problem(run.method, run.h, float(run.t_end), run.samples)
+        if problem is not None:
+            raise ConfigError([f"{self.source.label}: key 'run.h': {problem}"])
+        if run.method == "auto":
             return
         models = self.models()
         method = _integrators.METHODS[run.method]
@@ -116,6 +165,12 @@ class IntegratingSimulation(Simulation):
             method, method_reason = run.method, "named in the config"
         spec = _integrators.SolverSpec(method=method, rtol=run.rtol, atol=run.atol, h=run.h,
                                        reason=method_reason or "chosen by the scene")
+        if run.h is not None and len(t_eval) > 1:  # a kind's own output grid: same rule
+            gaps = np.diff(np.asarray(t_eval, dtype=np.float64))
+            for gap in {float(gaps.min()), float(gaps.max())}:
+                problem = step_problem(method, run.h, gap, 2)
+                if problem is not None:
+                    raise ConfigError([f"{self.source.label}: key 'run.h': {problem}"])
         if fictitious_time is not None:
             time_index, columns, convert = fictitious_time
             res = _integrators.solve_fictitious_time(model, y0, t_eval, time_index, spec,

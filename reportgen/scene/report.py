@@ -603,14 +603,15 @@ def _runs_text(n: int) -> str:
 
 
 def _scale_text(attrs) -> str:
-    """"1e-3 × the orbit's semi-major axis a (1 m)" from the study table's attrs, or ""."""
+    """"0.001 × 1 m (the orbit's semi-major axis a)" from the study table's attrs, or "".
+    The value comes before its meaning: a bare "(1.67)" would read as an equation number."""
     value = attrs.get("accuracy_scale")
     if value is None or not math.isfinite(float(value)):
         return ""
     unit = str(attrs.get("accuracy_scale_unit", "") or "")
     return (f"{float(attrs.get('accuracy_tolerance', 1e-3)):g} × "
-            f"{attrs.get('accuracy_scale_what', 'the scene scale')} "
-            f"({fmt(float(value), 3)}{' ' + unit if unit else ''})")
+            f"{fmt(float(value), 3)}{' ' + unit if unit else ''} "
+            f"({attrs.get('accuracy_scale_what', 'the scene scale')})")
 
 
 def _status_cell(rows, status: np.ndarray, attrs, reasons: list[str]) -> str:

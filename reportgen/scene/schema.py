@@ -119,7 +119,10 @@ def config_quantity(model, path: str, symbol: str = "") -> Quantity:
     description that ends in one ("precession rate φ̇0 [rad/s] (or give `steady`)")
     gives it (``\\dot{\\varphi}_{0}``); what follows the unit (a note on other values,
     a condition) is not part of the quantity.  A key the model does not declare field by
-    field (a table of free keys) has no description or unit."""
+    field (a table of free keys) has no description or unit.  A key in the config's own
+    units ("[config units of length]") is stored as a pure number, unit "1", as the kinds
+    that work in them declare their results; one whose unit another key chooses ("[per
+    `units`: kg or m₀]") has none here (the kind knows it from the config)."""
     field = None
     for part in path.split("."):
         fields = getattr(model, "model_fields", None)
@@ -133,9 +136,17 @@ def config_quantity(model, path: str, symbol: str = "") -> Quantity:
                 model = arg
     text = (field.description or "") if field is not None else ""
     description, unit, found = quantity_of_description(text)
+    if unit.startswith(OWN_UNITS):
+        unit = "1"
+    elif CHOSEN_BY.fullmatch(unit):
+        unit = ""
     return Quantity(path, symbol or found, unit, description or path.rsplit(".", 1)[-1])
 
 
+#: a declared unit beginning so is the config's own ("[config units of length]")
+OWN_UNITS = "config units"
+#: a declared unit beginning so is chosen by another key ("[per `units`: kg or m₀]")
+CHOSEN_BY = re.compile(r"per `([\w.]+)`:\s*(.*)")
 #: the unit of a config field's description: "[rad/s]" after a space (not a list "[ω1, ω2]")
 _UNIT_BRACKET = re.compile(r"(?:^|\s)\[([^\[\],]+)\]")
 #: a trailing condition on the value: ", 0 ≤ θ < π"

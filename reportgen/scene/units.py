@@ -8,19 +8,37 @@ declares (the brackets ending its description, "initial angle [rad]": see
 the archive's resolved config hold plain numbers in the declared units.  A plain number
 keeps meaning the declared unit.
 
+What the bracket may say (:func:`unit_kind`):
+
+* a unit pint reads ("rad", "kg m²", "N/m"): text with a unit of the same dimension is
+  converted ("40 deg" -> 0.698 for "[rad]");
+* "dimensionless" (or "1"): a pure number (text only with a dimensionless unit, "5 %");
+* "config units of …" (:data:`OWN_UNITS`): the kind works in units the config chooses
+  (three bodies in AU, years and solar masses; a Hamiltonian's constants): plain numbers
+  only, never converted, since no unit system is fixed to convert to;
+* "per `key`: …" (:data:`CHOSEN_BY`): another key chooses the unit (normal modes' `units`,
+  a central force's power law); the kind converts text itself where that unit is physical
+  (:func:`convert_paths`) and the key takes plain numbers otherwise.
+
+A config key holding numbers without such a bracket has no declared unit and takes plain
+numbers only (``tests/test_kinds_units.py`` requires every listed key to have one).
+
 Units are read by pint through one shared registry, made on the first value that carries
-a unit: validating a config of plain numbers never imports pint.  A declared unit pint
-cannot read ("u or kg", "energy/rad²") leaves the key taking plain numbers only.
+a unit: validating a config of plain numbers never imports pint.  Any other declared unit
+pint cannot read leaves the key taking plain numbers only.
 """
 
 from __future__ import annotations
 
+import copy
 import functools
 import math
 import re
 import types
 import typing
 from typing import Annotated, Any, Literal
+
+from .schema import CHOSEN_BY, OWN_UNITS, quantity_of_description
 
 #: a number, then the rest of the text (the unit): "40 deg", "-1.5e3 kg m^2", ".5"
 _NUMBER = re.compile(r"\s*([+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?)\s*(.*?)\s*")
@@ -56,8 +74,6 @@ def declared_unit(model: type, name: str) -> str | None:
     field = model.model_fields.get(name)
     if field is None or not _admits(field.annotation, float):
         return None
-    from .schema import quantity_of_description
-
     return quantity_of_description(field.description or "")[1]
 
 
@@ -130,6 +146,36 @@ def convert_items(data: Any, units: dict[tuple[str, str], str]) -> Any:
     return out
 
 
+def convert_paths(data: Any, units: dict[tuple[str, ...], str]) -> Any:
+    """``data`` (a table) with the text quantities at some paths converted: ``units[path]``
+    is the unit ``data[path[0]][path[1]]...`` is stored in (a kind whose units another key
+    chooses says them here; a value that is an array is converted item by item).  Errors
+    as :func:`convert_table`'s, located at the path."""
+    if not isinstance(data, dict):
+        return data
+    out, errors = data, []
+    for path, unit in units.items():
+        table = out
+        for part in path[:-1]:
+            table = table.get(part) if isinstance(table, dict) else None
+        if not isinstance(table, dict) or not _has_text(table.get(path[-1])):
+            continue
+        if out is data:
+            out = copy.deepcopy(data)
+        table = out
+        for part in path[:-1]:
+            table = table[part]
+        try:
+            table[path[-1]] = _convert(table[path[-1]], unit, False, 0)
+        except ValueError as exc:
+            errors.append(_error(path, table[path[-1]], str(exc)))
+    if errors:
+        from pydantic import ValidationError
+
+        raise ValidationError.from_exception_data("config", errors)
+    return out
+
+
 def _error(name: str | tuple, value: Any, message: str):
     from pydantic_core import InitErrorDetails, PydanticCustomError
 
@@ -161,7 +207,8 @@ def _convert(value: Any, unit: str, takes_text: bool, depth: int) -> Any:
     if found is None:
         if takes_text or not value.strip() or not _UNIT_CHARS.fullmatch(value):
             return value  # a keyword ("steady") or not a quantity: the field judges it
-        raise ValueError(rule(unit) + "; write a number, then its unit")
+        plain = _plain_rule(unit)
+        raise ValueError(plain or rule(unit) + "; write a number, then its unit")
     try:
         return to_declared(float(found.group(1)), found.group(2), unit)
     except ValueError:
@@ -170,12 +217,43 @@ def _convert(value: Any, unit: str, takes_text: bool, depth: int) -> Any:
         raise
 
 
+def unit_kind(unit: str) -> str:
+    """What a declared unit is: "dimensionless", "own" (the config's own units), "chosen"
+    (another key chooses it), "pint" (a unit pint reads) or "unreadable"."""
+    if unit in DIMENSIONLESS:
+        return "dimensionless"
+    if unit.startswith(OWN_UNITS):
+        return "own"
+    if CHOSEN_BY.fullmatch(unit):
+        return "chosen"
+    return "pint" if _pint_unit(unit) is not None else "unreadable"
+
+
+def _plain_rule(unit: str) -> str | None:
+    """The rule of a key whose declared unit converts no text ("own", "chosen"), else None."""
+    if unit.startswith(OWN_UNITS):
+        what = unit[len(OWN_UNITS):].strip()
+        return (f"must be a plain number in the config's own units{' ' + what if what else ''}"
+                " (this kind converts no unit text)")
+    chosen = CHOSEN_BY.fullmatch(unit)
+    if chosen is not None:
+        key, units = chosen.groups()
+        return (f"must be a plain number here: its unit ({units}) is chosen by `{key}`, and "
+                "unit text is converted only where that unit is physical")
+    return None
+
+
 def to_declared(number: float, given: str, unit: str) -> float:
-    """``number`` in the unit ``given`` as a number in the declared ``unit``."""
+    """``number`` in the unit ``given`` as a number in the declared ``unit``.  A declared
+    unit may begin with a number ("4.07e-15 s", a kind's time unit τ): the result is then
+    in multiples of that quantity."""
     if not math.isfinite(number):
         raise ValueError("must be a finite number")
     if unit in DIMENSIONLESS and not given:
         return number
+    plain = _plain_rule(unit)
+    if plain is not None:
+        raise ValueError(plain)
     if not given:
         raise ValueError(f"must be a valid number, or text with its unit (\"{_example(unit)}\"); "
                          f"a number alone is in {unit}")
@@ -192,7 +270,11 @@ def to_declared(number: float, given: str, unit: str) -> float:
     except Exception:  # pint raises many kinds (UndefinedUnitError, SyntaxError, ...)
         raise ValueError(rule(unit) + f"; {given!r} is not a known unit") from None
     try:
-        out = float(registry().Quantity(number, source).to(target).magnitude)
+        if isinstance(target, tuple):  # a unit with a factor: multiples of that quantity
+            scale, base = target
+            out = float(registry().Quantity(number, source).to(base).magnitude) / scale
+        else:
+            out = float(registry().Quantity(number, source).to(target).magnitude)
     except Exception:  # DimensionalityError, OffsetUnitCalculusError, OverflowError
         raise ValueError(rule(unit) + f"; {given} measures {_dimension(source)}") from None
     if not math.isfinite(out):
@@ -200,12 +282,38 @@ def to_declared(number: float, given: str, unit: str) -> float:
     return out
 
 
-def angle_hint(*angles: float) -> str:
+def angle_hint(*angles: float, valid=None) -> str:
     """For a kind's range error on angles: "; angles are in rad; write \"40 deg\" for
-    degrees" when one of ``angles`` (in rad) is a full turn or more - degrees, most
-    likely - else ""."""
-    big = [a for a in angles if math.isfinite(a) and abs(a) >= 2 * math.pi]
-    return f'; angles are in rad; write "{big[0]:g} deg" for degrees' if big else ""
+    degrees" when the numbers were most likely meant as degrees, else "".
+
+    With ``valid`` (the key's rule, a function of one angle in rad): when every one of
+    ``angles`` read as degrees would meet it, and one of them does not as given (that
+    one is named).  Without: when one of ``angles`` is a full turn or more."""
+    finite = [a for a in angles if math.isfinite(a)]
+    if len(finite) != len(angles):
+        return ""
+    if valid is None:
+        wrong = [a for a in angles if abs(a) >= 2 * math.pi]
+    elif all(valid(math.radians(a)) for a in angles):
+        wrong = [a for a in angles if not valid(a)]
+    else:
+        wrong = []
+    return f'; angles are in rad; write "{wrong[0]:g} deg" for degrees' if wrong else ""
+
+
+def check_turn(key: str, angles, turns: float = 1.0, symbol: str = "θ") -> None:
+    """Refuse an angle (or each of a list of angles, in rad) beyond ``turns`` full turns:
+    a start angle beyond a full turn is almost surely degrees.  ValueError in the form a
+    kind's rule takes, ``key: must satisfy |θ| ≤ 2π (got 40.0); angles are in rad; write
+    \"40 deg\" for degrees``."""
+    values = list(angles) if isinstance(angles, (list, tuple)) else [angles]
+    limit = 2 * math.pi * turns
+    if all(abs(a) <= limit for a in values):
+        return
+    bound = "2π" if turns == 1 else f"{2 * turns:g}π"
+    got = values if isinstance(angles, (list, tuple)) else angles
+    raise ValueError(f"{key}: must satisfy |{symbol}| ≤ {bound} (got {got})"
+                     + angle_hint(*values, valid=lambda a: abs(a) <= limit))
 
 
 def rule(unit: str) -> str:
@@ -213,6 +321,15 @@ def rule(unit: str) -> str:
     e.g. \"40 deg\""."""
     if unit in DIMENSIONLESS:
         return "must be a dimensionless number"
+    plain = _plain_rule(unit)
+    if plain is not None:
+        return plain
+    scaled = _SCALED.fullmatch(unit)
+    if scaled is not None:  # "4.0746e-15 s": a kind's own unit of time, say
+        factor, base = float(scaled.group(1)), scaled.group(2)
+        what = _WHAT.get(base, f"a quantity in {base}")
+        return f"must be {what} (stored in units of {factor:.4g} {base}); give e.g. " \
+               f"\"{_example(base)}\""
     what = _WHAT.get(unit, "a quantity")
     return f"must be {what} in {unit}; give e.g. \"{_example(unit)}\""
 
@@ -221,10 +338,19 @@ def _example(unit: str) -> str:
     return _EXAMPLE.get(unit, f"1.5 {unit}" if unit not in DIMENSIONLESS else "0.5")
 
 
+#: a declared unit that is a multiple of a unit: "4.0746e-15 s"
+_SCALED = re.compile(r"\s*([+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?)\s+(.+)")
+
+
 @functools.cache
 def _pint_unit(unit: str):
-    """The declared ``unit`` as a pint unit, None if pint cannot read it."""
+    """The declared ``unit`` as a pint unit, None if pint cannot read it; a multiple of a
+    unit ("4.0746e-15 s") as (the factor, the pint unit)."""
+    scaled = _SCALED.fullmatch(unit)
     try:
+        if scaled is not None:
+            factor = float(scaled.group(1))
+            return (factor, _pint_unit_strict(scaled.group(2))) if factor > 0 else None
         return _pint_unit_strict("dimensionless" if unit in DIMENSIONLESS else unit)
     except Exception:
         return None

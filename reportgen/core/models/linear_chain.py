@@ -7,7 +7,7 @@ params = (n, M⁻¹ row-major (n²), A row-major (n²)).
 
 References
 ----------
-.. [1] Lecture notes ch. 5, §5.1 (equations of motion M q̈ + A q = 0).
+.. [1] Textbook ch. 5, §5.1 (equations of motion M q̈ + A q = 0).
 """
 
 from __future__ import annotations

@@ -1,4 +1,5 @@
-r"""Three gravitating point masses in space, and their Jacobi coordinates (lecture notes §3).
+r"""Three gravitating point masses in space: the lecture notes' relative coordinates and
+Jacobi's (lecture notes §3).
 
 State y = (q, v): q = (x1, y1, z1, x2, y2, z2, x3, y3, z3), v the velocities in the
 same order.  H = Σ m_i v_i²/2 − Σ_{i<j} G m_i m_j / r_ij is separable: the drift
@@ -6,9 +7,15 @@ q̇ = v depends on v only, the kick v̇_i = −Σ_j G m_j (q_i − q_j)/r_ij³ o
 splitting methods apply (velocities stand in for the momenta p_i = m_i v_i; the
 splitting is the same).
 
-Jacobi coordinates (3.32–3.34): ρ1 = r2 − r1, ρ2 = r3 − (m1 r1 + m2 r2)/(m1 + m2),
-R the centre of mass; then T = ½ M Ṙ² + ½ μ1 ρ̇1² + ½ μ2 ρ̇2² with
-μ1 = m1 m2/(m1 + m2), μ2 = m3 (m1 + m2)/M.
+The notes' coordinates (notes (3.32)–(3.34)): the centre of mass R and the positions
+relative to body 1, r12 = r2 − r1, r13 = r3 − r1.  Their kinetic energy has a cross term,
+T = ½ M Ṙ² + ½ [m2(m1 + m3)/M ṙ12² + m3(m1 + m2)/M ṙ13² − 2 m2 m3/M ṙ12·ṙ13],
+M = m1 + m2 + m3 (:func:`notes_kinetic_energy`).
+
+Jacobi coordinates (the standard hierarchical choice; not in the notes):
+ρ1 = r2 − r1, ρ2 = r3 − (m1 r1 + m2 r2)/(m1 + m2), R the centre of mass; then T is
+diagonal, T = ½ M Ṙ² + ½ μ1 ρ̇1² + ½ μ2 ρ̇2² with μ1 = m1 m2/(m1 + m2),
+μ2 = m3 (m1 + m2)/M, so a hierarchical triple separates into two Kepler-like problems.
 
 References
 ----------
@@ -116,7 +123,8 @@ def angular_momentum(y, masses):
 
 
 def jacobi(y, masses):
-    """Jacobi coordinates and velocities (3.32): R, ρ1, ρ2 and their rates, each (N, 3)."""
+    """Jacobi coordinates and velocities (the standard hierarchical choice; not the notes'):
+    R, ρ1 = r2 − r1, ρ2 = r3 − (m1 r1 + m2 r2)/(m1 + m2) and their rates, each (N, 3)."""
     pos, vel = split(y)
     m1, m2, m3 = (float(v) for v in masses)
     M, m12 = m1 + m2 + m3, m1 + m2
@@ -131,17 +139,69 @@ def jacobi(y, masses):
 
 
 def jacobi_masses(masses):
-    """(M, μ1, μ2) of the Jacobi kinetic energy (3.33)."""
+    """(M, μ1, μ2) of the diagonal Jacobi kinetic energy: M = m1 + m2 + m3,
+    μ1 = m1 m2/(m1 + m2), μ2 = m3 (m1 + m2)/M."""
     m1, m2, m3 = (float(v) for v in masses)
     M = m1 + m2 + m3
     return M, m1 * m2 / (m1 + m2), m3 * (m1 + m2) / M
 
 
 def jacobi_kinetic_energy(y, masses):
-    """T = ½ M Ṙ² + ½ μ1 ρ̇1² + ½ μ2 ρ̇2² (3.33), shape (N,)."""
+    """T = ½ M Ṙ² + ½ μ1 ρ̇1² + ½ μ2 ρ̇2² in Jacobi coordinates, shape (N,)."""
     _, (Rd, r1d, r2d) = jacobi(y, masses)
     M, mu1, mu2 = jacobi_masses(masses)
     return 0.5 * (M * np.sum(Rd**2, 1) + mu1 * np.sum(r1d**2, 1) + mu2 * np.sum(r2d**2, 1))
+
+
+def notes_coordinates(y, masses):
+    """The notes' coordinates and velocities (notes (3.32)–(3.34)): the centre of mass R
+    and the positions relative to body 1, r12 = r2 − r1 and r13 = r3 − r1, and their
+    rates, each (N, 3)."""
+    pos, vel = split(y)
+    m = np.asarray(masses, dtype=np.float64)
+
+    def transform(r):
+        return (np.einsum("b,nbk->nk", m, r) / m.sum(), r[:, 1] - r[:, 0],
+                r[:, 2] - r[:, 0])
+
+    return transform(pos), transform(vel)
+
+
+def notes_mass_matrix(masses):
+    """K, shape (2, 2): the relative part of the notes' kinetic energy (notes (3.32)–(3.34))
+    as ½ Σ_ab K_ab ṙ_a·ṙ_b over a, b ∈ (r12, r13).
+
+    K = [[m2(m1 + m3), −m2 m3], [−m2 m3, m3(m1 + m2)]] / M, M = m1 + m2 + m3.
+
+    Derivation: with R the centre of mass, r1 = R − (m2 r12 + m3 r13)/M, r2 = r1 + r12,
+    r3 = r1 + r13.  Write sᵢ = rᵢ − R, so Σ mᵢ sᵢ = 0 and T = ½ M Ṙ² + ½ Σ mᵢ ṡᵢ².  With
+    P = m2 ṙ12 + m3 ṙ13, ṡ1 = −P/M, ṡ2 = ṡ1 + ṙ12, ṡ3 = ṡ1 + ṙ13:
+    Σ mᵢ ṡᵢ² = M ṡ1² + 2 ṡ1·P + m2 ṙ12² + m3 ṙ13² = m2 ṙ12² + m3 ṙ13² − P²/M
+    = m2(M − m2)/M ṙ12² + m3(M − m3)/M ṙ13² − 2 m2 m3/M ṙ12·ṙ13,
+    and M − m2 = m1 + m3, M − m3 = m1 + m2.  det K = m1 m2 m3/M = μ1 μ2: the map
+    (r12, r13) → (ρ1, ρ2) = (r12, r13 − m2 r12/(m1 + m2)) has determinant 1, and it takes
+    K to Jacobi's diagonal diag(μ1, μ2).
+    """
+    m1, m2, m3 = (float(v) for v in masses)
+    M = m1 + m2 + m3
+    return np.array([[m2 * (m1 + m3), -m2 * m3], [-m2 * m3, m3 * (m1 + m2)]]) / M
+
+
+def notes_kinetic_cross_term(y, masses):
+    """The cross term of the notes' kinetic energy, −(m2 m3/M) ṙ12·ṙ13, shape (N,)."""
+    _, (_, r12d, r13d) = notes_coordinates(y, masses)
+    return notes_mass_matrix(masses)[0, 1] * np.sum(r12d * r13d, 1)
+
+
+def notes_kinetic_energy(y, masses):
+    """T = ½ M Ṙ² + ½ [K11 ṙ12² + K22 ṙ13² + 2 K12 ṙ12·ṙ13] in the notes' coordinates
+    (notes (3.32)–(3.34)), K from :func:`notes_mass_matrix`, shape (N,)."""
+    _, (Rd, r12d, r13d) = notes_coordinates(y, masses)
+    K = notes_mass_matrix(masses)
+    M = float(np.sum(np.asarray(masses, dtype=np.float64)))
+    return (0.5 * (M * np.sum(Rd**2, 1) + K[0, 0] * np.sum(r12d**2, 1)
+                   + K[1, 1] * np.sum(r13d**2, 1))
+            + notes_kinetic_cross_term(y, masses))
 
 
 def cartesian_kinetic_energy(y, masses):

@@ -4,13 +4,14 @@ and the preset."""
 from __future__ import annotations
 
 import math
-from typing import Literal
+from typing import Any, Literal
 
 from pydantic import Field, model_validator
 
 from ...lazy import lazy_module
 from ...scene.base import SceneConfig
 from ...scene.config import Positive, Real, RunConfig, Strict
+from ...scene.units import convert_paths
 
 integrators = lazy_module("reportgen.core.integrators")  # its method list imports no numba
 
@@ -18,11 +19,13 @@ integrators = lazy_module("reportgen.core.integrators")  # its method list impor
 class Params(Strict):
     m1: Positive = Field(description="mass of body 1 [kg]")
     m2: Positive = Field(description="mass of body 2 [kg]")
-    k: Positive = Field(description="strength of the attraction, V = −k/r (or −k/rⁿ) [J·mⁿ]")
+    k: Positive = Field(description="strength of the attraction, V = −k/r (or −k/rⁿ) "
+                                    "[per `potential`: J·m or J·mⁿ]")
     potential: Literal["kepler", "power", "kepler_inverse_cube"] = Field(
         "kepler", description='"kepler" V = −k/r; "power" V = −k/rⁿ; '
                               '"kepler_inverse_cube" V = −k/r − ε/r²')
-    n: Real | None = Field(None, description="exponent of the power law V = −k/rⁿ, 0 < n < 2")
+    n: Real | None = Field(None, description="exponent of the power law V = −k/rⁿ, 0 < n < 2 "
+                                             "[dimensionless]")
     epsilon: Real | None = Field(None, description="strength ε of the −ε/r² term (a 1/r³ force)"
                                                    " [J·m²]")
 
@@ -38,6 +41,19 @@ class CentralForceConfig(SceneConfig):
     params: Params
     initial: Initial
     run: RunConfig
+
+    @model_validator(mode="before")
+    @classmethod
+    def _strength_in_its_unit(cls, data: Any):
+        """``params.k`` given as text ("0.5 J m") in J·m, or J·mⁿ for the power law (when
+        ``params.n`` is a number)."""
+        params = data.get("params") if isinstance(data, dict) else None
+        if not isinstance(params, dict) or not isinstance(params.get("k"), str):
+            return data
+        n = params.get("n") if params.get("potential") == "power" else 1
+        if isinstance(n, bool) or not isinstance(n, int | float) or not math.isfinite(n):
+            return data  # the power law without a usable n: k takes plain numbers only
+        return convert_paths(data, {("params", "k"): "J m" if n == 1 else f"J m^{n!r}"})
 
     @model_validator(mode="after")
     def _physics(self):

@@ -15,6 +15,7 @@ from ...scene.report import Report
 from .results import SCHEMA
 
 plots = lazy_module("reportgen.rendering.plots.gravitation")
+own_plots = lazy_module("reportgen.kinds.central_force.plots")
 common_plots = lazy_module("reportgen.rendering.plots.common")
 
 #: an exponent as printed: "1.2" -> "¹·²"
@@ -62,6 +63,8 @@ class CentralForceReport(Report):
         Section("kepler", "Kepler's equation, third law and the Laplace–Runge–Lenz vector",
                 integrates=True),
         Section("apsides", "Apsidal angle", integrates=True),
+        Section("hamilton_jacobi", "Hamilton–Jacobi: the characteristic function along the run",
+                integrates=True),
         Section("invariants", "Conserved quantities", integrates=True),
         Section("error_vs_runtime", "Error against run time", integrates=True),
     )
@@ -150,6 +153,8 @@ class CentralForceReport(Report):
             names.remove("kepler")
         if is_kepler or not bound:
             names.remove("apsides")
+        if "hj_residual" not in data.analysis:  # unbound, or a circle: no libration in r
+            names.remove("hamilton_jacobi")
         return names
 
     @classmethod
@@ -183,7 +188,7 @@ class CentralForceReport(Report):
         elif "pericentre_positions" in a:
             peri = (a["pericentre_positions"]["x"], a["pericentre_positions"]["y"])
         fig = plots.relative_orbit(run["x"], run["y"], reference=ref, pericentres=peri, lrl=lrl)
-        caption = "The relative orbit r(t) = r1 − r2 (3.21)."
+        caption = "The relative orbit r(t) = r1 − r2, notes (3.21)."
         if lrl is not None:
             caption += (" Dashed: the exact ellipse from Kepler's equation; arrow: the "
                         "direction of the Laplace–Runge–Lenz vector, from the focus to the "
@@ -197,8 +202,8 @@ class CentralForceReport(Report):
         p, a = data.config.params, data.analysis
         tracks = a["body_tracks"]
         fig = plots.two_body_tracks(tracks["r1"], tracks["r2"], m1=p.m1, m2=p.m2)
-        facts = [("reduced mass μ = m1 m2/(m1 + m2) (3.20)", f"{fmt(a['reduced_mass'])} kg"),
-                 ("r1 = (m2/M) r, r2 = −(m1/M) r (3.19)",
+        facts = [("reduced mass μ = m1 m2/(m1 + m2), notes (3.20)", f"{fmt(a['reduced_mass'])} kg"),
+                 ("r1 = (m2/M) r, r2 = −(m1/M) r, notes (3.19)",
                   f"m2/M = {fmt(a['mass_fraction_m2'])}, m1/M = {fmt(a['mass_fraction_m1'])}")]
         return SectionContent(figures=[cls.figure(
             "two_body", fig, "Both bodies' tracks in the centre-of-mass frame (R = 0): "
@@ -219,7 +224,7 @@ class CentralForceReport(Report):
                  ("radius of the circular orbit at this L", f"{fmt(rc)} m")]
         return SectionContent(figures=[cls.figure(
             "effective_potential", fig, "The radial motion in the effective potential "
-            "V(r) + L²/(2μr²) (3.28–3.30): the orbit stays where E is above it, "
+            "V(r) + L²/(2μr²), notes (3.28–3.30): the orbit stays where E is above it, "
             + ("between the turning points." if a["bound"] == "yes" else
                "outside its one turning point, and escapes."))],
             facts=facts)
@@ -270,19 +275,19 @@ class CentralForceReport(Report):
         fig = plots.apsidal_angle_family(family["eccentricity"], family["angle"],
                                          near_circular=near, measured=measured,
                                          exact_label=label, near_label=near_label)
-        rows = [["exact, quadrature (Goldstein eq. 3.37)", fmt(a["apsidal_angle_exact"]),
+        rows = [["exact, quadrature, Goldstein (3.37)", fmt(a["apsidal_angle_exact"]),
                  "—"]]
         if "apsidal_angle_measured" in a:
             rows.append(["measured from the run", fmt(a["apsidal_angle_measured"]),
                          fmt_err(abs(a["apsidal_angle_measured"] / a["apsidal_angle_exact"]
                                      - 1))])
         if "apsidal_angle_near_circular" in a:
-            rows.append(["near-circular limit π/√(2 − n) (L&L §14)",
+            rows.append(["near-circular limit π/√(2 − n) (Landau & Lifshitz §14)",
                          fmt(a["apsidal_angle_near_circular"]),
                          fmt_err(abs(a["apsidal_angle_near_circular"]
                                      / a["apsidal_angle_exact"] - 1))])
         if "apsidal_angle_closed_form" in a:
-            rows.append(["closed form π/√(1 − 2με/L²) (L&L §15)",
+            rows.append(["closed form π/√(1 − 2με/L²) (Landau & Lifshitz §15, problem 3)",
                          fmt(a["apsidal_angle_closed_form"]),
                          fmt_err(abs(a["apsidal_angle_closed_form"]
                                      / a["apsidal_angle_exact"] - 1))])
@@ -293,6 +298,43 @@ class CentralForceReport(Report):
             tables=[Table(caption="Apsidal angle [rad]", header=["source", "value",
                                                                   "rel. diff to exact"],
                           rows=rows)], notes=notes)
+
+    @classmethod
+    def section_hamilton_jacobi(cls, data):
+        a = data.analysis
+        hj = a["hamilton_jacobi"]
+        fig = own_plots.radial_momentum(hj["radius"], hj["radial_momentum"], hj["curve_r"],
+                                        hj["curve_p_r"], hj["marks_r"], hj["marks_p_r"])
+        rows = [
+            ["∂S/∂t + H(q, ∂S/∂q) = 0, notes (7.16)", fmt_err(a["hj_residual"]),
+             fmt_err(a["hj_residual_quadrature"])],
+            ["H(q, ∂W/∂q) = E, notes (7.34)", fmt_err(a["hj_residual"]),
+             fmt_err(a["hj_characteristic_residual_quadrature"])],
+        ]
+        if "hj_half_action_closed_form" in a:
+            rows += [
+                ["Wᵣ by quadrature against its closed form, relative to πk√(μ/(−2E))", "—",
+                 fmt_err(a["hj_characteristic_quadrature_error"])],
+                ["∫ pᵣ dr from rₘᵢₙ to rₘₐₓ against its closed form (Goldstein §10.8)", "—",
+                 fmt_err(abs(a["hj_half_action"] / a["hj_half_action_closed_form"] - 1))]]
+        rows.append(["integrated pᵣ against ±∂W/∂r, and μr²θ̇ against ∂W/∂θ = L",
+                     fmt_err(a["hj_momentum_difference"]), "—"])
+        facts = [("separation constant ∂W/∂θ = L", f"{fmt(a['angular_momentum'])} kg·m²/s"),
+                 ("∫ pᵣ dr from rₘᵢₙ to rₘₐₓ, by quadrature", f"{fmt(a['hj_half_action'])} J·s")]
+        return SectionContent(
+            figures=[cls.figure("hamilton_jacobi", fig, "The integrated radial momentum "
+                                "pᵣ = μṙ against the distance r, over the two branches "
+                                "pᵣ = ±∂W/∂r of the characteristic function: the integrand "
+                                "√(2μ(E − V) − L²/r²) (line) and central differences of Wᵣ "
+                                "computed by quadrature (crosses).")],
+            tables=[Table(caption="Largest relative residual or difference along the run, "
+                                  "relative to |E| or to the momentum's size. Middle column: "
+                                  "∂W/∂r the integrand and ∂S/∂t = −E; right: Wᵣ by "
+                                  "Gauss–Legendre quadrature, ∂W/∂r, ∂W/∂θ and ∂S/∂t by "
+                                  "central differences",
+                          header=["equation or comparison", "∂W/∂r from the integrand",
+                                  "W by quadrature"], rows=rows)],
+            facts=facts)
 
     @classmethod
     def section_invariants(cls, data):

@@ -14,6 +14,7 @@ from .config import CentralForceConfig
 from .results import SCHEMA
 
 core = lazy_module("reportgen.core.models.kepler")
+hamilton_jacobi = lazy_module("reportgen.kinds.central_force.hamilton_jacobi")
 
 
 class CentralForceSimulation(IntegratingSimulation):
@@ -157,12 +158,14 @@ class CentralForceSimulation(IntegratingSimulation):
             self._kepler_checks(results, main)
         elif self.bound:
             self._apsides(results, main)
+        if self.bound and hamilton_jacobi.applies(r_min, r_max):
+            self._hamilton_jacobi(results, main)
         e_inv = main.invariants["energy"]
         results.checks.append(Check("energy E(t_end)", float(e_inv[-1]), float(e_inv[0]), "J",
                                     "E(0), conserved", scale=self._invariant_scales()["energy"]))
         L_inv = main.invariants["angular_momentum"]
         results.checks.append(Check("angular momentum L(t_end)", float(L_inv[-1]),
-                                    float(L_inv[0]), "kg·m²/s", "L(0), Noether charge (3.27)"))
+                                    float(L_inv[0]), "kg·m²/s", "L(0), Noether charge, notes (3.27)"))
         ref = None
         if self.is_kepler and self.bound:
             el = self.elements
@@ -171,6 +174,17 @@ class CentralForceSimulation(IntegratingSimulation):
                 return np.column_stack(core.kepler_state(ts, el))
         self.study(results, model, y0, np.linspace(0.0, run.t_end, 201), reference=ref)
         return results
+
+    def _hamilton_jacobi(self, results: Results, main) -> None:
+        """The Hamilton–Jacobi equations along the run, W = W_r(r) + α_θ θ (notes (7.16),
+        (7.34)): :mod:`reportgen.kinds.central_force.hamilton_jacobi`."""
+        k, n, eps = self.pot
+        analysis, checks = hamilton_jacobi.residuals(
+            main.t, (main["x"], main["y"], main["vx"], main["vy"]), mu=self.mu, k=k, n=n,
+            epsilon=eps, energy=self.energy0, angular_momentum=self.L0,
+            potential_name=self.config.params.potential)
+        results.analysis.update(analysis)
+        results.checks.extend(checks)
 
     def _effective_potential_curve(self, r_min: float, r_max: float) -> dict:
         """V(r) and V_eff(r) on the plotted range, and the circular orbit at this L."""
@@ -233,8 +247,8 @@ class CentralForceSimulation(IntegratingSimulation):
         a["lrl_eccentricity_error"] = e_lrl - el["eccentricity"]
         a["lrl_eccentricity_drift"] = float(np.max(np.abs(e_lrl - el["eccentricity"])))
         results.checks.append(Check("|A|/(μk) at t_end (LRL vector)", float(e_lrl[-1]),
-                                    el["eccentricity"], "", "e of the initial state, |A| = μke "
-                                    "(Goldstein eq. 3.83)", scale=1.0))
+                                    el["eccentricity"], "", "e of the initial state, |A| = μke, "
+                                    "Goldstein (3.83)", scale=1.0))
         period = el["period"]
         if self._passages_resolved(el["eccentricity"], period):
             tp, rp, _ = core.apsides_from_samples(main.t, main["x"], main["y"], main["vx"],
@@ -245,12 +259,12 @@ class CentralForceSimulation(IntegratingSimulation):
                 t_meas = (tp[-1] - tp[0]) / (tp.size - 1)
                 a["period_measured"] = t_meas
                 results.checks.append(Check("period from pericentre passages", t_meas, period,
-                                            "s", "third law T = 2π√(a³/(k/μ)) (3.31)"))
+                                            "s", "third law T = 2π√(a³/(k/μ)), notes (3.31)"))
                 a_meas = 0.5 * (float(np.mean(rp)) + float(np.mean(ra)))
                 a["semi_major_axis_measured"] = a_meas
                 results.checks.append(Check("semi-major axis (rₘᵢₙ + rₘₐₓ)/2 measured", a_meas,
                                             el["semi_major_axis"], "m",
-                                            "a = −k/(2E) (Goldstein eq. 3.61)"))
+                                            "a = −k/(2E), Goldstein (3.61)"))
         else:
             a["period_measured_note"] = (
                 f"period not measured from the samples: {self._unresolved_reason(el)}; the "
@@ -267,7 +281,7 @@ class CentralForceSimulation(IntegratingSimulation):
             closed = core.apsidal_angle_inverse_cube(self.L0, mu, eps)
             a["apsidal_angle_closed_form"] = closed
             results.checks.append(Check("apsidal angle by quadrature", exact, closed, "rad",
-                                        "π/√(1 − 2με/L²) (Landau & Lifshitz §15 problem 3)"))
+                                        "π/√(1 − 2με/L²) (Landau & Lifshitz §15, problem 3)"))
         a["apsidal_angle_family"] = self._apsidal_angle_family()
         period = a["period"]
         if not self._passages_resolved(a["eccentricity"], period):
@@ -285,11 +299,11 @@ class CentralForceSimulation(IntegratingSimulation):
                                      "y": np.interp(tp, main.t, main["y"])}
         results.checks.append(Check("apsidal angle measured (pericentre to pericentre / 2)",
                                     0.5 * sweep, exact, "rad",
-                                    "∫ (L/μr²) dr/ṙ from rₘᵢₙ to rₘₐₓ (Goldstein eq. 3.37)"))
+                                    "∫ (L/μr²) dr/ṙ from rₘᵢₙ to rₘₐₓ, Goldstein (3.37)"))
         t_meas = (tp[-1] - tp[0]) / (tp.size - 1)
         a["period_measured"] = t_meas
         results.checks.append(Check("radial period from pericentre passages", t_meas, period,
-                                    "s", "2 ∫ dr/ṙ from rₘᵢₙ to rₘₐₓ (Goldstein eq. 3.17)"))
+                                    "s", "2 ∫ dr/ṙ from rₘᵢₙ to rₘₐₓ, Goldstein (3.17)"))
 
     def _apsidal_angle_family(self) -> dict:
         """Exact apsidal angle against eccentricity at this L, from near-circular orbits up

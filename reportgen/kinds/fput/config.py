@@ -12,22 +12,40 @@ MAX_STIFF_SPRINGS = 50
 
 
 class Params(Strict):
+    """``[params]``: the chain in the scaled units of Hairer GNI §I.5.1.
+
+    Unit masses and soft quartic springs of unit strength; time, positions and momenta are
+    pure numbers."""
+
     m: int = Field(3, ge=1, le=MAX_STIFF_SPRINGS,
                    description="number of stiff springs (2m masses)")
-    omega: Positive = Field(50.0, description="frequency ω of the stiff springs (dimensionless)")
+    omega: Positive = Field(50.0, description="frequency ω of the stiff springs "
+                                              "[dimensionless]")
 
 
 class Initial(Strict):
-    q: list[Real] | None = Field(None, description="initial positions q_1 … q_2m (default: "
-                                                   "GNI §I.5.1 data)")
-    p: list[Real] | None = Field(None, description="initial momenta p_1 … p_2m (default: "
-                                                   "GNI §I.5.1 data)")
+    """``[initial]``: the state, in the same scaled units."""
+
+    q: list[Real] | None = Field(None, description="initial positions q₁ … q₂ₘ "
+                                                   "[dimensionless] (default: Hairer GNI "
+                                                   "§I.5.1 data)")
+    p: list[Real] | None = Field(None, description="initial momenta p₁ … p₂ₘ "
+                                                   "[dimensionless] (default: Hairer GNI "
+                                                   "§I.5.1 data)")
+
+
+class FputRun(RunConfig):
+    """``[run]``: how the scene is integrated, in the chain's scaled time."""
+
+    t_end: Positive = Field(description="end time of the integration [dimensionless]")
+    h: Positive | None = Field(None, description="step size of fixed-step methods "
+                                                 "[dimensionless]")
 
 
 class FputConfig(SceneConfig):
     params: Params = Params()
     initial: Initial = Initial()
-    run: RunConfig
+    run: FputRun
 
     @model_validator(mode="after")
     def _lengths(self):

@@ -4,12 +4,15 @@ grid and the crossings of a surface of section.  Numerics only; no drawing."""
 
 from __future__ import annotations
 
+from functools import partial
+
 import numpy as np
 
 from ...lazy import lazy_module
-from .config import JACOBI_SAMPLES
+from .config import JACOBI_ROUNDOFF, JACOBI_SAMPLES
 
 numeric = lazy_module("reportgen.core.numeric")
+formula = lazy_module("reportgen.core.formula")
 mechanics = lazy_module("reportgen.core.mechanics")
 
 
@@ -54,31 +57,40 @@ class HamiltonianAnalysis:
             a["pair_brackets"] = {"f": [r[0] for r in rows], "g": [r[1] for r in rows],
                                   "bracket": [r[2] for r in rows],
                                   "latex": [r[3] for r in rows]}
-        # Jacobi: {f,{g,h}} + {g,{h,f}} + {h,{f,g}} = 0 for f, g from the observables (or q1,
-        # p1) and h = H; evaluated, not simplified
-        # the first pair whose terms do not all vanish (two conserved observables, or
-        # {q, p} with a separable H, would check nothing): observables, then cubics
+        self._jacobi(a, system, vals)
+
+    def _jacobi(self, a: dict, system, vals) -> None:
+        """The Jacobi identity {f,{g,h}} + {g,{h,f}} + {h,{f,g}} = 0 (Goldstein §9.5) with
+        h = H, on a sample of the run, judged against the size of its terms.
+
+        f, g: the first pair of observables, then an observable with a cubic in (q, p), then
+        two cubics, whose terms are not all rounding (each term against its own
+        :func:`~reportgen.core.mechanics.roundoff_scale`): two conserved observables, or
+        {q, p} with a separable H, give terms that vanish identically, and a sum of three
+        zeros tests nothing.  The brackets are derived, not simplified, and evaluated."""
+        space, names = system.space, list(system.observables)
         q1, p1, qn, pn = space.q[0], space.p[0], space.q[-1], space.p[-1]
         obs = [system.observables[n] for n in names]
         cubic_f, cubic_g = q1**2 * pn + p1, p1**2 * qn + q1 * pn
-        candidates = ([(obs[0], obs[1])] if len(obs) > 1 else []) \
-            + ([(obs[0], cubic_g)] if obs else []) + [(cubic_f, cubic_g)]
-        h = system.H
-
-        def pb(u, v):
-            return sum(u.diff(q) * v.diff(p) - u.diff(p) * v.diff(q)
-                       for q, p in zip(space.q, space.p, strict=True))
-
-        n = len(vals[space.t])
+        candidates = [(obs[i], obs[k]) for i in range(len(obs)) for k in range(i + 1, len(obs))]
+        candidates += [(f, cubic_g) for f in obs] + [(cubic_f, cubic_g)]
+        n = len(np.atleast_1d(vals[space.t]))
         pick = np.unique(np.linspace(0, n - 1, min(n, self.JACOBI_SAMPLES)).astype(int))
         sample = {s: (v[pick] if np.ndim(v) else v) for s, v in vals.items()}
         for f, g in candidates:
-            terms = (pb(f, pb(g, h)), pb(g, pb(h, f)), pb(h, pb(f, g)))
-            scale = sum(float(np.max(np.abs(numeric.evaluate(term, sample)))) for term in terms)
-            if scale > 0:
+            values, sizes, rounding, vanish = jacobi_terms(space, f, g, system.H, sample,
+                                                           pick.shape)
+            if not all(vanish):
                 break
-        a["jacobi_max"] = float(np.max(np.abs(numeric.evaluate(sum(terms), sample))))
+        total = np.abs(values[0] + values[1] + values[2])
+        scale = float(np.max(np.abs(values[0]) + np.abs(values[1]) + np.abs(values[2])))
+        a["jacobi_max"] = float(np.max(total))
         a["jacobi_scale"] = scale
+        a["jacobi_terms"] = np.array(sizes)
+        a["jacobi_roundoff"] = np.array(rounding)
+        a["jacobi_tested"] = not all(vanish)
+        a["jacobi_relative"] = (a["jacobi_max"] / scale if scale > 0 and a["jacobi_tested"]
+                                else float("nan"))
         a["jacobi_triple"] = [str(f), str(g), "H"]
         a["jacobi_triple_latex"] = [system.latex(f), system.latex(g), "H"]
 
@@ -95,6 +107,16 @@ class HamiltonianAnalysis:
         h = numeric.evaluate(system.H, vals)
         a["legendre_energy_error"] = float(np.max(np.abs(energy - h)))
         a["legendre_energy_scale"] = float(np.max(np.abs(h)))
+        # the passive variables of the transform (notes (4.8)): q and t are not transformed,
+        # and ∂H/∂q at fixed p is −∂L/∂q at fixed q̇ (with q̇ = q̇(q, p)), ∂H/∂t = −∂L/∂t
+        passive = [*space.q, space.t]
+        dH = numeric.evaluate_many([system.H.diff(x) for x in passive], vals,
+                                   shape=main.t.shape)
+        dL = numeric.evaluate_many([system.L.diff(x) for x in passive], vals,
+                                   shape=main.t.shape)
+        a["legendre_passive_error"] = float(max(np.max(np.abs(h_ + l_))
+                                                for h_, l_ in zip(dH, dL, strict=True)))
+        a["legendre_passive_scale"] = float(max(np.max(np.abs(l_)) for l_ in dL))
 
     def _phase_grid(self, a: dict, system, main) -> None:
         """H on a grid around the orbit (the portrait's level curves)."""
@@ -111,26 +133,49 @@ class HamiltonianAnalysis:
                 **{system.param_symbols[k]: v for k, v in system.params.items()}}
         a["phase_grid"] = {"q": gq, "p": gp, "H": numeric.evaluate(system.H, vals)}
 
-    def _poincare(self, a: dict, system, main) -> None:
-        """Crossings of the surface of section, located by cubic Hermite interpolation
-        between samples (the derivatives from Hamilton's equations)."""
+    def _surface(self, system) -> tuple[str, float, str, list[str]] | None:
+        """The surface of section (its column, value, direction and the two plotted
+        columns), or None: none with one degree of freedom, nor with three or more unless
+        the config asks for one (default with two: q₁ = 0 upward, (q₂, p₂) plotted)."""
         cfg = self.config.section
         columns = list(system.columns)
         n = system.n
+        if n < 2 or (cfg is None and n != 2):
+            return None
         if cfg is None:
-            s_col, value, direction = columns[0], 0.0, "up"
-            axes = [columns[1], columns[n + 1]]
-        else:
-            s_col, value, direction = cfg.coordinate, cfg.value, cfg.direction
-            axes = list(cfg.axes) if cfg.axes else [c for c in columns[:n] if c != s_col][:1]
-            if not cfg.axes:
-                axes.append(f"p_{axes[0]}")
+            return columns[0], 0.0, "up", [columns[1], columns[n + 1]]
+        axes = list(cfg.axes) if cfg.axes else [c for c in columns[:n] if c != cfg.coordinate][:1]
+        if not cfg.axes:
+            axes.append(f"p_{axes[0]}")
+        return cfg.coordinate, float(cfg.value), cfg.direction, axes
+
+    def _poincare(self, a: dict, system, main, crossings=None) -> None:
+        """The crossings of the surface of section: ``crossings`` (rows t, state) located on
+        the integrator's steps, or, without them (a fixed-step or implicit method), located
+        between the stored samples by cubic Hermite interpolation (the derivatives from
+        Hamilton's equations).  H at the crossings against H(0), absolute and relative to
+        the energy scale the run's drift is measured against."""
+        s_col, value, direction, axes = self._surface(system)
+        columns = list(system.columns)
+        column = columns.index(s_col)
         vals = system.values(main.y, main.t)
         ydot = np.column_stack(numeric.evaluate_many(system.hamilton.rhs, vals,
                                                      shape=main.t.shape))
-        # every column at the crossings: the whole state there, u and v among them
-        points = section_crossings(main.t, main.y, ydot, columns.index(s_col), value, direction,
-                                   list(range(len(columns))))
+        if crossings is not None:
+            rows = np.asarray(crossings, dtype=float).reshape(-1, 1 + len(columns))
+            if direction == "both" and len(rows):
+                slope = numeric.evaluate(system.hamilton.rhs[column],
+                                         system.values(rows[:, 1:], rows[:, 0]))
+                sizes = (float(np.max(np.abs(main.y[:, column] - value))),
+                         float(np.max(np.abs(ydot[:, column]))))
+                rows = formula.section_rows(rows, column, value, direction,
+                                            np.broadcast_to(slope, rows[:, 0].shape), sizes)
+            points, located = rows, "steps"
+        else:
+            # every column at the crossings: the whole state there, u and v among them
+            points = section_crossings(main.t, main.y, ydot, column, value, direction,
+                                       list(range(len(columns))))
+            located = "samples"
         times, state = points[:, 0], points[:, 1:]
         u, v = state[:, columns.index(axes[0])], state[:, columns.index(axes[1])]
         wrap = [name in a["angles"] for name in axes]
@@ -141,10 +186,30 @@ class HamiltonianAnalysis:
         a["poincare"] = {"t": times, "u": u, "v": v, "state": state}
         a["poincare_surface"] = [s_col, f"{value!r}", direction]
         a["poincare_axes"] = axes
+        a["poincare_located"] = located
         if not system.time_dependent and len(times):
-            # the crossings lie on the run's energy surface up to the interpolation error
-            H = numeric.evaluate(system.H, system.values(state, times))
-            a["poincare_H_error"] = float(np.max(np.abs(H - a["H0"])))
+            # on the run's energy surface up to the steps' error (or the interpolation's)
+            H = np.broadcast_to(numeric.evaluate(system.H, system.values(state, times)),
+                                times.shape)
+            far = int(np.argmax(np.abs(H - a["H0"])))
+            scale = float(main.attrs.get("scale_H", abs(a["H0"]) or 1.0))
+            a["poincare_H_error"] = float(abs(H[far] - a["H0"]))
+            a["poincare_H_relative_error"] = a["poincare_H_error"] / scale
+            a["poincare_H_farthest"] = float(H[far])
+
+
+def jacobi_terms(space, f, g, h, sample: dict, shape) -> tuple[list, list, list, list]:
+    """The three terms {f,{g,h}}, {g,{h,f}}, {h,{f,g}} at ``sample`` (brackets derived, not
+    simplified): their values (each of ``shape``), their largest |values|, the largest
+    size of their parts (:func:`~reportgen.core.mechanics.roundoff_scale`), and whether
+    each vanishes (largest |value| ≤ JACOBI_ROUNDOFF × that size: rounding)."""
+    pb = partial(mechanics.bracket, space)
+    terms = (pb(f, pb(g, h)), pb(g, pb(h, f)), pb(h, pb(f, g)))
+    values = numeric.evaluate_many(terms, sample, shape=shape)
+    sizes = [float(np.max(np.abs(v))) for v in values]
+    rounding = [float(np.max(mechanics.roundoff_scale(term, sample))) for term in terms]
+    vanish = [size <= JACOBI_ROUNDOFF * r for size, r in zip(sizes, rounding, strict=True)]
+    return values, sizes, rounding, vanish
 
 
 def _wrapped(angle):

@@ -119,3 +119,33 @@ def new_variables(t, series: dict[str, np.ndarray], integrated=None, first: str 
     ax.set_ylabel(f"new variables [{UNITS}]")
     place_legend(ax)
     return fig
+
+
+def change_of_energy(t, change, first_order, second_order):
+    """The change of H under an infinitesimal transformation against time: above,
+    H(Q, P) − H(q, p) with its first-order part ε{H, G}; below, what is left after the first
+    order with the second-order term ε²/2 wᵀ∇²H w (dashed), too small to see above."""
+    fig, axes = new_figure_grid(2, 1, figsize=(6.8, 5.6), sharex=True)
+    top, bottom = axes[:, 0]
+    top.plot(*envelope(t, change), color=PALETTE[0], linewidth=2.4,
+             label=r"$H(Q, P) - H(q, p)$")
+    top.plot(*envelope(t, first_order), color=PALETTE[1], label=r"$\epsilon\{H, G\}$")
+    top.set_ylabel(f"change of H [{UNITS}]")
+    place_legend(top)
+    bottom.plot(*envelope(t, change - first_order), color=PALETTE[0], linewidth=2.4,
+                label=r"$H(Q, P) - H(q, p) - \epsilon\{H, G\}$")
+    bottom.plot(*envelope(t, second_order), color="black", linestyle=(0, (3, 3)),
+                linewidth=1.0, label=r"$\frac{\epsilon^2}{2} w^T \nabla^2 H\, w$")
+    # from zero: a constant remainder (ε²H for a quadratic H) reads as its size, not as
+    # rounding noise about an offset
+    rest = np.concatenate([np.ravel(change - first_order), np.ravel(second_order)])
+    rest = rest[np.isfinite(rest)]
+    if rest.size:
+        lo, hi = min(0.0, float(rest.min())), max(0.0, float(rest.max()))
+        if hi > lo:
+            bottom.set_ylim(lo - 0.1 * (hi - lo), hi + 0.1 * (hi - lo))
+    bottom.ticklabel_format(axis="y", useOffset=False)
+    bottom.set_ylabel(f"beyond first order [{UNITS}]")
+    bottom.set_xlabel(time_label(UNITS))
+    place_legend(bottom)
+    return fig

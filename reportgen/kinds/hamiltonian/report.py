@@ -14,7 +14,12 @@ from ...rendering.equations import equation_html
 from ...scene.base import Section
 from ...scene.content import SectionContent, fmt, fmt_err
 from ...scene.report import Report, section_colours, section_point_notes
-from .config import JACOBI_SAMPLES, STUDY_STEPS, family_energy
+from .config import (
+    JACOBI_SAMPLES,
+    STUDY_STEPS,
+    family_energy,
+)
+from .report_canonical import CanonicalSections
 from .results import SCHEMA
 from .symbols import dot_tex, split_sum, symbol_parts, symbol_tex, symbol_text, symbol_words
 
@@ -23,7 +28,7 @@ plots = lazy_module("reportgen.kinds.hamiltonian.plots")
 section_plots = lazy_module("reportgen.rendering.plots.sections")
 
 
-class HamiltonianReport(Report):
+class HamiltonianReport(CanonicalSections, Report):
     """The sections of a formula system, drawn from the archive alone."""
 
     schema = SCHEMA
@@ -57,6 +62,9 @@ class HamiltonianReport(Report):
         Section("poincare", "Surface of section", integrates=True),
         Section("invariants", "Conserved quantities", integrates=True),
         Section("brackets", "Poisson brackets and symmetries", integrates=True),
+        Section("noether", "Noether's theorem: the charge of a declared symmetry",
+                integrates=True),
+        Section("total_derivative", "Adding a total derivative to L", integrates=True),
         Section("transform", "Canonical transformation", integrates=True),
         Section("hamilton_jacobi", "Hamilton–Jacobi: the separated quadrature solution",
                 integrates=True),
@@ -71,7 +79,10 @@ class HamiltonianReport(Report):
     )
 
     SWEEP_HIDDEN_RESULTS = ("jacobi_*", "poisson_*_max", "legendre_*", "study_t_end",
-                            "initial_state_*")  # shown by name: initial_<column>
+                            "initial_state_*",  # shown by name: initial_<column>
+                            # the relative error at the crossings is the family's fact
+                            "poincare_H_error", "poincare_H_farthest", "noether_*",
+                            "transform_*", "total_derivative_*")
 
     #: members of a sweep told apart by a legend; more get a colour bar
     LEGEND_MEMBERS = 7
@@ -171,6 +182,10 @@ class HamiltonianReport(Report):
             names.remove("phase_portrait")
         if "transform" not in a:
             names.remove("transform")
+        if "noether_symmetry" not in a:
+            names.remove("noether")
+        if "total_derivative_same_equations" not in a:
+            names.remove("total_derivative")
         if "hamilton_jacobi" not in a:
             names.remove("hamilton_jacobi")
         # a surface of section says something only with enough crossings (a closed orbit
@@ -203,9 +218,9 @@ class HamiltonianReport(Report):
         facts = [("orbits", f"{len(crossing)} of {sweep.size} members cross the surface"),
                  ("crossings drawn", f"{len(member)} ({int(kept[crossing].min())} to "
                                      f"{int(kept[crossing].max())} per orbit)")]
-        h_error = sweep.analysis.get("poincare_H_error")
+        h_error = sweep.analysis.get("poincare_H_relative_error")
         if h_error is not None and np.any(np.isfinite(h_error)):
-            facts.append(("max |H − H(0)| at the crossings, over the members",
+            facts.append(("max |H − H(0)|/|H(0)| at the crossings, over the members",
                           fmt_err(float(np.nanmax(h_error)))))
         energy = family_energy(sweep)
         if energy is not None:
@@ -244,7 +259,7 @@ class HamiltonianReport(Report):
         the scene has none: one degree of freedom, or a family), the Lyapunov time, and the
         surface of section's crossings."""
         if data.sweep is not None:
-            return {"behaviour": "", "crossings": 0, "lyapunov_time": "",
+            return {"behaviour": "", "crossings": 0, "lyapunov_time": "", "transform_kind": "",
                     "tables": {"invariants": [], "brackets": [], "hamilton_jacobi": []}}
         a = data.analysis
         behaviour = str(a.get("behaviour", ""))
@@ -252,6 +267,7 @@ class HamiltonianReport(Report):
         return {"behaviour": behaviour.split(":", 1)[0] if behaviour else "",
                 "lyapunov_time": fmt(float(a.get("lyapunov_time", math.nan)), 3),
                 "crossings": len(pts["u"]) if pts is not None else 0,
+                "transform_kind": str(a.get("transform_kind", "")),
                 "tables": cls.symbol_tables(data)}
 
     @classmethod
@@ -319,6 +335,8 @@ class HamiltonianReport(Report):
     def name_tex(cls, data, name: str) -> str:
         """A name's TeX (:func:`symbol_tex`), unless the scene's preset or separation gives
         it a meaning of its own (:attr:`NAMED_SYMBOLS`)."""
+        if str(name) == "noether_charge":  # the declared symmetry's charge, not a config name
+            return r"Q_{\mathrm{N}}"
         for key in (getattr(data.config, "preset", None), data.analysis.get("hj_separation")):
             if key is not None and str(name) in cls.NAMED_SYMBOLS.get(str(key), {}):
                 return cls.NAMED_SYMBOLS[str(key)][str(name)]
@@ -421,6 +439,11 @@ class HamiltonianReport(Report):
             facts.append(("max |H − (q̇·∂L/∂q̇ − L)| along the run",
                           f"{fmt_err(a['legendre_energy_error'])} (|H| ≤ "
                           f"{fmt(a['legendre_energy_scale'], 4)})"))
+            if "legendre_passive_error" in a:
+                facts.append(("passive variables q, t, notes (4.8): max |∂H/∂q + ∂L/∂q|, "
+                              "|∂H/∂t + ∂L/∂t| along the run",
+                              f"{fmt_err(a['legendre_passive_error'])} (|∂L/∂q|, |∂L/∂t| ≤ "
+                              f"{fmt(a['legendre_passive_scale'], 4)})"))
         return SectionContent(facts=facts, equations=eqs)
 
 
@@ -467,11 +490,17 @@ class HamiltonianReport(Report):
         u, v = a["poincare_axes"]
         symbol = cls.axis_labels(data)
         fig = plots.poincare(pts["u"], pts["v"], symbol[u], symbol[v])
+        facts = [("crossings", str(len(pts["u"])))]
+        on_surface = ""
+        if "poincare_H_relative_error" in a:
+            error = fmt_err(a["poincare_H_relative_error"])
+            facts.append(("max |H − H(0)|/|H(0)| at the crossings", error))
+            on_surface = f"; every crossing lies on the energy surface H = H(0) to {error}"
         return SectionContent(
             figures=[cls.figure("poincare", fig,
                                 cls.surface_words(data, s_col, value, direction, u, v)
-                                + f" at each of the {len(pts['u'])} crossings.")],
-            facts=[("crossings", str(len(pts["u"])))],
+                                + f" at each of the {len(pts['u'])} crossings{on_surface}.")],
+            facts=facts,
             notes=[{"chaotic": "This orbit is chaotic (its behaviour, above): its crossings "
                                 "scatter over an area of the section instead of lying on a "
                                 "curve, as a regular orbit's would. ",
@@ -481,10 +510,23 @@ class HamiltonianReport(Report):
                        cls.prose_case(data)["behaviour"],
                        "A regular (quasi-periodic) orbit crosses the surface on a closed "
                        "curve; a chaotic one scatters over an area. ")
-                   + "Crossings are located between stored "
-                   "samples by cubic Hermite interpolation with the derivatives from "
-                   "Hamilton's equations."] if len(pts["u"]) else
+                   + cls.located_words(data)] if len(pts["u"]) else
                   ["The orbit did not cross the surface of section during the run."])
+
+    @staticmethod
+    def located_words(data) -> str:
+        """How the crossings were found: on the integrator's steps, or between samples."""
+        run = data.runs["main"]
+        if str(data.analysis.get("poincare_located", "samples")) == "steps":
+            return ("Each crossing is located during the integration, by root finding on the "
+                    "continuous extension (dense output) of the DOP853 step that crosses the "
+                    "surface, to rounding in the step's time: the crossings are as accurate as "
+                    "the steps whatever the number of stored samples (Hairer, Nørsett & Wanner "
+                    "§II.6).")
+        return (f"The run's method ({run.attrs.get('method', '')}) has no continuous extension "
+                "here: each crossing is located between stored samples by cubic Hermite "
+                "interpolation with the derivatives from Hamilton's equations, so its "
+                "accuracy depends on the sampling.")
 
     @classmethod
     def section_invariants(cls, data):
@@ -504,72 +546,3 @@ class HamiltonianReport(Report):
                     run.t, {f"${cls.name_tex(data, f)}$": v for f, v in moving.items()}),
                 "Observables that are not conserved ({f, H} + ∂f/∂t ≠ 0), against time."))
         return content
-
-    @classmethod
-    def section_brackets(cls, data):
-        """The cyclic coordinates and the Jacobi identity on the run; the brackets' tables
-        are typeset by the kind's template (:meth:`symbol_tables`)."""
-        a = data.analysis
-        cyclic = [symbol_text(str(c)) for c in a["cyclic"]]
-        facts = [("cyclic coordinates", ", ".join(cyclic) + (
-                      " (its conjugate momentum is conserved)" if len(cyclic) == 1 else
-                      " (their conjugate momenta are conserved)") if cyclic else "none"),
-                 ("Jacobi identity {f,{g,h}} + {g,{h,f}} + {h,{f,g}}",
-                  f"max {fmt_err(a['jacobi_max'])} on {cls.JACOBI_SAMPLES} samples of the run "
-                  f"(terms up to {fmt(a['jacobi_scale'], 3)})")]
-        triple = a.get("jacobi_triple_latex")
-        equations = [] if triple is None else [
-            ("the Jacobi identity is checked for", r",\quad ".join(
-                f"{n} = {t}" for n, t in zip("fgh", triple, strict=True)))]
-        return SectionContent(facts=facts, equations=equations)
-
-    @classmethod
-    def section_transform(cls, data):
-        a = data.analysis
-        tr = a["transform"]
-        new = list(a["transform_new"])
-        n = len(new) // 2
-        run = data.runs.get("transformed")
-        series = {new[i]: tr["Q"][:, i] for i in range(n)}
-        series.update({new[n + i]: tr["P"][:, i] for i in range(n)})
-        fig = plots.new_variables(data.runs["main"].t, series,
-                                  run[new[0]] if run is not None else None, new[0])
-        eqs = [("generating function and relations" if i == 0 else "", line)
-               for i, line in enumerate(a["transform_latex"])]
-        if a["transform_K_latex"]:
-            eqs.append(("K in the new variables", f"K = {a['transform_K_latex']}"))
-        facts = [("max |MᵀJM − J| along the run (M = ∂(Q, P)/∂(q, p))",
-                  fmt_err(a["transform_defect_max"])),
-                 ("max |{Qᵢ, Pⱼ} − δᵢⱼ|, |{Qᵢ, Qⱼ}|, |{Pᵢ, Pⱼ}|",
-                  fmt_err(a["transform_bracket_max"]))]
-        if run is not None:
-            facts.append(("max |(Q, P) from integrating K − (Q, P) of the H orbit|",
-                          fmt_err(a["transform_run_difference"])))
-        else:
-            facts.append(("K as a formula in (Q, P)", "not found (the old variables are not "
-                          "linear in the new ones); K = H + ∂F/∂t, above, is evaluated along "
-                          "the run"))
-        caption = ("The new variables along the integrated orbit" +
-                   (f"; dashed: {symbol_text(new[0])} from integrating K's own Hamilton "
-                    "equations from (Q₀, P₀)." if run is not None else "."))
-        return SectionContent(figures=[cls.figure("new_variables", fig, caption)],
-                              equations=eqs, facts=facts)
-
-    @classmethod
-    def section_hamilton_jacobi(cls, data):
-        a = data.analysis
-        hj = a["hamilton_jacobi"]
-        run = data.runs["main"]
-        fig = common_plots.error_against_time(
-            run.t, {f"$|{symbol_tex(c)}^{{\\mathrm{{HJ}}}} - {symbol_tex(c)}|$": d
-                    for c, d in hj["difference"].items()},
-            time_unit=cls.UNITS, ylabel="quadrature − integration", unit=cls.UNITS)
-        which = ("Kepler's equation for t(r) (∂W/∂E), the argument of latitude (∂W/∂L) and the "
-                 "node (W differentiated by the z-component of L)"
-                 if a["hj_separation"] == "central" else
-                 "Charlier's quadratures in the fictitious time dt = m a²(cosh²ξ − cos²η) dτ, "
-                 "each coordinate through its turning points")
-        return SectionContent(
-            figures=[cls.figure("hj_difference", fig,
-                                f"The quadrature solution ({which}) minus the integration.")],
-            facts=[("max |quadrature − integration|", fmt_err(a["hj_max_difference"]))])

@@ -41,6 +41,68 @@ _TRANSFORM = (
     _text("transform_K_latex", "K in the new variables (TeX), empty if no closed form"),
     Q("transform_run_difference", r"\max|(Q, P)_K - (Q, P)_H|", "1",
       "largest difference between integrating K and the image of the H orbit"),
+    _text("transform_kind", "the transformation's type: F1, F2, F3, F4 (generating "
+          "function) or G (infinitesimal)"),
+    Q("transform_bracket_relative", r"\max|\{z_a, z_b\} - J_{ab}|/s_{ab}", "1",
+      "largest departure of the fundamental brackets, relative to the size s of their terms "
+      "(|M| |J| |M|^T)"),
+    Q("transform/dH", r"\Delta H", "1", "H(Q, P) - H(q, p) along the run (infinitesimal)",
+      ("t",)),
+    Q("transform/first_order", r"\epsilon\{H, G\}", "1",
+      "first-order change of H along the run (infinitesimal)", ("t",)),
+    Q("transform/second_order", r"\epsilon^2 w^T H'' w/2", "1",
+      "second-order change of H along the run (infinitesimal)", ("t",)),
+    Q("transform_epsilon", r"\epsilon", "1", "parameter of the infinitesimal transformation"),
+    Q("transform_bracket_closed_max", r"\epsilon^2\max|\{w_a, w_b\}|", "1",
+      "largest departure of the brackets from J by the closed form eps^2 {w_a, w_b}"),
+    Q("transform_bracket_agreement", "", "1", "largest |{z_a, z_b} - J - eps^2 {w_a, w_b}| "
+      "relative to the size of the bracket's terms"),
+    _flag("transform_bracket_symbolic", "whether {z_a, z_b} = J + eps^2 {w_a, w_b} holds "
+          "in SymPy's algebra"),
+    _text("transform_HG_latex", "{H, G} simplified (TeX)"),
+    Q("transform_dH_max", r"\max|\Delta H|", "1", "largest change of H along the run"),
+    Q("transform_first_order_max", r"\max|\epsilon\{H, G\}|", "1",
+      "largest first-order change of H"),
+    Q("transform_second_order_residual", "", "1", "largest |Delta H - eps{H, G} - eps^2 "
+      "w^T H'' w/2| along the run (third order in eps)"),
+    Q("transform_H_scale", r"\max|H|", "1", "largest |H| along the run"),
+)
+
+_NOETHER = (
+    _flag("noether_symmetry", "whether delta L - dF/dt simplifies to zero (a symmetry)"),
+    _text("noether_delta_latex", "the generator delta q of each coordinate (TeX)",
+          ("coordinate",)),
+    _text("noether_delta_velocity_latex", "delta q_dot = d(delta q)/dt (TeX)",
+          ("coordinate",)),
+    _text("noether_delta_L_latex", "delta L, simplified (TeX)"),
+    _text("noether_F_latex", "F with delta L = dF/dt (TeX)"),
+    _text("noether_residual_latex", "delta L - dF/dt, simplified (TeX)"),
+    _text("noether_charge_latex", "the charge sum dL/dq_dot delta q - F in q, q_dot (TeX)"),
+    _text("noether_charge_qp_latex", "the charge in q, p (TeX)"),
+    _text("noether_bracket_latex", "{Q, H} + dQ/dt simplified (TeX)"),
+    _flag("noether_bracket_zero", "whether {Q, H} + dQ/dt simplifies to zero"),
+    Q("noether_charge0", r"Q_{\mathrm{N}}(0)", "1", "the charge at t = 0"),
+    Q("noether_scale", "", "1", "the size of the charge's parts at t = 0 (its drift's scale)"),
+    Q("noether_drift", r"\max|Q_{\mathrm{N}} - Q_{\mathrm{N}}(0)|/s", "1",
+      "largest drift of the charge along the run, relative to noether_scale"),
+    Q("noether_values", r"Q_{\mathrm{N}}", "1", "the charge along the run (when the "
+      "transformation is not a symmetry)", ("t",)),
+)
+
+_TOTAL_DERIVATIVE = (
+    _text("total_derivative_F_latex", "F(q, t) of L' = L + dF/dt (TeX)"),
+    _text("total_derivative_L_latex", "L' = L + dF/dt (TeX)"),
+    _flag("total_derivative_same_equations", "whether E(L') - E(L) simplifies to zero for "
+          "every coordinate"),
+    _text("total_derivative_difference_latex", "E(L') - E(L) simplified (TeX)",
+          ("coordinate",)),
+    _text("total_derivative_shift_latex", "p' - p = dF/dq (TeX)", ("coordinate",)),
+    _text("total_derivative_H_latex", "the Hamiltonian H' of L' (TeX)"),
+    _flag("total_derivative_H_same", "whether H'(q, p) = H(q, p - dF/dq) - dF/dt simplifies"),
+    Q("total_derivative_H_error", r"\max|H' - (H - \partial F/\partial t)|", "1",
+      "largest |H'(q, p + dF/dq) - H(q, p) + dF/dt| along the run"),
+    Q("total_derivative_H_scale", r"\max|H - \partial F/\partial t|", "1",
+      "largest |H - dF/dt| along the run"),
 )
 
 SCHEMA = ResultsSchema(
@@ -77,7 +139,16 @@ SCHEMA = ResultsSchema(
         _text("pair_brackets/latex", "{f, g} simplified (TeX)", ("pair",), optional=True),
         Q("jacobi_max", r"\max|\{f,\{g,h\}\} + \{g,\{h,f\}\} + \{h,\{f,g\}\}|", "1",
           "largest Jacobi-identity sum on samples of the run"),
-        Q("jacobi_scale", "", "1", "sum of the largest Jacobi-identity terms"),
+        Q("jacobi_scale", "", "1", "largest sum of the sizes of the three Jacobi-identity "
+          "terms on the samples"),
+        Q("jacobi_terms", "", "1", "largest |value| of each Jacobi-identity term on the "
+          "samples", ("term",)),
+        Q("jacobi_roundoff", "", "1", "largest size of each term's parts (sums and products "
+          "in absolute value): the scale of its rounding", ("term",)),
+        _flag("jacobi_tested", "whether some Jacobi-identity term is above rounding (false: "
+              "every term vanishes, and the identity is not tested)"),
+        Q("jacobi_relative", "", "1", "largest Jacobi-identity sum relative to jacobi_scale "
+          "(NaN when not tested)"),
         _text("jacobi_triple", "the f, g, h of the Jacobi identity checked", ("triple",)),
         _text("jacobi_triple_latex", "the f, g, h of the Jacobi identity checked (TeX)",
               ("triple",), optional=True),
@@ -87,6 +158,11 @@ SCHEMA = ResultsSchema(
           "largest difference of H and the energy function along the run", optional=True),
         Q("legendre_energy_scale", r"\max|H|", "1", "largest |H| along the run",
           optional=True),
+        Q("legendre_passive_error", r"\max|\partial H/\partial x + \partial L/\partial x|",
+          "1", "largest |dH/dx + dL/dx| along the run over the passive variables x = q, t of "
+          "the Legendre transform (notes (4.8))", optional=True),
+        Q("legendre_passive_scale", r"\max|\partial L/\partial x|", "1",
+          "largest |dL/dx| along the run over the passive variables", optional=True),
         Q("phase_grid/q", "q", "1", "phase-portrait grid: coordinate", ("grid_q",),
           optional=True),
         Q("phase_grid/p", "p", "1", "phase-portrait grid: momentum", ("grid_p",),
@@ -107,6 +183,14 @@ SCHEMA = ResultsSchema(
               ("axis",), optional=True),
         Q("poincare_H_error", r"\max|H - H_0|", "1",
           "largest departure of H from H(0) at the crossings", optional=True),
+        Q("poincare_H_relative_error", r"\max|H - H_0|/E_s", "1",
+          "largest departure of H from H(0) at the crossings, relative to the energy scale "
+          "E_s = max(|H0|, |T0|, |V0|) of the run's drift", optional=True),
+        Q("poincare_H_farthest", "H", "1", "H at the crossing furthest from H(0)",
+          optional=True),
+        _text("poincare_located", "where the crossings were located: \"steps\" (on the "
+              "integrator's continuous extension of each step) or \"samples\" (cubic Hermite "
+              "interpolation between stored samples)", optional=True),
         Q("poincare_points", "", "1", "crossings of the surface of section", optional=True),
         Q("poincare_edge/u", "u", "1", "edge grid: first plotted column", ("edge_u",),
           optional=True),
@@ -118,6 +202,8 @@ SCHEMA = ResultsSchema(
         _text("poincare_edge_momentum", "the momentum that vanishes on the edge",
               optional=True),
         *(replace(q, optional=True) for q in _TRANSFORM),
+        *(replace(q, optional=True) for q in _NOETHER),
+        *(replace(q, optional=True) for q in _TOTAL_DERIVATIVE),
         _text("hj_separation", "the separation of the quadrature solution", optional=True),
         Q("hj_max_difference", r"\max|y_{HJ} - y|", "1",
           "largest difference of the quadrature solution and the integration",
@@ -140,7 +226,7 @@ SCHEMA = ResultsSchema(
 
 def schema_for(coordinates: Iterable[str], observables: Iterable[str],
                new_columns: Iterable[str] = (),
-               tex: Callable[[str], str] = str) -> ResultsSchema:
+               tex: Callable[[str], str] = str, noether: bool = False) -> ResultsSchema:
     """:data:`SCHEMA` with what a config names: the columns (the coordinates, then
     ``p_<q>``, and a canonical transformation's new variables), the invariants (H, each
     observable, the momentum of each coordinate that may turn out cyclic) and the
@@ -153,6 +239,9 @@ def schema_for(coordinates: Iterable[str], observables: Iterable[str],
     invariants = [Q(f, tex(f), "1", f"observable {f}", ("t",)) for f in observables]
     invariants += [Q(f"p_{q}", tex(f"p_{q}"), "1", f"momentum conjugate to {q} (cyclic)",
                      ("t",)) for q in coordinates]
+    if noether:
+        invariants.append(Q("noether_charge", r"Q_{\mathrm{N}}", "1",
+                            "Noether charge of the declared symmetry", ("t",)))
     analysis = [Q(f"initial_{c.name}", c.symbol + "(0)" if c.symbol else "", "1",
                   f"initial value of {c.name}") for c in columns[:2 * len(coordinates)]]
     for f in observables:

@@ -14,20 +14,19 @@ from ...scene.results import Check, Results
 from ...scene.schema import ResultsSchema
 from ...scene.sweep import PointSet
 from .analysis import HamiltonianAnalysis
-from .config import STUDY_STEPS, HamiltonianConfig, _PresetFormulas, family_energy
+from .config import STUDY_STEPS, HamiltonianConfig, family_energy
 from .results import SCHEMA, schema_for
+from .structure import HamiltonianStructure
 
 expressions = lazy_module("reportgen.core.expressions")
 formula = lazy_module("reportgen.core.formula")
+integrators = lazy_module("reportgen.core.integrators")
 numeric = lazy_module("reportgen.core.numeric")
 mechanics = lazy_module("reportgen.core.mechanics")
 canonical = lazy_module("reportgen.core.canonical")
 hamilton_jacobi = lazy_module("reportgen.core.hamilton_jacobi")
 
-_hj = _PresetFormulas
-
-
-class HamiltonianSimulation(HamiltonianAnalysis, IntegratingSimulation):
+class HamiltonianSimulation(HamiltonianStructure, HamiltonianAnalysis, IntegratingSimulation):
     """A system given as H(q, p, t) or L(q, q̇, t): derived, compiled, integrated, checked."""
 
     schema = SCHEMA
@@ -44,10 +43,12 @@ class HamiltonianSimulation(HamiltonianAnalysis, IntegratingSimulation):
         import sympy
 
         cfg = self.config
-        new = [] if cfg.transform is None else (list(cfg.transform.coordinates)
-                                                 + cfg.transform.new_momenta())
+        coords = list(cfg.system.coordinates)
+        new = [] if cfg.transform is None else (cfg.transform.new_coordinates(coords)
+                                                 + cfg.transform.new_momenta(coords))
         return schema_for(cfg.system.coordinates, cfg.observables, new,
-                          tex=lambda name: sympy.latex(sympy.Symbol(name)))
+                          tex=lambda name: sympy.latex(sympy.Symbol(name)),
+                          noether=cfg.noether is not None)
 
     # ----------------------------------------------------------------- helpers
     def system(self):
@@ -179,6 +180,8 @@ class HamiltonianSimulation(HamiltonianAnalysis, IntegratingSimulation):
             conserved[name] = total == 0
         cyclic = mechanics.cyclic_coordinates(space, H)
         h_conserved = not system.time_dependent
+        symmetry = self._noether(system) if self.config.noether is not None else None
+        charge = None if symmetry is None or not symmetry[0].symmetry else symmetry[1]
 
         def quantities(tt, y):
             vals = system.values(y, tt)
@@ -188,6 +191,9 @@ class HamiltonianSimulation(HamiltonianAnalysis, IntegratingSimulation):
                            strict=True))
             for c in cyclic:
                 out[f"p_{c}"] = np.array(y[:, space.names.index(c) + system.n])
+            if charge is not None:  # a declared symmetry's charge (notes (3.9–3.16))
+                out["noether_charge"] = np.array(np.broadcast_to(
+                    numeric.evaluate(charge, vals), np.shape(tt)))
             return out
 
         angles = self._angles(system)
@@ -200,8 +206,16 @@ class HamiltonianSimulation(HamiltonianAnalysis, IntegratingSimulation):
             # that a zero-energy orbit is measured against its kinetic and potential energy
             v0 = float(np.ravel(numeric.evaluate(H.subs({p: 0 for p in space.p}), vals0))[0])
             scales["H"] = max(abs(h0), abs(v0), abs(h0 - v0), 1e-300)
+        if symmetry is not None:
+            # the charge's scale: the size of its parts at t = 0 (a charge may start at 0)
+            size = float(np.max(mechanics.roundoff_scale(symmetry[1], vals0)))
+            scales["noether_charge"] = max(size, 1e-300)
+        surface = self._surface(system)
+        located = surface is not None and self._locates_on_steps()
         main = self.integrate(model, y0, t, invariants=quantities, progress=progress,
-                              invariant_scales=scales or None)
+                              invariant_scales=scales or None,
+                              section=surface if located else None)
+        crossings = self._crossings if located else None
         results.runs["main"] = main
         vals = system.values(main.y, main.t)
         # observables that are not conserved: their time series (not judged as invariants)
@@ -240,12 +254,24 @@ class HamiltonianSimulation(HamiltonianAnalysis, IntegratingSimulation):
             a[f"conserved_{name}"] = bool(conserved[name])
             a[f"poisson_{name}_max"] = float(np.max(np.abs(numeric.evaluate(bracket, vals))))
         self._pairwise_brackets(a, system, vals)
+        if a["jacobi_tested"]:
+            results.checks.append(Check(
+                "Jacobi identity {f,{g,H}} + {g,{H,f}} + {H,{f,g}}, largest on the run",
+                a["jacobi_max"], 0.0, "", "0, relative to the sum of the sizes of its three "
+                "terms", scale=a["jacobi_scale"]))
         if system.L is not None:
             self._legendre_checks(a, system, main)
         if system.n == 1:
             self._phase_grid(a, system, main)
-        elif self.config.section is not None or system.n == 2:
-            self._poincare(a, system, main)
+        elif surface is not None:
+            self._poincare(a, system, main, crossings)
+            if "poincare_H_error" in a:
+                results.checks.append(Check(
+                    "H at the crossing of the surface of section furthest from H(0)",
+                    a["poincare_H_farthest"], h0, "",
+                    "H(0), conserved; crossings located "
+                    + ("on the integrator's steps" if crossings is not None else
+                       "between the stored samples"), scale=scales.get("H", 1.0)))
 
         results.checks.append(Check("H(t_end)" if h_conserved else "H(0)",
                                     float(main.invariants["H"][-1]) if h_conserved else h0,
@@ -253,6 +279,10 @@ class HamiltonianSimulation(HamiltonianAnalysis, IntegratingSimulation):
                                                                                            1.0)))
         if self.config.transform is not None:
             self._transform(results, system, main)
+        if symmetry is not None:
+            self._noether_along(results, system, main, *symmetry, scales["noether_charge"])
+        if self.config.total_derivative is not None:
+            self._total_derivative(a, system, main)
         if self.config.hamilton_jacobi is not None:
             self._hamilton_jacobi(a, system, main)
         # the study over at most STUDY_STEPS of the main run's steps: long (and chaotic) runs
@@ -267,6 +297,46 @@ class HamiltonianSimulation(HamiltonianAnalysis, IntegratingSimulation):
         self.study(results, model, y0, np.linspace(0.0, horizon, 201))
         return results
 
+    def integrate(self, model, y0, t_eval, *args, section=None, **kwargs):
+        """As every kind's (:meth:`IntegratingSimulation.integrate`); with ``section`` (a
+        surface from :meth:`_surface`) the run is stepped so that its crossings are located
+        on the steps (:meth:`_run_with_section`), kept in ``self._crossings``."""
+        if section is None:
+            return super().integrate(model, y0, t_eval, *args, **kwargs)
+        main, self._crossings = self._run_with_section(
+            model, y0, t_eval, section, kwargs.get("invariants"),
+            kwargs.get("invariant_scales"), kwargs.get("progress"))
+        return main
+
+    def _locates_on_steps(self) -> bool:
+        """Whether the run can locate its crossings on its own steps: DOP853 (named, or
+        the automatic choice for a formula system, which is neither stiff nor a Kepler
+        orbit) stepped one step at a time with its continuous extension at hand."""
+        run = self.config.run
+        return run.method in ("auto", "dop853") and run.h is None
+
+    def _run_with_section(self, model, y0, t, surface, invariants, scales, progress):
+        """The main run, stepped so that the crossings of ``surface`` are located on each
+        DOP853 step's 7th-order continuous extension (the integrators' surface-of-section
+        search, as the two-centre kind's): as accurate as the steps whatever the output
+        samples, whose states are the plain DOP853 run's.  Returns (the run, rows (t,
+        state) at the crossings)."""
+        run, system = self.config.run, self.system()
+        s_col, value, direction, _ = surface
+        section = formula.compiled_section(system, list(system.columns).index(s_col),
+                                           value, direction)
+        why = (integrators.choose_auto(model, run.rtol)[1] if run.method == "auto"
+               else "named in the config.")
+        reason = (f"{why} Stepped so that the crossings of the surface of section are "
+                  "located on each step's continuous extension, whatever the output samples.")
+        spec = integrators.SolverSpec(method=run.method, rtol=run.rtol, atol=run.atol,
+                                      reason=reason)
+        res = integrators.solve_fictitious_time(model, y0, t, None, spec, reason,
+                                                progress=progress, section=section)
+        main = self.run_record(res, model.columns, invariants=invariants,
+                               invariant_scales=scales)
+        return main, res.solution.crossings
+
     @staticmethod
     def _chaos_words(a: dict) -> str:
         """The behaviour verdict from the divergence of two orbits 1e-10 apart."""
@@ -277,95 +347,6 @@ class HamiltonianSimulation(HamiltonianAnalysis, IntegratingSimulation):
         return (f"regular: two orbits 1e-10 apart separate by only "
                 f"{a['separation_growth']:.2g}× over the run (no exponential divergence)")
 
-    def _transform(self, results, system, main) -> None:
-        """New variables along the run, the symplectic condition MᵀJM = J there, K = H +
-        ∂F/∂t; where K has a closed form, K integrated from (Q0, P0) against the image."""
-        import sympy
-
-        from ...scene.config import ConfigError
-
-        cfg, a, n = self.config.transform, results.analysis, system.n
-        numbers = {system.param_symbols[k]: v for k, v in system.params.items()}
-        H = system.H.xreplace(numbers)
-        try:
-            ct = canonical.generating_function(system.space, cfg.formula, cfg.kind,
-                                               cfg.coordinates, cfg.new_momenta(),
-                                               params=system.params)
-            q, p, t = main.y[:, :n], main.y[:, n:], main.t
-            Q, P = canonical.new_variables(ct, q, p, t)
-        except ValueError as exc:
-            raise ConfigError([f"{self.source.label}: key 'transform.{cfg.kind}': {exc}"]) \
-                from None
-        defect = canonical.symplectic_defect(ct, q, p, Q, P, t)
-        brackets = canonical.poisson_brackets(ct, q, p, Q, P, t)
-        unit = np.zeros((2 * n, 2 * n))
-        unit[:n, n:], unit[n:, :n] = np.eye(n), -np.eye(n)
-        K_along = canonical.hamiltonian_along(ct, H, q, p, Q, P, t)
-        a["transform"] = {"Q": Q, "P": P, "defect": defect, "K": K_along}
-        a["transform_new"] = list(cfg.coordinates) + cfg.new_momenta()
-        a["transform_latex"] = canonical.relations_latex(ct)
-        a["transform_defect_max"] = float(np.max(defect))
-        a["transform_bracket_max"] = float(np.max(np.abs(brackets - unit)))
-        K = canonical.new_hamiltonian(ct, H)
-        a["transform_K_latex"] = "" if K is None else sympy.latex(K)
-        if K is None or K.free_symbols - set(ct.Q + ct.P + (system.space.t,)):
-            return
-        # Hamilton's equations of K, compiled like any formula system, from (Q0, P0)
-        space = mechanics.PhaseSpace(tuple(cfg.coordinates), ct.Q, ct.P, (), system.space.t)
-        new = formula.FormulaSystem(space, {}, {}, K, None, None,
-                                    mechanics.hamiltonian_system(space, K))
-        model = formula.compiled_model(new, name=f"{self.source.name}-K")
-        run = self.integrate(model, np.concatenate([Q[0], P[0]]), t)
-        run.reference = {c: v for c, v in zip(model.columns, np.column_stack([Q, P]).T,
-                                              strict=True)}
-        run.attrs["reference_label"] = "(Q, P) of the integrated H orbit"
-        results.runs["transformed"] = run
-        a["transform_run_difference"] = float(np.max(np.abs(run.y - np.column_stack([Q, P]))))
-
-    def _hamilton_jacobi(self, a: dict, system, main) -> None:
-        """The preset's quadrature solution against the run, and its separated constants
-        along the run."""
-        from ...scene.config import ConfigError
-
-        kind = self.config.hamilton_jacobi.separation
-        prm = system.params
-        # the config's H must be the one the quadrature solves: compared at random states
-        text = _hj.CENTRAL_H if kind == "central" else _hj.TWO_CENTRES_H
-        ref = expressions.parse_expression(text, {**system.space.symbols_for_h(),
-                                                  **system.param_symbols})
-        states = np.random.default_rng(7).uniform(0.3, 1.3, size=(5, 2 * system.n))
-        vals = system.values(states, 0.0)
-        if not np.allclose(numeric.evaluate(system.H, vals), numeric.evaluate(ref, vals),
-                           rtol=1e-12, atol=1e-12):
-            raise ConfigError([f"{self.source.label}: key 'hamilton_jacobi.separation': H is "
-                               f"not the Hamiltonian the {kind!r} quadrature solves "
-                               f"({text})"])
-        y, t = main.y, main.t
-        cols = list(system.columns)
-        try:
-            if kind == "central":
-                sol = hamilton_jacobi.central_quadrature(prm["m"], prm["k"], y[0], t)
-                consts = hamilton_jacobi.central_integrals(*y.T, prm["m"], prm["k"])
-            else:
-                sol = hamilton_jacobi.two_centres_quadrature(prm["m"], prm["mu1"], prm["mu2"],
-                                                             prm["a"], y[0], t)
-                consts = hamilton_jacobi.two_centres_integrals(*y.T, prm["m"], prm["mu1"],
-                                                               prm["mu2"], prm["a"])
-        except ValueError as exc:
-            raise ConfigError([f"{self.source.label}: key 'initial': the {kind!r} quadrature "
-                               f"does not apply: {exc}"]) from None
-        diff = {c: np.abs(np.asarray(sol[c]) - y[:, cols.index(c)]) for c in cols}
-        a["hamilton_jacobi"] = {"solution": {c: np.asarray(sol[c]) for c in cols},
-                                "difference": diff,
-                                "constants": {k: np.asarray(v) for k, v in consts.items()}}
-        a["hj_separation"] = kind
-        a["hj_max_difference"] = float(max(np.max(d) for d in diff.values()))
-        a["hj_constants"] = {k: float(np.asarray(v)[0]) for k, v in consts.items()}
-        a["hj_constant_drift"] = {
-            k: float(np.max(np.abs(np.asarray(v) - np.asarray(v)[0]))
-                     / max(abs(float(np.asarray(v)[0])), 1e-300)) for k, v in consts.items()}
-
-    # ------------------------------------------------------------------ sweeps
     @staticmethod
     def member_points(results) -> dict[str, PointSet]:
         """A member's crossings of the surface of section: time, the two plotted columns

@@ -40,11 +40,12 @@ class Initial(Strict):
                                                    "(or give `steady`)")
     omega3: Real = Field(description="spin ω3 = ψ̇ + φ̇ cos θ [rad/s]")
     steady: Literal["slow", "fast"] | None = Field(
-        None, description='"slow"/"fast": φ̇0 = that steady precession rate (10.45), θ̇0 = 0')
+        None, description='"slow"/"fast": φ̇0 = that steady precession rate (notes (10.45)), '
+                          'θ̇0 = 0')
 
 
 class Band(Strict):
-    """Instead of [initial]: a nutation band and a Fig. 4.3 case to solve for.
+    """Instead of [initial]: a nutation band and a textbook Fig. 4.3 case to solve for.
 
     The scene releases the top on the upper circle θmin (θ̇0 = 0) with the φ̇0 that
     makes θmax the lower turning circle and gives the case asked for."""
@@ -53,7 +54,7 @@ class Band(Strict):
     theta_max: Real = Field(description="lower turning circle θ2, θmin < θmax < π [rad]")
     case: Literal["loops", "waves", "cusps", "all"] = Field(
         description='"loops", "waves", "cusps", or "all": the three as runs loops, waves, '
-                    'cusps and the Fig. 4.3 figure')
+                    'cusps and the textbook Fig. 4.3 figure')
     omega3: Real | None = Field(
         None, description="spin ω3 [rad/s] of loops and waves (cusps have one possible spin "
                           "per band); default: 1.5 × the cusp spin for loops, halfway between "
@@ -61,14 +62,22 @@ class Band(Strict):
 
 
 class Sleeping(Strict):
-    """``[sleeping]``: sweep of ω3 across the sleeping-top threshold (10.50)."""
+    """``[sleeping]``: sweep of ω3 across the sleeping-top threshold (notes (10.50))."""
 
-    tilt: Positive = Field(1e-6, description="initial tilt of every sweep run [rad]")
+    tilt: Positive = Field(1e-6, description="initial tilt of every sweep run, 0 < tilt < π "
+                                             "[rad]")
     omega3_over_threshold: list[Positive] = Field(
         [0.5, 0.8, 0.9, 1.1, 1.25, 2.0], min_length=1, max_length=12,
-        description="spins of the sweep, in units of the threshold ω3")
+        description="spins of the sweep as multiples of the threshold ω3 [dimensionless]")
     t_end: Positive | None = Field(None, description="duration of each sweep run [s] "
                                                       "(default: run.t_end)")
+
+    @model_validator(mode="after")
+    def _tilt(self):
+        if not self.tilt < math.pi:
+            raise ValueError(f"sleeping.tilt: must satisfy 0 < tilt < π (got {self.tilt})"
+                             + angle_hint(self.tilt, valid=lambda a: 0.0 < a < math.pi))
+        return self
 
 
 #: ``formulation = "auto"`` integrates Lagrange's reduced equations when the axis stays at
@@ -96,7 +105,8 @@ class HeavyTopConfig(SceneConfig):
     run: HeavyTopRun
     sleeping: Sleeping | None = None
     expect_case: Literal["loops", "waves", "cusps", "steady", "sleeping"] | None = Field(
-        None, description="the Fig. 4.3 case the parameters must give (presets set it)")
+        None, description="the textbook Fig. 4.3 case the parameters must give (presets set "
+                          "it)")
 
     @model_validator(mode="after")
     def _physics(self):
@@ -119,9 +129,10 @@ class HeavyTopConfig(SceneConfig):
     def _check_band(self) -> None:
         p, band = self.params, self.band
         if not 0.0 < band.theta_min < band.theta_max < math.pi:
-            raise ValueError(f"band.theta_min / band.theta_max: need 0 < θmin < θmax < π "
+            raise ValueError(f"band.theta_min / band.theta_max: must satisfy 0 < θmin < θmax < π "
                              f"(got θmin = {band.theta_min}, θmax = {band.theta_max})"
-                             + angle_hint(band.theta_min, band.theta_max))
+                             + angle_hint(band.theta_min, band.theta_max,
+                                          valid=lambda a: 0.0 < a < math.pi))
         if self.expect_case is not None:
             raise ValueError(f"expect_case: not with [band], whose case says it "
                              f"(got expect_case = {self.expect_case!r})")
@@ -137,7 +148,7 @@ class HeavyTopConfig(SceneConfig):
         p, ini = self.params, self.initial
         if not 0.0 <= ini.theta < math.pi:
             raise ValueError(f"initial.theta: must satisfy 0 ≤ θ < π (got {ini.theta})"
-                             + angle_hint(ini.theta))
+                             + angle_hint(ini.theta, valid=lambda a: 0.0 <= a < math.pi))
         if ini.steady is not None:
             if ini.phi_dot is not None:
                 raise ValueError("initial.phi_dot / initial.steady: give one of them "
@@ -153,7 +164,8 @@ class HeavyTopConfig(SceneConfig):
             if math.isnan(slow):
                 bound = 4 * p.I1 * p.Mgl * math.cos(ini.theta)
                 raise ValueError(
-                    f"initial.omega3 / initial.steady: no steady precession: (10.46) needs "
+                    f"initial.omega3 / initial.steady: no steady precession: notes (10.46) "
+                    f"needs "
                     f"I3² ω3² ≥ 4 I1 M g l cos θ = {bound:.6g} "
                     f"(got I3² ω3² = {(p.I3 * ini.omega3) ** 2:.6g})")
             if not math.isfinite(rate):

@@ -1,4 +1,4 @@
-"""Heavy-top figures: nutation locus, Fig. 4.3 as printed, f(u), the ℘ period rectangle,
+"""Heavy-top figures: nutation locus, textbook Fig. 4.3 as printed, f(u), the ℘ period rectangle,
 effective potential, time series, steady precession rates and the sleeping-top sweep.
 
 Figure text avoids combining accents (φ̇ is written dφ/dt): the PDF engine draws the
@@ -146,7 +146,7 @@ def cubic(u, f, *, u1, u2, u3, b_over_a, u0, xlabel="u = cos θ (dimensionless)"
 
 
 def effective_potential(theta, V, *, energy, theta1, theta2, ylabel="V'(θ) [J]", ax=None):
-    """V'(θ) (10.28) with the energy line E' and the turning angles."""
+    """V'(θ) (notes (10.28)) with the energy line E' and the turning angles."""
     fig, ax = new_figure(ax, figsize=(6.8, 4.4))
     ax.plot(theta, V, color=REFERENCE, label=ylabel.split(" [")[0])
     ax.axhline(energy, color=HIGHLIGHT, linestyle="--", label=f"energy {fmt(energy)} J")
@@ -213,13 +213,14 @@ def time_series(t, theta, theta_closed, phi_dot, u_error, *, theta1, theta2,
 
 def steady_rates(omega3, slow, fast, *, omega3_min, omega3_config, rate_config, rate_measured,
                  ax=None):
-    """The two steady-precession rates (10.45) against ω3, with the existence bound (10.46)."""
+    """The two steady-precession rates (notes (10.45)) against ω3, with the existence bound
+    (notes (10.46))."""
     fig, ax = new_figure(ax, figsize=(6.8, 4.4))
     ax.semilogy(omega3, slow, color=REFERENCE, label="slow root")
     ax.semilogy(omega3, fast, color=SEPARATRIX, label="fast root")
     if np.isfinite(omega3_min):
         ax.axvline(omega3_min, color=CONTEXT, linestyle=":",
-                   label=f"(10.46): ω3 ≥ {fmt(omega3_min, 4)} rad/s")
+                   label=f"notes (10.46): ω3 ≥ {fmt(omega3_min, 4)} rad/s")
     ax.plot([omega3_config], [abs(rate_config)], "o", color=HIGHLIGHT, markersize=7,
             label="this scene (closed form)")
     if np.isfinite(rate_measured):
@@ -244,7 +245,7 @@ def sleeping_sweep(t, theta, ratios, *, theta_max, figsize=(7.2, 4.0)):
     # each top in the same colour in both panels: red shades below the threshold, blue above
     ax2.scatter(ratios, theta_max, c=cmap, zorder=3)
     ax2.set_yscale("log")
-    ax2.axvline(1.0, color=SEPARATRIX, linestyle="--", label="ω3² = 4 I1 M g l / I3² (10.50)")
+    ax2.axvline(1.0, color=SEPARATRIX, linestyle="--", label="ω3² = 4 I1 M g l / I3², notes (10.50)")
     ax2.set_xlabel("ω3 / threshold ω3 (dimensionless)")
     ax2.set_ylabel("largest tilt θmax [rad]")
     ax2.set_title("largest tilt\nunstable (red) below, stable (blue) above", fontsize=10)
@@ -521,7 +522,7 @@ def nutation_family(x, *, theta1, theta2, case, xlabel, precession=None, thresho
         ax.annotate(f"{left} | {right}", (at, 1.0), xycoords=("data", "axes fraction"),
                     xytext=(0, 2 + 10 * (k % 2)), textcoords="offset points", ha="center",
                     va="bottom", fontsize=8, color="0.3")
-    ax.set_ylabel("θ1 (▼), θ2 (▲) [deg]")
+    ax.set_ylabel("θ1 (▼), θ2 (▲) [°]")
     ax.legend(loc="best", fontsize=8, title="case", title_fontsize=8)
     if lower is not None:
         ax2 = axes[1, 0]

@@ -1,4 +1,4 @@
-"""``heavy_top`` report: Fig. 4.3 and the nutation locus, f(u) and its roots, ℘, the
+"""``heavy_top`` report: textbook Fig. 4.3 and the nutation locus, f(u) and its roots, ℘, the
 effective potential, θ(t) against the closed form, steady precession, the sleeping-top
 sweep, the conserved quantities, and a family's bands and loci."""
 
@@ -11,12 +11,35 @@ import numpy as np
 from ...lazy import lazy_module
 from ...scene.base import Section
 from ...scene.content import SectionContent, Table, fmt, fmt_err
-from ...scene.report import Report, kept_members, no_period_reason
+from ...scene.report import Report, no_period_reason
 from .config import BAND_CASES, MIN_SAMPLES_PER_PERIOD
-from .locus import FIG43_ELEVATION_DEG, locus_stretch
+from .locus import FIG43_ELEVATION_DEG
+from .report_family import FamilySections
+from .report_weierstrass import WeierstrassSection
 from .results import SCHEMA
 
 plots = lazy_module("reportgen.kinds.heavy_top.plots")
+
+
+def _deg(angle, digits: int | None = None) -> str:
+    """An angle [rad] as a lecturer reads it, in degrees: ``50°``."""
+    value = math.degrees(float(angle))
+    return f"{fmt(value) if digits is None else fmt(value, digits)}°"
+
+
+def _deg_rad(angle) -> str:
+    """An angle [rad] in degrees with the radians beside, for a number that also enters a
+    formula: ``50° (0.872665 rad)``."""
+    return f"{_deg(angle)} ({fmt(float(angle))} rad)"
+
+
+def _band_words(theta1, theta2, *, radians: bool = False) -> str:
+    """The turning circles θ1 = arccos u2, θ2 = arccos u1 [rad] in degrees (with radians
+    beside if asked): ``θ1 = 50°, θ2 = 60°``, or one circle where they print alike."""
+    show = _deg_rad if radians else _deg
+    if fmt(float(theta1)) == fmt(float(theta2)):
+        return f"θ1 = θ2 = {show(theta1)} (no nutation)"
+    return f"θ1 = arccos u2 = {show(theta1)}, θ2 = arccos u1 = {show(theta2)}"
 
 FORMULATION_TEXT = {
     "reduced": "Lagrange's reduction: the nutation w = 1 − cos θ (ẅ = g′(w)/2, a polynomial) "
@@ -26,14 +49,7 @@ FORMULATION_TEXT = {
 }
 
 
-#: swept config keys -> the declared result holding the member's value (axis labels)
-SWEPT_RESULTS = {"initial.theta": "theta0", "initial.theta_dot": "theta_dot0",
-                 "initial.phi_dot": "phi_dot0", "initial.omega3": "omega3",
-                 "band.omega3": "omega3", "band.theta_min": "band/theta_min",
-                 "band.theta_max": "band/theta_max"}
-
-
-class HeavyTopReport(Report):
+class HeavyTopReport(FamilySections, WeierstrassSection, Report):
     """The heavy top's sections, drawn from the archive alone."""
 
     schema = SCHEMA
@@ -77,10 +93,11 @@ class HeavyTopReport(Report):
                 description="The path of the symmetry axis of each kept member."),
     )
     sections = (
-        Section("fig4_3", "Fig. 4.3: loops, waves and cusps on one band", integrates=True),
+        Section("fig4_3", "Loops, waves and cusps on one band (textbook Fig. 4.3)",
+                integrates=True),
         Section("nutation_locus", "Nutation locus of the symmetry axis", integrates=True),
         Section("cubic", "The cubic f(u), its roots, nutation period and precession"),
-        Section("weierstrass", "u(t) through Weierstrass's ℘ (exercise 4.10)"),
+        Section("weierstrass", "u(t) through Weierstrass's ℘ (textbook exercise 4.10)"),
         Section("effective_potential", "Effective potential"),
         Section("time_series", "θ(t) and φ̇(t) against the closed form", integrates=True),
         Section("steady_precession", "Steady precession"),
@@ -130,8 +147,7 @@ class HeavyTopReport(Report):
                 "growth": fmt(float(a.get("sleeping_growth_rate", math.nan)), 3),
                 "theta0": fmt(float(a["theta0"]), 3), "theta1": fmt(float(a["theta1"]), 3),
                 "theta2": fmt(float(a["theta2"]), 3),
-                "theta1_deg": f"{fmt(math.degrees(float(a['theta1'])), 3)}°",
-                "theta2_deg": f"{fmt(math.degrees(float(a['theta2'])), 3)}°",
+                "theta1_deg": _deg(a["theta1"], 3), "theta2_deg": _deg(a["theta2"], 3),
                 "phi_dot0": fmt(float(a["phi_dot0"]), 4), "root": "", "other": ""}
         if case["case"] == "steady" and "steady_rate_fast" in a:
             fast, slow = float(a["steady_rate_fast"]), float(a["steady_rate_slow"])
@@ -143,13 +159,13 @@ class HeavyTopReport(Report):
     @classmethod
     def describe(cls, data):
         """``A heavy top spun at ω3 = 6 rad/s in steady precession at θ0 = 57.3°, φ̇ =
-        5.196 rad/s (the fast root of (10.45))``: the scene's case with its numbers."""
+        5.196 rad/s (the fast root of notes (10.45))``: the scene's case with its numbers."""
         if data.sweep is not None:
             return super().describe(data)
         c, a = cls.prose_case(data), data.analysis
         if c["band"] and a["band"]["case"] == "all":
             return (f"Three heavy tops released on the same band, θ from {c['theta1_deg']} to "
-                    f"{c['theta2_deg']}: looping, wavy and cusped nutation (Fig. 4.3)")
+                    f"{c['theta2_deg']}: looping, wavy and cusped nutation (textbook Fig. 4.3)")
         if c["sleeping"]:
             side = "above" if c["stable"] else "below"
             return (f"A top spun at ω3 = {c['omega3']} rad/s, {side} its sleeping threshold "
@@ -158,7 +174,7 @@ class HeavyTopReport(Report):
         if c["case"] == "steady":
             return (f"A heavy top spun at ω3 = {c['omega3']} rad/s in steady precession at "
                     f"θ0 = {c['theta1_deg']}, φ̇ = {c['phi_dot0']} rad/s"
-                    + (f" (the {c['root']} root of (10.45))" if c["root"] else ""))
+                    + (f" (the {c['root']} root of notes (10.45))" if c["root"] else ""))
         words = {"loops": "looping", "waves": "wavy", "cusps": "cusped"}.get(c["case"], "")
         period = float(a["nutation_period"])
         return (f"A heavy top spun at ω3 = {c['omega3']} rad/s, its axis in {words} nutation "
@@ -173,25 +189,27 @@ class HeavyTopReport(Report):
         facts = [("parameters", f"I1 = {fmt(p.I1)} kg m², I3 = {fmt(p.I3)} kg m², "
                                 f"M g l = {fmt(p.Mgl)} J")]
         if band is not None:
-            facts.append(("band asked for", f"θmin = {fmt(band['theta_min'])} rad, θmax = "
-                          f"{fmt(band['theta_max'])} rad, case = {band['case']}"))
+            facts.append(("band asked for", f"θmin = {_deg_rad(band['theta_min'])}, θmax = "
+                          f"{_deg_rad(band['theta_max'])}, case = {band['case']}"))
             for name in [n for n in (*BAND_CASES, "main") if n in band["runs"]]:
                 run = band["runs"][name]
                 label = "released on θmin" if name == "main" else f"{name}: released on θmin"
                 facts.append((label, f"θ̇0 = 0, φ̇0 = {fmt(run['phi_dot0'])} rad/s, ω3 = "
                                      f"{fmt(run['omega3'])} rad/s → {run['case']}, θ1 − θmin = "
-                              f"{fmt_err(run['theta1'] - band['theta_min'])}, θ2 − θmax = "
-                              f"{fmt_err(run['theta2'] - band['theta_max'])}"))
+                              f"{fmt_err(run['theta1'] - band['theta_min'])} rad, θ2 − θmax = "
+                              f"{fmt_err(run['theta2'] - band['theta_max'])} rad"))
             if band["case"] == "all":
-                facts.append(("sections below Fig. 4.3", "the loops run (/runs/main is "
+                facts.append(("sections below textbook Fig. 4.3", "the loops run (/runs/main is "
                                                          "/runs/loops)"))
         else:
-            facts.append(("initial state", f"θ0 = {fmt(a['theta0'])} rad, θ̇0 = "
+            facts.append(("initial state", f"θ0 = {_deg_rad(a['theta0'])}, θ̇0 = "
                           f"{fmt(a['theta_dot0'])} rad/s, φ̇0 = {fmt(a['phi_dot0'])} rad/s, "
                           f"ω3 = {fmt(a['omega3'])} rad/s"))
         facts.append(("case", f"{a['case']} (a = {fmt(a['a'])}, b = {fmt(a['b'])}, "
                               f"b/a = {fmt(a['b_over_a'])}; u1 = {fmt(a['u1'])}, "
                               f"u2 = {fmt(a['u2'])})"))
+        if band is None and math.isfinite(a["theta1"]) and math.isfinite(a["theta2"]):
+            facts.append(("nutation band", _band_words(a["theta1"], a["theta2"])))
         if math.isfinite(a["nutation_period"]):
             extra = " (small-oscillation limit, k² = 0)" if a["case"] in ("steady",
                                                                           "sleeping") else ""
@@ -203,7 +221,7 @@ class HeavyTopReport(Report):
             facts.append(("℘ form against sn² form", "max |Δu| = "
                           f"{fmt_err(a['weierstrass_max_difference'])} on the output grid"))
         facts.append(("sleeping-top threshold", f"ω3 = 2√(I1 M g l)/I3 = "
-                      f"{fmt(a['sleeping_threshold_omega3'])} rad/s (10.50)"))
+                      f"{fmt(a['sleeping_threshold_omega3'])} rad/s (notes (10.50))"))
         formulation = data.runs["main"].attrs.get("formulation")
         if formulation in FORMULATION_TEXT:  # archives before it was stored: spin-free
             facts.append(("integrated", f"{FORMULATION_TEXT[formulation]} "
@@ -239,8 +257,9 @@ class HeavyTopReport(Report):
                          fmt_err(r["weierstrass_max_difference"])])
         spins = _spins_in_words(band)
         table = Table(
-            caption=f"The three runs on θ ∈ [{fmt(band['theta_min'])}, {fmt(band['theta_max'])}] "
-                    f"rad: the case the solved release gives (classified from b/a and u1, u2), "
+            caption=f"The three runs on θ ∈ [{_deg(band['theta_min'])}, "
+                    f"{_deg(band['theta_max'])}]: the case the solved release gives (classified "
+                    f"from b/a and u1, u2), "
                     f"φ̇ = (b − a cos θ)/sin²θ on the "
                     f"two circles, how far the roots of f(u) and the extremes of the integrated "
                     f"θ(t) are from the band (rad), and the ℘ form against the sn² form. "
@@ -254,11 +273,10 @@ class HeavyTopReport(Report):
                           for n in BAND_CASES)
         return SectionContent(
             figures=[cls.figure("fig4_3", fig,
-                                f"The symmetry axis on the unit sphere between the turning "
-                                f"circles θ1 = {fmt(band['theta_min'])} rad "
-                                f"({fmt(math.degrees(band['theta_min']), 4)}°) and θ2 = "
-                                f"{fmt(band['theta_max'])} rad "
-                                f"({fmt(math.degrees(band['theta_max']), 4)}°), seen from "
+                                f"The symmetry axis on the unit sphere, as in textbook "
+                                f"Fig. 4.3, between the turning circles θ1 = "
+                                f"{_deg(band['theta_min'])} and θ2 = "
+                                f"{_deg(band['theta_max'])}, seen from "
                                 f"{FIG43_ELEVATION_DEG:g}° above the horizon; dashed: "
                                 f"behind the sphere. Each locus starts on the upper circle "
                                 f"(dot) and runs {periods} "
@@ -267,95 +285,31 @@ class HeavyTopReport(Report):
             tables=[table])
 
     @classmethod
-    def section_nutation_family(cls, data):
-        sweep = data.sweep
-        a, ok = sweep.analysis, sweep.ok
-        path, x = next(iter(sweep.values.items()))
-        case = np.asarray(sweep.labels.get("case", np.full(sweep.size, "")), dtype=str)
-        threshold = a.get("sleeping_threshold_omega3")
-        swept_omega3 = path == "initial.omega3"
-        fig = plots.nutation_family(
-            x[ok], theta1=a["theta1"][ok], theta2=a["theta2"][ok], case=case[ok],
-            xlabel=cls.label(SWEPT_RESULTS[path]) if path in SWEPT_RESULTS else path,
-            precession=a["precession_per_period"][ok] if "precession_per_period" in a else None,
-            growth=a["sleeping_growth_rate"][ok] if "sleeping_growth_rate" in a else None,
-            threshold=float(np.nanmedian(threshold[ok])) if threshold is not None
-            and swept_omega3 else None)
-        names, counts = np.unique(case[ok], return_counts=True)
-        boundaries = plots._case_boundaries(x[ok], case[ok])
-        facts = [("cases", ", ".join(f"{n} {c}" for n, c in zip(names, counts, strict=True)))]
-        if boundaries:
-            facts.append(("case changes", "; ".join(
-                f"{left} → {right} near {cls.config_value_words(data, path, at)}"
-                for at, left, right in boundaries)))
-        return SectionContent(figures=[cls.figure(
-            "nutation_family", fig, f"Turning circles θ1 (▼) and θ2 (▲) of each member against "
-            f"{cls.config_words(data, path)}, by case; the band between them shaded.")],
-            facts=facts)
-
-    @classmethod
-    def section_loci_family(cls, data):
-        sweep = data.sweep
-        members = kept_members(data)
-        loci, theta1, theta2, labels, azimuths = [], [], [], [], []
-        a = sweep.analysis
-        case = sweep.labels.get("case", np.full(sweep.size, ""))
-        for i, name in members:
-            run = data.runs[name]
-            period = a["nutation_period"][i]
-            if not (np.isfinite(period) and period > 0):  # no nutation: the whole run
-                period = math.inf
-            stop, _, azimuth = locus_stretch(run, period, a["precession_per_period"][i],
-                                             full_turn=False)
-            loci.append(np.column_stack([run["axis_x"], run["axis_y"], run["axis_z"]])[:stop])
-            theta1.append(a["theta1"][i])
-            theta2.append(a["theta2"][i])
-            azimuths.append(azimuth)
-            labels.append((str(case[i]) or f"member {i}", cls._member_label(sweep, i)))
-        fig = plots.loci_family(loci, theta1=theta1, theta2=theta2, labels=labels,
-                                azimuths=azimuths,
-                                elevation=math.radians(FIG43_ELEVATION_DEG))
-        return SectionContent(figures=[cls.figure(
-            "loci_family", fig, "The symmetry axis of each kept member on the unit sphere, "
-            "with its own turning circles θ1, θ2 (a few nutation periods from the release; "
-            "dashed: behind the sphere).")])
-
-    @classmethod
-    def _member_label(cls, sweep, i) -> str:
-        """A member's swept values for a figure: the quantity's symbol and unit where the
-        kind declares it (``dφ/dt(0) = −1 rad/s``), else the config key's last part."""
-        parts = []
-        for path, values in sweep.values.items():
-            if path in SWEPT_RESULTS:
-                q = cls.schema.quantity(SWEPT_RESULTS[path])
-                parts.append(f"{q.math} = {fmt(float(values[i]), 4)} {q.unit}".rstrip())
-            else:
-                parts.append(f"{path.rsplit('.', 1)[-1]} = {fmt(float(values[i]), 4)}")
-        return ", ".join(parts)
-
-    @classmethod
     def section_nutation_locus(cls, data):
         run = data.runs["main"]
         a = data.analysis
         axis = np.column_stack([run["axis_x"], run["axis_y"], run["axis_z"]])
         fig = plots.nutation_locus(axis, run["theta"], theta1=a["theta1"], theta2=a["theta2"])
-        label = {"loops": "b/a inside (u1, u2): φ̇ changes sign, the axis loops (Fig. 4.3a)",
+        label = {"loops": "b/a inside (u1, u2): φ̇ changes sign, the axis loops (textbook "
+                          "Fig. 4.3a)",
                  "waves": "b/a outside [u1, u2]: φ̇ never changes sign, the axis waves "
-                          "(Fig. 4.3b)",
-                 "cusps": "b/a = u2: φ̇ = 0 on the upper circle, cusps (Fig. 4.3c)",
+                          "(textbook Fig. 4.3b)",
+                 "cusps": "b/a = u2: φ̇ = 0 on the upper circle, cusps (textbook Fig. 4.3c)",
                  "steady": "u1 = u2: no nutation, steady precession on one circle",
                  "sleeping": "the sleeping top: the axis stays vertical"}[a["case"]]
         # the figure draws one circle where θ1 and θ2 print alike (no nutation)
-        circles = ("; dashed: the turning circle θ1 = θ2" if fmt(a["theta1"]) == fmt(a["theta2"])
-                   else "; dashed: the upper turning circle θ1 = arccos u2, dash-dotted: the "
-                        "lower one θ2 = arccos u1")
+        circles = (f"; dashed: the turning circle θ1 = θ2 = {_deg(a['theta1'])}"
+                   if fmt(a["theta1"]) == fmt(a["theta2"])
+                   else f"; dashed: the upper turning circle θ1 = arccos u2 = "
+                        f"{_deg(a['theta1'])}, dash-dotted: the lower one θ2 = arccos u1 = "
+                        f"{_deg(a['theta2'])}")
         if not (math.isfinite(a["theta1"]) and math.isfinite(a["theta2"])):
             circles = ""
         return SectionContent(
             figures=[cls.figure("nutation_locus", fig,
                                 f"Path of the symmetry axis{circles}. Case: {label}.")],
-            facts=[("case", a["case"]), ("θ1, θ2", f"{fmt(a['theta1'])} rad, "
-                                                   f"{fmt(a['theta2'])} rad")])
+            facts=[("case", a["case"]), ("θ1, θ2", _band_words(a["theta1"], a["theta2"],
+                                                               radians=True))])
 
     @classmethod
     def _no_period_reason(cls, data) -> str:
@@ -382,10 +336,10 @@ class HeavyTopReport(Report):
             fig = plots.cubic(cc["x"], cc["f"], u1=cc["root1"], u2=cc["root2"], u3=cc["root3"],
                               b_over_a=cc["ratio"], u0=cc["start"])
         rows = [
-            ["a = I3 ω3/I1 (10.25)", fmt(a["a"]), "1/s"],
-            ["b = p_φ/I1 (10.25)", fmt(a["b"]), "1/s"],
-            ["α = 2E'/I1 (10.30)", fmt(a["alpha"]), "1/s²"],
-            ["β = 2Mgl/I1 (10.30)", fmt(a["beta"]), "1/s²"],
+            ["a = I3 ω3/I1, notes (10.25)", fmt(a["a"]), "1/s"],
+            ["b = p_φ/I1, notes (10.25)", fmt(a["b"]), "1/s"],
+            ["α = 2E'/I1, notes (10.30)", fmt(a["alpha"]), "1/s²"],
+            ["β = 2Mgl/I1, notes (10.30)", fmt(a["beta"]), "1/s²"],
             ["u1, 1 − u1", f"{fmt(a['u1'])}, {fmt(a['one_minus_u1'])}", ""],
             ["u2, 1 − u2", f"{fmt(a['u2'])}, {fmt(a['one_minus_u2'])}", ""],
             ["u3", fmt(a["u3"]), ""],
@@ -436,47 +390,11 @@ class HeavyTopReport(Report):
                   fmt_err(sens))] if math.isfinite(sens) else []
         return SectionContent(
             facts=facts,
-            figures=[cls.figure("f_of_u", fig, "f(u) = (1 − u²)(α − βu) − (b − au)² (10.31): "
+            figures=[cls.figure("f_of_u", fig, "f(u) = (1 − u²)(α − βu) − (b − au)², notes "
+                                "(10.31): "
                                 "the motion is confined to u1 ≤ u ≤ u2 where f ≥ 0; "
                                 "u3 ≥ 1 lies outside it. Dashed: b/a, where φ̇ = 0.")],
             tables=[table, table2], notes=notes)
-
-    @classmethod
-    def section_weierstrass(cls, data):
-        a = data.analysis
-        wp = a.get("weierstrass")
-        if wp is None:
-            return SectionContent(notes=["No nutation (u1 = u2): the cubic has a double root "
-                                         "and ℘ degenerates; nothing to show."])
-        fig = plots.weierstrass_rectangle(wp["omega"], wp["omega_prime"], wp["x0"], wp["t_end"])
-        rows = [
-            ["u = λ℘ + μ: λ = 4/β", fmt(wp["scale"]), "s²"],
-            ["μ = (u1 + u2 + u3)/3", fmt(wp["shift"]), ""],
-            ["g2 = 2(e1² + e2² + e3²)", fmt(wp["g2"]), "1/s⁴"],
-            ["g3 = 4 e1 e2 e3", fmt(wp["g3"]), "1/s⁶"],
-            ["e1 = ℘(ω) = β(u3 − μ)/4", fmt(wp["e1"]), "1/s²"],
-            ["e2 = ℘(ω + ω′) = β(u2 − μ)/4", fmt(wp["e2"]), "1/s²"],
-            ["e3 = ℘(ω′) = β(u1 − μ)/4", fmt(wp["e3"]), "1/s²"],
-            ["ω (real half-period)", fmt(wp["omega"]), "s"],
-            ["ω′/i (imaginary half-period)", fmt(wp["omega_prime"]), "s"],
-            ["x0: z(0) = x0 + ω′", fmt(wp["x0"]), "s"],
-            ["nome q = exp(iπω′/ω)", fmt(wp["nome"], 6), ""],
-        ]
-        table = Table(caption="Invariants, roots and half-periods of ℘ for this top",
-                      header=["quantity", "value", "unit"], rows=rows)
-        return SectionContent(
-            facts=[("max |Δu(t)|, ℘ form against sn² form, on the output grid",
-                    fmt_err(wp["max_difference"])),
-                   ("2ω against 4K(k²)/√(β(u3 − u1))",
-                    fmt_err(abs(wp["period"] / a["nutation_period"] - 1.0)))],
-            figures=[cls.figure(
-                "weierstrass", fig,
-                "The period rectangle of ℘ with corners 0, 2ω, 2ω + 2ω′, 2ω′ (double poles of "
-                "℘ at the corners); ℘ is real on its edges and middle lines. The motion is the "
-                "line z = x0 + t + ω′, along which ℘ runs between e3 (u = u1, lower circle) and "
-                "e2 (u = u2, upper circle), one nutation period per 2ω. u℘(t) is stored on the "
-                "output grid as /runs/main/reference/cos_theta_weierstrass.")],
-            tables=[table])
 
     @classmethod
     def section_effective_potential(cls, data):
@@ -494,7 +412,8 @@ class HeavyTopReport(Report):
                                             theta1=a["theta1"], theta2=a["theta2"])
         return SectionContent(figures=[cls.figure(
             "effective_potential", fig,
-            "V'(θ) = Mgl cos θ + I1 (b − a cos θ)²/(2 sin²θ) (10.28) and the energy E' = "
+            "V'(θ) = Mgl cos θ + I1 (b − a cos θ)²/(2 sin²θ), notes (10.28), and the energy "
+            "E' = "
             "E − I3ω3²/2: "
             + ("E' sits at the minimum of V', so θ stays at θ0: steady precession, no "
                "nutation." if a["case"] == "steady" else
@@ -514,7 +433,8 @@ class HeavyTopReport(Report):
             figures=[cls.figure("time_series", fig,
                                 "θ(t) of the integrated attitude against the closed form "
                                 "cos θ = u1 + (u2 − u1) sn²(λt + τ0 | k²), λ = ½√(β(u3 − u1)); "
-                                "φ̇(t) = (b − a cos θ)/sin²θ (10.26); and the difference in "
+                                "φ̇(t) = (b − a cos θ)/sin²θ, notes (10.26); and the "
+                                "difference in "
                                 "cos θ.")],
             facts=[("max |cos θ − closed form|", fmt_err(a["u_max_error"]))])
 
@@ -526,7 +446,7 @@ class HeavyTopReport(Report):
                                  omega3_min=sr["omega3_min"],
                                  omega3_config=data.analysis["omega3"],
                                  rate_config=a["phi_dot0"], rate_measured=a["mean_phi_dot"])
-        table = Table(caption="Steady precession at θ0 (10.45)",
+        table = Table(caption=f"Steady precession at θ0 = {_deg(a['theta0'])}, notes (10.45)",
                       header=["root", "φ̇ [rad/s]"],
                       rows=[["slow  2Mgl/(I3ω3 + √D)", fmt(a["steady_rate_slow"])],
                             ["fast  (I3ω3 + √D)/(2 I1 cos θ0)", fmt(a["steady_rate_fast"])],
@@ -534,8 +454,9 @@ class HeavyTopReport(Report):
         return SectionContent(
             figures=[cls.figure("steady_rates", fig,
                                 "The two steady precession rates φ̇ = [I3ω3 ± √(I3²ω3² − "
-                                "4I1Mgl cos θ0)]/(2I1 cos θ0) (10.45) against the spin; they "
-                                "exist only for I3²ω3² ≥ 4I1Mgl cos θ0 (10.46).")],
+                                "4I1Mgl cos θ0)]/(2I1 cos θ0), notes (10.45), against the "
+                                "spin; they exist only for I3²ω3² ≥ 4I1Mgl cos θ0, notes "
+                                "(10.46).")],
             tables=[table])
 
     @classmethod
@@ -547,18 +468,18 @@ class HeavyTopReport(Report):
                                    theta_max=sw["theta_max"])
         rows = [[fmt(float(x)), fmt(float(w)),
                  "stable" if x > 1 else ("marginal" if x == 1 else "unstable"),
-                 fmt(float(g)), fmt_err(float(m))]
+                 fmt(float(g)), fmt(math.degrees(float(m)), 3)]
                 for x, w, g, m in zip(sw["omega3_over_threshold"], sw["omega3"],
                                       sw["growth_rate"], sw["theta_max"], strict=True)]
-        table = Table(caption=f"Tops started at a tilt of {fmt(sw['tilt'])} rad at rest "
+        table = Table(caption=f"Tops started at a tilt of {_deg_rad(sw['tilt'])} at rest "
                               f"(threshold ω3 = {fmt(data.analysis['sleeping_threshold_omega3'])}"
                               f" rad/s)",
-                      header=["ω3 / threshold", "ω3 [rad/s]", "stability (10.50)",
-                              "linear growth rate ½√(2β − a²) [1/s]", "largest tilt [rad]"],
+                      header=["ω3 / threshold", "ω3 [rad/s]", "stability, notes (10.50)",
+                              "linear growth rate ½√(2β − a²) [1/s]", "largest tilt [°]"],
                       rows=rows)
         return SectionContent(
             figures=[cls.figure("sleeping_sweep", fig,
-                                "Below ω3² = 4I1Mgl/I3² (10.50) a small tilt grows "
+                                "Below ω3² = 4I1Mgl/I3², notes (10.50), a small tilt grows "
                                 "exponentially to order one; above it the tilt stays of the "
                                 "order of its initial value.")],
             tables=[table])
@@ -584,5 +505,5 @@ def _spins_in_words(band) -> str:
         waves = "any ω3"
     else:
         waves = f"0 < |ω3| < {wc} rad/s"
-    return (f"on the band [{fmt(band['theta_min'])}, {fmt(band['theta_max'])}] rad cusps "
+    return (f"on the band [{_deg(band['theta_min'])}, {_deg(band['theta_max'])}] cusps "
             f"need |ω3| = {wc} rad/s, loops |ω3| > {wc} rad/s, waves {waves}")

@@ -1,6 +1,6 @@
 """``heavy_top`` simulation: each initial state integrated (Lagrange's reduction or the
 spin-free frame), its Euler angles and axis derived, and checked against the closed forms
-of the cubic f(u) (10.31): roots, case, nutation period and precession, u(t) in sn² and
+of the cubic f(u) notes (10.31): roots, case, nutation period and precession, u(t) in sn² and
 through ℘; the band runs of ``[band]`` and the ``[sleeping]`` sweep across the threshold."""
 
 from __future__ import annotations
@@ -66,7 +66,7 @@ class HeavyTopSimulation(IntegratingSimulation):
                  100.0, 5001, "2 % below the threshold: a 1e-6 tilt grows to order one"),
         ]
 
-    #: ℘ (exercise 4.10; /analysis weierstrass_max_difference) is computed for every
+    #: ℘ (textbook exercise 4.10; /analysis weierstrass_max_difference) is computed for every
     #: nutating top (3 ms), the tilted sleeping tops included; a sleeping-top scene (one
     #: with a [sleeping] sweep, which is about its threshold) shows its section only when
     #: its [report] sections name it
@@ -212,8 +212,8 @@ class HeavyTopSimulation(IntegratingSimulation):
         return super().accuracy_horizon(results)
 
     def _sleeping_behaviour(self, results: Results) -> str:
-        """Stable or unstable, in words: ω3 against the threshold 2√(I1 Mgl)/I3 (10.50) and
-        the growth rate γ = √(Mgl/I1 − (I3 ω3/(2 I1))²) of a small tilt (10.47-10.48)."""
+        """Stable or unstable, in words: ω3 against the threshold 2√(I1 Mgl)/I3 notes (10.50) and
+        the growth rate γ = √(Mgl/I1 − (I3 ω3/(2 I1))²) of a small tilt notes (10.47-10.48)."""
         a = results.analysis
         theta = results.runs["main"]["theta"]
         w3, threshold, gamma = a["omega3"], a["sleeping_threshold_omega3"], \
@@ -317,7 +317,7 @@ class HeavyTopSimulation(IntegratingSimulation):
         relative = bool(width > 0.0)
         a["cos_theta_error"] = {"difference": (w - w_cf) / width if relative else w - w_cf,
                                 "relative_to_width": relative}
-        # f(u) (10.31); near the vertical in w = 1 − u, where [u1, u2] would be invisible
+        # f(u) notes (10.31); near the vertical in w = 1 − u, where [u1, u2] would be invisible
         w2 = a["one_minus_u1"]
         if 0.0 < w2 < 1e-3:
             x = np.linspace(0.0, 1.25 * w2, 1201)
@@ -334,7 +334,7 @@ class HeavyTopSimulation(IntegratingSimulation):
             a["cubic_curve"] = {"variable": "u", "x": x, "f": theory.f_u(x, c),
                                 "root1": a["u1"], "root2": a["u2"], "root3": a["u3"],
                                 "ratio": a["b_over_a"], "start": math.cos(start.theta)}
-        # V'(θ) (10.28); on the vertical (the sleeping top) it is not drawn
+        # V'(θ) notes (10.28); on the vertical (the sleeping top) it is not drawn
         if a["case"] != "sleeping":
             if a["theta2"] < 0.05:
                 # near the vertical V' − Mgl is of order θ²: evaluated in w = 1 − cos θ
@@ -347,7 +347,7 @@ class HeavyTopSimulation(IntegratingSimulation):
                 energy, shifted = a["reduced_energy"], False
             a["effective_potential"] = {"theta": theta, "V": V, "energy": energy,
                                         "minus_Mgl": shifted}
-        # the two steady precession rates (10.45) against the spin, from the bound (10.46)
+        # the two steady precession rates notes (10.45) against the spin, from the bound notes (10.46)
         w_min = theory.steady_precession_min_omega3(p.I1, p.I3, p.Mgl, start.theta)
         lo = w_min * 1.0001 if math.isfinite(w_min) else 0.1
         om = np.linspace(lo, max(3.0 * abs(start.omega3), 2 * lo), 400)
@@ -357,7 +357,7 @@ class HeavyTopSimulation(IntegratingSimulation):
     @staticmethod
     def _store_weierstrass(a: dict, main: RunRecord, c: theory.TopConstants,
                            r: theory.Roots, w_sn: np.ndarray) -> None:
-        """u(t) through ℘ on the output grid (exercise 4.10), its lattice, and its largest
+        """u(t) through ℘ on the output grid (textbook exercise 4.10), its lattice, and its largest
         difference from the sn² form; nothing for a top without nutation."""
         form = theory.weierstrass_form(r, c)
         if form is None:
@@ -373,7 +373,23 @@ class HeavyTopSimulation(IntegratingSimulation):
             "period": 2.0 * form.omega, "series_terms": form.lattice.terms,
             "nome": math.exp(-math.pi * form.omega_prime / form.omega),
             "max_difference": difference,
+            "ode_residual": theory.weierstrass_ode_residual(main.t, form, r, c),
         }
+        loops = theory.period_loops(r, c)  # the period round the cut (textbook ex. 4.10)
+
+        def settled(value, integral):  # a sum that did not settle within its budget: none
+            return value if integral.converged else math.nan
+
+        a["weierstrass"].update({
+            "period_loop": settled(loops.loop.value, loops.loop),
+            "period_loop_imag": settled(loops.loop.imag, loops.loop),
+            "period_loop_nodes": loops.loop.nodes, "period_loop_rho": loops.loop.rho,
+            "period_loop_strip": loops.loop.strip,
+            "period_sine_squared": settled(loops.sine_squared.value, loops.sine_squared),
+            "period_sine_squared_nodes": loops.sine_squared.nodes,
+            "omega_loop": settled(0.5 * loops.wp_loop.value, loops.wp_loop),
+            "omega_loop_nodes": loops.wp_loop.nodes,
+        })
 
     def _period_sensitivity(self, start: Start, c, main: RunRecord, period: float,
                             scales: dict[str, float]) -> float:
@@ -415,7 +431,7 @@ class HeavyTopSimulation(IntegratingSimulation):
             checks.append(Check(
                 "precession per period (quadrature of φ̇ dt)", a["precession_quadrature"],
                 a["precession_per_period"], "rad",
-                "Π(n|k²) closed form of ∮(b − a u)/(1 − u²) dt (10.26)",
+                "Π(n|k²) closed form of ∮(b − a u)/(1 − u²) dt notes (10.26)",
                 scale=max(abs(a["precession_per_period"]), 1e-300)))
         if "weierstrass" in a:
             wp = a["weierstrass"]
@@ -425,7 +441,7 @@ class HeavyTopSimulation(IntegratingSimulation):
                                 "integral of the first kind"))
             checks.append(Check("max |Δu(t)|, ℘ form against sn² form, on the output grid",
                                 a["weierstrass_max_difference"], 0.0, "",
-                                "℘ by theta series (exercise 4.10) against Jacobi sn² by AGM; "
+                                "℘ by theta series (textbook exercise 4.10) against Jacobi sn² by AGM; "
                                 "absolute difference in u = cos θ", scale=1.0))
         if math.isfinite(a["nutation_period_measured"]):
             checks.append(Check("nutation period measured from θ(t)",
@@ -434,7 +450,7 @@ class HeavyTopSimulation(IntegratingSimulation):
         if math.isfinite(a["precession_measured"]):
             checks.append(Check("precession per period measured from φ(t)",
                                 a["precession_measured"], a["precession_per_period"],
-                                "rad", "Π(n|k²) closed form (10.26)" + self._conditioning(a),
+                                "rad", "Π(n|k²) closed form notes (10.26)" + self._conditioning(a),
                                 scale=max(abs(a["precession_per_period"]), 1e-300)))
         if r.w2 > r.w1 and not r.sleeping:
             w = 2.0 * (main["q_x"] ** 2 + main["q_y"] ** 2) / (
@@ -445,7 +461,7 @@ class HeavyTopSimulation(IntegratingSimulation):
                                 "Goldstein 5.72; FIELD-NOTES)", scale=r.w2 - r.w1))
         if a["case"] == "steady":
             checks.append(Check("mean φ̇ (steady precession)", a["mean_phi_dot"], start.phi_dot,
-                                "rad/s", f"{self.config.initial.steady} root of (10.45)"))
+                                "rad/s", f"{self.config.initial.steady} root of notes (10.45)"))
         e = main.invariants["energy"]
         checks.append(Check("energy E(t_end)", float(e[-1]), float(e[0]), "J",
                             "E(0), conserved", scale=scales["energy"]))
@@ -469,8 +485,9 @@ class HeavyTopSimulation(IntegratingSimulation):
                 "precession_per_period", "u_max_error")
         out = {k: a[k] for k in keys}
         out["weierstrass_max_difference"] = a.get("weierstrass_max_difference", math.nan)
+        out["period_loop"] = a.get("weierstrass", {}).get("period_loop", math.nan)
         out["energy_drift"] = float(record.attrs.get("drift_energy", math.nan))
-        # φ̇ = (b − a u)/(1 − u²) (10.26) on the two turning circles
+        # φ̇ = (b − a u)/(1 − u²) notes (10.26) on the two turning circles
         out["phi_dot_upper"] = (a["b"] - a["a"] * a["u2"]) / (1.0 - a["u2"] ** 2)
         out["phi_dot_lower"] = (a["b"] - a["a"] * a["u1"]) / (1.0 - a["u1"] ** 2)
         out["locus_stop"], out["locus_periods"], out["view_azimuth"] = locus_stretch(
@@ -487,7 +504,7 @@ class HeavyTopSimulation(IntegratingSimulation):
         return ""
 
     def _sleeping_sweep(self) -> dict:
-        """Tops tilted by ``tilt`` at several spins across the threshold (10.50)."""
+        """Tops tilted by ``tilt`` at several spins across the threshold notes (10.50)."""
         p, sl, run = self.config.params, self.config.sleeping, self.config.run
         t_end = sl.t_end or run.t_end
         t = np.linspace(0.0, t_end, 1001)

@@ -1,7 +1,9 @@
 r"""``inertia``: the inertia tensor of a shape or a point set, its principal moments and axes,
-the parallel-axis shift (8.49) and which free-spin axes are stable (10.12)–(10.14).
+the parallel-axis shift, notes (8.49), and which free-spin axes are stable, notes (10.12)–(10.14).
 
-Nothing is integrated.  Solid shapes are uniform and given in their own frame
+No equation of motion is integrated; each solid's closed-form tensor is checked against
+a quadrature of its volume (and the cone's centre of mass, 3h/4 below the apex, textbook
+ex. 4.6).  Solid shapes are uniform and given in their own frame
 (centre of mass at the origin, symmetry axis / half-diagonals along x, y, z); an
 optional ``euler_angles`` = [φ, θ, ψ] (z-x-z) turns the shape in the lab frame so that
 the tensor is full and the principal axes come out of the diagonalization.
@@ -31,6 +33,8 @@ def shape_in_words(shape) -> str:
         return f"{count} point mass{'es' if count != 1 else ''}"
     if shape.type in ("cone", "cylinder"):
         size = f"R = {n('radius')} m, h = {n('height')} m"
+    elif shape.type == "octahedron" and getattr(shape, "equator", "rhombus") == "rectangle":
+        size = f"equator {n('a')} × {n('b')} m, apexes at ±{n('h')} m"
     else:
         word = {"box": "sides", "ellipsoid": "semi-axes", "octahedron": "half-diagonals"}
         size = f"{word[shape.type]} {n('a')}, {n('b')}, {n('c')} m"

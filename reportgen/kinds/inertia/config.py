@@ -8,7 +8,8 @@ centre of mass).
 
 from __future__ import annotations
 
-from typing import Annotated, Literal
+import math
+from typing import Annotated, ClassVar, Literal
 
 import numpy as np
 from pydantic import Field, model_validator
@@ -17,6 +18,7 @@ from ...lazy import lazy_module
 from ...scene.base import SceneConfig
 from ...scene.config import Positive, Real, Strict
 from ...scene.content import fmt
+from ...scene.units import check_turn
 
 core = lazy_module("reportgen.core.inertia")
 rotations = lazy_module("reportgen.core.rotations")
@@ -24,10 +26,11 @@ rotations = lazy_module("reportgen.core.rotations")
 
 class _ShapeBase(Strict):
     euler_angles: list[Real] | None = Field(
-        None, description="[φ, θ, ψ] (z-x-z): orientation of the shape in the lab frame "
-                          "[rad]")
+        None, description="[φ, θ, ψ] (z-x-z): orientation of the shape in the lab frame, "
+                          "each |angle| ≤ 2π [rad]")
     about: list[Real] | None = Field(
-        None, description="[x, y, z] lab-frame point for the parallel-axis shift (8.49) [m]")
+        None, description="[x, y, z] lab-frame point for the parallel-axis shift "
+                          "(notes (8.49)) [m]")
 
     @model_validator(mode="after")
     def _vectors(self):
@@ -35,6 +38,8 @@ class _ShapeBase(Strict):
             value = getattr(self, key)
             if value is not None and len(value) != 3:
                 raise ValueError(f"shape.{key}: expected 3 numbers (got {len(value)})")
+        if self.euler_angles is not None:
+            check_turn("shape.euler_angles", self.euler_angles, symbol="angle")
         return self
 
     def rotation(self) -> np.ndarray:
@@ -45,6 +50,18 @@ class _ShapeBase(Strict):
 
     def centre_of_mass(self) -> np.ndarray:
         return np.zeros(3)
+
+    #: the shape's own axes x, y, z in words (for the principal axes they turn out to be)
+    AXIS_WORDS: ClassVar[dict[str, str]] = {"x": "x", "y": "y", "z": "z"}
+
+    def axis_words(self) -> dict[str, str]:
+        return dict(self.AXIS_WORDS)
+
+    def mass_elements(self) -> tuple[np.ndarray, np.ndarray, float]:
+        """The body as point masses at quadrature nodes (:mod:`reportgen.core.inertia`),
+        own frame with the origin at the closed-form centre of mass: masses [kg],
+        positions (N, 3) [m], the volume they integrate [m³]."""
+        raise NotImplementedError
 
 
 class Cone(_ShapeBase):
@@ -59,12 +76,23 @@ class Cone(_ShapeBase):
     def apex(self):
         return np.array([0.0, 0.0, core.cone_apex_height(self.height)])
 
+    AXIS_WORDS: ClassVar[dict[str, str]] = {"x": "x, transverse", "y": "y, transverse",
+                  "z": "z, the symmetry axis through the apex"}
+
+    def volume(self):
+        return core.cone_volume(self.radius, self.height)
+
+    def mass_elements(self):
+        m, r, vol = core.quadrature_cone(self.mass, self.radius, self.height)
+        return m, r + self.apex(), vol  # quadrature from the apex, shifted by the closed form
+
     def describe(self):
         return f"solid cone, M = {fmt(self.mass)} kg, R = {fmt(self.radius)} m, " \
                f"h = {fmt(self.height)} m"
 
     def closed_form_source(self):
-        return "I⊥ = 3M(R² + h²/4)/20, I3 = 3MR²/10 (Landau & Lifshitz §32 Problem 2; ex. 4.6)"
+        return ("I⊥ = 3M(R² + h²/4)/20, I3 = 3MR²/10 (Landau & Lifshitz §32 Problem 2; "
+                "textbook ex. 4.6)")
 
 
 class Box(_ShapeBase):
@@ -76,6 +104,15 @@ class Box(_ShapeBase):
 
     def body_tensor(self):
         return core.tensor_box(self.mass, self.a, self.b, self.c)
+
+    AXIS_WORDS: ClassVar[dict[str, str]] = {"x": "x, along the side a", "y": "y, along the side b",
+                  "z": "z, along the side c"}
+
+    def volume(self):
+        return self.a * self.b * self.c
+
+    def mass_elements(self):
+        return core.quadrature_box(self.mass, self.a, self.b, self.c)
 
     def describe(self):
         return f"box, M = {fmt(self.mass)} kg, sides {fmt(self.a)} × {fmt(self.b)} × " \
@@ -93,6 +130,15 @@ class Cylinder(_ShapeBase):
 
     def body_tensor(self):
         return core.tensor_cylinder(self.mass, self.radius, self.height)
+
+    AXIS_WORDS: ClassVar[dict[str, str]] = {"x": "x, transverse", "y": "y, transverse",
+                                            "z": "z, the symmetry axis"}
+
+    def volume(self):
+        return math.pi * self.radius**2 * self.height
+
+    def mass_elements(self):
+        return core.quadrature_cylinder(self.mass, self.radius, self.height)
 
     def describe(self):
         return f"solid cylinder, M = {fmt(self.mass)} kg, R = {fmt(self.radius)} m, " \
@@ -112,6 +158,16 @@ class Ellipsoid(_ShapeBase):
     def body_tensor(self):
         return core.tensor_ellipsoid(self.mass, self.a, self.b, self.c)
 
+    AXIS_WORDS: ClassVar[dict[str, str]] = {"x": "x, along the semi-axis a",
+                                            "y": "y, along the semi-axis b",
+                  "z": "z, along the semi-axis c"}
+
+    def volume(self):
+        return 4.0 * math.pi * self.a * self.b * self.c / 3.0
+
+    def mass_elements(self):
+        return core.quadrature_ellipsoid(self.mass, self.a, self.b, self.c)
+
     def describe(self):
         return f"solid ellipsoid, M = {fmt(self.mass)} kg, semi-axes {fmt(self.a)}, " \
                f"{fmt(self.b)}, {fmt(self.c)} m"
@@ -121,21 +177,71 @@ class Ellipsoid(_ShapeBase):
 
 
 class Octahedron(_ShapeBase):
+    """Two octahedra (textbook ex. 4.9): ``equator = "rhombus"`` (the default),
+    |x|/a + |y|/b + |z|/c ≤ 1 with half-diagonals a, b, c; ``equator = "rectangle"``, the
+    double pyramid over the a × b rectangle in z = 0 with apexes at (0, 0, ±h)."""
+
     type: Literal["octahedron"]
     mass: Positive = Field(description="mass M [kg]")
-    a: Positive = Field(description="half-diagonal along x [m]")
-    b: Positive = Field(description="half-diagonal along y [m]")
-    c: Positive = Field(description="half-diagonal along z [m]")
+    equator: Literal["rhombus", "rectangle"] = Field(
+        "rhombus", description='"rhombus": half-diagonals a, b, c; "rectangle": an a × b '
+                               "rectangular equator and apexes at ±h")
+    a: Positive = Field(description="half-diagonal along x (rhombus) or full side of the "
+                                    "equator along x (rectangle) [m]")
+    b: Positive = Field(description="half-diagonal along y (rhombus) or full side of the "
+                                    "equator along y (rectangle) [m]")
+    c: Positive | None = Field(None, description="half-diagonal along z (rhombus only) [m]")
+    h: Positive | None = Field(None, description="height of each apex above the equator "
+                                                 "(rectangle only) [m]")
+
+    @model_validator(mode="after")
+    def _sizes(self):
+        need, other = ("c", "h") if self.equator == "rhombus" else ("h", "c")
+        if getattr(self, need) is None:
+            raise ValueError(f"shape.{need}: required for equator = \"{self.equator}\"")
+        if getattr(self, other) is not None:
+            raise ValueError(f"shape.{other}: not used with equator = \"{self.equator}\" "
+                             f"(give {need})")
+        return self
+
+    @property
+    def rectangle(self) -> bool:
+        return self.equator == "rectangle"
 
     def body_tensor(self):
+        if self.rectangle:
+            return core.tensor_octahedron_rectangle(self.mass, self.a, self.b, self.h)
         return core.tensor_octahedron(self.mass, self.a, self.b, self.c)
 
+    def axis_words(self):
+        if self.rectangle:
+            return {"x": "x, along the side a", "y": "y, along the side b",
+                    "z": "z, through the apexes"}
+        return {"x": "x, along the diagonal 2a", "y": "y, along the diagonal 2b",
+                "z": "z, along the diagonal 2c"}
+
+    def volume(self):
+        if self.rectangle:
+            return core.octahedron_rectangle_volume(self.a, self.b, self.h)
+        return core.octahedron_volume(self.a, self.b, self.c)
+
+    def mass_elements(self):
+        if self.rectangle:
+            return core.quadrature_octahedron_rectangle(self.mass, self.a, self.b, self.h)
+        return core.quadrature_octahedron(self.mass, self.a, self.b, self.c)
+
     def describe(self):
+        if self.rectangle:
+            return (f"solid octahedron, M = {fmt(self.mass)} kg, equator a rectangle "
+                    f"{fmt(self.a)} × {fmt(self.b)} m, apexes at ±{fmt(self.h)} m")
         return f"solid octahedron, M = {fmt(self.mass)} kg, half-diagonals {fmt(self.a)}, " \
                f"{fmt(self.b)}, {fmt(self.c)} m"
 
     def closed_form_source(self):
-        return "Iₓₓ = M(b² + c²)/10, cyclic (exercise 4.9; Dirichlet integral)"
+        if self.rectangle:
+            return ("M(b² + 2h²)/20, M(a² + 2h²)/20, M(a² + b²)/20 about x, y, z "
+                    "(textbook ex. 4.9)")
+        return "Iₓₓ = M(b² + c²)/10, cyclic (textbook exercise 4.9; Dirichlet integral)"
 
 
 class Points(_ShapeBase):
@@ -174,6 +280,11 @@ class Points(_ShapeBase):
 
     def lab_positions(self):
         return np.asarray(self.positions, dtype=float) @ self.rotation().T
+
+    def mass_elements(self):
+        r = np.asarray(self.positions, dtype=float)
+        return (np.asarray(self.masses, dtype=float), r - core.centre_of_mass(self.masses, r),
+                math.nan)
 
     def describe(self):
         return f"{len(self.masses)} point masses, M = {fmt(self.mass)} kg"

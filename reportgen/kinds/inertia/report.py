@@ -6,6 +6,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from ...lazy import lazy_module
 from ...scene.base import Section
 from ...scene.content import SectionContent, Table, fmt, fmt_err, fmt_matrix
@@ -35,6 +37,7 @@ class InertiaReport(Report):
                        if check is not None else "")
 
     sections = (
+        Section("quadrature", "Volume, centre of mass and moments by quadrature"),
         Section("tensor", "Inertia tensor and principal axes"),
         Section("parallel_axis", "Parallel-axis shift"),
         Section("stability", "Stability of free spin about each principal axis"),
@@ -45,16 +48,27 @@ class InertiaReport(Report):
         names = [s.name for s in cls.sections]
         if "parallel_axis" not in data.analysis:
             names.remove("parallel_axis")
+        if "quadrature" not in data.analysis:
+            names.remove("quadrature")
         return names
 
     @classmethod
     def headline(cls, data):
         a = data.analysis
         m = a["principal_moments"]
-        verdicts = [a["axis_stability"][f"axis_{k + 1}"]["verdict"] for k in range(3)]
-        return [("body", a["shape"]),
-                ("principal moments", ", ".join(f"{fmt(x)}" for x in m) + " kg m²"),
-                ("spin stability", ", ".join(f"I{k + 1}: {v}" for k, v in enumerate(verdicts)))]
+        st = [a["axis_stability"][f"axis_{k + 1}"] for k in range(3)]
+        facts = [("body", a["shape"]),
+                 ("principal moments", ", ".join(f"{fmt(x)}" for x in m) + " kg m²"),
+                 ("spin stability", ", ".join(
+                     f"I{k + 1}" + (f" (about {s['shape_axis'].split(',')[0]})"
+                                    if "shape_axis" in s else "") + f": {s['verdict']}"
+                     for k, s in enumerate(st)))]
+        q = a.get("quadrature")
+        if q is not None and "apex_distance" in q:
+            facts.insert(1, ("centre of mass below the apex",
+                             f"{fmt(q['apex_distance'])} m by quadrature; 3h/4 = "
+                             f"{fmt(q['apex_distance_closed'])} m (textbook ex. 4.6)"))
+        return facts
 
     @classmethod
     def prose_case(cls, data):
@@ -63,10 +77,50 @@ class InertiaReport(Report):
         verdicts = [data.analysis["axis_stability"][f"axis_{k + 1}"]["verdict"]
                     for k in range(3)]
         marginal = verdicts.count("marginal")
+        stability = data.analysis["axis_stability"]
+        words = [stability[f"axis_{k + 1}"].get("shape_axis") for k in range(3)]
+        q = data.analysis.get("quadrature")
+        shape = data.config.get("shape") or {}
         return {"spherical": marginal == 3, "symmetric": marginal == 2,
                 "asymmetric": "unstable" in verdicts,
                 "intermediate": verdicts.index("unstable") + 1 if "unstable" in verdicts
-                else None}
+                else None,
+                "axis_words": words if all(words) else None,
+                "quadrature": q is not None,
+                "nodes": int(q["nodes"]) if q is not None else 0,
+                "cone": q is not None and "apex_distance" in q,
+                "rectangle": shape.get("type") == "octahedron"
+                and shape.get("equator") == "rectangle"}
+
+    @classmethod
+    def section_quadrature(cls, data):
+        q = data.analysis["quadrature"]
+
+        def diff(value, closed):
+            return fmt_err(abs(float(value) - float(closed)))
+
+        rows = [["volume [m³]", fmt(q["volume"]), fmt(q["volume_closed"]),
+                 diff(q["volume"], q["volume_closed"])]]
+        if "apex_distance" in q:
+            rows.append(["centre of mass below the apex [m]", fmt(q["apex_distance"]),
+                         fmt(q["apex_distance_closed"]) + " (3h/4)",
+                         diff(q["apex_distance"], q["apex_distance_closed"])])
+        else:
+            cm = float(np.linalg.norm(q["centre_of_mass"]))
+            rows.append(["centre of mass: distance from the centre [m]", fmt_err(cm), "0",
+                         fmt_err(cm)])
+        for k, axis in enumerate("xyz"):
+            rows.append([f"moment about the shape's {axis} axis [kg m²]",
+                         fmt(q["moments"][k]), fmt(q["moments_closed"][k]),
+                         diff(q["moments"][k], q["moments_closed"][k])])
+        rows.append(["largest product of inertia [kg m²]", fmt_err(q["products_max"]), "0",
+                     fmt_err(q["products_max"])])
+        source = data.analysis.get("closed_form", {}).get("source", "")
+        return SectionContent(tables=[Table(
+            caption=f"The body as {int(q['nodes'])} point masses at quadrature nodes, in "
+                    "its own frame (before any tilt), against the closed forms"
+                    + (f": {source}" if source else "") + ".",
+            header=["quantity", "quadrature", "closed form", "difference"], rows=rows)])
 
     @classmethod
     def section_tensor(cls, data):
@@ -103,7 +157,7 @@ class InertiaReport(Report):
         T = p["tensor"]
         return SectionContent(tables=[
             Table(caption=f"Tensor about ({', '.join(fmt(float(x)) for x in p['about'])}) by "
-                          "(8.49), I = Iᶜᵐ + M(d² 1 − d dᵀ) with Iᶜᵐ the tensor about the centre "
+                          "notes (8.49), I = Iᶜᵐ + M(d² 1 − d dᵀ) with Iᶜᵐ the tensor about the centre "
                           "of mass [kg m²]",
                   header=["", "x", "y", "z"],
                   rows=[[c] + fmt_matrix(T)[i] for i, c in enumerate("xyz")]),
@@ -142,16 +196,23 @@ def stability_table_section(analysis: dict) -> SectionContent:
                     "— (marginal: symmetric body)")
         else:
             cell = f"{what}: {fmt(float(rate))} {unit}"
-        row = [f"{k + 1}", fmt(float(moments[k])), s["verdict"], cell]
+        row = [f"{k + 1}", fmt(float(moments[k]))]
+        if "shape_axis" in s:
+            row.append(str(s["shape_axis"]))
+        row += [s["verdict"], cell]
         if "growth_rate_jacobian" in s:
             row.append(fmt(float(s["growth_rate_jacobian"])))
         rows.append(row)
-    header = ["axis", "moment [kg m²]", "verdict", "rate (10.12)–(10.14)"]
-    if rows and len(rows[0]) == 5:
+    named = all("shape_axis" in stability[f"axis_{k + 1}"] for k in range(3))
+    header = ["axis", "moment [kg m²]"] + (["the shape's axis"] if named else []) + [
+        "verdict", "rate, notes (10.12)–(10.14)"]
+    if any("growth_rate_jacobian" in stability[f"axis_{k + 1}"] for k in range(3)):
         header.append("max Re λ of the Jacobian [1/s]")
     verdicts = [stability[f"axis_{k + 1}"]["verdict"] for k in range(3)]
     if "unstable" in verdicts:
-        case = (f": unstable about the intermediate axis {verdicts.index('unstable') + 1} with "
+        k = verdicts.index("unstable")
+        where = (f" (the shape's {stability[f'axis_{k + 1}']['shape_axis']})" if named else "")
+        case = (f": unstable about the intermediate axis {k + 1}{where} with "
                 "growth Ω√((I2−I1)(I3−I2)/(I1 I3)), stable about the other two")
     elif verdicts.count("marginal") == 3:
         case = ": all three moments equal, so no axis is unstable (every axis marginal)"
@@ -161,6 +222,6 @@ def stability_table_section(analysis: dict) -> SectionContent:
     else:
         case = ""
     return SectionContent(tables=[Table(
-        caption="Free rotation about each principal axis, linearized (10.12)–(10.14)"
+        caption="Free rotation about each principal axis, linearized, notes (10.12)–(10.14)"
                 + ("" if spin is None else f" at spin Ω = {fmt(spin)} rad/s") + case + ".",
         header=header, rows=rows)])

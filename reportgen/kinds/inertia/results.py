@@ -13,7 +13,7 @@ from ...scene.schema import ResultsSchema
 def axis_stability_results(rate_unit: str, *, jacobian: bool = False,
                            optional: bool = False) -> tuple[Q, ...]:
     """``axis_stability/axis_<k>/...``: free rotation about principal axis k, linearized
-    (10.12)–(10.14); rates in ``rate_unit`` ("1": per unit spin; "1/s": for the given
+    (notes (10.12)–(10.14)); rates in ``rate_unit`` ("1": per unit spin; "1/s": for the given
     spin)."""
     out: list[Q] = []
     for k in (1, 2, 3):
@@ -46,6 +46,9 @@ SCHEMA = ResultsSchema(
         Q("mass", "M", "kg", "total mass"),
         Q("shape", "", "", "the body, described", kind="str"),
         *axis_stability_results("1"),
+        *(Q(f"axis_stability/axis_{k}/shape_axis", "", "",
+            f"the shape's own axis that principal axis {k} lies along, in words", kind="str",
+            optional=True) for k in (1, 2, 3)),
         Q("inertia_ellipsoid/semi_axes", r"1/\sqrt{I_k}", "kg^-0.5/m",
           "semi-axes of the inertia ellipsoid", ("axis",)),
         Q("inertia_ellipsoid/surface", "x", "kg^-0.5/m",
@@ -61,9 +64,29 @@ SCHEMA = ResultsSchema(
         Q("closed_form/max_relative_difference", "", "1",
           "largest difference of the diagonalized and closed-form moments over I_3",
           optional=True),
-        Q("parallel_axis/about", "a", "m", "point of the parallel-axis shift (8.49)",
+        Q("quadrature/nodes", "N", "1", "point masses of the quadrature", kind="int",
+          optional=True),
+        Q("quadrature/volume", "V", "m^3", "volume by quadrature", optional=True),
+        Q("quadrature/volume_closed", "V", "m^3", "volume in closed form", optional=True),
+        Q("quadrature/centre_of_mass", r"r_\mathrm{cm}", "m",
+          "centre of mass by quadrature, shape frame, from the closed-form centre of mass",
           ("xyz",), optional=True),
-        Q("parallel_axis/tensor", "I", "kg m^2", "inertia tensor about that point (8.49)",
+        Q("quadrature/moments", "I", "kg m^2",
+          "moments about the shape's own axes by quadrature", ("xyz",), optional=True),
+        Q("quadrature/moments_closed", "I", "kg m^2",
+          "moments about the shape's own axes in closed form", ("xyz",), optional=True),
+        Q("quadrature/products_max", r"\max|I_{ij}|", "kg m^2",
+          "largest product of inertia (off the diagonal) by quadrature", optional=True),
+        Q("quadrature/max_relative_difference", "", "1",
+          "largest difference of the quadrature and closed-form moments over the largest",
+          optional=True),
+        Q("quadrature/apex_distance", "d", "m",
+          "centre of mass below the cone's apex by quadrature", optional=True),
+        Q("quadrature/apex_distance_closed", "3h/4", "m",
+          "centre of mass below the cone's apex, closed form", optional=True),
+        Q("parallel_axis/about", "a", "m", "point of the parallel-axis shift, notes (8.49)",
+          ("xyz",), optional=True),
+        Q("parallel_axis/tensor", "I", "kg m^2", "inertia tensor about that point, notes (8.49)",
           ("xyz", "xyz"), optional=True),
         Q("parallel_axis/principal_moments", "I_k", "kg m^2",
           "principal moments about that point", ("axis",), optional=True),

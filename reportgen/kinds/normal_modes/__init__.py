@@ -1,7 +1,7 @@
-r"""``normal_modes``: small oscillations about a stable equilibrium (lecture notes ch. 5, §5.1).
+r"""``normal_modes``: small oscillations about a stable equilibrium (textbook ch. 5, §5.1).
 
 The generalized eigenproblem A η = ω² M η for a system given as matrices, as a
-molecule (atoms, bond stretches, angle bends; Fig. 5.1), as a chain of masses
+molecule (atoms, bond stretches, angle bends; textbook Fig. 5.1), as a chain of masses
 and springs or as coupled pendula.  Rigid-body zero modes are identified and
 projected out, vibrations counted (3n − 6 or 3n − 5) and classified, mode
 shapes drawn.  Nothing is integrated unless ``[evolve]`` asks for a time

@@ -14,8 +14,9 @@ from pydantic import Field, model_validator
 
 from ...lazy import lazy_module
 from ...scene.base import SceneConfig
-from ...scene.config import Positive, Real, Strict
-from ...scene.units import convert_items
+from ...scene.config import Positive, Real, RunConfig, Strict
+from ...scene.units import convert_items, convert_paths
+from .results import MOLECULAR_OMEGA
 
 core = lazy_module("reportgen.core.normal_modes")
 geometry = lazy_module("reportgen.core.molecule_geometry")  # no scipy: validation uses it
@@ -27,30 +28,41 @@ SHAPES_SHOWN = 8
 
 
 class Atom(Strict):
-    element: str | None = Field(None, description="chemical symbol; sets the mass if `mass` "
-                                                    "is not given [u]")
-    mass: Positive | None = Field(None, description="mass (overrides the element's) [u or kg]")
-    position: list[Real] = Field(description="equilibrium position [x, y, z] [Å or m]")
+    element: str | None = Field(None, description="chemical symbol; sets the mass (in u) if "
+                                                    "`mass` is not given")
+    mass: Positive | None = Field(None, description="mass (overrides the element's) "
+                                                    "[per `units`: u or kg or m₀]")
+    position: list[Real] = Field(description="equilibrium position [x, y, z] "
+                                             "[per `units`: Å or m or dimensionless]")
 
 
 class Bond(Strict):
     atoms: list[int] = Field(description="[i, j], zero-based atom indices")
-    k: Positive = Field(description="stretch constant, V = ½ k (r − r0)²")
+    k: Positive = Field(description="stretch constant, V = ½ k (r − r0)² "
+                                    "[per `units`: mdyn/Å or N/m or k₀]")
 
 
 class Angle(Strict):
     atoms: list[int] = Field(description="[i, j, l], zero-based, j the vertex")
-    k: Positive = Field(description="bend constant, V = ½ k (θ − θ0)² [energy/rad²]")
+    k: Positive = Field(description="bend constant, V = ½ k (θ − θ0)² "
+                                    "[per `units`: mdyn·Å/rad² or J/rad² or dimensionless]")
 
 
 class Chain(Strict):
+    """``[chain]``: N equal masses joined by equal springs.
+
+    Dimensionless (masses in m₀, springs in k₀) unless ``units = "SI"``."""
+
     n: int = Field(ge=1, le=400, description="number of masses N")
-    m: Positive = Field(1.0, description="mass of each bead")
-    k: Positive = Field(1.0, description="spring constant of each spring")
+    m: Positive = Field(1.0, description="mass of each bead [per `units`: kg or m₀]")
+    k: Positive = Field(1.0, description="spring constant of each spring "
+                                         "[per `units`: N/m or k₀]")
     ends: Literal["fixed", "free"] = Field("fixed", description="fixed (walls) or free ends")
 
 
 class Pendula(Strict):
+    """``[pendula]``: a row of equal plane pendula, neighbours coupled by springs (SI)."""
+
     n: int = Field(2, ge=1, le=400, description="number of pendula")
     m: Positive = Field(1.0, description="bob mass [kg]")
     l: Positive = Field(1.0, description="length [m]")
@@ -59,12 +71,26 @@ class Pendula(Strict):
 
 
 class Evolve(Strict):
+    """``[evolve]``: a time evolution from an initial displacement and velocity."""
+
     displacement: list[Real] | list[list[Real]] = Field(
         description="initial displacement from equilibrium: one number per coordinate, or "
-                    "[dx, dy, dz] per atom")
+                    "[dx, dy, dz] per atom [per `units`: Å or m or dimensionless; rad for "
+                    "pendula]")
     velocity: list[Real] | list[list[Real]] | None = Field(
-        None, description="initial velocity (same shape; default at rest)")
-    t_end: Positive = Field(description="end time of the evolution")
+        None, description="initial velocity (same shape; default at rest) "
+                          "[per `units`: Å/τ or m/s or dimensionless; rad/s for pendula]")
+    t_end: Positive = Field(description="end time of the evolution "
+                                        "[per `units`: τ = 4.075 fs or s or dimensionless]")
+
+
+class NormalModesRun(RunConfig):
+    """``[run]``: how the evolution is integrated (t_end: [evolve] gives it)."""
+
+    t_end: Positive = Field(description="end time of the integration, equal to evolve.t_end "
+                                        "[per `units`: τ = 4.075 fs or s or dimensionless]")
+    h: Positive | None = Field(None, description="step size of fixed-step methods "
+                                                 "[per `units`: τ or s or dimensionless]")
 
 
 def flat_values(value) -> list[float] | None:
@@ -83,6 +109,18 @@ SYSTEM_UNITS = {
     "molecular": {("atoms", "mass"): "u", ("atoms", "position"): "Å", ("bonds", "k"): "mdyn/Å",
                   ("angles", "k"): "mdyn Å/rad^2"},
 }
+#: the molecular unit of time τ = √(u/(mdyn/Å)) [s] (4.075 fs)
+_TAU = 1.0 / MOLECULAR_OMEGA
+_RUN_TIME = {"SI": "s", "molecular": f"{_TAU!r} s"}
+#: the units of the keys of tables and matrices, by unit system and by the way the system
+#: is given (a molecule, chain, pendula or matrices): text is converted to these
+TABLE_UNITS = {
+    "SI": {("chain", "m"): "kg", ("chain", "k"): "N/m", ("M",): "kg", ("A",): "N/m",
+           ("evolve", "displacement"): "m", ("evolve", "velocity"): "m/s"},
+    "molecular": {("evolve", "displacement"): "Å", ("evolve", "velocity"): f"{1 / _TAU!r} Å/s"},
+}
+#: pendula move by angles
+_PENDULA_EVOLVE = {("evolve", "displacement"): "rad", ("evolve", "velocity"): "rad/s"}
 
 
 def unit_system(config) -> str:
@@ -105,11 +143,14 @@ class NormalModesConfig(SceneConfig):
     bonds: list[Bond] = []
     angles: list[Angle] = []
     M: list[list[Real]] | None = Field(None, description="kinetic (mass) matrix, symmetric "
-                                                         "positive definite")
-    A: list[list[Real]] | None = Field(None, description="potential Hessian at equilibrium")
+                                                         "positive definite "
+                                                         "[per `units`: kg or m₀]")
+    A: list[list[Real]] | None = Field(None, description="potential Hessian at equilibrium "
+                                                         "[per `units`: N/m or k₀]")
     chain: Chain | None = None
     pendula: Pendula | None = None
     evolve: Evolve | None = None
+    run: NormalModesRun | None = None
     units: Literal["SI", "molecular", "dimensionless"] | None = Field(
         None, description="unit system of the numbers: SI (kg, m, N/m, s), molecular (masses "
                           "in u, lengths in Å, force constants in mdyn/Å; ω reported in rad/s "
@@ -120,12 +161,24 @@ class NormalModesConfig(SceneConfig):
     @model_validator(mode="before")
     @classmethod
     def _quantities_in_system(cls, data: Any):
-        """Text quantities of atoms, bonds and angles ("500 N/m") in the unit system's units."""
+        """Text quantities ("500 N/m", "10 fs") in the unit system's units: of atoms, bonds
+        and angles, of the chain, M and A, and of the evolution and its run.  A
+        dimensionless system converts nothing (its keys take plain numbers)."""
         if not isinstance(data, dict):
             return data
-        system = data.get("units") or ("molecular" if data.get("atoms") else None)
-        return convert_items(data, SYSTEM_UNITS.get(system, {}) if isinstance(system, str)
-                             else {})
+        system = data.get("units")
+        if not isinstance(system, str):
+            system = ("molecular" if data.get("atoms") else
+                      "SI" if data.get("pendula") is not None else None)
+        if system not in SYSTEM_UNITS:
+            return data
+        paths = dict(TABLE_UNITS[system])
+        if data.get("pendula") is not None and not data.get("atoms"):
+            paths.update(_PENDULA_EVOLVE)
+        for table in ("evolve", "run"):
+            paths[(table, "t_end")] = _RUN_TIME[system]
+        paths[("run", "h")] = _RUN_TIME[system]
+        return convert_paths(convert_items(data, SYSTEM_UNITS[system]), paths)
 
     @model_validator(mode="before")
     @classmethod
@@ -281,7 +334,7 @@ class NormalModesConfig(SceneConfig):
 
 # --------------------------------------------------------------------------- presets
 _CO2 = {  # r(C=O) = 1.16 Å; k in mdyn/Å, k_θ in mdyn·Å/rad² (valence force field)
-    "title": "CO₂: a linear triatomic molecule (Fig. 5.1)",
+    "title": "CO₂: a linear triatomic molecule (textbook Fig. 5.1)",
     "atoms": [{"element": "O", "position": [-1.16, 0.0, 0.0]},
               {"element": "C", "position": [0.0, 0.0, 0.0]},
               {"element": "O", "position": [1.16, 0.0, 0.0]}],

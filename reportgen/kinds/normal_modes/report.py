@@ -132,7 +132,8 @@ class NormalModesReport(Report):
     def prose_case(cls, data):
         """Whether the system is a molecule (its valence force field explained) or pendula,
         a chain or given matrices."""
-        return {"molecule": data.analysis.get("source") == "molecule"}
+        a = data.analysis
+        return {"molecule": a.get("source") == "molecule", "linear": bool(a.get("linear"))}
 
     @classmethod
     def describe(cls, data):
@@ -140,7 +141,8 @@ class NormalModesReport(Report):
         a = data.analysis
         if a["source"] == "molecule":
             n = len(a["masses"])
-            size = {1: "monatomic", 2: "diatomic", 3: "triatomic"}.get(n, f"{n}-atom")
+            size = {1: "monatomic", 2: "diatomic", 3: "triatomic", 4: "four-atom"}.get(
+                n, f"{n}-atom")
             shape = "linear" if a["linear"] else "non-linear"
             name = formula([atom.element for atom in data.config.atoms])
             return (f"A {shape} {size} molecule{', ' + name if name else ''}: "
@@ -164,6 +166,10 @@ class NormalModesReport(Report):
         out = [("system", cls._describe(a)),
                ("vibrations", f"{int(a['n_vibrational'])} of {int(a['n_dof'])} coordinates "
                               f"({z} zero modes)")]
+        if a.get("linear") and "n_longitudinal" in a:
+            out.append(("along and across the axis",
+                        f"{int(a['n_longitudinal'])} longitudinal (n − 1), "
+                        f"{int(a['n_transverse'])} transverse (2(n − 2))"))
         if w.size:
             unit = cls._omega_unit(data)
             out.append(("frequencies ω", ", ".join(fmt(x) for x in w[:8]) +
@@ -216,11 +222,13 @@ class NormalModesReport(Report):
                                  np.asarray(exact)[z:], unit=u["omega"])
         rows = []
         w2 = np.asarray(a["omega_squared"])[z:]
+        parity = list(a["mode_parity"])[z:] if "mode_parity" in a else None
         for i, (wi, t) in enumerate(zip(w, types, strict=True)):
             g = int(np.sum(groups == groups[i]))
             row = [str(z + i + 1), fmt(wi), fmt(w2[i])]
             row += [fmt(float(nu[i]), 5)] if nu is not None else []
             row += [t, str(g)]
+            row += [PARITY_WORDS.get(str(parity[i]), "—")] if parity is not None else []
             if exact is not None:
                 ex = float(np.asarray(exact)[z + i])
                 row += [fmt(ex), fmt_err(abs(wi - ex) / ex if ex else abs(wi))]
@@ -228,6 +236,7 @@ class NormalModesReport(Report):
         header = ["mode", cls._with_unit("ω", u["omega"]), cls._with_unit("ω²", u["omega2"])]
         header += ["ν̃ [cm⁻¹]"] if nu is not None else []
         header += ["type", "degeneracy"]
+        header += ["inversion"] if parity is not None else []
         if exact is not None:
             header += ["closed form", "relative error"]
         facts = [("eigenproblem", "A η = ω² M η (scipy.linalg.eigh on the pair), ηᵀ M η = 1"),
@@ -238,6 +247,10 @@ class NormalModesReport(Report):
             facts.append(("ωₘₐₓ/ωₘᵢₙ", fmt(a["stiffness_ratio"])))
         if exact is not None:
             facts.append(("closed form", str(a["closed_form_source"])))
+        if parity is not None:
+            facts.append(("inversion", "the molecule and its force field have a centre of "
+                                       "symmetry: each mode is even (g) or odd (u) when every "
+                                       "position from the centre of mass is reversed"))
         return SectionContent(
             figures=[cls.figure("spectrum", fig, (
                 "Vibrational wavenumbers ν̃ = ω/2πc" if nu is not None
@@ -337,22 +350,49 @@ class NormalModesReport(Report):
                 ["zero modes found", str(z), str(int(a["expected_zero_modes"]))],
                 ["vibrations", str(int(a["n_vibrational"])),
                  f"3n − {int(a['expected_zero_modes'])} = {int(a['expected_vibrational'])}"]]
+        tables = []
         if linear:
             rows += [["longitudinal vibrations", str(int(a["n_longitudinal"])),
                       f"n − 1 = {int(a['expected_longitudinal'])}"],
                      ["transverse vibrations", str(int(a["n_transverse"])),
                       f"2(n − 2) = {int(a['expected_transverse'])}"]]
+            tables.append(cls._axis_table(data))
         notes = []
         if int(a["n_floppy"]):
             notes.append(f"{int(a['n_floppy'])} internal mode(s) have ω = 0: the force field "
                          "does not hold the shape (add bonds or angles).")
         return SectionContent(
             tables=[Table("Counting: found against expected", ["quantity", "found", "expected"],
-                          rows)],
+                          rows), *tables],
             facts=[("max ‖A v‖ / (‖A‖ ‖v‖) over the rigid-body vectors",
                     fmt_err(a["rigid_residual"])),
                    ("symmetry operations found", str(int(a["n_symmetry_operations"])))],
             notes=notes)
+
+    @classmethod
+    def _axis_table(cls, data) -> Table:
+        """A linear molecule's vibrations along and across its axis, with their frequencies
+        (wavenumbers for a molecule in physical units), each degenerate set once."""
+        a = data.analysis
+        z, w, types = cls._vib(data)
+        groups = np.asarray(a["degenerate_group"])[z:]
+        values, unit = w, cls._omega_unit(data)
+        if "wavenumbers" in a:
+            values, unit = np.asarray(a["wavenumbers"])[z:], "cm⁻¹"
+        rows = []
+        for kind, words in (("longitudinal", "longitudinal: along the axis"),
+                            ("transverse", "transverse: across the axis (bends)")):
+            idx = [i for i, t in enumerate(types) if t.startswith(kind)]
+            sets = list(dict.fromkeys(int(groups[i]) for i in idx))
+            shown = []
+            for gid in sets:
+                members = [i for i in idx if groups[i] == gid]
+                shown.append(fmt(float(values[members[0]]), 5)
+                             + (f" (×{len(members)})" if len(members) > 1 else ""))
+            rows.append([words, str(len(idx)), ", ".join(shown) or "—"])
+        return Table("The vibrations of a linear molecule along and across its axis",
+                     ["vibrations", "count", cls._with_unit("frequencies", unit)
+                      if unit != "cm⁻¹" else "wavenumbers ν̃ [cm⁻¹]"], rows)
 
     @classmethod
     def section_error_vs_runtime(cls, data):
@@ -393,6 +433,9 @@ class NormalModesReport(Report):
                                 "superposition; bottom: their largest difference.")],
             facts=facts)
 
+
+#: a mode's parity under the inversion, as the spectrum table states it
+PARITY_WORDS = {"g": "even (g)", "u": "odd (u)"}
 
 #: each unit system in words, as the report states it
 UNIT_WORDS = {

@@ -118,6 +118,9 @@ def schema_for(source: str, coordinates: tuple[str, ...] = (),
             Q("orthonormality_error", r"\max|\eta^T M \eta - 1|", "1",
               "largest departure of the modes from M-orthonormality"),
             Q("mode_type", "", "", "type of each mode", ("mode",), kind="str"),
+            Q("mode_parity", "", "", "g or u: each mode even or odd under the inversion "
+              "through the centre of mass (a molecule with a centre of symmetry)", ("mode",),
+              kind="str", optional=True),
             Q("stiffness_ratio", r"\omega_\mathrm{max}/\omega_\mathrm{min}", "1",
               "ratio of the highest to the lowest non-zero frequency"),
             # a molecule
@@ -160,7 +163,7 @@ def schema_for(source: str, coordinates: tuple[str, ...] = (),
               kind="int", optional=True),
             Q("expected_transverse", "", "1", "transverse vibrations expected (2(n - 2))",
               kind="int", optional=True),
-            # a chain or pendula: the closed form
+            # a chain, pendula or a symmetric linear X-Y-Y-X molecule: the closed form
             Q("frequencies_exact", r"\omega_\mathrm{exact}", u["omega"],
               "closed-form eigenfrequencies, ascending", ("mode",), optional=True),
             Q("closed_form_max_rel_error", r"\max|\omega/\omega_\mathrm{exact} - 1|", "1",

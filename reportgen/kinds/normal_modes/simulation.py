@@ -28,7 +28,7 @@ linear_chain = lazy_module("reportgen.core.models.linear_chain")
 
 
 class NormalModesSimulation(IntegratingSimulation):
-    """Small oscillations about a stable equilibrium (lecture notes ch. 5, §5.1)."""
+    """Small oscillations about a stable equilibrium (textbook ch. 5, §5.1)."""
 
     schema = SCHEMA
     config: NormalModesConfig
@@ -94,7 +94,7 @@ class NormalModesSimulation(IntegratingSimulation):
         """Closed-form frequencies of a generated system, ascending, and their source."""
         c = self.config
         if c.chain is not None:
-            src = ("ωⱼ = 2√(k/m) sin(jπ/(2(N+1))), fixed ends (notes §5.1; Goldstein §6.4)"
+            src = ("ωⱼ = 2√(k/m) sin(jπ/(2(N+1))), fixed ends (textbook §5.1; Goldstein §6.4)"
                    if c.chain.ends == "fixed" else "ωⱼ = 2√(k/m) sin(jπ/(2N)), free ends")
             return core.chain_exact_frequencies(c.chain.n, c.chain.m, c.chain.k,
                                                 c.chain.ends), src
@@ -225,7 +225,11 @@ class NormalModesSimulation(IntegratingSimulation):
             # a linear molecule: n − 1 longitudinal, 2(n − 2) transverse vibrations
             a["expected_longitudinal"] = n_atoms - 1
             a["expected_transverse"] = 2 * (n_atoms - 2)
+        inversion = mol.inversion(a["hessian"])
+        if inversion is not None:  # a centre of symmetry: each mode even (g) or odd (u)
+            a["mode_parity"] = core.mode_parity(modes.modes, M, inversion)
         self._triatomic_checks(results, mol, modes)
+        self._four_atom_checks(results, mol, modes)
 
     def _triatomic_checks(self, results, mol, modes):
         """Closed forms for symmetric XY₂ (Y–X–Y) molecules with one bend."""
@@ -244,7 +248,7 @@ class NormalModesSimulation(IntegratingSimulation):
             return [float(w[i]) for i, t in enumerate(types) if label in t]
 
         if xy2.linear:
-            # Goldstein §6.4 (linear triatomic molecule); notes §5.1, Fig. 5.1
+            # Goldstein §6.4 (linear triatomic molecule); textbook §5.1, Fig. 5.1
             src = "Goldstein §6.4: ω² = k/m, (k/m)(1 + 2m/M), m and M the end and centre masses"
             w_sym, w_asym = (scale * x for x in core.linear_xy2_frequencies(k, my, mx))
             sym, asym = find("longitudinal, symmetric"), find("longitudinal, antisymmetric")
@@ -274,6 +278,58 @@ class NormalModesSimulation(IntegratingSimulation):
                                             scale ** 2 * tot, w2_unit, src))
                 results.checks.append(Check("ω₁² ω₂² (symmetric block)", others[0] * others[1],
                                             scale ** 4 * prod, unit_text(u["omega4"]), src))
+
+    #: the closed forms of a symmetric linear X–Y–Y–X and their check labels, numbered as
+    #: acetylene's ν1…ν5 (even: symmetric under the inversion, odd: antisymmetric)
+    FOUR_ATOM_MODES = (("stretch_even_high", "ω of ν1, even stretch (the higher)"),
+                       ("stretch_even_low", "ω of ν2, even stretch (the lower)"),
+                       ("stretch_odd", "ω of ν3, odd stretch"),
+                       ("bend_trans", "ω of ν4, trans bend (even, twofold)"),
+                       ("bend_cis", "ω of ν5, cis bend (odd, twofold)"))
+
+    def _four_atom_checks(self, results, mol, modes):
+        """Closed forms of a symmetric linear X–Y–Y–X (C₂H₂, textbook §5.1): the stretches
+        against the chain of springs k1, k2, k1, the bends against the two linear bends
+        (:func:`reportgen.core.normal_modes.linear_x2y2_eigenvalues`); with its bends, the
+        whole spectrum as ``frequencies_exact``."""
+        x2y2 = core.symmetric_linear_x2y2(mol)
+        if x2y2 is None:
+            return
+        a = results.analysis
+        system = unit_system(self.config)
+        scale = omega_scale(system)
+        w_unit = unit_text(units("molecule", system)["omega"])
+        closed = {key: scale * math.sqrt(v)
+                  for key, v in core.linear_x2y2_eigenvalues(x2y2).items()}
+        types, parity = list(a["mode_type"]), list(a.get("mode_parity", []))
+        w = np.asarray(a["frequencies"])
+        src = ("closed form of the symmetric X–Y–Y–X: along the axis the springs k1, k2, k1, "
+               "across it the two linear bends, split by the inversion")
+        sources = {"stretch": "X–Y–Y–X: springs k1, k2, k1 along the axis, split by the "
+                              "inversion",
+                   "bend": "X–Y–Y–X: the two linear bends, split by the inversion"}
+
+        def measured(longitudinal: bool, even: bool) -> list[float]:
+            return sorted(float(w[i]) for i in range(modes.n_zero, len(w))
+                          if types[i].startswith("longitudinal") == longitudinal
+                          and parity and parity[i] == ("g" if even else "u"))
+
+        found = {"stretch_even_high": measured(True, True)[-1:],
+                 "stretch_even_low": measured(True, True)[:1],
+                 "stretch_odd": measured(True, False),
+                 "bend_trans": measured(False, True)[-1:],
+                 "bend_cis": measured(False, False)[-1:]}
+        for key, label in self.FOUR_ATOM_MODES:
+            if key in closed and len(found[key]) == 1:
+                results.checks.append(Check(label, found[key][0], closed[key], w_unit,
+                                            sources[key.split("_")[0]]))
+        if x2y2.k_bend is not None and modes.n_zero == 5:  # 3 translations, 2 rotations
+            vib = [closed[k] for k, _label in self.FOUR_ATOM_MODES]
+            exact = np.sort(np.concatenate([np.zeros(5), vib, closed["bend_trans"],
+                                            closed["bend_cis"]], axis=None))
+            a["frequencies_exact"] = exact
+            a["closed_form_max_rel_error"] = float(np.max(np.abs(w[5:] / exact[5:] - 1.0)))
+            a["closed_form_source"] = src
 
     # ------------------------------------------------------------------ evolution
     def initial_state(self) -> tuple[np.ndarray, np.ndarray]:
@@ -308,7 +364,7 @@ class NormalModesSimulation(IntegratingSimulation):
         ref = reference(t)
         main.reference = {col: ref[:, i] for i, col in enumerate(main.columns)}
         main.attrs["reference_label"] = ("modal superposition q = Σ ηₖ (aₖ cos ωₖt + "
-                                         "bₖ sin ωₖt / ωₖ), p = M q̇ (notes §5.1)")
+                                         "bₖ sin ωₖt / ωₖ), p = M q̇ (textbook §5.1)")
         results.runs["main"] = main
         n = M.shape[0]
         err_q = np.abs(main.y[:, :n] - ref[:, :n])
@@ -325,7 +381,7 @@ class NormalModesSimulation(IntegratingSimulation):
         name = self.coordinate_names()[c_idx].replace("phi", "φ")
         results.checks.append(Check(f"{name}(t_end), direct integration",
                                     float(main.y[-1, c_idx]), float(ref[-1, c_idx]), "",
-                                    "modal superposition q = Σ ηₖ aₖ cos ωₖt (notes §5.1)"))
+                                    "modal superposition q = Σ ηₖ aₖ cos ωₖt (textbook §5.1)"))
         if stiff:
             results.message = "; ".join(x for x in (results.message, (
                 f"stiff: ωₘₐₓ/ωₘᵢₙ = {ratio:.3g}; direct integration by "

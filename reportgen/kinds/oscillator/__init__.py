@@ -1,9 +1,12 @@
 r"""``oscillator``: the harmonic oscillator three ways (lecture notes §4, §6, §7).
 
 Hamilton's equations integrated and compared with the closed form; the swap
-canonical transformation F1 = q Q (6.6–6.11) applied to the trajectory and
-checked against integrating the transformed Hamiltonian; the Hamilton–Jacobi
-solution (7.33–7.38) compared with the integration.
+canonical transformation F1 = q Q, notes (6.6–6.11), applied to the trajectory and
+checked against integrating the transformed Hamiltonian, its Poisson bracket {Q, P}
+derived by SymPy and evaluated along the orbit by central differences; the
+Hamilton–Jacobi solution, notes (7.33–7.38), compared with the integration, and the
+residuals of the Hamilton–Jacobi equations, notes (7.16) and (7.34), along the run with
+∂W/∂q from the integrand and from W by quadrature.
 """
 
 from __future__ import annotations

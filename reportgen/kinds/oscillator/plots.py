@@ -32,10 +32,10 @@ def swap_phase_planes(q, p, Q_int, P_int, Q_map, P_map):
 
 def hamilton_jacobi(t, q_int, q_hj, energy, beta):
     # short enough to share the page with the section's prose and facts
-    fig, axes = new_figure_grid(3, 1, figsize=(6.8, 5.2), sharex=True)
+    fig, axes = new_figure_grid(3, 1, figsize=(6.8, 4.6), sharex=True)
     ax_q, ax_e, ax_b = axes[:, 0]
     ax_q.plot(t, q_int, color=HIGHLIGHT, label="integrated")
-    ax_q.plot(t, q_hj, color=REFERENCE, linestyle=(0, (4, 3)), label="Hamilton–Jacobi (7.38)")
+    ax_q.plot(t, q_hj, color=REFERENCE, linestyle=(0, (4, 3)), label="Hamilton–Jacobi, notes (7.38)")
     ax_q.set_ylabel("q [m]")
     # above the panels: q(t) peaks in every corner of its axes
     fig.legend(*ax_q.get_legend_handles_labels(), loc="outside upper center", ncols=2,

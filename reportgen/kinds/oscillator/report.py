@@ -8,7 +8,7 @@ import math
 
 from ...lazy import lazy_module
 from ...scene.base import Section
-from ...scene.content import SectionContent, fmt, fmt_err
+from ...scene.content import SectionContent, Table, fmt, fmt_err
 from ...scene.report import Report
 from .results import SCHEMA
 
@@ -97,7 +97,10 @@ class OscillatorReport(Report):
             facts=[("generating function",
                     "F1(q, Q) = q Q  ⇒  p = ∂F1/∂q = Q,  P = −∂F1/∂Q = −q"),
                    ("new Hamiltonian", "K(Q, P) = H(−P, Q) = Q²/2m + m ω² P²/2"),
-                   ("Poisson bracket {Q, P}", "1 (canonical)"),
+                   ("Poisson bracket {Q, P} from F1 by SymPy",
+                    f"{fmt(a['poisson_bracket_QP'])} (canonical)"),
+                   ("max |{Q, P} − 1| along the orbit, by central differences",
+                    fmt_err(a["poisson_bracket_QP_defect"])),
                    ("max distance of the integrated (Q, P) from (p, −q)",
                     fmt_err(a["swap_max_difference"]))])
 
@@ -108,6 +111,7 @@ class OscillatorReport(Report):
         hj = a["hamilton_jacobi"]
         fig = plots.hamilton_jacobi(run.t, run["q"], hj["q"], hj["energy"], hj["beta"])
         return SectionContent(
+            tables=[cls.residual_table(a)],
             figures=[cls.figure("hj", fig, "Top: q(t) = √(2E/mω²) sin ω(t + β) from the "
                                 "complete integral S = W(q, E) − E t against the integration. "
                                 "Bottom: the new canonical pair (E, β) evaluated along the "
@@ -118,3 +122,27 @@ class OscillatorReport(Report):
                     fmt_err(a["hj_beta_drift"]) + " s"),
                    ("max difference of q, Hamilton–Jacobi against the integration",
                     fmt_err(a["hj_q_max_difference"]) + " m")])
+
+    @staticmethod
+    def residual_table(a) -> Table:
+        """The Hamilton–Jacobi equations along the run, ∂W/∂q from the integrand and from
+        W by quadrature; W and ∫ p dq by quadrature against their closed forms; p against
+        ∂W/∂q."""
+        rows = [
+            ["∂S/∂t + H(q, ∂S/∂q) = 0, notes (7.16)", fmt_err(a["hj_residual"]),
+             fmt_err(a["hj_residual_quadrature"])],
+            ["H(q, ∂W/∂q) = E, notes (7.34)", fmt_err(a["hj_residual"]),
+             fmt_err(a["hj_characteristic_residual_quadrature"])],
+            ["W by quadrature against its closed form, relative to πE/ω", "—",
+             fmt_err(a["hj_characteristic_quadrature_error"])],
+            ["∫ p dq between the turning points against πE/ω (Goldstein §10.6)", "—",
+             fmt_err(abs(a["hj_half_action"] * a["omega"] / (math.pi * a["energy"]) - 1))],
+            ["integrated p against ±∂W/∂q, relative to √(2mE)",
+             fmt_err(a["hj_momentum_difference"]), "—"],
+        ]
+        return Table(caption="Largest relative residual or difference along the run. "
+                             "Middle column: ∂W/∂q the integrand √(2m(E − mω²q²/2)) and "
+                             "∂S/∂t = −E; right: W by Gauss–Legendre quadrature, ∂W/∂q and "
+                             "∂S/∂t by central differences",
+                     header=["equation or comparison", "∂W/∂q from the integrand",
+                             "W by quadrature"], rows=rows)

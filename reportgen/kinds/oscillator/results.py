@@ -34,12 +34,34 @@ SCHEMA = ResultsSchema(
           "largest drift of beta along the integrated trajectory"),
         Q("hj_q_max_difference", r"\max|q_\mathrm{HJ} - q|", "m",
           "largest difference between the Hamilton-Jacobi solution and the integration"),
-        Q("poisson_bracket_QP", r"\{Q, P\}", "1", "Poisson bracket of the new pair"),
+        Q("poisson_bracket_QP", r"\{Q, P\}", "1",
+          "Poisson bracket of the new pair, by SymPy from F1 = q Q (notes (6.6-6.11))"),
+        Q("poisson_bracket_QP_defect", r"\max|\{Q, P\} - 1|", "1",
+          "largest |{Q, P} - 1| along the run, the map's partial derivatives by central "
+          "differences"),
+        # the Hamilton-Jacobi equations along the run, relative to E (notes (7.16), (7.34))
+        Q("hj_residual", r"\max|\partial_t S + H(q, \partial_q S)|/E", "1",
+          "largest residual of the Hamilton-Jacobi equation along the run, dW/dq from the "
+          "integrand (dS/dt = -E: also that of H(q, dW/dq) = E)"),
+        Q("hj_residual_quadrature", r"\max|\partial_t S + H(q, \partial_q S)|/E", "1",
+          "the same, S = W - E t with W by quadrature and both derivatives by central "
+          "differences"),
+        Q("hj_characteristic_residual_quadrature", r"\max|H(q, \partial_q W) - E|/E", "1",
+          "largest residual of H(q, dW/dq) = E along the run, W by quadrature and dW/dq by "
+          "central differences"),
+        Q("hj_characteristic_quadrature_error", r"\max|W - W_\mathrm{exact}|/(\pi E/\omega)",
+          "1", "largest difference of W by quadrature from its closed form along the run, "
+          "relative to the half action pi E/omega"),
+        Q("hj_half_action", r"\int p\,dq", "J s",
+          "integral of p dq from turning point to turning point by quadrature (pi E/omega)"),
+        Q("hj_momentum_difference", r"\max|p - \partial_q W|/\sqrt{2mE}", "1",
+          "largest difference of the integrated p from dW/dq on its branch, relative to the "
+          "momentum amplitude"),
         Q("hamilton_jacobi/energy", "E", "J",
           "E evaluated along the integrated trajectory", ("t",)),
         Q("hamilton_jacobi/beta", r"\beta", "s",
           "beta evaluated along the integrated trajectory", ("t",)),
         Q("hamilton_jacobi/q", r"q_\mathrm{HJ}", "m",
-          "Hamilton-Jacobi solution q(t) (7.38)", ("t",)),
+          "Hamilton-Jacobi solution q(t), notes (7.38)", ("t",)),
     ),
 )

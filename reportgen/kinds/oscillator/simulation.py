@@ -15,11 +15,18 @@ from .config import OscillatorConfig
 from .results import SCHEMA
 
 core = lazy_module("reportgen.core.models.oscillator")
+hamilton_jacobi = lazy_module("reportgen.core.hamilton_jacobi")
+
+#: central-difference steps: of the swap's partial derivatives, relative to the orbit's
+#: amplitudes (exact for a linear map but for rounding ~ ε/step); of ∂S/∂t, relative to the
+#: run's length (S is linear in t: rounding ~ ε t/step alone, however many periods)
+BRACKET_STEP = 1e-3
+TIME_STEP = 1e-3
 
 
 class OscillatorSimulation(IntegratingSimulation):
-    """H = p²/2m + m ω² q²/2 integrated, swapped (6.6–6.11) and solved by
-    Hamilton–Jacobi (7.33–7.38)."""
+    """H = p²/2m + m ω² q²/2 integrated, swapped (notes (6.6–6.11)) and solved by
+    Hamilton–Jacobi (notes (7.33–7.38))."""
 
     schema = SCHEMA
     config: OscillatorConfig
@@ -95,7 +102,6 @@ class OscillatorSimulation(IntegratingSimulation):
             "hj_beta": float(beta[0]),
             "hj_beta_drift": float(np.max(np.abs(beta - beta[0]))),
             "hj_q_max_difference": float(np.max(np.abs(main["q"] - q_hj))),
-            "poisson_bracket_QP": 1.0,  # {Q, P}_(q,p) = ∂Q/∂q ∂P/∂p − ∂Q/∂p ∂P/∂q = 0 − (1)(−1)
             # along the integrated trajectory, on the main run's grid: the new canonical pair
             # (E, β) and q(t) of the Hamilton–Jacobi solution (7.38) from their initial values
             "hamilton_jacobi": {"energy": e, "beta": beta, "q": q_hj},
@@ -107,11 +113,75 @@ class OscillatorSimulation(IntegratingSimulation):
         results.checks.append(Check("p(t_end)", float(main["p"][-1]), float(p_ex[-1]), "kg·m/s",
                                     "closed form p0 cos ωt − mωq0 sin ωt", scale=p_amp))
         results.checks.append(Check("Q(t_end) from integrating K", float(swapped["Q"][-1]),
-                                    float(Q[-1]), "kg·m/s", "Q = p of the integrated H (6.9)",
+                                    float(Q[-1]), "kg·m/s", "Q = p, notes (6.9), of the integrated H",
                                     scale=p_amp))
         results.checks.append(Check("q(t_end) Hamilton–Jacobi", float(q_hj[-1]),
-                                    float(main["q"][-1]), "m", "integration of H (7.38)",
+                                    float(main["q"][-1]), "m",
+                                    "integration of H; value from notes (7.38)",
                                     scale=q_amp))
+        self._swap_bracket(results, main)
+        self._hamilton_jacobi_residuals(results, main, e0)
         self.study(results, model, y0, np.linspace(0.0, run.t_end, 201),
                    reference=lambda ts: np.column_stack(self.closed_form(ts)))
         return results
+
+    def _swap_bracket(self, results: Results, main) -> None:
+        """{Q, P} of the swap: by SymPy from F1 = q Q, and by central differences of the map
+        (q, p) -> (Q, P) = (p, −q) at every stored point of the orbit (notes (6.6–6.11))."""
+        prm = self.config.params
+        e0 = results.analysis["energy"]
+        dq = BRACKET_STEP * core.amplitude(e0, prm.m, prm.omega)
+        dp = BRACKET_STEP * math.sqrt(2 * prm.m * e0)
+        symbolic = core.swap_poisson_bracket()
+        along = core.map_poisson_bracket(core.swap, main["q"], main["p"], dq, dp)
+        worst = int(np.argmax(np.abs(along - symbolic)))
+        results.analysis["poisson_bracket_QP"] = symbolic
+        results.analysis["poisson_bracket_QP_defect"] = float(abs(along[worst] - symbolic))
+        results.checks.append(Check("{Q, P} by central differences, worst sample",
+                                    float(along[worst]), symbolic, "",
+                                    "SymPy from F1 = q Q, notes (6.6–6.11)", scale=1.0))
+
+    def _hamilton_jacobi_residuals(self, results: Results, main, e0: float) -> None:
+        """The Hamilton–Jacobi equations along the run, for the complete integral
+        S(q, E, t) = W(q, E) − E t, W = ∫ √(2m(E − mω²q²/2)) dq (notes (7.33–7.34)).
+
+        ∂W/∂q once from the integrand's closed form and once by central differences of W
+        computed by quadrature (:class:`~reportgen.core.hamilton_jacobi.CharacteristicQuadrature`),
+        ∂S/∂t then by a central difference in t: the residuals of ∂S/∂t + H(q, ∂S/∂q) = 0
+        (notes (7.16)) and H(q, ∂W/∂q) = E (notes (7.34)) relative to E, the quadrature's W
+        against its closed form, and the integrated p against ±∂W/∂q (the branch of p's
+        sign).  Points of the run a rounding past a turning point are taken at it."""
+        prm, a = self.config.params, results.analysis
+        m, omega = prm.m, prm.omega
+        t, q, p = main.t, main["q"], main["p"]
+        A = core.amplitude(e0, m, omega)
+        W = hamilton_jacobi.CharacteristicQuadrature.of(
+            lambda x: 2 * m * e0 - (m * omega * x) ** 2, -A, A)
+        q_in = np.clip(q, -A, A)
+        closed = core.energy(q_in, core.characteristic_momentum(q_in, e0, m, omega), m, omega)
+        q_at, dW_dq = W.gradient(q)
+        tau = TIME_STEP * float(t[-1])
+        W_at = W(q_at)
+        dS_dt = ((W_at - e0 * (t + tau)) - (W_at - e0 * (t - tau))) / (2 * tau)
+        H_quadrature = core.energy(q_at, dW_dq, m, omega)
+        half_action = math.pi * e0 / omega  # ∫_{−A}^{A} p dq, Goldstein §10.6
+        branch = np.sign(p) * core.characteristic_momentum(q, e0, m, omega)
+        a.update({
+            "hj_residual": float(np.max(np.abs(closed - e0)) / e0),
+            "hj_residual_quadrature": float(np.max(np.abs(dS_dt + H_quadrature)) / e0),
+            "hj_characteristic_residual_quadrature":
+                float(np.max(np.abs(H_quadrature - e0)) / e0),
+            "hj_characteristic_quadrature_error":
+                float(np.max(np.abs(W(q) - core.characteristic_function(q, e0, m, omega)))
+                      / half_action),
+            "hj_half_action": W.half_action,
+            "hj_momentum_difference":
+                float(np.max(np.abs(p - branch)) / math.sqrt(2 * m * e0)),
+        })
+        worst = int(np.argmax(np.abs(H_quadrature - e0)))
+        results.checks.append(Check("H(q, ∂W/∂q), W by quadrature, worst sample",
+                                    float(H_quadrature[worst]), e0, "J",
+                                    "E, notes (7.34)"))
+        results.checks.append(Check("∫ p dq between the turning points, by quadrature",
+                                    W.half_action, half_action, "J·s",
+                                    "πE/ω, Goldstein §10.6"))

@@ -9,6 +9,7 @@ from pydantic import Field, model_validator
 from ...lazy import lazy_module
 from ...scene.base import SceneConfig
 from ...scene.config import Positive, Real, RunConfig, Strict
+from ...scene.units import check_turn
 
 theory = lazy_module("reportgen.core.pendulum_theory")  # no numerics: validation uses it
 
@@ -28,16 +29,28 @@ class Params(Strict):
 
 
 class Initial(Strict):
-    theta: Real = Field(description="initial angle from the downward vertical [rad]")
+    theta: Real = Field(description="initial angle from the downward vertical, |θ| ≤ 2π "
+                                    "[rad] (beyond a full turn: degrees, most likely)")
     theta_dot: Real = Field(0.0, description="initial angular velocity [rad/s]")
+
+    @model_validator(mode="after")
+    def _within_a_turn(self):
+        check_turn("initial.theta", self.theta)
+        return self
 
 
 class Boundary(Strict):
-    """``[boundary]``: the linearised boundary-value problem (1.21)."""
+    """``[boundary]``: the linearised boundary-value problem (notes (1.21))."""
 
-    theta0: Real = Field(description="θ(0) [rad]")
-    theta1: Real = Field(description="θ(T) [rad]")
+    theta0: Real = Field(description="θ(0), |θ(0)| ≤ 2π [rad]")
+    theta1: Real = Field(description="θ(T), |θ(T)| ≤ 2π [rad]")
     T: Positive = Field(description="end time of the boundary-value problem [s]")
+
+    @model_validator(mode="after")
+    def _within_a_turn(self):
+        check_turn("boundary.theta0", self.theta0)
+        check_turn("boundary.theta1", self.theta1)
+        return self
 
 
 class PendulumConfig(SceneConfig):

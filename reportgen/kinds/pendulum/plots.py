@@ -78,7 +78,7 @@ def period_against_amplitude(*, curve_amplitude, curve_period, small_angle_perio
 
 def boundary_value(t, theta_exact, theta_numeric, theta_nonlinear, *, ax=None):
     fig, ax = new_figure(ax)
-    ax.plot(t, theta_exact, color=REFERENCE, label="linear, closed form (1.21)")
+    ax.plot(t, theta_exact, color=REFERENCE, label="linear, closed form, notes (1.21)")
     ax.plot(t, theta_numeric, color=HIGHLIGHT, linestyle=(0, (4, 3)), label="linear, numerical")
     if np.all(np.isfinite(theta_nonlinear)):
         ax.plot(t, theta_nonlinear, color=CONTEXT, linestyle=":", label="nonlinear, numerical")

@@ -9,7 +9,7 @@ import numpy as np
 
 from ...lazy import lazy_module
 from ...scene.base import Section
-from ...scene.content import SectionContent, Table, fmt, fmt_err
+from ...scene.content import SectionContent, Table, fmt, fmt_err, fmt_pair
 from ...scene.report import Report, no_period_reason
 from .config import MIN_SAMPLES_PER_PERIOD
 from .results import SCHEMA
@@ -73,7 +73,13 @@ class PendulumReport(Report):
         period, small = float(a["period"]), float(a["period_small_angle"])
         k = float(a["k"])
         excess = period / small - 1.0
-        return {"motion": str(a["motion"]), "k": fmt(k, 6),
+        case = {}
+        if data.config.boundary is not None:
+            # the Lagrangian action's k = 1 second variation changes sign at ω0 T = π
+            x = float(a["omega0"]) * data.config.boundary.T
+            case = {"omega_T": fmt(x), "conjugate": x > math.pi,
+                    "conjugate_points": int(x // math.pi)}
+        return case | {"motion": str(a["motion"]), "k": fmt(k, 6),
                 "near_separatrix": abs(1.0 - k) < cls.SEPARATRIX_GAP,
                 "gap": fmt_err(abs(1.0 - k)), "amplitude": fmt(float(a.get("amplitude", math.nan)), 6),
                 "period": fmt(period, 5), "period_small": fmt(small, 5),
@@ -132,7 +138,7 @@ class PendulumReport(Report):
             ylabel="absolute error")
         return SectionContent(figures=[
             cls.figure("timeseries", fig, "θ(t) and θ̇(t) integrated, against the exact "
-                       "elliptic-function solution and the small-angle solution (1.19)."),
+                       "elliptic-function solution and the small-angle solution, notes (1.19)."),
             cls.figure("error", err, "Error of the integration against the exact solution."),
         ])
 
@@ -206,20 +212,113 @@ class PendulumReport(Report):
         fig = plots.boundary_value(bvp["t"], bvp["theta_exact"], bvp["theta_numeric"],
                                    bvp["theta_nonlinear"])
         b = data.config.boundary
-        table = Table(
-            caption="Action S = ∫ L dt (2.4) along the boundary-value solution",
-            header=["solution", "action [J·s]", "rel. error vs closed form"],
-            rows=[["linear, closed form (2.4)", fmt(bvp["action_exact"]), "—"],
-                  ["linear, solve_bvp + Simpson quadrature", fmt(bvp["action_numeric"]),
-                   fmt_err(abs(bvp["action_numeric"] / bvp["action_exact"] - 1))],
-                  ["nonlinear pendulum, solve_bvp", fmt(bvp["action_nonlinear"]),
-                   "(different problem)"]])
+        exact = bvp["action_exact"]
+        rows = [["linear, closed form, notes (2.4)", fmt(exact), "—"],
+                ["linear, solve_bvp + Simpson quadrature", fmt(bvp["action_numeric"]),
+                 fmt_err(abs(bvp["action_numeric"] / exact - 1))]]
+        phase = data.analysis.get("phase_space_action")
+        if phase is not None:
+            rows += [[f"linear, closed form, Simpson quadrature of {what}",
+                      fmt(phase[key]), fmt_err(abs(phase[key] / exact - 1))]
+                     for what, key in (("L", "action_lagrangian"),
+                                       ("p θ̇ − H, notes §5", "action_hamiltonian"))]
+        rows.append(["nonlinear pendulum, solve_bvp", fmt(bvp["action_nonlinear"]),
+                     "(different problem)"])
+        tables = [Table(caption="Action S = ∫ L dt, notes (2.4), along the boundary-value "
+                        "solution; on the solution p = m l² θ̇, so ∫ (p θ̇ − H) dt is the same "
+                        "number.", header=["solution", "action [J·s]", "rel. error vs closed form"],
+                        rows=rows)]
+        if "end_variation" in data.analysis:
+            tables.append(cls._end_variation_table(data))
+        if phase is not None:
+            tables.append(cls._variations_table(data))
+        if "free_particle_limit" in data.analysis:
+            tables.append(cls._free_particle_table(data))
         return SectionContent(
             figures=[cls.figure("bvp", fig, f"θ(0) = {fmt(b.theta0)} rad, θ(T) = "
                                 f"{fmt(b.theta1)} rad, T = {fmt(b.T)} s: the linearised "
-                                "solution (1.21) in closed form and numerically, and the "
+                                "solution, notes (1.21), in closed form and numerically, and the "
                                 "nonlinear pendulum's solution with the same ends.")],
-            tables=[table])
+            tables=tables)
+
+    @classmethod
+    def _end_variation_table(cls, data) -> Table:
+        """∂S/∂θ0, ∂S/∂θ1, ∂S/∂T by differences against −p(0), p(T), −E, notes (7.1–7.15)."""
+        e = data.analysis["end_variation"]
+        momentum_scale = math.sqrt(2.0 * data.config.params.m * data.config.params.l**2
+                                   * e["energy"])
+        rows = []
+        for name, unit, key, what, reference, scale in (
+                ("∂S/∂θ0", "J·s", "dS_dtheta0", "−p(0) = −m l² θ̇(0)", -e["momentum_start"],
+                 momentum_scale),
+                ("∂S/∂θ1", "J·s", "dS_dtheta1", "p(T) = m l² θ̇(T)", e["momentum_end"],
+                 momentum_scale),
+                ("∂S/∂T", "J", "dS_dT", "−E", -e["energy"], e["energy"])):
+            value, ref = fmt_pair(e[key], reference)
+            rows.append([f"{name} [{unit}]", value, f"{what} = {ref}",
+                         fmt_err(abs(e[key] - reference) / scale) if scale else "—"])
+        return Table(
+            caption=f"δS = p δq − H δt, notes (7.1–7.15): the action of the first table "
+                    f"(solve_bvp + Simpson) differentiated by central differences of "
+                    f"neighbouring boundary-value solutions, Richardson-extrapolated from "
+                    f"steps h and 2h (h = {fmt(e['step_theta'], 2)} rad in θ0 and θ1, "
+                    f"{fmt(e['step_T'], 2)} s in T), against the momentum and energy of the "
+                    f"closed-form solution, notes (1.21). Relative to √(2 m l² E), the "
+                    f"largest |p| on the solution, for the momenta; to E for the energy.",
+            header=["derivative", "differences of S", "closed form", "rel. difference"],
+            rows=rows)
+
+    #: the perturbations of :func:`reportgen.core.pendulum_action.action_variations`
+    VARIATIONS = (("q", "δθ = ε sin(kπt/T)"), ("p", "δp = ε m l² (kπ/T) cos(kπt/T)"),
+                  ("qp", "both, δp = m l² δθ̇"))
+
+    @classmethod
+    def _variations_table(cls, data) -> Table:
+        """First and second variations of the phase-space action, notes §5."""
+        v = data.analysis["phase_space_action"]
+        rows = [[what if i == 0 else "", str(int(k)), fmt_err(v[f"first_variation_{name}"][i]),
+                 fmt(v[f"second_variation_{name}"][i]),
+                 fmt(v[f"second_variation_{name}_exact"][i])]
+                for name, what in cls.VARIATIONS for i, k in enumerate(v["mode"])]
+        return Table(
+            caption=f"Variations of the phase-space action S = ∫ (p θ̇ − H) dt, notes §5, "
+                    f"about the closed-form solution: Simpson on {v['samples']} points, "
+                    f"central differences at ε = ±{fmt(v['epsilon'])} rad (S is quadratic "
+                    f"in ε, so they are exact). Closed forms: δθ alone −m l² ω0² T/2; δp "
+                    f"alone −m l² (kπ/T)² T/2; both m l² T [(kπ/T)² − ω0²]/2. "
+                    + cls._free_path_text(v),
+            header=["perturbation", "k", "dS/dε [J·s]", "d²S/dε² [J·s]",
+                    "closed form [J·s]"], rows=rows)
+
+    @staticmethod
+    def _free_path_text(v) -> str:
+        """The control: the same δθ about the free path, which is not a solution."""
+        i = int(np.argmax(np.abs(v["first_variation_free_path_exact"])))
+        value, ref = fmt_pair(v["first_variation_free_path"][i],
+                              v["first_variation_free_path_exact"][i])
+        return (f"The first variation vanishes only on the solution: about the free path "
+                f"θ0 + (θ1 − θ0) t/T, which has the same ends, δθ with k = "
+                f"{int(v['mode'][i])} gives dS/dε = {value} J·s (closed form "
+                f"−m l² ω0² (T/kπ) [θ0 − (−1)ᵏ θ1] = {ref} J·s).")
+
+    @classmethod
+    def _free_particle_table(cls, data) -> Table:
+        """S and θ as g → 0 against the free rotor, notes (1.22) and (2.5)."""
+        f = data.analysis["free_particle_limit"]
+        l = data.config.params.l
+        rows = [[fmt(w * w * l), fmt(s), fmt(excess), fmt(leading), fmt_err(dev)]
+                for w, s, excess, leading, dev in zip(
+                    f["omega"], f["action"], f["action_excess"], f["action_excess_leading"],
+                    f["path_excess"], strict=True)]
+        return Table(
+            caption=f"The same ends as g → 0: S tends to the free rotor's S(g = 0) = "
+                    f"m l² (θ1 − θ0)²/(2T) = {fmt(f['action_free'])} J·s, notes (2.5), "
+                    f"and θ(t) to θ0 + (θ1 − θ0) t/T, notes (1.22). S − S(g = 0) is "
+                    f"evaluated directly (series of x cot x − 1 for small x = ωT), and "
+                    f"approaches −∫ V dt along the free path, −m l² ω² T (θ0² + θ0 θ1 + "
+                    f"θ1²)/6, ω = √(g/l). The first row is this scene's g.",
+            header=["g [m/s²]", "S [J·s]", "S − S(g = 0) [J·s]", "−∫ V dt, free path [J·s]",
+                    "max |θ − θ(g = 0)| [rad]"], rows=rows)
 
     @classmethod
     def section_energy(cls, data):

@@ -17,6 +17,7 @@ from .results import SCHEMA
 
 core = lazy_module("reportgen.core.models.pendulum")
 theory = lazy_module("reportgen.core.pendulum_theory")
+action = lazy_module("reportgen.core.pendulum_action")
 
 
 class PendulumSimulation(IntegratingSimulation):
@@ -187,11 +188,44 @@ class PendulumSimulation(IntegratingSimulation):
             results.analysis["boundary_value"] = bvp
             results.checks.append(Check("action S of the linear BVP (numerical quadrature)",
                                         bvp["action_numeric"], bvp["action_exact"], "J·s",
-                                        "closed form (2.4) on solution (1.21)"))
+                                        "notes (2.4) on the solution (1.21), closed form"))
+            self._action_analysis(results)
         self.study(results, model, y0, np.linspace(0.0, run.t_end, 201),
                    reference=(lambda ts: np.column_stack(self.reference_solution(ts)))
                    if self.has_exact_solution else None)
         return results
+
+    def _action_analysis(self, results: Results) -> None:
+        """The action of the linear boundary-value problem as a function of its ends,
+        notes (7.1–7.15), in phase space, notes §5, and as g → 0, notes (1.22) and (2.5):
+        ``end_variation``, ``phase_space_action``, ``free_particle_limit``."""
+        p, b, w = self.config.params, self.config.boundary, self.omega0
+        inertia = p.m * p.l**2
+
+        def computed_action(theta0, theta1, T):  # what the first table's quadrature gives
+            return core.boundary_value_problem(theta0, theta1, T, p.g, p.l, p.m)["action_numeric"]
+
+        ends = action.end_variation(computed_action, b.theta0, b.theta1, b.T, w)
+        p0, p1 = theory.linear_end_momenta(b.theta0, b.theta1, b.T, w, inertia)
+        ends.update(momentum_start=p0, momentum_end=p1,
+                    energy=theory.linear_energy(b.theta0, b.theta1, b.T, w, inertia))
+        phase = action.action_variations(b.theta0, b.theta1, b.T, w, inertia)
+        results.analysis.update({
+            "end_variation": ends, "phase_space_action": phase,
+            "free_particle_limit": action.free_particle_limit(b.theta0, b.theta1, b.T, w,
+                                                              inertia)})
+        exact = theory.linear_action(b.theta0, b.theta1, b.T, w, inertia)
+        source = "notes (7.1–7.15): δS = p δq − H δt"
+        # relative to the largest |p| on the solution, √(2 m l² E): p(T) itself may be 0
+        momentum_scale = math.sqrt(2.0 * inertia * ends["energy"])
+        results.checks.extend([
+            Check("∂S/∂θ1 by differences of the computed S", ends["dS_dtheta1"], p1, "J·s",
+                  f"m l² θ̇(T), {source}", scale=momentum_scale or None),
+            Check("∂S/∂T by differences of the computed S", ends["dS_dT"], -ends["energy"],
+                  "J", f"−E, {source}"),
+            Check("∫ (p θ̇ − H) dt on the solution, Simpson", phase["action_hamiltonian"],
+                  exact, "J·s", "notes §5; closed form notes (2.4)"),
+        ])
 
     # ------------------------------------------------------------------ sweeps
     def sweep_block(self, lo, hi, values):

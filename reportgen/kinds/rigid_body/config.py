@@ -38,7 +38,8 @@ class Params(Strict):
 class Initial(Strict):
     omega: list[Real] = Field(description="[ω1, ω2, ω3] body-frame angular velocity [rad/s]")
     attitude: list[Real] = Field([1.0, 0.0, 0.0, 0.0],
-                                 description="[w, x, y, z] unit quaternion body -> space")
+                                 description="[w, x, y, z] unit quaternion body -> space "
+                                             "[dimensionless]")
 
     @model_validator(mode="after")
     def _lengths(self):
@@ -54,7 +55,7 @@ class Initial(Strict):
 
 
 class Impulse(Strict):
-    """``[impulse]``: an impulse P applied at a point r of the body at t = 0 (exercise 4.6c)."""
+    """``[impulse]``: an impulse P applied at a point r of the body at t = 0 (textbook ex. 4.6c)."""
 
     P: list[Real] = Field(description="[Px, Py, Pz] impulse, body frame [kg m/s]")
     at: list[Real] | Literal["apex"] = Field(
@@ -119,15 +120,15 @@ PRESETS = {
                              "params": {"I1": 1.0, "I2": 1.0, "I3": 1.5},
                              "initial": {"omega": [0.3, 0.0, 2.0]},
                              "run": {"t_end": 30.0, "samples": 3001}},
-    "cone_impulse": {"title": "Spinning cone struck at its apex (exercise 4.6c)",
+    "cone_impulse": {"title": "Spinning cone struck at its apex (textbook ex. 4.6c)",
                      "shape": {"type": "cone", "mass": 1.0, "radius": 0.5, "height": 2.0},
                      "initial": {"omega": [0.0, 0.0, 20.0]},
                      "impulse": {"P": [0.1, 0.0, 0.0], "at": "apex"},
                      "run": {"t_end": 5.0, "samples": 3001}},
     "octahedron_spin": {"title": "Octahedron spinning near its smallest-moment axis "
-                                 "(exercise 4.9)",
-                        "shape": {"type": "octahedron", "mass": 1.0, "a": 1.0, "b": 0.8,
-                                  "c": 0.6},
+                                 "(textbook ex. 4.9)",
+                        "shape": {"type": "octahedron", "equator": "rectangle",
+                                  "mass": 1.0, "a": 1.2, "b": 0.8, "h": 0.4},
                         "initial": {"omega": [4.0, 0.5, 0.5]},
                         "run": {"t_end": 20.0, "samples": 4001}},
 }

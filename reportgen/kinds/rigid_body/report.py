@@ -61,6 +61,11 @@ def zero_error_words(zero: list[int]) -> str:
             "without rounding), so it has no line on the log axis.")
 
 
+def vector(v) -> str:
+    """A vector as report text: (0.1, 0, 0) with true minus signs."""
+    return "(" + ", ".join(fmt(float(x)) for x in np.asarray(v, dtype=float)) + ")"
+
+
 def axes_by_moment(analysis) -> tuple[int, int, int]:
     """The body axes (1, 2, 3) of the smallest, the intermediate and the largest principal
     moment, as configured (ties in axis order)."""
@@ -94,6 +99,8 @@ class RigidBodyReport(Report):
         return f"ω(t) {gallery.from_reference(omega.rel_error, exact)}"
 
     sections = (
+        Section("impulse", "The blow: the centre of mass and the struck point in space",
+                integrates=True),
         Section("omega", "Angular velocity against the exact solution", integrates=True),
         Section("polhodes", "Polhodes on the angular-momentum sphere", integrates=True),
         Section("polhode_ellipsoid", "Polhodes on the inertia ellipsoid", integrates=True),
@@ -110,6 +117,8 @@ class RigidBodyReport(Report):
     @classmethod
     def default_sections(cls, data):
         names = [s.name for s in cls.sections]
+        if "impulse" not in data.analysis:
+            names.remove("impulse")
         if "symmetric" not in data.analysis:
             names.remove("symmetric_precession")
         if data.analysis.get("spherical", False):
@@ -134,6 +143,10 @@ class RigidBodyReport(Report):
             ("max ||q| − 1|", f"{fmt_err(a['quaternion_norm_max_deviation'])} (integrator "
                               "output; archived attitude renormalized)"),
         ]
+        imp = a.get("impulse")
+        if imp is not None and "cm_velocity" in imp:
+            facts.insert(2, ("centre of mass after the impulse",
+                             f"drifts at V = P/M = {vector(imp['cm_velocity'])} m/s"))
         if "elliptic" in a:
             facts.append(("branch", f"{a['elliptic']['branch']}, m = {fmt(a['elliptic']['m'])}"))
         return facts
@@ -162,6 +175,55 @@ class RigidBodyReport(Report):
         return case
 
     @classmethod
+    def section_impulse(cls, data):
+        a = data.analysis["impulse"]
+        apex = data.config.get("impulse", {}).get("at") == "apex"
+        name = "apex" if apex else "struck point"
+        facts = [
+            ("impulse P (body frame)", f"{vector(a['P'])} kg m/s at p = {vector(a['point'])} m "
+                                       f"from the centre of mass" + (" (the apex, 3h/4 up the "
+                                                                      "axis)" if apex else "")),
+            ("angular impulse p × P", f"{vector(a['angular_impulse'])} kg m²/s"),
+            ("ω before → after (body)", f"{vector(a['omega_before'])} → "
+                                        f"{vector(np.asarray(a['omega_before']) + a['delta_omega'])}"
+                                        " rad/s, Δω = I⁻¹(p × P)")]
+        figures = []
+        if "cm_velocity" in a:
+            V = np.asarray(a["cm_velocity"], dtype=float)
+            v = np.asarray(a["point_velocity_initial"], dtype=float)
+            speed = float(np.linalg.norm(v))
+            facts += [
+                ("centre-of-mass velocity V = P/M", f"{vector(V)} m/s (M = {fmt(a['mass'])} kg)"),
+                (f"{name} just after the blow",
+                 f"moves at {vector(v)} m/s, |v| = {fmt(speed)} m/s = "
+                 f"{fmt(speed / float(np.linalg.norm(V)), 4)} |V|")]
+            if "cm_velocity_run_max_error" in a:
+                facts.append((f"centre of mass from the run ({int(a['nodes'])} point masses)",
+                              f"velocity within {fmt_err(a['cm_velocity_run_max_error'])} m/s "
+                              f"of P/M, position within {fmt_err(a['cm_path_run_max_error'])} m "
+                              "of the line V t, over the whole run"))
+            if "point_path_max_error" in a:
+                facts.append((f"{name}'s path against the closed form",
+                              f"within {fmt_err(a['point_path_max_error'])} m over the run "
+                              f"(precession about L at |L|/I⊥ = {fmt(a['precession_rate'])} "
+                              "rad/s)"))
+            run = data.runs["main"]
+            L = np.array([run.invariants[k][0] for k in ("L_x", "L_y", "L_z")])
+            fig = plots.impulse_paths(run.t, a["point_path"], a["cm_path"], L,
+                                      point_name=name, exact=a.get("point_path_exact"))
+            figures.append(cls.figure(
+                "impulse_paths", fig,
+                f"After the blow at t = 0: the {name} (red) from the integrated attitude, "
+                f"r = V t + R(t) p, and the centre of mass on its straight line V t (black), "
+                f"t from 0 to {fmt(float(run.t[-1]), 4)} s; grey, the body's line from the "
+                f"centre of mass to the {name} at a few instants (each axis to its own "
+                "scale). Right: the same seen along "
+                "the angular momentum L"
+                + (", with the closed form of the symmetric body dashed" if
+                   "point_path_exact" in a else "") + "."))
+        return SectionContent(figures=figures, facts=facts)
+
+    @classmethod
     def section_omega(cls, data):
         run = data.runs["main"]
         names = ["omega_1", "omega_2", "omega_3"]
@@ -175,7 +237,7 @@ class RigidBodyReport(Report):
                                               unit="rad/s")
         return SectionContent(figures=[
             cls.figure("omega", fig, "Body-frame angular velocity integrated (Euler's equations "
-                       "(10.5)) against the exact solution."),
+                       "notes (10.5)) against the exact solution."),
             cls.figure("omega_error", err, "Error of ω against the exact solution."
                        + zero_error_words(zero))],
             facts=[("max |ω − exact ω|", f"{fmt_err(data.analysis['omega_max_error'])} rad/s")])
@@ -298,10 +360,10 @@ class RigidBodyReport(Report):
                 f"figure axis {axis}, as integrated, on the dashed circle |ω⊥| = "
                 f"{fmt(float(s['omega_perp']))} rad/s; the arrow shows it turning "
                 f"{sense}. Right: its unwrapped phase against time, a straight line of slope "
-                f"−Ω = {fmt(-float(s['Omega']))} rad/s (dashed: (10.10))."))
+                f"−Ω = {fmt(-float(s['Omega']))} rad/s (dashed: notes (10.10))."))
         return SectionContent(figures=figures, facts=[
             ("symmetry axis", str(s["axis"])),
-            ("Ω (10.10)", f"{fmt(s['Omega'], against=s['Omega_measured'])} rad/s"),
+            ("Ω, notes (10.10)", f"{fmt(s['Omega'], against=s['Omega_measured'])} rad/s"),
             ("Ω measured (minus the slope of the phase of ω⊥)",
              f"{fmt(s['Omega_measured'], against=s['Omega'])} rad/s"),
             ("|ω⊥|", f"{fmt(s['omega_perp'])} rad/s (constant)"),

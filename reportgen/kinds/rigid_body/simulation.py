@@ -12,6 +12,7 @@ from ...lazy import lazy_module
 from ...scene.integration import IntegratingSimulation
 from ...scene.results import AuditCase, Check, Results, RunRecord
 from .config import RigidBodyConfig, body_moments
+from .impulse import impulse_motion
 from .results import SCHEMA
 
 inertia_core = lazy_module("reportgen.core.inertia")
@@ -152,7 +153,7 @@ class RigidBodySimulation(IntegratingSimulation):
             axis, Omega = self.symmetric
             analysis["symmetric"] = core.symmetric_precession_analysis(t, main.y[:, :3], I, axis,
                                                                        Omega)
-            ref_source = "symmetric-body solution (10.9)–(10.10)"
+            ref_source = "symmetric-body solution notes (10.9)–(10.10)"
         analysis["reference"] = ref_source
         main.reference = {c: exact[:, k] for k, c in enumerate(core.COLUMNS[:3])}
         main.attrs["reference_label"] = ref_source
@@ -171,7 +172,7 @@ class RigidBodySimulation(IntegratingSimulation):
             results.checks.append(Check(
                 f"growth rate about the intermediate axis {k2 + 1} (Jacobian eigenvalue)",
                 s["growth_rate_jacobian"], s["growth_rate"], "1/s",
-                "Ω√((I2−I1)(I3−I2)/(I1 I3)), (10.14)"))
+                "Ω√((I2−I1)(I3−I2)/(I1 I3)), notes (10.14)"))
         if self.is_flip_demo:
             elliptic = analysis.get("elliptic")
             analysis["flip"] = core.flip_analysis(
@@ -194,7 +195,9 @@ class RigidBodySimulation(IntegratingSimulation):
                 results.checks.append(Check("body-frame precession rate Ω",
                                             sym["Omega_measured"], sym["Omega"], "rad/s",
                                             f"Ω = (I⊥ − I{sym['axis']}) ω{sym['axis']} / I⊥, "
-                                            "(10.10)"))
+                                            "notes (10.10)"))
+        if self.config.impulse is not None:
+            self._impulse(analysis, results, main)
         self._poinsot_geometry(analysis, results, main)
         if self.wants_splitting():
             split = self._splitting_run(y0, t, scales)
@@ -209,6 +212,42 @@ class RigidBodySimulation(IntegratingSimulation):
         if results.study is not None and len(results.study):
             results.study = self._splitting_study(results.study, model, y0, t_study)
         return results
+
+    def _impulse(self, analysis, results, main) -> None:
+        """The blow at t = 0 (textbook ex. 4.6(c)): Δω, and for a body with a mass the
+        centre of mass drifting at P/M and the struck point's path in space, each checked
+        (:mod:`.impulse`)."""
+        imp = self.config.impulse
+        shape = self.config.shape
+        point = shape.apex() if imp.at == "apex" else np.asarray(imp.at, dtype=float)
+        mass = elements = None
+        if shape is not None:
+            mass = float(shape.mass)
+            m, r, _ = shape.mass_elements()
+            if shape.type == "points":  # the body frame is the principal frame
+                r = r @ inertia_core.principal_axes(shape.body_tensor())[1]
+            elements = (m, r)
+        a = impulse_motion(main.t, main.y[:, :3], main.y[:, 3:7], self.moments, P=imp.P,
+                           point=point, omega_before=self.config.initial.omega, mass=mass,
+                           elements=elements, symmetric=self.symmetric)
+        analysis["impulse"] = a
+        where = "apex" if imp.at == "apex" else "struck point"
+        if "cm_velocity_run_max_error" in a:
+            k = a["cm_velocity_run_worst_component"]
+            results.checks.append(Check(
+                f"centre-of-mass velocity {'xyz'[k]} from the run (worst sample)",
+                a["cm_velocity_run_worst"], float(a["cm_velocity"][k]), "m/s",
+                "P/M (impulse theorem; textbook ex. 4.6)",
+                scale=float(np.linalg.norm(a["cm_velocity"]))))
+        if "point_path_max_error" in a:
+            exact = a["point_path_exact"]
+            n = int(np.argmax(np.linalg.norm(a["point_path"] - exact, axis=1)))
+            d = a["point_path"][n] - exact[n]
+            k = int(np.argmax(np.abs(d)))
+            results.checks.append(Check(
+                f"{where} position {'xyz'[k]} (worst sample)", float(a["point_path"][n, k]),
+                float(exact[n, k]), "m", "V t plus uniform precession about L at |L|/I⊥ "
+                "(Landau & Lifshitz §33)", scale=float(np.linalg.norm(point))))
 
     def _poinsot_geometry(self, analysis, results, main) -> None:
         """Polhodes on the inertia ellipsoid and Poinsot's construction, each only if its

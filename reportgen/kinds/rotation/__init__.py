@@ -1,15 +1,23 @@
-r"""``rotation``: the kinematics of rotations, checked two ways each (exercises 4.5, 4.7, 4.8,
-4.11).
+r"""``rotation``: the kinematics of rotations, checked two ways each (textbook exercises 4.5,
+4.7, 4.8, 4.11).
 
-* ``[axis_angle]`` (ex. 4.5): Goldstein's rotation formula (4.62) as a matrix, against the
-  matrix exponential of the cross-product matrix and against quaternions; the axis and angle
-  recovered from the matrix (trace and antisymmetric part).
-* ``[euler]`` (ex. 4.7, 4.8): z-x-z (Goldstein 4.46) and z-y-z Euler matrices and the angular
-  velocity from Euler-angle rates in space and body axes (Goldstein 4.87 and its z-y-z
-  counterpart), cross-tested on the same physical rotation in both conventions and against
-  ω read off the rotation matrix differentiated along a path of Euler angles.
-* ``[su2]`` (ex. 4.11): the stereographic projection of the unit sphere, the Möbius map of
-  an SU(2) element against the SO(3) rotation R(U) of the sphere, the double cover.
+* ``[axis_angle]`` (textbook ex. 4.5): the textbook's rotation matrix R(n, Φ) = cos Φ 1 +
+  (1 − cos Φ) n nᵀ + sin Φ [n]× (active), against the transpose of Goldstein's passive
+  A(n, Φ) built from Goldstein (4.62), against the matrix exponential exp(Φ[n]×) and against
+  quaternions; the axis and angle recovered from R (trace and antisymmetric part).
+* ``[euler]`` (textbook ex. 4.7, 4.8): z-x-z (Goldstein (4.46)) and z-y-z Euler matrices and
+  the angular velocity from Euler-angle rates in space and body axes (Goldstein (4.87) and
+  its z-y-z counterpart), cross-tested on the same physical rotation in both conventions
+  and against ω read off the rotation matrix differentiated along a path of Euler angles.
+* ``[su2]`` (textbook ex. 4.11): the stereographic projection of the unit sphere, the
+  Möbius map of an SU(2) element against the SO(3) rotation R(U) of the sphere, the double
+  cover; the projection's scale factor 1/(1 − z) (complex step and difference quotients);
+  composition = matrix product, M(U U₂) = M(U) ∘ M(U₂) and R(U U₂) = R(U) R(U₂).
+* ``[axis_angle]`` and ``[euler]`` together: the matrix identities of textbook ex. 4.1–4.4
+  (orthogonality, det 1, the invariants of a similarity S A S⁻¹, Ṙ R⁻¹ = [ω]× exactly and
+  by central differences of the stored path, their order measured) and the SU(2) form of
+  Euler's theorem and of the Euler angles (notes (9.17)–(9.18)): U(n, Φ) and
+  U_z(φ) U_x(θ) U_z(ψ) against the matrices, the sign of U kept.
 
 Conventions (module docstring of :mod:`reportgen.core.rotations`): R is active (body ->
 space); Goldstein's passive matrices are A = Rᵀ.  A non-unit axis is normalized (a zero

@@ -12,7 +12,7 @@ from pydantic import Field, model_validator
 from ...lazy import lazy_module
 from ...scene.base import SceneConfig
 from ...scene.config import Positive, Real, Strict
-from ...scene.units import angle_hint
+from ...scene.units import angle_hint, check_turn
 
 rotations = lazy_module("reportgen.core.rotations")  # an SU(2) element from its table
 
@@ -31,14 +31,16 @@ def _unit(key: str, v: list[float]) -> None:
 
 
 class AxisAngle(Strict):
-    """``[axis_angle]``: a rotation by Φ about n (exercise 4.5)."""
+    """``[axis_angle]``: a rotation by Φ about n (textbook ex. 4.5)."""
 
     axis: Vector = Field([1.0, 1.0, 1.0], min_length=3, max_length=3,
-                         description="rotation axis n, normalized here (must not be zero)")
+                         description="rotation axis n, normalized here (must not be zero) "
+                                     "[dimensionless]")
     angle: Real = Field(2.0 * math.pi / 3.0, description="rotation angle Φ, 0 < Φ ≤ π [rad] "
                                                          "(−Φ about n is Φ about −n)")
     vector: Vector = Field([1.0, 0.0, 0.0], min_length=3, max_length=3,
-                           description="the vector r the rotation formula turns (figure)")
+                           description="the vector r the rotation formula turns (figure) "
+                                       "[dimensionless]")
 
     @model_validator(mode="after")
     def _rules(self):
@@ -46,37 +48,47 @@ class AxisAngle(Strict):
         _unit("axis_angle.vector", self.vector)
         if not 0.0 < self.angle <= math.pi:
             raise ValueError(f"axis_angle.angle: must satisfy 0 < Φ ≤ π (got {self.angle}); "
-                             "turn about −n for a negative angle" + angle_hint(self.angle))
+                             "turn about −n for a negative angle"
+                             + angle_hint(self.angle, valid=lambda a: 0.0 < a <= math.pi))
         return self
 
 
 class Euler(Strict):
-    """``[euler]``: Euler angles and their rates in one convention (exercises 4.7, 4.8)."""
+    """``[euler]``: Euler angles and their rates in one convention (textbook ex. 4.7, 4.8)."""
 
     convention: Literal["zxz", "zyz"] = Field(
-        "zxz", description='"zxz" (Goldstein 4.46) or "zyz": the convention the angles are in')
+        "zxz", description='"zxz" (that of Goldstein (4.46)) or "zyz": the convention the '
+                           'angles are in')
     angles: Vector = Field([0.5, 0.8, 0.3], min_length=3, max_length=3,
-                           description="[φ, θ, ψ] at t = 0 [rad]")
+                           description="[φ, θ, ψ] at t = 0, each |angle| ≤ 2π [rad]")
     rates: Vector = Field([0.7, 0.4, 1.5], min_length=3, max_length=3,
                           description="[φ̇, θ̇, ψ̇] along the sample path [rad/s]")
     duration: Positive = Field(4.0, description="length of the sample path (φ, θ, ψ) + "
                                                 "(φ̇, θ̇, ψ̇) t [s]")
     samples: int = Field(81, ge=2, le=100_000, description="points on the sample path")
 
+    @model_validator(mode="after")
+    def _within_a_turn(self):
+        check_turn("euler.angles", self.angles, symbol="angle")
+        return self
+
 
 class SU2(Strict):
-    """``[su2]``: an SU(2) element, by Cayley–Klein parameters or by axis and angle
-    (exercise 4.11).  Neither given: a = 0.8, b = 0.36 + 0.48 i."""
+    """``[su2]``: an SU(2) element by Cayley–Klein parameters or axis and angle (textbook ex. 4.11).
+
+    Neither given: a = 0.8, b = 0.36 + 0.48 i."""
 
     a: Vector | None = Field(None, min_length=2, max_length=2,
-                             description="[Re a, Im a] of U = [[a, b], [−b̄, ā]]")
+                             description="[Re a, Im a] of U = [[a, b], [−b̄, ā]] "
+                                         "[dimensionless]")
     b: Vector | None = Field(None, min_length=2, max_length=2,
                              description="[Re b, Im b]; |a|² + |b|² = 1 (normalized if "
-                                         "within 1e-6)")
+                                         "within 1e-6) [dimensionless]")
     axis: Vector | None = Field(None, min_length=3, max_length=3,
-                                description="or: axis n of U = exp(−i α n·σ/2), normalized")
-    angle: Real | None = Field(None, description="and its angle α [rad] (α and α + 2π give "
-                                                 "U and −U)")
+                                description="or: axis n of U = exp(−i α n·σ/2), normalized "
+                                            "[dimensionless]")
+    angle: Real | None = Field(None, description="and its angle α, |α| ≤ 4π [rad] (α and "
+                                                 "α + 2π give U and −U)")
     points: int = Field(200, ge=4, le=100_000,
                         description="sample points on the sphere (golden-angle spiral)")
 
@@ -98,6 +110,8 @@ class SU2(Strict):
                                  f"got {norm2:.9g})")
         if self.axis is not None:
             _unit("su2.axis", self.axis)
+        if self.angle is not None:
+            check_turn("su2.angle", self.angle, turns=2, symbol="α")
         return self
 
     def element(self) -> np.ndarray:
@@ -110,9 +124,13 @@ class SU2(Strict):
         return rotations.su2_from_cayley_klein(a / norm, b / norm)
 
 
-#: the config table each section draws from (its /analysis group: results.SECTION_DATA)
-SECTION_TABLE = {"axis_angle": "axis_angle", "euler_angles": "euler",
-                 "angular_velocity": "euler", "stereographic": "su2"}
+#: the config tables each section draws from, all needed (its /analysis group:
+#: results.SECTION_DATA): the matrix identities turn the axis–angle matrix by the Euler
+#: matrix and differentiate the Euler path; the SU(2) form writes both in SU(2)
+SECTION_TABLES = {"axis_angle": ("axis_angle",), "euler_angles": ("euler",),
+                  "angular_velocity": ("euler",),
+                  "matrix_identities": ("axis_angle", "euler"),
+                  "su2_euler": ("axis_angle", "euler"), "stereographic": ("su2",)}
 
 
 class RotationConfig(SceneConfig):
@@ -128,9 +146,11 @@ class RotationConfig(SceneConfig):
             raise ValueError("axis_angle / euler / su2: give at least one of the tables "
                              "[axis_angle], [euler], [su2] (or a preset)")
         for name in self.report.sections or ():
-            table = SECTION_TABLE.get(name)
-            if table is not None and getattr(self, table) is None:
-                raise ValueError(f"report.sections: section '{name}' needs a [{table}] table")
+            missing = [t for t in SECTION_TABLES.get(name, ()) if getattr(self, t) is None]
+            if missing:
+                tables = " and ".join(f"[{t}]" for t in missing)
+                noun = "tables" if len(missing) > 1 else "table"
+                raise ValueError(f"report.sections: section '{name}' needs the {tables} {noun}")
         return self
 
 

@@ -1,5 +1,5 @@
-"""Figures of the rotation kind: the rotation formula about an axis, Euler angles with the
-line of nodes, the stereographic projection and Möbius maps.
+"""Figures of the rotation kind: a vector turned about an axis (textbook ex. 4.5), Euler
+angles with the line of nodes, the stereographic projection and Möbius maps.
 
 They draw what they are given: every point, arc and curve is computed in
 :mod:`reportgen.core.rotations` and read from the archive."""
@@ -19,6 +19,7 @@ from ...rendering.plots.style import (
     new_figure,
     place_legend,
 )
+from ...scene.content import fmt
 
 #: Euler-angle convention names as printed
 CONVENTION = {"zxz": "z-x-z", "zyz": "z-y-z"}
@@ -70,14 +71,16 @@ def _oblique_azimuth(normals, *, elev=20.0, band=(35.0, 72.0), start=-60.0) -> f
     return float(np.degrees(az[np.argmax(fits)])) if fits.any() else start
 
 
-def axis_angle(axis, angle, vector, rotated, arc, circle, centre, turned_axes, *, ax=None):
-    """Goldstein's rotation formula (4.62) on one vector.
+def axis_angle(axis, angle, vector, turned, goldstein, arc, circle, centre, turned_axes, *,
+               ax=None):
+    """The textbook's rotation R(n, Φ) (textbook ex. 4.5) on one vector, with Goldstein's
+    passive A r (Goldstein (4.62)) beside it.
 
-    axis : (3,) unit n; angle : Φ [rad]; vector, rotated : (3,) r and r′; arc : (m, 3)
-    the formula at angles 0 … Φ; circle : (k, 3) at 0 … 2π; centre : (3,) n (n·r);
-    turned_axes : (3, 3) rows e′_i, the axes turned by +Φ.  Drawn in units of |r|.
+    axis : (3,) unit n; angle : Φ [rad]; vector, turned, goldstein : (3,) r, R r and A r;
+    arc : (m, 3) r turned by 0 … Φ; circle : (k, 3) by 0 … 2π; centre : (3,) n (n·r);
+    turned_axes : (3, 3) rows e′_i = R e_i, the axes turned by +Φ.  Drawn in units of |r|.
     """
-    fig, ax = new_figure(ax, figsize=(5.6, 5.0), projection="3d")
+    fig, ax = new_figure(ax, figsize=(5.6, 4.4), projection="3d")
     size = float(np.linalg.norm(vector))
     n = np.asarray(axis, dtype=float)
     _axes_lines(ax, size * np.eye(3), ("x", "y", "z"), colours=(CONTEXT,) * 3, width=1.0)
@@ -88,12 +91,15 @@ def axis_angle(axis, angle, vector, rotated, arc, circle, centre, turned_axes, *
     ax.text(*(1.5 * size * n), "n", color="black", fontsize=12)
     ax.plot(*np.asarray(circle).T, color=CONTEXT, linestyle=":", linewidth=1.0)
     ax.plot(*np.asarray(arc).T, color=HIGHLIGHT, linewidth=2.2,
-            label=f"(4.62) for angles 0 … Φ = {np.degrees(angle):.4g}°")
+            label=f"r turned by 0 … Φ = {fmt(np.degrees(angle), 4)}°")
     c = np.asarray(centre)
-    for tip in (vector, rotated):
+    for tip in (vector, turned):
         ax.plot(*np.stack([c, tip]).T, color=CONTEXT, linewidth=0.8)
-    for tip, colour, name in ((vector, REFERENCE, "r"), (rotated, HIGHLIGHT, "r′ (4.62)")):
-        ax.quiver(0, 0, 0, *tip, color=colour, arrow_length_ratio=0.1, linewidth=2.2,
+    for tip, colour, name, width in ((vector, REFERENCE, "r", 2.2),
+                                     (turned, HIGHLIGHT, "R r (textbook ex. 4.5)", 2.2),
+                                     (goldstein, SEPARATRIX, "A r = Rᵀ r (Goldstein (4.62))",
+                                      1.2)):
+        ax.quiver(0, 0, 0, *tip, color=colour, arrow_length_ratio=0.1, linewidth=width,
                   label=name)
     ax.scatter(*c, color="black", s=12, depthshade=False)
     ax.plot([], [], color=AXIS_COLOURS[0], linestyle="--", linewidth=0.9,

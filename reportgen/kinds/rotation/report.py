@@ -11,7 +11,7 @@ from ...lazy import lazy_module
 from ...scene.base import Section
 from ...scene.content import SectionContent, Table, fmt, fmt_err, fmt_matrix
 from ...scene.report import Report
-from .results import SCHEMA, SECTION_DATA, TOLERANCE
+from .results import IDENTITY_MATRICES, ORDER_RANGE, ORDER_SLACK, SCHEMA, SECTION_DATA, TOLERANCE
 
 plots = lazy_module("reportgen.kinds.rotation.plots")
 
@@ -24,9 +24,56 @@ def _matrix_rows(M) -> list[list[str]]:
     return fmt_matrix(M)
 
 
+def _deg(angle) -> str:
+    """An angle [rad] as read in degrees: ``120°``."""
+    return f"{fmt(math.degrees(float(angle)))}°"
+
+
+def _degrees(angles) -> str:
+    """Angles [rad] in degrees with the radians beside: ``28.6479°, 45.8366°, 17.1887°
+    (0.5, 0.8, 0.3 rad)``."""
+    return (", ".join(_deg(x) for x in angles) + " ("
+            + ", ".join(fmt(float(x)) for x in angles) + " rad)")
+
+
 def _complex(pair) -> str:
     re_, im = fmt_matrix(pair)[0]
     return f"{re_} {'−' if im.startswith('-') else '+'} {im.lstrip('-')} i"
+
+
+def _rounded(x: float, scale: float) -> float:
+    """x with its rounding below 1e-12 of ``scale`` removed, for a value shown (its
+    deviation from the closed form is in the checks table)."""
+    return round(float(x) / scale, 12) * scale if scale else float(x)
+
+
+def _eigenvalues(pairs, scale: float) -> str:
+    """Three eigenvalues, (real, imaginary) pairs, as read, the real ones first:
+    ``1, −0.5 ± 0.866025 i`` (a conjugate pair once), ``0, ± 2.0944 i``,
+    ``1, −0.5, −0.5``."""
+    z = [complex(_rounded(re_, scale), _rounded(im, scale)) for re_, im in np.asarray(pairs)]
+    z.sort(key=lambda w: (w.imag != 0, -w.real, w.imag))  # real ones first, largest first
+    parts, used = [], set()
+    for i, a in enumerate(z):
+        if i in used:
+            continue
+        pair = next((j for j in range(i + 1, len(z)) if j not in used and a.imag != 0
+                     and z[j] == a.conjugate()), None)
+        if pair is None:
+            parts.append(fmt(a.real) if a.imag == 0 else _complex((a.real, a.imag)))
+            continue
+        used.add(pair)
+        imag = f"± {fmt(abs(a.imag))} i"
+        parts.append(imag if a.real == 0 else f"{fmt(a.real)} {imag}")
+    return ", ".join(parts).replace("-", "−")
+
+
+#: the matrices A the similarity turns, as the identities tables name them
+_MATRIX_NAMES = {"rotation": "R(n, Φ)", "generator": "Φ[n]×", "symmetric": "½(R + Rᵀ)"}
+#: their closed-form eigenvalues, as the identities table writes them
+_MATRIX_EIGEN = {"rotation": "1, cos Φ ± i sin Φ", "generator": "0, ± iΦ",
+                 "symmetric": "1, cos Φ, cos Φ"}
+_CONVENTION = {"zxz": "z-x-z", "zyz": "z-y-z"}
 
 
 class RotationReport(Report):
@@ -53,12 +100,14 @@ class RotationReport(Report):
                 + f" checked: the largest discrepancy {gallery.distance(worst)}")
 
     sections = (
-        Section("axis_angle", "Axis and angle ↔ rotation matrix (exercise 4.5)"),
-        Section("euler_angles", "Euler angles: z-x-z and z-y-z (exercises 4.7, 4.8)"),
+        Section("axis_angle", "Axis and angle ↔ rotation matrix (textbook exercise 4.5)"),
+        Section("euler_angles", "Euler angles: z-x-z and z-y-z (textbook exercises 4.7, 4.8)"),
         Section("angular_velocity", "Angular velocity from Euler-angle rates "
-                                    "(exercises 4.7, 4.8)"),
+                                    "(textbook exercises 4.7, 4.8)"),
+        Section("matrix_identities", "Matrix identities (textbook ex. 4.1–4.4)"),
+        Section("su2_euler", "Euler's theorem and Euler angles in SU(2) (notes (9.17)–(9.18))"),
         Section("stereographic", "Stereographic projection, Möbius maps and SU(2) → SO(3) "
-                                 "(exercise 4.11)"),
+                                 "(textbook exercise 4.11)"),
     )
 
     @classmethod
@@ -92,21 +141,39 @@ class RotationReport(Report):
         facts = []
         if "axis_angle" in a:
             e = a["axis_angle"]["errors"]
-            facts.append(("ex. 4.5 axis–angle ↔ matrix",
+            facts.append(("textbook ex. 4.5: axis–angle ↔ matrix",
                           f"max error {fmt_err(max(e.values()))} (Φ = "
-                          f"{fmt(a['axis_angle']['angle'])} rad about "
-                          f"{_vec(a['axis_angle']['axis'])})"))
+                          f"{_deg(a['axis_angle']['angle'])} about "
+                          f"{_vec(a['axis_angle']['axis'])}; Goldstein's A = Rᵀ)"))
         if "euler" in a:
             e = a["euler"]["errors"]
-            facts.append(("ex. 4.7, 4.8 Euler matrices and ω",
+            facts.append(("textbook ex. 4.7, 4.8: Euler matrices and ω",
                           f"max error {fmt_err(max(e.values()))} (z-x-z vs z-y-z, formulas vs "
                           "dR/dt)"))
+        if "identities" in a:
+            d = a["identities"]
+            order = d.get("central_differences", {}).get("order")
+            facts.append(("textbook ex. 4.1–4.4: matrix identities",
+                          f"max error {fmt_err(max(d['errors'].values()))} (RᵀR = 1, det R = 1, "
+                          "S A S⁻¹ keeps tr, det, eigenvalues; Ṙ R⁻¹ = [ω]×)"
+                          + (f"; central differences of order {fmt(order, 4)}"
+                             if order is not None else "")))
+        if "su2_form" in a:
+            facts.append(("notes (9.17)–(9.18): rotations in SU(2)",
+                          f"max error {fmt_err(max(a['su2_form']['errors'].values()))} "
+                          "(R(U) of U(n, Φ) and of the Euler-angle U vs the matrices)"))
         if "stereographic" in a:
             s = a["stereographic"]
-            facts.append(("ex. 4.11 Möbius map vs R(U)",
-                          f"max error {fmt_err(s['errors']['mobius_vs_rotation'])} over "
+            e = s["errors"]
+            facts.append(("textbook ex. 4.11: Möbius map vs R(U)",
+                          f"max error {fmt_err(e['mobius_vs_rotation'])} over "
                           f"{len(s['points'])} points; R(U)ᵀ would be off by "
-                          f"{fmt(s['errors']['transpose_mismatch'], 3)}"))
+                          f"{fmt(e['transpose_mismatch'], 3)}; scale factor 1/(1 − z) and "
+                          "composition to "
+                          + fmt_err(max(e[k] for k in ("scale_factor", "conformal_angle",
+                                                       "difference_quotient_chordal",
+                                                       "composition_mobius",
+                                                       "composition_rotation")))))
         facts.append(("computed in", f"{1e3 * float(data.attrs.get('wall_time_s', 0.0)):.0f} ms"
                                      " (nothing integrated)"))
         return facts
@@ -115,44 +182,55 @@ class RotationReport(Report):
     def section_axis_angle(cls, data):
         a = data.analysis["axis_angle"]
         e = a["errors"]
-        fig = plots.axis_angle(a["axis"], a["angle"], a["vector"], a["rotated_vector"], a["arc"],
-                               a["circle"], a["centre"], a["turned_axes"])
+        fig = plots.axis_angle(a["axis"], a["angle"], a["vector"], a["turned_vector"],
+                               a["rotated_vector"], a["arc_turned"], a["circle"], a["centre"],
+                               a["turned_axes"])
         facts = [("axis n (normalized)", _vec(a["axis"])),
-                 ("angle Φ", f"{fmt(a['angle'], against=a['recovered_angle'])} rad = "
-                             f"{fmt(math.degrees(a['angle']))}°"),
+                 ("angle Φ", f"{_deg(a['angle'])} "
+                             f"({fmt(a['angle'], against=a['recovered_angle'])} rad)"),
                  ("r", _vec(a["vector"])),
-                 ("r′ by (4.62)", _vec(a["rotated_vector"])),
-                 ("recovered from the matrix",
+                 ("R r (textbook ex. 4.5)", f"{_vec(a['turned_vector'])}: r turned by Φ "
+                                            "about n"),
+                 ("A r (Goldstein (4.62))", f"{_vec(a['rotated_vector'])}: r in the turned "
+                                            "axes, A r = Rᵀ r"),
+                 ("Goldstein's A", "A = Rᵀ = R(n, −Φ): max |R − Aᵀ| = "
+                                   f"{fmt_err(e['textbook_vs_goldstein'])}"),
+                 ("recovered from R",
                   f"Φ = {fmt(a['recovered_angle'], against=a['angle'])} rad, "
                   f"n = {_vec(a['recovered_axis'])}"),
-                 ("det A", fmt(a["determinant"], against=1.0))]
-        matrix = Table(caption="A(n, Φ) from Goldstein (4.62), column j = the formula applied to "
-                               "the j-th axis unit vector (passive: components in the turned "
-                               "axes); the active rotation reportgen uses elsewhere is R = Aᵀ",
+                 ("det R", fmt(a["determinant"], against=1.0))]
+        matrix = Table(caption="The textbook's R(n, Φ) (textbook ex. 4.5), active: column j "
+                               "is the j-th axis unit vector turned by Φ about n. Goldstein's "
+                               "passive A(n, Φ) of Goldstein (4.62) is its transpose.",
                        header=["", "x", "y", "z"],
-                       rows=[[c] + row for c, row in zip("xyz", _matrix_rows(a["matrix_formula"]),
+                       rows=[[c] + row for c, row in zip("xyz", _matrix_rows(a["matrix_textbook"]),
                                                           strict=True)])
         checks = Table(caption=f"Each check's error (bound {TOLERANCE:g}). A small turn fixes "
                                "its axis only to ε/Φ, so the axis error is weighed by min(1, Φ); "
                                "near Φ = π the axis comes from the symmetric part.",
                        header=["check", "max error"],
-                       rows=[["A(4.62) vs exp(−Φ[n]×) by eigenvectors",
+                       rows=[["R vs Aᵀ, A column by column from Goldstein (4.62)",
+                              fmt_err(e["textbook_vs_goldstein"])],
+                             ["R vs exp(Φ[n]×) by eigenvectors",
                               fmt_err(e["formula_vs_expm"])],
-                             ["A(4.62) vs R(q)ᵀ, quaternion",
+                             ["R vs R(q), quaternion q = (cos Φ/2, n sin Φ/2)",
                               fmt_err(e["formula_vs_quaternion"])],
-                             ["r′ by (4.62) vs A r, / |r|",
-                              fmt_err(e["vector_formula_vs_matrix"])],
-                             ["A Aᵀ − 1", fmt_err(e["orthogonality"])],
+                             ["R r, A r vs their vector forms above, / |r|",
+                              fmt_err(max(e["turned_vector_vs_matrix"],
+                                          e["vector_formula_vs_matrix"]))],
+                             ["R Rᵀ − 1", fmt_err(e["orthogonality"])],
                              ["Φ from tr R and ½(R − Rᵀ)",
                               fmt_err(e["recovered_angle"])],
                              ["n recovered, × min(1, Φ)",
                               fmt_err(e["recovered_axis"])]])
         return SectionContent(
             figures=[cls.figure("rotation_formula", fig,
-                                "The rotation formula (4.62) applied to r for angles 0 … Φ: r′ "
-                                "are the components of r in axes turned by +Φ about n (thin "
-                                "dashed: the turned axes), so drawn in the old axes r′ is r "
-                                "turned by −Φ.")],
+                                "The textbook's rotation (textbook ex. 4.5) applied to r for "
+                                "angles 0 … Φ: r turns by +Φ about n to R r, on the circle "
+                                "about n through r (dotted); thin dashed: the axes x′, y′, "
+                                "z′ turned with it (the columns of R). Goldstein's A r (Goldstein "
+                                "(4.62)) gives the components of the fixed r in those turned "
+                                "axes; drawn in the old axes it is r turned by −Φ.")],
             facts=facts, tables=[matrix, checks])
 
     @classmethod
@@ -162,21 +240,16 @@ class RotationReport(Report):
         given, other = a["convention"], a["other_convention"]
         fig = plots.euler_constructions(a["construction"], (given, other))
         names = {"zxz": "z-x-z", "zyz": "z-y-z"}
-
-        def angles(v):
-            return ", ".join(fmt(float(x)) for x in v)
-
-        facts = [(f"{names[given]} angles (given) φ, θ, ψ", angles(a["path"][0]) + " rad"),
-                 (f"{names[other]} angles of the same rotation", angles(a["path_other"][0])
-                  + " rad")]
+        facts = [(f"{names[given]} angles (given) φ, θ, ψ", _degrees(a["path"][0])),
+                 (f"{names[other]} angles of the same rotation", _degrees(a["path_other"][0]))]
         matrix = Table(caption=f"R = Aᵀ at t = 0 ({names[given]} product of elementary "
-                               "rotations; Goldstein's A of (4.46) is its transpose)",
+                               "rotations; Goldstein's A, Goldstein (4.46), is its transpose)",
                        header=["", "x′", "y′", "z′"],
                        rows=[[c] + row for c, row in zip("xyz", _matrix_rows(a["matrix"]),
                                                           strict=True)])
         checks = Table(caption=f"Each check's error (bound {TOLERANCE:g})",
                        header=["check", "max error"],
-                       rows=[["R by elementary rotations vs (4.46) elements",
+                       rows=[["R by elementary rotations vs Goldstein (4.46) elements",
                               fmt_err(e["matrix_product_vs_elements"])],
                              [f"R by {names[given]} angles vs by {names[other]} angles "
                               "(converted), whole path",
@@ -219,21 +292,134 @@ class RotationReport(Report):
                                 header=["check", "max error"], rows=rows)])
 
     @classmethod
+    def section_matrix_identities(cls, data):
+        d = data.analysis["identities"]
+        e = d["errors"]
+        facts = [("turned axis S n", _vec(d["turned_axis"]))]
+        rows = []
+        for i, name in enumerate(IDENTITY_MATRICES):
+            scale = max(1.0, float(np.max(np.abs(d["turned"][i]))))
+            rows.append([_MATRIX_NAMES[name], fmt(_rounded(d["trace_turned"][i], scale)),
+                         fmt(_rounded(d["determinant_turned"][i], scale)),
+                         _eigenvalues(d["eigenvalues_turned"][i], scale), _MATRIX_EIGEN[name]])
+        invariants = Table(caption="What A′ = S A S⁻¹ keeps, computed; "
+                                   "A gives the same to the deviations below",
+                           header=["A", "tr A′", "det A′", "eigenvalues of A′", "closed form"],
+                           rows=rows)
+        rows = [["RᵀR = 1, det R = 1: R(n, Φ), S R(n, Φ), R(t), R(t) R(n, Φ); S⁻¹ = Sᵀ",
+                 fmt_err(max(e["orthogonality"], e["determinant"],
+                             e["inverse_is_transpose"])), "rounding"],
+                ["S A S⁻¹ = A built on S n; antisymmetry, symmetry kept",
+                 fmt_err(max(e["similarity_closed_form"], e["symmetry_kept"])), "rounding"],
+                ["tr A′ = tr A = closed form", fmt_err(e["trace_invariant"]), "rounding"],
+                ["det A′ = det A = closed form", fmt_err(e["determinant_invariant"]),
+                 "rounding"],
+                ["eigenvalues of A′ = of A = closed form", fmt_err(e["eigenvalue_invariant"]),
+                 "rounding"],
+                ["Ṙ R⁻¹ + (Ṙ R⁻¹)ᵀ = 0, Ṙ exact (complex step)",
+                 fmt_err(e["rdot_antisymmetric"]), "rounding"],
+                ["Ṙ R⁻¹ = [ω]×, ω in space axes from the Euler-angle rates",
+                 fmt_err(e["rdot_is_omega"]), "rounding"],
+                ["Ȧ A⁻¹ = −[ω′]× for Goldstein's A = Rᵀ, ω′ in body axes",
+                 fmt_err(e["adot_is_omega_body"]), "rounding"]]
+        caption = (f"Bound {TOLERANCE:g} where rounding limits; the rows with Ṙ "
+                   + (f"relative to max |ω| = {fmt(d['omega_scale'])} rad/s."
+                      if d["omega_scale"] > 0 else "absolute [rad/s], as ω = 0 on this path."))
+        cd = d.get("central_differences")
+        if cd is not None:
+            rows += [["D(h) R⁻¹ + (D(h) R⁻¹)ᵀ = 0", fmt_err(cd["antisymmetry"]), "h²"],
+                     ["D(h) R⁻¹ = [ω]×: e(h)", fmt_err(cd["omega"]), "h²"],
+                     ["D(2h) R⁻¹ = [ω]×: e(2h)", fmt_err(cd["omega_double_step"]), "h²"],
+                     ["(4 D(h) − D(2h))/3 R⁻¹ = [ω]× (Richardson)",
+                      fmt_err(cd["omega_richardson"]), "h⁴"]]
+            caption += (f" D(h): the central difference above on the stored path, "
+                        f"h = {fmt(cd['step'])} s")
+            if "order" in cd:
+                checked = (f"checked to 2 ± {fmt(ORDER_SLACK)}"
+                           if cd["step"] * d["omega_scale"] <= ORDER_RANGE
+                           else f"not checked, as h max |ω| is above {fmt(ORDER_RANGE)}")
+                caption += f"; order log₂(e(2h)/e(h)) = {fmt(cd['order'], 4)} ({checked})"
+            caption += "."
+        checks = Table(caption=caption, header=["identity", "largest deviation", "limited by"],
+                       rows=rows)
+        return SectionContent(facts=facts, tables=[invariants, checks])
+
+    @classmethod
+    def section_su2_euler(cls, data):
+        d = data.analysis["su2_form"]
+        e = d["errors"]
+        given = str(d["convention"])
+        other = "zxz" if given == "zyz" else "zyz"
+        shift = ("(φ + π/2, θ, ψ − π/2)" if given == "zyz" else "(φ − π/2, θ, ψ + π/2)")
+        alpha = float(d["euler_angle"])
+        facts = [("U(n, Φ) (textbook ex. 4.5)",
+                  f"a = {_complex(d['a'])}, b = {_complex(d['b'])} (Φ = {_deg(d['angle'])} "
+                  f"about {_vec(d['axis'])})"),
+                 (f"{_CONVENTION[given]} angles at t = 0", _degrees(d["euler_angles"])),
+                 ("U(φ, θ, ψ) at t = 0",
+                  f"a = {_complex(d['euler_a'])}, b = {_complex(d['euler_b'])}"),
+                 ("one turn (Euler's theorem)",
+                  f"α = {_deg(alpha)} about m = {_vec(d['euler_axis'])}"
+                  + ("; −U turns by 360° − α about −m" if alpha > math.pi else ""))]
+        checks = Table(
+            caption=f"Each check's error (bound {TOLERANCE:g}); the Euler-angle rows over the "
+                    "whole path of the Euler-angle section",
+            header=["check", "max error"],
+            rows=[["cos(Φ/2) 1 − i sin(Φ/2) n·σ vs exp(−iΦ n·σ/2) by eigenvectors",
+                   fmt_err(e["closed_form_vs_exp"])],
+                  ["R(U(n, Φ)) vs the textbook's R(n, Φ) (textbook ex. 4.5)",
+                   fmt_err(e["rotation_vs_textbook"])],
+                  ["U U† − 1, det U − 1", fmt_err(e["unitarity"])],
+                  [f"R(U) of the {_CONVENTION[given]} product U vs the Euler matrix",
+                   fmt_err(e["euler_rotation_vs_matrix"])],
+                  ["the product U vs its a, b multiplied out",
+                   fmt_err(e["euler_product_vs_cayley_klein"])],
+                  [f"U by {_CONVENTION[given]} angles vs by {_CONVENTION[other]} angles "
+                   f"{shift}", fmt_err(e["euler_conventions"])],
+                  ["R(m, α) of the one turn vs the Euler matrix at t = 0",
+                   fmt_err(e["euler_theorem"])],
+                  ["U(φ + 2π, θ, ψ) + U(φ, θ, ψ): the sign flips", fmt_err(e["two_pi_flip"])],
+                  ["R(U(φ + 2π, θ, ψ)) vs R(U(φ, θ, ψ)): R does not",
+                   fmt_err(e["double_cover"])]])
+        return SectionContent(facts=facts, tables=[checks])
+
+    @staticmethod
+    def _second_text(data, s) -> str:
+        """Where U₂ of the composition check comes from, in words."""
+        source = str(s["second_source"])
+        if source == "axis_angle" and "axis_angle" in data.analysis:
+            a = data.analysis["axis_angle"]
+            return (f"the turn of textbook ex. 4.5, {_deg(a['angle'])} about "
+                    f"{_vec(a['axis'])}")
+        if source == "euler":
+            return "the Euler angles' U at t = 0"
+        if source == "su2":
+            return "U itself (U₂ = U)"
+        return f"a = {_complex(s['second_a'])}, b = {_complex(s['second_b'])}"
+
+    @classmethod
     def section_stereographic(cls, data):
         s = data.analysis["stereographic"]
-        e = s["errors"]
+        e, c = s["errors"], s["contrasts"]
+        steps = [float(x) for x in c["steps"]]
         fig = plots.stereographic(s)
         facts = [("U = [[a, b], [−b̄, ā]]", f"a = {_complex(s['a'])}, b = {_complex(s['b'])}"),
-                 ("U = exp(−i α n·σ/2)", f"α = {fmt(s['su2_angle'])} rad about "
+                 ("U = exp(−i α n·σ/2)", f"α = {_deg(s['su2_angle'])} ({fmt(s['su2_angle'])} rad) about "
                                           f"{_vec(s['su2_axis'])}; −U: α + 2π"),
-                 ("sample points", f"{len(s['points'])} (golden-angle spiral, no pole)")]
+                 ("sample points", f"{len(s['points'])} (golden-angle spiral, no pole)"),
+                 ("scale factor 1/(1 − z)", f"{fmt(float(np.min(s['conformal_factor'])))} to "
+                                            f"{fmt(float(np.max(s['conformal_factor'])))} "
+                                            "at the sample points"),
+                 ("U₂ (composition)", cls._second_text(data, s))]
         matrix = Table(caption="R(U)ᵢⱼ = ½ tr(σᵢ U σⱼ U†), the same for −U",
                        header=["", "x", "y", "z"],
                        rows=[[c] + row for c, row in zip("xyz", _matrix_rows(s["rotation"]),
                                                           strict=True)])
         checks = Table(
             caption=f"Each check's error (bound {TOLERANCE:g}; distances on the unit sphere, "
-                    "which stay finite where ζ → ∞)",
+                    "which stay finite where ζ → ∞). Near the pole 1 − z keeps the points' "
+                    "rounding only to ε/(1 − z): the relative errors of the scale factor "
+                    "are weighed by min(1, 1 − z).",
             header=["check", "max error"],
             rows=[["Möbius map of U vs R(U), ζ = (x − iy)/(1 − z)",
                    fmt_err(e["mobius_vs_rotation"])],
@@ -246,14 +432,32 @@ class RotationReport(Report):
                   ["R(−U) vs R(U)", fmt_err(e["double_cover_rotation"])],
                   ["Möbius map of −U vs that of U", fmt_err(e["double_cover_mobius"])],
                   ["U U† − 1, det U − 1", fmt_err(e["unitarity"])],
-                  ["π⁻¹(π(x)) − x", fmt_err(e["round_trip"])]])
+                  ["π⁻¹(π(x)) − x", fmt_err(e["round_trip"])],
+                  ["|dζ/ds| (1 − z) − 1 east and south, dζ/ds by the complex step",
+                   fmt_err(e["scale_factor"])],
+                  ["Re(dζ(east) dζ̄(south)) (1 − z)²: right angles stay right",
+                   fmt_err(e["conformal_angle"])],
+                  [f"|Δζ|/|Δx| vs 1/√((1 − z₊)(1 − z₋)), arc δ = {fmt(steps[0])}",
+                   fmt_err(e["difference_quotient_chordal"])],
+                  ["Möbius map of U U₂ vs that of U after that of U₂",
+                   fmt_err(e["composition_mobius"])],
+                  ["R(U U₂) vs R(U) R(U₂)", fmt_err(e["composition_rotation"])]])
+        quotient = [[f"|Δζ|/|Δx| vs 1/(1 − z), arc δ = {fmt(step)}",
+                     fmt(float(dev), 3)] for step, dev in zip(steps, c["quotient_vs_factor"],
+                                                              strict=True)]
         contrast = Table(
             caption="Not checks: the transpose is not the Möbius map (for a half turn, or an "
-                    "axis in the x–z plane with the usual orientation, it would be)",
+                    "axis in the x–z plane with the usual orientation, it would be); the "
+                    "difference quotient tends to the scale factor as δ² (relative distance); "
+                    "the reversed order is another rotation",
             header=["candidate", "max distance"],
             rows=[["R(U)ᵀ, ζ = (x − iy)/(1 − z)", fmt(e["transpose_mismatch"], 4)],
                   ["R(U)ᵀ, ζ = (x + iy)/(1 − z)",
-                   fmt(e["transpose_mismatch_standard_orientation"], 4)]])
+                   fmt(e["transpose_mismatch_standard_orientation"], 4)],
+                  *quotient,
+                  ["Möbius map of U after that of U₂ (reversed)",
+                   fmt(c["reversed_mobius"], 4)],
+                  ["R(U₂) R(U) (reversed)", fmt(c["reversed_rotation"], 4)]])
         return SectionContent(
             figures=[cls.figure("mobius", fig,
                                 "Left: sample points x on the sphere and their images R(U) x; "

@@ -15,9 +15,18 @@ from ...scene.schema import ResultsSchema
 TOLERANCE = 1e-12
 #: archived distances that are contrasts, not checks (R(U)ᵀ is not the Möbius map)
 NOT_CHECKS = ("transpose_mismatch", "transpose_mismatch_standard_orientation")
+#: the order a central difference of the stored Euler path must show, 2, within this
+ORDER_SLACK = 0.1
+#: ... when the path's step h turns it by at most this much, h max|ω| (the order is 1.99
+#: at 0.2, 1.95 at 0.45, 1.90 at 0.67): past it the check is not made
+ORDER_RANGE = 0.5
 #: the /analysis group each section reads
 SECTION_DATA = {"axis_angle": "axis_angle", "euler_angles": "euler",
-                "angular_velocity": "euler", "stereographic": "stereographic"}
+                "angular_velocity": "euler", "matrix_identities": "identities",
+                "su2_euler": "su2_form", "stereographic": "stereographic"}
+#: the matrices A the similarity S A S⁻¹ turns (textbook ex. 4.1–4.4), in the order of
+#: the /analysis/identities arrays: R(n, Φ) of ex. 4.5, its generator Φ[n]×, ½(R + Rᵀ)
+IDENTITY_MATRICES = ("rotation", "generator", "symmetric")
 
 
 def _group(prefix: str, *quantities: Q) -> tuple[Q, ...]:
@@ -36,31 +45,42 @@ AXIS_ANGLE = _group(
     Q("axis_given", "n", "1", "rotation axis as given", ("xyz",)),
     Q("axis", r"\hat{n}", "1", "rotation axis, normalized", ("xyz",)),
     Q("angle", r"\Phi", "rad", "rotation angle"),
-    Q("vector", "r", "1", "the vector the rotation formula turns", ("xyz",)),
-    Q("rotated_vector", "r'", "1", "r by the rotation formula (4.62)", ("xyz",)),
-    Q("matrix_formula", "A", "1", "A(n, Phi) from the rotation formula (4.62)",
+    Q("vector", "r", "1", "the vector the rotation turns", ("xyz",)),
+    Q("turned_vector", "R r", "1", "r turned by Phi about n: R r (textbook ex. 4.5)",
+      ("xyz",)),
+    Q("rotated_vector", "r'", "1", "Goldstein's r' = A r by Goldstein (4.62): r in the "
+      "turned axes", ("xyz",)),
+    Q("matrix_textbook", "R", "1", "the textbook's R(n, Phi) = cos Phi 1 + (1 - cos Phi) "
+      "n n^T + sin Phi [n]x (textbook ex. 4.5), active", ("xyz", "xyz")),
+    Q("matrix_formula", "A", "1", "Goldstein's passive A(n, Phi) from Goldstein (4.62); "
+      "A = R^T", ("xyz", "xyz")),
+    Q("matrix_expm", "R", "1", "exp(Phi [n]x) by diagonalization", ("xyz", "xyz")),
+    Q("matrix_quaternion", "R", "1", "R(q) from the quaternion (cos Phi/2, n sin Phi/2)",
       ("xyz", "xyz")),
-    Q("matrix_expm", "A", "1", "exp(-Phi [n]x) by diagonalization", ("xyz", "xyz")),
-    Q("matrix_quaternion", "A", "1", "R(q) transposed, from the quaternion",
-      ("xyz", "xyz")),
-    Q("recovered_axis", r"\hat{n}", "1", "axis recovered from the matrix", ("xyz",)),
-    Q("recovered_angle", r"\Phi", "rad", "angle recovered from the matrix"),
-    Q("determinant", r"\det A", "1", "determinant of A"),
-    Q("arc", "r'", "1", "r by the rotation formula for angles 0 ... Phi", ("arc", "xyz")),
-    Q("circle", "r'", "1", "r by the rotation formula for a full turn",
-      ("arc_circle", "xyz")),
+    Q("recovered_axis", r"\hat{n}", "1", "axis recovered from R", ("xyz",)),
+    Q("recovered_angle", r"\Phi", "rad", "angle recovered from R"),
+    Q("determinant", r"\det R", "1", "determinant of R"),
+    Q("arc_turned", "R r", "1", "r turned by R(n, Phi s) for s = 0 ... 1", ("arc", "xyz")),
+    Q("arc", "r'", "1", "Goldstein's r' (Goldstein (4.62)) for angles 0 ... Phi",
+      ("arc", "xyz")),
+    Q("circle", "r'", "1", "r turned by a full turn about n", ("arc_circle", "xyz")),
     Q("centre", "", "1", "centre of that circle, (n.r) n", ("xyz",)),
-    Q("turned_axes", "", "1", "the turned axes (rows) in the old axes", ("xyz", "xyz")),
+    Q("turned_axes", "", "1", "the turned axes R e_i (rows) in the old axes: A",
+      ("xyz", "xyz")),
 )
 
 AXIS_ANGLE_ERRORS = _errors(
     "axis_angle",
-    formula_vs_expm="A(4.62) against exp(-Phi [n]x)",
-    formula_vs_quaternion="A(4.62) against R(q) transposed",
-    vector_formula_vs_matrix="r' by (4.62) against A r, over |r|",
-    orthogonality="A A^T - 1",
-    recovered_angle="angle recovered from the matrix",
-    recovered_axis="axis recovered from the matrix, times min(1, Phi)",
+    textbook_vs_goldstein="R (textbook ex. 4.5) against the transpose of Goldstein's A "
+                          "(Goldstein (4.62)): R = A^T",
+    formula_vs_expm="R (textbook ex. 4.5) against exp(Phi [n]x)",
+    formula_vs_quaternion="R (textbook ex. 4.5) against R(q)",
+    turned_vector_vs_matrix="r cos Phi + n (n.r)(1 - cos Phi) + (n x r) sin Phi against "
+                            "R r, over |r|",
+    vector_formula_vs_matrix="r' by Goldstein (4.62) against A r, over |r|",
+    orthogonality="R R^T - 1",
+    recovered_angle="angle recovered from R",
+    recovered_axis="axis recovered from R, times min(1, Phi)",
 )
 
 
@@ -91,7 +111,7 @@ EULER = _group(
       "the same rotations' angles in the other convention", ("path", "angle")),
     Q("matrix", "R", "1", "R at t = 0, product of elementary rotations", ("xyz", "xyz")),
     Q("matrix_other", "R", "1", "R at t = 0 in the other convention", ("xyz", "xyz")),
-    Q("elements", "A", "1", "Goldstein's A (4.46) by its elements", ("xyz", "xyz")),
+    Q("elements", "A", "1", "Goldstein's A, Goldstein (4.46), by its elements", ("xyz", "xyz")),
     Q("elements_other", "A", "1", "A by its elements, the other convention",
       ("xyz", "xyz")),
     Q("omega_space", r"\omega", "rad/s", "omega in space axes from the rates",
@@ -111,7 +131,7 @@ EULER = _group(
 
 EULER_ERRORS = _errors(
     "euler",
-    matrix_product_vs_elements="R by elementary rotations against (4.46) elements",
+    matrix_product_vs_elements="R by elementary rotations against Goldstein (4.46) elements",
     matrix_conventions="R in one convention against the other, whole path",
     omega_space_conventions="space omega, one convention's formula against the other's",
     omega_body_conventions="body omega, one convention's formula against the other's",
@@ -150,6 +170,87 @@ STEREOGRAPHIC = _group(
       ("complex",)),
 )
 
+IDENTITIES = _group(
+    "identities",
+    Q("second_rotation", "S", "1", "the Euler matrix R(t = 0) that turns A: A' = S A S^-1",
+      ("xyz", "xyz")),
+    Q("turned_axis", "S n", "1", "the axis of R(n, Phi) turned by S", ("xyz",)),
+    Q("turned", "A'", "1", "S A S^-1 for A = R(n, Phi), Phi [n]x, (R + R^T)/2",
+      ("matrix", "xyz", "xyz")),
+    Q("trace", r"\mathrm{tr}\,A", "1", "trace of each A", ("matrix",)),
+    Q("trace_turned", r"\mathrm{tr}\,A'", "1", "trace of each S A S^-1", ("matrix",)),
+    Q("determinant", r"\det A", "1", "determinant of each A", ("matrix",)),
+    Q("determinant_turned", r"\det A'", "1", "determinant of each S A S^-1", ("matrix",)),
+    Q("eigenvalues", r"\lambda", "1", "eigenvalues of each A (real, imaginary part)",
+      ("matrix", "eigen", "complex")),
+    Q("eigenvalues_turned", r"\lambda'", "1", "eigenvalues of each S A S^-1",
+      ("matrix", "eigen", "complex")),
+    Q("eigenvalues_closed", r"\lambda", "1", "the closed forms: 1, exp(+-i Phi); 0, +-i Phi; "
+      "1, cos Phi, cos Phi", ("matrix", "eigen", "complex")),
+    Q("omega_scale", r"\max|\omega|", "rad/s", "largest |omega| over the path (0: the "
+      "deviations divided by it are absolute)"),
+    Q("central_differences/step", "h", "s", "the stored path's time step"),
+    Q("central_differences/antisymmetry", "", "1", "max |W + W^T| / max|omega|, W = D_h R^-1, "
+      "D_h the central difference"),
+    Q("central_differences/omega", "", "1", "max |D_h R^-1 - [omega]x| / max|omega|"),
+    Q("central_differences/omega_double_step", "", "1",
+      "max |D_2h R^-1 - [omega]x| / max|omega|"),
+    Q("central_differences/omega_richardson", "", "1",
+      "max |(4 D_h - D_2h)/3 R^-1 - [omega]x| / max|omega|"),
+    Q("central_differences/order", "p", "1", "log2 of the ratio of the last two: 2 for a "
+      "central difference"),
+)
+
+IDENTITIES_ERRORS = _errors(
+    "identities",
+    orthogonality="M^T M - 1 over R(n, Phi), S R(n, Phi), R(t) and R(t) R(n, Phi)",
+    determinant="det M - 1 over the same matrices",
+    inverse_is_transpose="S^-1 (by LU) against S^T",
+    similarity_closed_form="S A S^-1 against A built on S n",
+    trace_invariant="tr S A S^-1 against tr A and tr A against its closed form",
+    determinant_invariant="det S A S^-1 against det A and det A against its closed form",
+    eigenvalue_invariant="eigenvalues of S A S^-1 against those of A and their closed forms",
+    symmetry_kept="S A S^-1 stays antisymmetric (generator) and symmetric (symmetric part)",
+    rdot_antisymmetric="dR/dt R^-1 + its transpose, dR/dt by the complex step, / max|omega|",
+    rdot_is_omega="dR/dt R^-1 against [omega]x (space axes, from the rates), / max|omega|",
+    adot_is_omega_body="dA/dt A^-1 against -[omega']x for A = R^T (body axes), / max|omega|",
+)
+
+SU2_FORM = _group(
+    "su2_form",
+    Q("convention", "", "", "convention of the Euler angles", kind="str"),
+    Q("axis", r"\hat{n}", "1", "axis of the ex. 4.5 turn", ("xyz",)),
+    Q("angle", r"\Phi", "rad", "angle of the ex. 4.5 turn"),
+    Q("a", "a", "1", "Cayley-Klein a of U(n, Phi) = cos(Phi/2) 1 - i sin(Phi/2) n.sigma",
+      ("complex",)),
+    Q("b", "b", "1", "Cayley-Klein b of U(n, Phi)", ("complex",)),
+    Q("rotation", "R(U)", "1", "R(U) = tr(sigma_i U sigma_j U^+)/2 of U(n, Phi)",
+      ("xyz", "xyz")),
+    Q("euler_angles", r"(\phi, \theta, \psi)", "rad", "Euler angles at t = 0", ("angle",)),
+    Q("euler_a", "a", "1", "Cayley-Klein a of U_z(phi) U_x(theta) U_z(psi) at t = 0",
+      ("complex",)),
+    Q("euler_b", "b", "1", "Cayley-Klein b of the Euler-angle U at t = 0", ("complex",)),
+    Q("euler_rotation", "R(U)", "1", "R of the Euler-angle U at t = 0", ("xyz", "xyz")),
+    Q("euler_axis", r"\hat{m}", "1", "axis m of the Euler-angle U = cos(alpha/2) 1 - "
+      "i sin(alpha/2) m.sigma", ("xyz",)),
+    Q("euler_angle", r"\alpha", "rad", "its angle alpha, 0 ... 2 pi"),
+)
+
+SU2_FORM_ERRORS = _errors(
+    "su2_form",
+    closed_form_vs_exp="cos(Phi/2) 1 - i sin(Phi/2) n.sigma against exp(-i Phi n.sigma/2) "
+                       "by eigenvectors",
+    unitarity="U U^+ - 1 and det U - 1, U(n, Phi) and the Euler-angle U along the path",
+    rotation_vs_textbook="R(U(n, Phi)) against the textbook's R(n, Phi) (textbook ex. 4.5)",
+    euler_rotation_vs_matrix="R(U_z U_x U_z) against the Euler matrix, whole path",
+    euler_product_vs_cayley_klein="U_z U_x U_z against its multiplied-out Cayley-Klein "
+                                  "parameters, whole path",
+    euler_conventions="U by the given convention against U by the other (converted angles)",
+    euler_theorem="R(m, alpha) of the single turn read off U against the Euler matrix",
+    two_pi_flip="U(phi + 2 pi, theta, psi) + U(phi, theta, psi)",
+    double_cover="R(U(phi + 2 pi, theta, psi)) against R(U(phi, theta, psi))",
+)
+
 STEREOGRAPHIC_ERRORS = _errors(
     "stereographic",
     mobius_vs_rotation="Moebius map of U against R(U) on the sphere",
@@ -163,7 +264,32 @@ STEREOGRAPHIC_ERRORS = _errors(
     round_trip="inverse projection of the projection against x",
     transpose_mismatch="(not a check) distance of R(U)^T from the Moebius map",
     transpose_mismatch_standard_orientation="(not a check) the same, zeta = (x + iy)/(1 - z)",
+    scale_factor="|d zeta/ds| (1 - z) - 1 along two tangents, d zeta/ds by the complex "
+                 "step, times min(1, 1 - z)",
+    conformal_angle="Re(d zeta_1 conj(d zeta_2)) (1 - z)^2 for orthogonal tangents",
+    difference_quotient_chordal="|zeta+ - zeta-| / |x+ - x-| against "
+                                "1/sqrt((1 - z+)(1 - z-)), over its value, times min(1, 1 - z)",
+    composition_mobius="Moebius map of U U2 against that of U after that of U2",
+    composition_rotation="R(U U2) against R(U) R(U2)",
+)
+
+STEREOGRAPHIC_MORE = _group(
+    "stereographic",
+    Q("conformal_factor", "1/(1 - z)", "1", "the projection's scale factor at the points",
+      ("point",)),
+    Q("second_source", "", "", "where U2 comes from: axis_angle, euler or su2", kind="str"),
+    Q("second_a", "a_2", "1", "Cayley-Klein a of U2", ("complex",)),
+    Q("second_b", "b_2", "1", "Cayley-Klein b of U2", ("complex",)),
+    Q("second_rotation", "R(U_2)", "1", "R(U2)", ("xyz", "xyz")),
+    Q("contrasts/steps", r"\delta", "1", "arc lengths of the difference quotients",
+      ("step",)),
+    Q("contrasts/quotient_vs_factor", "", "1", "(not a check) max relative distance of "
+      "|zeta+ - zeta-| / |x+ - x-| from 1/(1 - z), each step", ("step",)),
+    Q("contrasts/reversed_mobius", "", "1", "(not a check) Moebius map of U U2 against "
+      "that of U2 after that of U"),
+    Q("contrasts/reversed_rotation", "", "1", "(not a check) R(U U2) against R(U2) R(U)"),
 )
 
 SCHEMA = ResultsSchema(analysis=AXIS_ANGLE + AXIS_ANGLE_ERRORS + EULER + EULER_ERRORS
-                       + STEREOGRAPHIC + STEREOGRAPHIC_ERRORS)
+                       + IDENTITIES + IDENTITIES_ERRORS + SU2_FORM + SU2_FORM_ERRORS
+                       + STEREOGRAPHIC + STEREOGRAPHIC_ERRORS + STEREOGRAPHIC_MORE)

@@ -1,9 +1,12 @@
-r"""``three_body``: three gravitating bodies (lecture notes §3, eqs. 3.32–3.35).
+r"""``three_body``: three gravitating bodies (lecture notes §3, notes (3.32)–(3.35)).
 
 Arbitrary masses and states, and presets: the Sun–Earth–Moon system with the
-notes' mass ratios m2/m1 ~ 1e-6, m3/m1 ~ 1e-8 (3.35) and its Jacobi coordinates
-(3.32–3.34); the Chenciner–Montgomery figure-eight; Burrau's Pythagorean problem
-with its close encounters.  Energy, total momentum and angular momentum are the
+notes' mass ratios m2/m1 ~ 1e-6, m3/m1 ~ 1e-8 (notes (3.35)), described in the notes'
+coordinates relative to body 1 (r12 = r2 − r1, r13 = r3 − r1 and the centre of mass,
+notes (3.32)–(3.34); their kinetic energy has a cross term) and in Jacobi coordinates
+(the standard hierarchical choice; not in the notes; a diagonal kinetic energy); the
+Chenciner–Montgomery figure-eight; Burrau's Pythagorean problem with its close
+encounters.  Energy, total momentum and angular momentum are the
 conserved quantities; a run whose energy error exceeds ``energy_tolerance`` is
 flagged unstable, never drawn silently.
 
@@ -27,15 +30,15 @@ def fmt(x, digits: int = 10) -> str:
 class ThreeBodyScene(ThreeBodySimulation, ThreeBodyReport):
     kind = "three_body"
     order = 40
-    summary = "three gravitating bodies: Sun–Earth–Moon (Jacobi coordinates), figure-eight, " \
-              "Pythagorean problem"
+    summary = "three gravitating bodies: Sun–Earth–Moon (relative and Jacobi coordinates), " \
+              "figure-eight, Pythagorean problem"
     Config = ThreeBodyConfig
     presets = PRESETS
     name_in_words = "Three gravitating bodies"
     #: the presets in words, each completed by its masses
     PRESET_WORDS = {"pythagorean": "Pythagorean three-body problem",
                     "figure_eight": "Figure-eight orbit of three equal masses",
-                    "sun_earth_moon": "Sun, Earth and Moon in Jacobi coordinates"}
+                    "sun_earth_moon": "Sun, Earth and Moon in relative and Jacobi coordinates"}
 
     @classmethod
     def default_title(cls, config):

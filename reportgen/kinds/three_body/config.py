@@ -10,36 +10,50 @@ import numpy as np
 from pydantic import Field, model_validator
 
 from ...scene.base import SceneConfig
-from ...scene.config import Positive, Real, RunConfig, Strict
+from ...scene.config import OwnUnitsRunConfig, Positive, Real, Strict
 
 Vector3 = Annotated[list[Real], Field(min_length=3, max_length=3)]
 
 
 class Params(Strict):
-    G: Positive = Field(1.0, description="gravitational constant (in the config's units)")
+    """``[params]``: G and the masses, in the config's own units.
+
+    AU, years and solar masses give G = 4π²; G = 1 with any units of length and time
+    makes the unit of mass."""
+
+    G: Positive = Field(1.0, description="gravitational constant "
+                                         "[config units of length³/(mass·time²)]")
     masses: list[Positive] = Field(min_length=3, max_length=3,
-                                   description="[m1, m2, m3]")
+                                   description="[m1, m2, m3] [config units of mass]")
 
 
 class Initial(Strict):
+    """``[initial]``: the bodies' positions and velocities in the config's own units."""
+
     positions: list[Vector3] = Field(min_length=3, max_length=3,
-                                     description="[[x, y, z] × 3] of bodies 1, 2, 3")
+                                     description="[[x, y, z] × 3] of bodies 1, 2, 3 "
+                                                 "[config units of length]")
     velocities: list[Vector3] = Field(min_length=3, max_length=3,
-                                      description="[[vx, vy, vz] × 3] of bodies 1, 2, 3")
+                                      description="[[vx, vy, vz] × 3] of bodies 1, 2, 3 "
+                                                  "[config units of length/time]")
 
 
 class ThreeBodyConfig(SceneConfig):
     params: Params
     initial: Initial
-    run: RunConfig
+    run: OwnUnitsRunConfig
     names: list[str] = Field(["body 1", "body 2", "body 3"], min_length=3, max_length=3,
                              description="labels of the bodies in figures")
-    length_unit: str = Field("", max_length=20, description="unit of length shown on axes")
-    time_unit: str = Field("", max_length=20, description="unit of time shown on axes")
+    length_unit: str = Field("", max_length=20, description="name of the config's unit of "
+                                                            "length, shown on axes (\"AU\")")
+    time_unit: str = Field("", max_length=20, description="name of the config's unit of "
+                                                          "time, shown on axes (\"yr\")")
     period: Positive | None = Field(None, description="known period of a periodic orbit: "
-                                                      "checks the return to the start")
+                                                      "checks the return to the start "
+                                                      "[config units of time]")
     energy_tolerance: Positive = Field(1e-8, description="relative energy error above which "
-                                                         "the run is flagged unstable")
+                                                         "the run is flagged unstable "
+                                                         "[dimensionless]")
 
     @model_validator(mode="after")
     def _no_collision(self):

@@ -1,5 +1,7 @@
-"""``three_body`` report: the tracks, the light body about its primary in Jacobi
-coordinates, the return after one period, pair distances and the conserved quantities."""
+"""``three_body`` report: the tracks, the light body about its primary (in the lecture
+notes' coordinates relative to body 1, notes (3.32)–(3.34), and in Jacobi coordinates, the
+standard hierarchical choice not in the notes), the return after one period, pair distances
+and the conserved quantities."""
 
 from __future__ import annotations
 
@@ -14,6 +16,7 @@ from ...scene.report import Report
 from .results import SCHEMA
 
 plots = lazy_module("reportgen.rendering.plots.gravitation")
+style = lazy_module("reportgen.rendering.plots.style")
 
 
 class ThreeBodyReport(Report):
@@ -43,8 +46,8 @@ class ThreeBodyReport(Report):
 
     sections = (
         Section("orbits", "Orbits", integrates=True),
-        Section("moon", "The light body about its primary; Jacobi coordinates",
-                integrates=True),
+        Section("moon", "The light body about its primary; the notes' coordinates and "
+                "Jacobi's", integrates=True),
         Section("periodicity", "Return after one period", integrates=True),
         Section("encounters", "Pair distances and close encounters", integrates=True),
         Section("invariants", "Energy, momentum and angular momentum", integrates=True),
@@ -109,6 +112,7 @@ class ThreeBodyReport(Report):
                 "period": fmt(float(a.get("period", math.nan)), 6),
                 "ratio_2": fmt(float(ratios.get("m2_m1", math.nan)), 2),
                 "ratio_3": fmt(float(ratios.get("m3_m1", math.nan)), 2),
+                "cross_share": fmt_err(float(a.get("notes_cross_term_share", math.nan))),
                 "names": list(cfg.names), "unit": str(cfg.length_unit or "")}
 
     @classmethod
@@ -211,6 +215,9 @@ class ThreeBodyReport(Report):
 
     @classmethod
     def section_moon(cls, data):
+        """The light body's track about its primary; the notes' coordinates r12, r13
+        (notes (3.32)–(3.34)) with their mass matrix and cross-term kinetic energy against
+        the Cartesian one; then Jacobi's ρ1, ρ2 with their diagonal kinetic energy."""
         a = data.analysis
         names, unit = data.config.names, data.config.length_unit
         rel = np.asarray(a["moon_relative_position"])
@@ -219,30 +226,54 @@ class ThreeBodyReport(Report):
                                    centre_label=shown[1], length_unit=_plain(unit))
         jac = a["jacobi_coordinates"]
         rho1, rho2 = np.asarray(jac["rho1"]), np.asarray(jac["rho2"])
+        # lower than the tracks figure, so that it shares a page with the relative track
+        _, ax = style.new_figure(figsize=(6.4, 3.5))
         fig2 = plots.three_body_orbits(
             np.stack([rho1, rho2, np.zeros_like(rho1)], axis=1)[:, :2],
             labels=["ρ1 = r2 − r1", "ρ2 = r3 − (m1 r1 + m2 r2)/(m1 + m2)"],
-            length_unit=_plain(unit))
+            length_unit=_plain(unit), ax=ax)
+        r13 = np.asarray(a["notes_coordinates"]["r13"])
         M, mu1, mu2 = np.asarray(a["jacobi_masses"])
+        K = np.asarray(a["notes_mass_matrix"])
+        m1, m2, m3 = (float(x) for x in data.config.params.masses)
         ratios = a["mass_ratios"]
-        facts = [("mass ratios (3.35)", f"m2/m1 = {fmt(ratios['m2_m1'])}, "
-                                        f"m3/m1 = {fmt(ratios['m3_m1'])}"),
-                 ("Jacobi masses (3.33)", f"M = {fmt(M)}, μ1 = {fmt(mu1)}, μ2 = {fmt(mu2)}"),
-                 ("kinetic energy T in Jacobi against Cartesian coordinates",
+        length = f" {unit}" if unit else ""
+        facts = [("mass ratios, notes (3.35)", f"m2/m1 = {fmt(ratios['m2_m1'])}, "
+                                               f"m3/m1 = {fmt(ratios['m3_m1'])}"),
+                 ("the notes' mass matrix K", f"K11 = m2(m1 + m3)/M = {fmt(K[0, 0])}, "
+                                              f"K22 = m3(m1 + m2)/M = {fmt(K[1, 1])}"),
+                 ("its off-diagonal K12 = K21", f"{_signed(K[0, 1])}, against −m2 m3/M = "
+                                                f"{_signed(-m2 * m3 / (m1 + m2 + m3))}"),
+                 ("T in the notes' coordinates against Cartesian T",
+                  f"max relative difference {fmt_err(a['notes_kinetic_identity_error'])}"),
+                 ("its cross term −(m2 m3/M) ṙ12·ṙ13",
+                  f"up to {fmt_err(a['notes_cross_term_share'])} of T"),
+                 ("Jacobi masses (not in the notes)",
+                  f"M = {fmt(M)}, μ1 = {fmt(mu1)}, μ2 = {fmt(mu2)}"),
+                 ("T in Jacobi coordinates against Cartesian T",
                   f"max relative difference {fmt_err(a['jacobi_kinetic_identity_error'])}"),
                  (f"{names[2]}'s orbit about {names[1]}",
-                  f"a = {fmt(a['moon_semi_major_axis'])} {unit}, inclination "
+                  f"a = {fmt(a['moon_semi_major_axis'])}{length}, inclination "
                   f"{fmt(math.degrees(a['moon_inclination']), 5)}°")]
         rows = []
         if "moon_period_measured" in a:
             rows.append(["sidereal period, measured", fmt(a["moon_period_measured"])])
         rows.append(["two-body Kepler period", fmt(a["moon_kepler_period"])])
+        # what the two tracks of the Jacobi figure differ by, and what the notes' r13
+        # differs from ρ2 by (r13 − ρ2 = m2 r12/(m1 + m2)): a figure of the notes' r12, r13
+        # would look the same
+        orbit = float(np.max(np.linalg.norm(rho2 - rho1, axis=1)))
+        apart = float(np.max(np.linalg.norm(r13 - rho2, axis=1)))
         return SectionContent(
             figures=[cls.figure("moon", fig, f"{names[2]}'s track relative to {names[1]}: a "
                                 "near-Keplerian ellipse slowly perturbed by the Sun's tide."),
-                     cls.figure("jacobi", fig2, "Jacobi coordinates (3.32): ρ1, the inner "
-                                "pair's separation, and ρ2, the third body from the inner "
-                                "pair's centre of mass (x–y projection).")],
+                     cls.figure("jacobi", fig2, "Jacobi coordinates (the standard "
+                                "hierarchical choice; not in the notes): ρ1, the inner pair's "
+                                "separation, and ρ2, the third body from the inner pair's "
+                                "centre of mass (x–y projection). The two tracks lie within "
+                                f"{fmt(orbit, 3)}{length} of each other and overlap at this "
+                                "scale; the notes' r12 is ρ1, and the notes' r13 differs from ρ2 by "
+                                f"at most {fmt(apart, 3)}{length}.")],
             facts=facts,
             tables=[Table(caption=f"{names[2]}'s period about {names[1]} "
                                   f"[{data.config.time_unit}]", header=["", "value"],
@@ -287,6 +318,11 @@ def fate_words(case, t_end):
     return {"escape": "ending in an escape" + (" and a binary" if case["binary"] else ""),
             "bound": f"still bound at t = {t_end}",
             "collision": "ending in a collision"}.get(case["fate"], "")
+
+
+def _signed(x):
+    """A number for prose with a typeset minus sign (−1.1e-13)."""
+    return f"−{fmt(-x)}" if x < 0 else fmt(x)
 
 
 def _plain(text):

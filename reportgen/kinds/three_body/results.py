@@ -3,6 +3,13 @@
 The kind works in the config's units (G = 1 for the figure-eight and the Pythagorean
 problem; AU, years and solar masses for Sun–Earth–Moon): lengths, times, masses and the
 conserved quantities are numbers in those units, declared "1".
+
+A hierarchical triple stores two sets of relative coordinates, each named for what it is:
+the lecture notes' (``notes_*``: r12 = r2 − r1, r13 = r3 − r1 and the centre of mass,
+notes (3.32)–(3.34), whose kinetic energy has a cross term −(m2 m3/M) ṙ12·ṙ13) and
+Jacobi's (``jacobi_*``: ρ1 = r2 − r1, ρ2 = r3 − (m1 r1 + m2 r2)/(m1 + m2), the standard
+hierarchical choice with a diagonal kinetic energy; not in the notes).  The mass ratios
+are the notes' (3.35).
 """
 
 from __future__ import annotations
@@ -51,8 +58,10 @@ SCHEMA = ResultsSchema(
         Q("return_velocity_error", r"\max|v_i(T) - v_i(0)|", "1",
           "largest velocity error after one period", optional=True),
         # a hierarchical triple
-        Q("mass_ratios/m2_m1", "m_2/m_1", "1", "mass ratio of body 2 to body 1", optional=True),
-        Q("mass_ratios/m3_m1", "m_3/m_1", "1", "mass ratio of body 3 to body 1", optional=True),
+        Q("mass_ratios/m2_m1", "m_2/m_1", "1", "mass ratio of body 2 to body 1 (notes (3.35))",
+          optional=True),
+        Q("mass_ratios/m3_m1", "m_3/m_1", "1", "mass ratio of body 3 to body 1 (notes (3.35))",
+          optional=True),
         Q("moon_relative_position", r"\mathbf{r}_3 - \mathbf{r}_2", "1",
           "body 3 relative to body 2", ("t", "xyz"), optional=True),
         Q("moon_inclination", "i", "rad", "inclination of body 3's osculating orbit about "
@@ -65,15 +74,36 @@ SCHEMA = ResultsSchema(
           "sidereal period of body 3 about body 2, measured from the run", optional=True),
         Q("moon_reference_error", r"|\Delta r|", "1", "body 3 about body 2 at t_end against "
           "a DOP853 run at rtol 1e-14", optional=True),
+        # the lecture notes' coordinates, relative to body 1 (notes (3.32)-(3.34))
+        Q("notes_coordinates/r12", r"\mathbf{r}_{12}", "1", "the notes' coordinate "
+          "r12 = r2 - r1, body 2 relative to body 1 (notes (3.32)-(3.34))", ("t", "xyz"),
+          optional=True),
+        Q("notes_coordinates/r13", r"\mathbf{r}_{13}", "1", "the notes' coordinate "
+          "r13 = r3 - r1, body 3 relative to body 1 (notes (3.32)-(3.34))", ("t", "xyz"),
+          optional=True),
+        Q("notes_mass_matrix", "K", "1", "mass matrix of the notes' coordinates: "
+          "T = M |dR/dt|^2/2 + sum_ab K_ab (dr_a/dt . dr_b/dt)/2 over a, b in (r12, r13), "
+          "off-diagonal K_12 = -m2 m3/M (notes (3.32)-(3.34))",
+          ("relative_coordinate", "relative_coordinate"), optional=True),
+        Q("notes_kinetic_identity_error", r"\max|T_N - T_C|/T", "1",
+          "largest relative difference of the kinetic energy in the notes' coordinates, "
+          "cross term included, and the Cartesian one (notes (3.32)-(3.34))", optional=True),
+        Q("notes_cross_term_share", r"\max|T_\mathrm{cross}|/T", "1",
+          "largest size of the cross term -m2 m3/M dr12/dt . dr13/dt relative to the "
+          "kinetic energy (notes (3.32)-(3.34))", optional=True),
+        # Jacobi coordinates: the standard hierarchical choice, not in the notes
         Q("jacobi_kinetic_identity_error", r"\max|T_J - T_C|/T", "1",
-          "largest relative difference of the Jacobi and Cartesian kinetic energies (3.33)",
+          "largest relative difference of the diagonal kinetic energy in Jacobi coordinates "
+          "(the standard hierarchical choice; not in the notes) and the Cartesian one",
           optional=True),
-        Q("jacobi_masses", r"(M, \mu_1, \mu_2)", "1", "Jacobi masses (3.33)", ("jacobi",),
-          optional=True),
-        Q("jacobi_coordinates/rho1", r"\rho_1", "1", "Jacobi coordinate rho1 = r2 - r1 (3.32)",
-          ("t", "xyz"), optional=True),
-        Q("jacobi_coordinates/rho2", r"\rho_2", "1", "Jacobi coordinate rho2: body 3 from "
-          "the inner pair's centre of mass (3.32)", ("t", "xyz"), optional=True),
+        Q("jacobi_masses", r"(M, \mu_1, \mu_2)", "1", "total mass and the reduced masses of "
+          "Jacobi coordinates (not in the notes): M, m1 m2/(m1 + m2), m3 (m1 + m2)/M",
+          ("jacobi",), optional=True),
+        Q("jacobi_coordinates/rho1", r"\rho_1", "1", "Jacobi coordinate rho1 = r2 - r1 (the "
+          "standard hierarchical choice; not in the notes)", ("t", "xyz"), optional=True),
+        Q("jacobi_coordinates/rho2", r"\rho_2", "1", "Jacobi coordinate rho2 = r3 - (m1 r1 "
+          "+ m2 r2)/(m1 + m2): body 3 from the inner pair's centre of mass (not in the "
+          "notes)", ("t", "xyz"), optional=True),
         Q("earth_eccentricity", "e", "1", "initial osculating eccentricity of body 2 about "
           "body 1", optional=True),
         # physical behaviour (not the run's numerical status) and chaos

@@ -1,6 +1,7 @@
 """``three_body`` simulation: the Cartesian run with its conserved quantities, pair
 distances, the return after one period and, for a hierarchical triple, the light body's
-osculating orbit and the Jacobi coordinates."""
+osculating orbit, the lecture notes' coordinates relative to body 1 (notes (3.32)–(3.34))
+and Jacobi coordinates (the standard hierarchical choice; not in the notes)."""
 
 from __future__ import annotations
 
@@ -172,8 +173,9 @@ class ThreeBodySimulation(IntegratingSimulation):
 
     def _hierarchy(self, results, model, main):
         """Osculating Kepler elements of the primary pair and of body 3 about body 2; the
-        Jacobi kinetic energy (3.33) against the Cartesian one; the curves the moon section
-        draws (relative track, Jacobi coordinates)."""
+        kinetic energy in the notes' coordinates (notes (3.32)–(3.34), with its cross term)
+        and in Jacobi coordinates, each against the Cartesian one; the curves the moon
+        section draws (relative track, both sets of coordinates)."""
         G, m = self.config.params.G, self.masses
         y = main.y
         pos, vel = core.split(y)
@@ -199,8 +201,18 @@ class ThreeBodySimulation(IntegratingSimulation):
                                     "t_end: |Δr| against a DOP853 run at rtol 1e-14", d_ref, 0.0,
                                     self.config.length_unit, "independent tighter integration",
                                     scale=float(np.linalg.norm(rel[0]))))
-        T_jac = core.jacobi_kinetic_energy(y, m)
         T_cart = core.cartesian_kinetic_energy(y, m)
+        # the notes' coordinates r12 = r2 − r1, r13 = r3 − r1 (notes (3.32)–(3.34)): their
+        # kinetic energy, cross term included, from the stored velocities
+        (_, r12, r13), _ = core.notes_coordinates(y, m)
+        a["notes_coordinates"] = {"r12": r12, "r13": r13}
+        a["notes_mass_matrix"] = core.notes_mass_matrix(m)
+        T_notes = core.notes_kinetic_energy(y, m)
+        a["notes_kinetic_identity_error"] = float(np.max(np.abs(T_notes - T_cart) / T_cart))
+        a["notes_cross_term_share"] = float(np.max(np.abs(core.notes_kinetic_cross_term(y, m))
+                                                   / T_cart))
+        # Jacobi coordinates (the standard hierarchical choice; not in the notes)
+        T_jac = core.jacobi_kinetic_energy(y, m)
         a["jacobi_kinetic_identity_error"] = float(np.max(np.abs(T_jac - T_cart) / T_cart))
         M, mu1, mu2 = core.jacobi_masses(m)
         a["jacobi_masses"] = np.array([M, mu1, mu2])

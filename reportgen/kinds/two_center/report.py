@@ -149,7 +149,7 @@ class TwoCenterReport(Report):
 
     @classmethod
     def prose_case(cls, data):
-        """The orbit's family (planetary, satellite, unbound), its bounds from (7.59), how
+        """The orbit's family (planetary, satellite, unbound), its bounds from notes (7.59), how
         close the run came to a centre, and whether it was regularized."""
         if data.sweep is not None:
             return {}
@@ -225,9 +225,9 @@ class TwoCenterReport(Report):
                          f"at least {fmt(float(a['closest_approach_bound']))}",
                          f"down to {fmt(float(a['closest_approach_run']))}"])
         table = Table(caption=f"The region of motion of this {a['family']} orbit: the bounds "
-                              "from the separated equations (7.59) and what the sampled run "
+                              "from the separated equations, notes (7.59), and what the sampled run "
                               "reaches.",
-                      header=["coordinate", "bounds from (7.59)", "sampled run"], rows=rows)
+                      header=["coordinate", "bounds from notes (7.59)", "sampled run"], rows=rows)
         # the dashed bounds are drawn only where (7.59) has them: none for an unbound orbit,
         # no hyperbola for a satellite orbit (η is free)
         dashed = [w for w, key in (("ξ", "ellipses"), ("η", "hyperbolas")) if key in bound]

@@ -1,7 +1,7 @@
 """What a ``two_center`` run stores: every result once, with its symbol and unit.
 
 Per unit mass of the test particle, in the units the config's keys document (μ = G·M
-in m³/s², lengths in m): energy in m²/s², the separation constant (7.59) in m⁴/s²
+in m³/s², lengths in m): energy in m²/s², the separation constant, notes (7.59), in m⁴/s²
 (its terms L1 L2 and 2aμ).
 """
 
@@ -22,19 +22,19 @@ SCHEMA = ResultsSchema(
     ),
     invariants=(
         Q("energy", "E", "m^2/s^2", "energy per unit mass", ("t",)),
-        Q("separation_constant", "C", "m^4/s^2", "separation constant (7.59)", ("t",)),
+        Q("separation_constant", "C", "m^4/s^2", "separation constant, notes (7.59)", ("t",)),
     ),
     analysis=(
         Q("energy", "E", "m^2/s^2", "energy per unit mass at t = 0"),
-        Q("separation_constant", "C", "m^4/s^2", "separation constant (7.59) at t = 0"),
-        Q("beta", r"\beta", "m^4/s^2", "separation constant beta = -C - 2 a^2 E of (7.59)"),
+        Q("separation_constant", "C", "m^4/s^2", "separation constant, notes (7.59), at t = 0"),
+        Q("beta", r"\beta", "m^4/s^2", "separation constant beta = -C - 2 a^2 E of notes (7.59)"),
         Q("family", "", "", "orbit family: satellite, planetary or unbound", kind="str"),
         Q("behaviour", "", "", "physical behaviour: bound (satellite, planetary), escape or "
           "collision", kind="str", optional=True),
         Q("xi_bounds", r"\xi_\mathrm{min}, \xi_\mathrm{max}", "1",
-          "bounds of xi from (7.59)", ("bound",)),
+          "bounds of xi from notes (7.59)", ("bound",)),
         Q("eta_abs_bounds", r"|\eta|_\mathrm{min}, |\eta|_\mathrm{max}", "1",
-          "bounds of |eta| from (7.59)", ("bound",)),
+          "bounds of |eta| from notes (7.59)", ("bound",)),
         Q("xi_range_run", r"\xi", "1", "range of xi the sampled run reaches", ("bound",)),
         Q("eta_abs_range_run", r"|\eta|", "1", "range of |eta| the sampled run reaches",
           ("bound",)),
@@ -63,7 +63,7 @@ SCHEMA = ResultsSchema(
         Q("motion_bounds/hyperbolas/y", "y", "m", "bounding hyperbolas (both branches), y",
           ("eta_bound_branch", *_HYPERBOLA), optional=True),
         Q("closest_approach_bound", r"d_{\mathrm{min}}", "m",
-          "closest approach to a centre the region of motion (7.59) allows"),
+          "closest approach to a centre the region of motion, notes (7.59), allows"),
         Q("closest_approach_run", r"d_{\mathrm{run}}", "m",
           "closest approach to a centre in the sampled run"),
         # a sweep member's crossings of y = 0 (the family's surface of section)
@@ -92,13 +92,13 @@ SCHEMA = ResultsSchema(
         # a family's results table: each member's count of crossings, and its bounds
         # (7.59) element by element, each with its own symbol
         Q("poincare_points", "", "1", "crossings per orbit", optional=True),
-        Q("xi_bounds_1", r"\xi_\mathrm{min}", "1", "lower bound of xi from (7.59)",
+        Q("xi_bounds_1", r"\xi_\mathrm{min}", "1", "lower bound of xi from notes (7.59)",
           optional=True),
-        Q("xi_bounds_2", r"\xi_\mathrm{max}", "1", "upper bound of xi from (7.59)",
+        Q("xi_bounds_2", r"\xi_\mathrm{max}", "1", "upper bound of xi from notes (7.59)",
           optional=True),
-        Q("eta_abs_bounds_1", r"|\eta|_\mathrm{min}", "1", "lower bound of |eta| from (7.59)",
+        Q("eta_abs_bounds_1", r"|\eta|_\mathrm{min}", "1", "lower bound of |eta| from notes (7.59)",
           optional=True),
-        Q("eta_abs_bounds_2", r"|\eta|_\mathrm{max}", "1", "upper bound of |eta| from (7.59)",
+        Q("eta_abs_bounds_2", r"|\eta|_\mathrm{max}", "1", "upper bound of |eta| from notes (7.59)",
           optional=True),
     ),
 )

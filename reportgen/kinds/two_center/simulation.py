@@ -23,7 +23,7 @@ integrators = lazy_module("reportgen.core.integrators")
 
 
 class TwoCenterSimulation(IntegratingSimulation):
-    """A test particle in the field of two fixed centres, checked against E and C (7.59)."""
+    """A test particle in the field of two fixed centres, checked against E and C (notes (7.59))."""
 
     schema = SCHEMA
     config: TwoCenterConfig
@@ -103,8 +103,8 @@ class TwoCenterSimulation(IntegratingSimulation):
             return run.formulation, f'[run] formulation = "{run.formulation}"'
         E, C = self._constants()
         reach = core.closest_approach_bound(E, C, p.mu, p.a)
-        where = (f"the region of the motion (7.59) comes within {reach:.3g} of a centre"
-                 if reach > 0 else "the region of the motion (7.59) holds a centre")
+        where = (f"the region of the motion, notes (7.59), comes within {reach:.3g} of a centre"
+                 if reach > 0 else "the region of the motion, notes (7.59), holds a centre")
         if run.method not in ("auto", "dop853"):
             return "cartesian", f"method '{run.method}' named: Cartesian coordinates"
         if E < 0 and reach < CLOSE_APPROACH * p.a:
@@ -182,14 +182,14 @@ class TwoCenterSimulation(IntegratingSimulation):
                             ("separation_constant", "separation constant C(t_end)")):
             v = main.invariants[name]
             results.checks.append(Check(label, float(v[-1]), float(v[0]), "",
-                                        "value at t = 0, conserved (7.59); error "
+                                        "value at t = 0, conserved, notes (7.59); error "
                                         "relative to max(|L₁L₂|, 2aμ)"
                                         if name != "energy" else "E(0), conserved",
                                         scale=scales[name]))
         if bounds["family"] != "unbound":
             results.checks.append(Check("largest ξ reached by the run (sampled)",
                                         float(np.max(xi)), bounds["xi_max"], "",
-                                        "largest root of 2a²Eξ² + 4aμξ + β (7.59)"))
+                                        "largest root of 2a²Eξ² + 4aμξ + β, notes (7.59)"))
         t_study = np.linspace(0.0, run.t_end, 201)
         if formulation == "regularized":
             self.study(results, model, y0, t_study, reference=self._regularized_reference,
@@ -308,7 +308,7 @@ class TwoCenterSimulation(IntegratingSimulation):
                 f"separation constant C at the crossings of y = 0, the furthest from its "
                 f"orbit's C(0) ({member_text(sweep, i)}, t = {fmt(float(pts.columns['t'][k]), 6)})",
                 float(C[k]), float(C0[i]), "",
-                "C(0) of the orbit, conserved (7.59)", scale=scale))
+                "C(0) of the orbit, conserved, notes (7.59)", scale=scale))
         given = self.config.initial.energy
         energy = sweep.values.get("initial.energy")
         E0 = sweep.analysis.get("energy")

@@ -147,7 +147,7 @@ def timeseries_against_reference(t, numeric: dict[str, np.ndarray],
             ax.plot(t, reference[name], color=REFERENCE, linestyle=(0, (4, 3)),
                     label=reference_label)
         if extra and name in extra:
-            ax.plot(t, extra[name], color=CONTEXT, linestyle=":", label="small-angle (1.19)")
+            ax.plot(t, extra[name], color=CONTEXT, linestyle=":", label="small-angle, notes (1.19)")
         ax.set_ylabel(ylabels[name])
     place_legend(axes[0, 0], loc="upper right")
     axes[-1, 0].set_xlabel(time_label(time_unit))

@@ -213,7 +213,7 @@ def flips(t, omega, *, envelope=None, ax=None):
         env = np.asarray(envelope)
         keep = env < 1.2 * np.max(np.abs(omega))
         ax.plot(t[keep], env[keep], "--", color=CONTEXT,
-                label="perturbation ∝ exp(γt), γ from (10.14)")
+                label="perturbation ∝ exp(γt), γ from notes (10.14)")
     ax.set_xlabel("time t [s]")
     ax.set_ylabel("body-frame ω [rad/s]")
     place_legend(ax, loc="upper right", ncols=2)
@@ -364,3 +364,80 @@ def ellipsoid_view(axes, semi_axes) -> tuple[float, float]:
         if cost < best_cost:
             best, best_cost = (elevation, azimuth), cost
     return best
+
+
+def impulse_paths(t, point_path, cm_path, L_space, *, point_name="apex", exact=None,
+                  snapshots: int = 7, figsize=(8.6, 4.4)):
+    """The struck point's path in space after the blow and the centre of mass's straight
+    line [m]: left, in 3-D with the body's line from the centre of mass to the point at a
+    few instants; right, both seen along L (projected on the plane ⊥ L through the start
+    of the centre of mass), first axis along the drift V.
+
+    t : (N,) [s]; point_path, cm_path : (N, 3) space frame [m]; L_space : (3,) the
+    space-frame angular momentum (any length); exact : (N, 3) the closed-form path,
+    drawn dashed, or None."""
+    point_path = np.asarray(point_path, dtype=float)
+    cm_path = np.asarray(cm_path, dtype=float)
+    fig = Figure(figsize=figsize)
+    ax3 = fig.add_axes((0.0, 0.12, 0.5, 0.8), projection="3d")
+    ax2 = fig.add_axes((0.6, 0.25, 0.37, 0.62))
+    ax3.grid(False)
+    ax3.locator_params(nbins=4)
+    ax3.plot(*point_path.T, color=HIGHLIGHT, linewidth=1.1, label=f"{point_name}")
+    ax3.plot(*cm_path.T, color="k", linewidth=1.6, label="centre of mass")
+    for k, n in enumerate(np.linspace(0, len(t) - 1, snapshots).astype(int)):
+        seg = np.array([cm_path[n], point_path[n]])
+        ax3.plot(*seg.T, color=CONTEXT, linewidth=1.0,
+                 label=f"centre of mass to {point_name}" if k == 0 else None)
+    ax3.scatter(*point_path[0], color=HIGHLIGHT, s=16, depthshade=False)
+    ax3.scatter(*cm_path[0], color="k", s=16, depthshade=False)
+    lo = np.minimum(point_path.min(axis=0), cm_path.min(axis=0))
+    hi = np.maximum(point_path.max(axis=0), cm_path.max(axis=0))
+    span = np.maximum(hi - lo, 0.05 * float(np.max(hi - lo)))
+    mid = 0.5 * (hi + lo)
+    for set_lim, c, s in zip((ax3.set_xlim, ax3.set_ylim, ax3.set_zlim), mid, span,
+                             strict=True):
+        set_lim(c - 0.55 * s, c + 0.55 * s)
+    # each axis stretched to its data (the caption says so): a drift of a few tenths
+    # under a body of metres would be a sliver at equal scales
+    ax3.set_box_aspect((1.4, 1.0, 1.0), zoom=0.85)
+    ax3.set_xlabel("x [m]")
+    ax3.set_ylabel("y [m]")
+    ax3.set_zlabel("z [m]")
+    ax3.view_init(elev=20, azim=-60)
+    # the plane ⊥ L: e1 along the drift's part in it, e2 = L̂ × e1
+    n = np.asarray(L_space, dtype=float)
+    n = n / np.linalg.norm(n)
+    drift = cm_path[-1] - cm_path[0]
+    e1 = drift - (drift @ n) * n
+    if np.linalg.norm(e1) < 1e-12 * max(1.0, float(np.linalg.norm(drift))):
+        e1 = np.cross(n, [1.0, 0.0, 0.0] if abs(n[0]) < 0.9 else [0.0, 1.0, 0.0])
+    e1 = e1 / np.linalg.norm(e1)
+    e2 = np.cross(n, e1)
+
+    def plane(r):
+        d = np.asarray(r) - cm_path[0]
+        return d @ e1, d @ e2
+
+    ax2.plot(*plane(point_path), color=HIGHLIGHT, linewidth=1.8, label=point_name)
+    if exact is not None:
+        ax2.plot(*plane(exact), color=REFERENCE, linestyle=(0, (4, 3)), linewidth=0.9,
+                 label="closed form")
+    ax2.plot(*plane(cm_path), color="k", linewidth=1.6, label="centre of mass, V t")
+    x0, y0 = plane(point_path[:1])
+    ax2.plot(x0, y0, "o", color=HIGHLIGHT, markersize=4)
+    ax2.plot(0.0, 0.0, "o", color="k", markersize=4)
+    ax2.set_aspect("equal", adjustable="datalim")
+    ax2.set_xlabel("along the drift [m]")
+    ax2.set_ylabel("across the drift [m]")
+    for x, title in ((0.25, "in space"), (0.785, "seen along L")):
+        fig.text(x, 0.93, title, ha="center", fontsize=RC["axes.titlesize"])
+    handles, labels = ax3.get_legend_handles_labels()
+    more = ax2.get_legend_handles_labels()
+    seen = set(labels)
+    for h, lab in zip(*more, strict=True):
+        if lab not in seen and lab != point_name and not lab.startswith("centre of mass"):
+            handles.append(h)
+            labels.append(lab)
+    fig.legend(handles, labels, loc="lower center", ncol=4, fontsize=9, frameon=False)
+    return fig
