@@ -9,6 +9,8 @@ RK4 once ran at the output spacing 0.015, 40 times smaller, while the report sai
 
 from __future__ import annotations
 
+import json
+
 import h5py
 import numpy as np
 import pytest
@@ -56,6 +58,9 @@ def test_h_06_with_rk4_runs_at_06_and_is_flagged(write_config, cli, tmp_path):
         assert f["runs/main"].attrs["h"] == pytest.approx(0.6, rel=1e-12)
         assert f["runs/main"].attrs["nsteps"] == 50
         assert f.attrs["status"] == "unstable"
+    # its pages still pass the document gate (no marker at the NaN measured period)
+    assert json.loads((tmp_path / "o" / "rk4" / "gate.json").read_text()) == []
+    assert "step h = 0.6 s" in (tmp_path / "o" / "rk4" / "report.html").read_text()
 
 
 @pytest.mark.parametrize("samples, h, words", [

@@ -59,7 +59,7 @@ def period_against_amplitude(*, curve_amplitude, curve_period, small_angle_perio
     if amplitude is not None and period is not None:
         ax.plot([amplitude], [period], "o", color=REFERENCE, markersize=9,
                 markerfacecolor="none", label="this scene, exact")
-    if amplitude is not None and period_measured is not None:
+    if amplitude is not None and period_measured is not None and np.isfinite(period_measured):
         ax.plot([amplitude], [period_measured], "x", color=HIGHLIGHT, markersize=9,
                 label="this scene, measured")
     ax.set_xlim(0, 1.02 * math.pi)  # a point at θ0 → π keeps its whole marker
