@@ -138,7 +138,9 @@ def test_kinds_unknown_kind_is_usage_with_did_you_mean(cli):
 # ---------------------------------------------------- validate refuses as run
 @pytest.mark.parametrize("lagrangian", ["q_dot*q - q**2/2", "q_dot - q**2/2"])
 def test_validate_refuses_a_singular_lagrangian(write_config, cli, lagrangian):
-    """L linear in q̇: ∂²L/∂q̇² = 0, no Legendre transform; run refuses it, so does validate."""
+    """L linear in q̇ with one coordinate: ∂²L/∂q̇² = 0, no Legendre transform, and as a
+    first-order Lagrangian its ω is 1 × 1 antisymmetric, so zero: run refuses it, so does
+    validate, with that reason."""
     path = write_config("sing", f"""\
         kind = "hamiltonian"
         [system]
@@ -152,7 +154,7 @@ def test_validate_refuses_a_singular_lagrangian(write_config, cli, lagrangian):
         """)
     code, out, err = cli("validate", path)
     assert code == 2 and out == ""
-    assert err.startswith(f"{path}: key 'system.L': ") and "singular" in err, err
+    assert err.startswith(f"{path}: key 'system.L': ") and "det ω = 0" in err, err
 
 
 def test_validate_passes_a_regular_lagrangian(write_config, cli):

@@ -184,8 +184,98 @@ def heavy_top_textbook(scene, print=builtins.print, samples: int = 201) -> dict:
                      f"in {ours['wall_time_s'] * 1e3:6.3f} ms ({ours['steps']} steps) → "
                      f"{ratio:5.0f}×")
         ours["speedup"] = ratio
-    return {"peer_error": peer_err, "peer_wall_time_s": peer_s, "peer_nfev": int(sol.nfev),
-            "ours": ours}
+    out = {"peer_error": peer_err, "peer_wall_time_s": peer_s, "peer_nfev": int(sol.nfev),
+           "ours": ours}
+
+    def ours_at(rtol):
+        run(rtol)
+        wall, (_sol, theta) = best_time(lambda: run(rtol), 5)
+        return wall, float(np.max(np.abs(theta - exact)))
+
+    out["heyoka"] = heavy_top_heyoka(p.I1, p.I3, p.Mgl, y0, t, exact, ours_at, name,
+                                     print=print)
+    return out
+
+
+def heavy_top_heyoka(I1, I3, Mgl, y0, t, exact, ours_at, name="", print=builtins.print,
+                     tolerances=(1e-9, 1e-11, 1e-13, 1e-15), repeats=5) -> list[dict]:
+    """heyoka (Taylor, LLVM JIT) on the same Euler-angle equations as the textbook script,
+    at ``tolerances``: max θ error at the times ``t`` against ``exact``, its run time (one
+    warm-up, best and median of ``repeats``) and its JIT time; beside each, ours at the
+    loosest rtol reaching the same θ error (``ours_at(rtol)`` → (best wall time, θ error))
+    and our time over heyoka's.  Empty (and one line saying so) when heyoka is absent."""
+    hy = _heyoka(print, f"  {name}: heavy top")
+    if hy is None:
+        return []
+    th, ph, ps, thd, phd, psd = hy.make_vars("th", "ph", "ps", "thd", "phd", "psd")
+    s, c = hy.sin(th), hy.cos(th)
+    omega3 = psd + phd * c
+    th_dd = (I1 * phd**2 * s * c - I3 * omega3 * phd * s + Mgl * s) / I1
+    ph_dd = (I3 * omega3 * thd - 2.0 * I1 * phd * thd * c) / (I1 * s)
+    system = [(th, thd), (ph, phd), (ps, psd), (thd, th_dd), (phd, ph_dd),
+              (psd, phd * thd * s - ph_dd * c)]
+    ours = [(rtol, *ours_at(rtol)) for rtol in 10.0 ** -np.arange(6.0, 14.25, 0.25)]
+    rows = []
+    for tol in tolerances:
+        row = _heyoka_rows(hy, system, y0, t, tol, repeats)
+        row["error"] = float(np.max(np.abs(row.pop("y")[:, 0] - exact)))
+        line = (f"  {name:<28} heyoka tol {tol:.0e}: θ error {row['error']:.1e} in "
+                f"{row['wall_time_s'] * 1e3:7.3f} ms (JIT {row['jit_s']:.2f} s)")
+        match = next(((rtol, wall, err) for rtol, wall, err in ours if err <= row["error"]),
+                      None)
+        if match is None:
+            line += " | ours: no rtol ≥ 1e-14 reaches it (behind)"
+        else:
+            rtol, wall, err = match
+            row.update(ours_rtol=rtol, ours_error=err, ours_wall_time_s=wall,
+                       ratio=wall / row["wall_time_s"])
+            line += (f" | ours rtol {rtol:.1e}: {err:.1e} in {wall * 1e3:7.3f} ms → "
+                     f"ours/heyoka {row['ratio']:.2f} "
+                     f"({'behind' if row['ratio'] > 1 else 'ahead'})")
+        rows.append(row)
+        print(line)
+    return rows
+
+
+def _heyoka(print, what: str):
+    """The heyoka module, or None with one line saying it is not installed."""
+    try:
+        import heyoka
+    except ImportError:
+        print(f"{what}: heyoka not installed (pip install 'reportgen[heyoka]'): no heyoka "
+              "peer")
+        return None
+    return heyoka
+
+
+def _heyoka_rows(hy, system, y0, t, tol, repeats) -> dict:
+    """One heyoka run of ``system`` from ``y0`` over the grid ``t`` at ``tol``: its JIT time
+    (building the integrator), then one warm-up and ``repeats`` timed ``propagate_grid``
+    calls (state and time reset before each, inside the timing)."""
+    start = time.perf_counter()
+    ta = hy.taylor_adaptive(system, list(y0), tol=tol)
+    jit = time.perf_counter() - start
+
+    def run():
+        ta.time = float(t[0])
+        ta.state[:] = y0
+        return ta.propagate_grid(t)
+
+    run()
+    times, out = _times(run, repeats)
+    return {"method": f"heyoka tol {tol:.0e}", "tol": tol, "jit_s": jit,
+            "wall_time_s": min(times), "median_s": float(np.median(times)),
+            "outcome": str(out[0]).rsplit(".", 1)[-1], "steps": int(out[3]), "y": out[-1]}
+
+
+def _times(fn, repeats):
+    """(wall times of ``repeats`` calls of ``fn``, the last result)."""
+    times, result = [], None
+    for _ in range(repeats):
+        start = time.perf_counter()
+        result = fn()
+        times.append(time.perf_counter() - start)
+    return times, result
 
 
 def long_time_energy(n_periods=1_000_000, steps_per_period=100, n_out=2000, method="yoshida4",
@@ -310,6 +400,100 @@ def kepler_against_rebound(e=0.9, orbits=1000, outputs=1001, target=1e-13,
     return {"rows": rows}
 
 
+def kepler_against_heyoka(e=0.9, orbits=1000, outputs=10_001, repeats=5,
+                          tolerances=(1e-9, 1e-11, 1e-13, 1e-15), print=builtins.print) -> dict:
+    """Kepler orbit of eccentricity ``e`` over ``orbits`` periods at ``outputs`` times: our
+    methods against heyoka (Taylor, LLVM JIT) at ``tolerances``, same run, same outputs.
+
+    GM = 1, a = 1, started at pericentre.  Per row: max |ΔE/E| over the outputs and at the
+    end (one energy function for all), the position error at the end against Kepler's
+    equation (:func:`~reportgen.core.models.kepler.kepler_state`), wall time (one warm-up,
+    best and median of ``repeats``; our compile and heyoka's JIT excluded, the JIT shown
+    beside).  Then, per heyoka row, our fastest row whose max |ΔE/E| is at or below
+    heyoka's, and our time over heyoka's (> 1: we are behind).
+    """
+    from ..core.integrators import integrate
+    from ..core.integrators.regularized import STEP_CONSTANT
+    from ..core.models import kepler
+
+    y0 = np.array([1 - e, 0.0, 0.0, math.sqrt((1 + e) / (1 - e))])
+    t = np.linspace(0.0, orbits * 2 * math.pi, outputs)
+    model = kepler.model(1.0, 1.0)
+    e0 = kepler.energy(*y0, 1.0, 1.0)
+    exact_end = np.array(kepler.kepler_state(t[-1:], kepler.orbital_elements(*y0, 1.0)))[:, 0]
+
+    def measures(y):
+        de = np.abs(kepler.energy(y[:, 0], y[:, 1], y[:, 2], y[:, 3], 1.0, 1.0) / e0 - 1)
+        return {"error": float(np.max(de)), "error_end": float(de[-1]),
+                "position_end": float(np.hypot(*(y[-1, :2] - exact_end[:2])))}
+
+    print(f"\nKepler e = {e}, {orbits} orbits, {outputs} outputs: |ΔE/E| max over the "
+          f"outputs and at the end, |Δr| at the end against Kepler's equation; wall time "
+          f"best (median) of {repeats} after a warm-up, compile/JIT excluded")
+    speed = math.sqrt((1 + e) / (1 - e))
+    ours_runs = [("dop853", 1e-13, "Cartesian DOP853 rtol 1e-13"),
+                 ("dop853", 1e-14, "Cartesian DOP853 rtol 1e-14"),
+                 ("levi_civita_dop853", 1e-13, "Levi-Civita + DOP853 rtol 1e-13"),
+                 ("levi_civita_dop853", 1e-15, "Levi-Civita + DOP853 rtol 1e-15")]
+    # levi_civita (Gauss–Legendre 6) at N steps per orbit: the rtol its step rule
+    # (regularized.steps_per_orbit) turns into N; at rtol 1e-13 it takes its own N
+    for n in (16, 24, 48):
+        ours_runs.append(("levi_civita", STEP_CONSTANT * speed / (n - 0.5) ** 6,
+                          f"Levi-Civita + Gauss–Legendre 6, {n}/orbit"))
+    ours_runs.append(("levi_civita", 1e-13, "Levi-Civita + GL6 rtol 1e-13 (auto)"))
+    rows = []
+    for method, rtol, label in ours_runs:
+        def run(method=method, rtol=rtol):
+            return integrate(model, y0, t, method=method, rtol=rtol, atol=rtol * 1e-2)
+
+        run()  # compile / load outside the timing
+        times, sol = _times(run, repeats)
+        rows.append({"method": label, "ours": True, "wall_time_s": min(times),
+                     "median_s": float(np.median(times)), "jit_s": math.nan,
+                     "steps": int(sol.nsteps), **measures(sol.y)})
+    hy = _heyoka(print, "  Kepler")
+    if hy is not None:
+        x, y, vx, vy = hy.make_vars("x", "y", "vx", "vy")
+        r3 = (x**2 + y**2) ** -1.5
+        system = [(x, vx), (y, vy), (vx, -x * r3), (vy, -y * r3)]
+        for tol in tolerances:
+            row = _heyoka_rows(hy, system, y0, t, tol, repeats)
+            row.update(ours=False, **measures(row.pop("y")))
+            rows.append(row)
+    for r in rows:
+        jit = f"  JIT {r['jit_s']:.3f} s" if math.isfinite(r["jit_s"]) else ""
+        print(f"  {r['method']:<40} max {r['error']:.1e}  end {r['error_end']:.1e}  "
+              f"|Δr| {r['position_end']:.1e}  {r['wall_time_s'] * 1e3:8.2f} ms "
+              f"({r['median_s'] * 1e3:.2f}){jit}")
+    matched = []
+    for peer in (r for r in rows if not r["ours"]):
+        for measure, keys in (("|ΔE/E|", ("error",)), ("|ΔE/E| and |Δr|",
+                                                       ("error", "position_end"))):
+            reach = [r for r in rows if r["ours"] and all(r[k] <= peer[k] for k in keys)]
+            best = min(reach, key=lambda r: r["wall_time_s"], default=None)
+            head = f"  vs {peer['method']} on {measure}:"
+            if best is None:
+                print(f"{head} none of ours reaches it: BEHIND")
+                matched.append({"peer": peer["method"], "measure": measure, "ours": None,
+                                "ratio": math.inf, "median_ratio": math.inf})
+                continue
+            ratio = best["wall_time_s"] / peer["wall_time_s"]
+            median_ratio = best["median_s"] / peer["median_s"]
+            print(f"{head} ours {best['method']} in {best['wall_time_s'] * 1e3:.2f} ms "
+                  f"against {peer['wall_time_s'] * 1e3:.2f} ms: ours/heyoka {ratio:.2f} "
+                  f"best, {median_ratio:.2f} median: {'BEHIND' if ratio > 1 else 'ahead'}")
+            matched.append({"peer": peer["method"], "measure": measure, "ours": best["method"],
+                            "ratio": ratio, "median_ratio": median_ratio})
+    behind = [m for m in matched if m["ratio"] > 1]
+    if behind:
+        worst = max(behind, key=lambda m: m["ratio"])
+        print(f"  Behind heyoka in {len(behind)} of {len(matched)} matched comparisons "
+              f"(worst {worst['ratio']:.1f}× its time: {worst['peer']} on {worst['measure']}).")
+    elif matched:
+        print("  At or ahead of heyoka in every matched comparison.")
+    return {"rows": rows, "matched": matched}
+
+
 def _plot_long_run(periods, rel_error, method, out_dir: Path) -> Path:
     from ..rendering.plots.style import new_figure
     from ..support.fsutil import atomic_write
@@ -355,6 +539,7 @@ def run_bench(paths: list[str], out_dir: str = "output/bench", long_run: bool = 
     if long_run:
         long_time_energy(out_dir=Path(out_dir), print=print)
         kepler_against_rebound(print=print)
+        kepler_against_heyoka(print=print)
         from .bench_nbody import pythagorean_against_rebound
         pythagorean_against_rebound(print=print)
     return 0

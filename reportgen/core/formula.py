@@ -67,6 +67,9 @@ class FormulaSystem:
     legendre: mechanics.Legendre | None
     hamilton: mechanics.HamiltonianSystem
     observables: dict[str, sympy.Expr] = field(default_factory=dict)  # in q, p, t
+    #: L linear in the velocities, reduced (notes (3.36–3.38)): the state is q alone, H is
+    #: the energy function V and ``hamilton.rhs`` the reduced q̇ = ω⁻¹(∇V + ∂a/∂t)
+    first_order: mechanics.FirstOrder | None = None
 
     @property
     def n(self) -> int:
@@ -74,20 +77,22 @@ class FormulaSystem:
 
     @property
     def columns(self) -> tuple[str, ...]:
-        return tuple(s.name for s in self.space.q + self.space.p)
+        return tuple(s.name for s in self.state_symbols)
 
     @property
     def state_symbols(self) -> tuple[sympy.Symbol, ...]:
-        return self.space.q + self.space.p
+        return self.space.q if self.first_order is not None else self.space.q + self.space.p
 
     @property
     def time_dependent(self) -> bool:
+        if self.first_order is not None:  # a(q, t) moving makes V change too
+            return self.space.t in self.L.free_symbols
         return self.space.t in self.H.free_symbols
 
     @property
     def separable(self) -> bool:
         """H = T(p) + V(q), with neither depending on t."""
-        if self.time_dependent:
+        if self.time_dependent or self.first_order is not None:
             return False
         q, p = set(self.space.q), set(self.space.p)
         return (all(not (e.free_symbols & q) for e in self.hamilton.qdot)
@@ -95,7 +100,7 @@ class FormulaSystem:
 
     def values(self, y: np.ndarray, t) -> dict[sympy.Symbol, object]:
         """Symbol -> values for :func:`reportgen.core.numeric.evaluate`: the state
-        columns of ``y`` (N, 2n), ``t`` and the constants."""
+        columns of ``y`` (N, 2n; N, n for a first-order L), ``t`` and the constants."""
         y = np.asarray(y, dtype=np.float64)
         out: dict[sympy.Symbol, object] = {s: y[..., i]
                                            for i, s in enumerate(self.state_symbols)}
@@ -180,7 +185,7 @@ def build_system(coordinates, *, H: str | None = None, L: str | None = None,
         except ExpressionError as exc:
             raise FormulaError(key, str(exc)) from None
 
-    legendre_result = None
+    legendre_result = reduced = None
     L_expr = None
     if H is not None:
         H_expr = parse("system.H", H, space.symbols_for_h())
@@ -190,17 +195,30 @@ def build_system(coordinates, *, H: str | None = None, L: str | None = None,
     else:
         L_expr = parse("system.L", L, space.symbols_for_l())
         try:
-            legendre_result = mechanics.legendre(space, L_expr, param_symbols.values())
+            if mechanics.linear_in_velocities(space, L_expr):  # notes (3.36–3.38)
+                reduced = mechanics.first_order(space, L_expr, param_symbols.values())
+            else:
+                legendre_result = mechanics.legendre(space, L_expr, param_symbols.values())
         except ValueError as exc:
             raise FormulaError("system.L", str(exc)) from None
-        H_expr = legendre_result.H
+        H_expr = legendre_result.H if reduced is None else reduced.V
     _check_real("system.H" if H is not None else "system.L", H_expr)
-    try:
-        hamilton = mechanics.hamiltonian_system(space, H_expr, param_symbols.values())
-    except ValueError as exc:
-        raise FormulaError("system.H" if H is not None else "system.L", str(exc)) from None
-    velocities = hamilton.qdot if legendre_result is None else legendre_result.velocities
+    if reduced is not None:
+        for e in (*reduced.qdot, reduced.det):
+            _check_real("system.L", e)
+        # the reduced equations in place of Hamilton's: rhs = q̇ (no momenta in the state)
+        hamilton = mechanics.HamiltonianSystem(space, H_expr, reduced.qdot, ())
+    else:
+        try:
+            hamilton = mechanics.hamiltonian_system(space, H_expr, param_symbols.values())
+        except ValueError as exc:
+            raise FormulaError("system.H" if H is not None else "system.L", str(exc)) \
+                from None
+    velocities = (reduced.qdot if reduced is not None else hamilton.qdot
+                  if legendre_result is None else legendre_result.velocities)
     to_qp = dict(zip(space.qdot, velocities, strict=True))
+    if reduced is not None:  # p = ∂L/∂q̇ = a(q, t)
+        to_qp.update(zip(space.p, reduced.a, strict=True))
     obs = {}
     for name, text in (observables or {}).items():
         key = f"observables.{name}"
@@ -212,7 +230,7 @@ def build_system(coordinates, *, H: str | None = None, L: str | None = None,
         obs[name] = parse(key, text, symbols).subs(to_qp)
         _check_real(key, obs[name])
     return FormulaSystem(space, params, param_symbols, H_expr, L_expr, legendre_result,
-                         hamilton, obs)
+                         hamilton, obs, reduced)
 
 
 # ------------------------------------------------------------------ code generation
@@ -353,8 +371,8 @@ def section_factors(system: FormulaSystem, column: int, value: float,
     if direction not in SECTION_DIRECTIONS:
         raise ValueError(f"direction {direction!r}: expected one of "
                          f"{', '.join(SECTION_DIRECTIONS)}")
-    if not 0 <= column < 2 * system.n:
-        raise ValueError(f"column {column!r}: expected 0 to {2 * system.n - 1}")
+    if not 0 <= column < len(system.columns):
+        raise ValueError(f"column {column!r}: expected 0 to {len(system.columns) - 1}")
     if not np.isfinite(value):
         raise ValueError(f"value {value!r}: expected a finite number")
     y = system.state_symbols[column]

@@ -7,6 +7,8 @@ the momenta, for L as well as for H.
 * :func:`hamiltonian_system` -- Hamilton's equations q̇ = ∂H/∂p, ṗ = −∂H/∂q;
 * :func:`legendre` -- from L(q, q̇, t): p = ∂L/∂q̇ solved for q̇ (L quadratic in the
   velocities, so the system is linear) and H = p·q̇ − L;
+* :func:`first_order` -- L = a(q, t)·q̇ − V(q, t), linear in the velocities (notes
+  (3.36–3.38)): no Legendre transform, but first-order equations ω q̇ = ∇V + ∂a/∂t;
 * :func:`poisson_bracket`, :func:`cyclic_coordinates`;
 * :func:`roundoff_scale` -- the size of an expression's parts, against which a value
   that should vanish (a Jacobi sum, a bracket) is judged: zero, or rounding.
@@ -104,7 +106,8 @@ def legendre(space: PhaseSpace, L: sympy.Expr, constants=()) -> Legendre:
     # factor(trigsimp(det)) finds sin² + cos² = 1 at a fraction of simplify's cost
     det = sympy.factor(sympy.trigsimp(sympy.expand(hessian.det())))
     if det == 0:
-        raise ValueError("∂²L/∂q̇∂q̇ is singular: L is not regular, there is no Legendre "
+        raise ValueError("∂²L/∂q̇∂q̇ is singular (and not zero: L is not linear in the "
+                         "velocities either): L is not regular, there is no Legendre "
                          "transform")
     # L = ½ q̇ᵀA q̇ + bᵀq̇ + L0 with A the Hessian; p = A q̇ + b, so
     # q̇ = A⁻¹(p − b) and H = p·q̇ − L = ½ (p − b)ᵀ A⁻¹ (p − b) − L0, with A⁻¹ = adj A / det A
@@ -119,6 +122,79 @@ def legendre(space: PhaseSpace, L: sympy.Expr, constants=()) -> Legendre:
         sympy.expand((excess.T * adjugate * excess)[0] / (2 * det)))))
     H = kinetic - L.subs(at_rest)
     return Legendre(momenta, velocities, H)
+
+
+def linear_in_velocities(space: PhaseSpace, L: sympy.Expr) -> bool:
+    """Whether ∂²L/∂q̇∂q̇ vanishes identically: L = a(q, t)·q̇ − V(q, t), a first-order
+    Lagrangian (notes (3.36–3.38))."""
+    return all(sympy.simplify(sympy.diff(L, v, w)) == 0
+               for i, v in enumerate(space.qdot) for w in space.qdot[i:])
+
+
+@dataclass(frozen=True)
+class FirstOrder:
+    """L = Σ aᵢ(q, t) q̇ᵢ − V(q, t) reduced to first-order equations (notes (3.36–3.38)).
+
+    With ∂L/∂q̇ᵢ = aᵢ and ∂L/∂qᵢ = Σⱼ ∂ᵢaⱼ q̇ⱼ − ∂ᵢV, Lagrange's equations
+    d/dt ∂L/∂q̇ᵢ − ∂L/∂qᵢ = Σⱼ ∂ⱼaᵢ q̇ⱼ + ∂ₜaᵢ − Σⱼ ∂ᵢaⱼ q̇ⱼ + ∂ᵢV = 0 read
+
+        Σⱼ ωᵢⱼ q̇ⱼ = ∂ᵢV + ∂ₜaᵢ,   ωᵢⱼ = ∂ᵢaⱼ − ∂ⱼaᵢ,
+
+    first order: the velocities follow from the coordinates when ω is invertible.  ``a``,
+    ``V``; ``omega`` ω; ``det`` det ω; ``inverse`` ω⁻¹; ``force`` ∇V + ∂ₜa; ``qdot``
+    ω⁻¹(∇V + ∂ₜa).  The energy function q̇·∂L/∂q̇ − L = a·q̇ − L is V, conserved when L does
+    not depend on t (ω antisymmetric: ∇V·ω⁻¹∇V = 0); the bracket of the reduced phase space
+    :meth:`bracket` makes ḟ = {f, V} + ∂f/∂t.
+    """
+
+    a: tuple[sympy.Expr, ...]
+    V: sympy.Expr
+    omega: sympy.Matrix
+    det: sympy.Expr
+    inverse: sympy.Matrix
+    force: tuple[sympy.Expr, ...]
+    qdot: tuple[sympy.Expr, ...]
+
+    def bracket(self, space: PhaseSpace, f: sympy.Expr, g: sympy.Expr) -> sympy.Expr:
+        """{f, g} = Σᵢⱼ ∂ᵢf (ω⁻¹)ᵢⱼ ∂ⱼg, as derived (not simplified): for g = V (t-independent
+        L) it is ∇f·q̇ = ḟ."""
+        n = len(space.q)
+        return sympy.Add(*(sympy.diff(f, space.q[i]) * self.inverse[i, j]
+                           * sympy.diff(g, space.q[j])
+                           for i in range(n) for j in range(n)))
+
+
+def first_order(space: PhaseSpace, L: sympy.Expr, constants=()) -> FirstOrder:
+    """The reduction of a Lagrangian linear in the velocities (notes (3.36–3.38); see
+    :class:`FirstOrder`).  ValueError says why it fails: L not linear in the velocities, an
+    odd number of coordinates (an antisymmetric ω of odd size is singular) or det ω = 0
+    identically."""
+    stray = L.free_symbols - set(space.q + space.qdot + (space.t,)) - set(constants)
+    if stray:
+        raise ValueError(f"L depends on {', '.join(sorted(map(str, stray)))}, which are "
+                         "neither coordinates, velocities nor t")
+    if not linear_in_velocities(space, L):
+        raise ValueError("L is not linear in the velocities")
+    n = len(space.q)
+    at_rest = {v: 0 for v in space.qdot}
+    a = tuple(sympy.diff(L, v).subs(at_rest) for v in space.qdot)
+    V = -L.subs(at_rest)
+    words = "L is linear in the velocities (a first-order Lagrangian, notes (3.36–3.38)) but"
+    if n % 2:
+        raise ValueError(f"{words} its {n} coordinates are an odd number: ω = ∂ᵢaⱼ − ∂ⱼaᵢ "
+                         "is antisymmetric of odd size, so det ω = 0 and the equations do not "
+                         "determine the velocities")
+    omega = sympy.Matrix(n, n, lambda i, j: sympy.diff(a[j], space.q[i])
+                         - sympy.diff(a[i], space.q[j]))
+    det = sympy.factor(sympy.trigsimp(sympy.expand(omega.det())))
+    if det == 0:
+        raise ValueError(f"{words} ω = ∂ᵢaⱼ − ∂ⱼaᵢ is singular (det ω = 0 for every q): the "
+                         "equations do not determine the velocities")
+    inverse = (omega.adjugate() / det).applyfunc(sympy.cancel)
+    force = tuple(sympy.diff(V, q) + sympy.diff(ai, space.t)
+                  for q, ai in zip(space.q, a, strict=True))
+    qdot = tuple(sympy.cancel(e) for e in inverse * sympy.Matrix(force))
+    return FirstOrder(a, V, omega, det, inverse, force, qdot)
 
 
 def poisson_bracket(space: PhaseSpace, f: sympy.Expr, g: sympy.Expr) -> sympy.Expr:

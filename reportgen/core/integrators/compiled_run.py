@@ -22,7 +22,8 @@ from .status import Status
 _FAIL_REASON = {
     Status.NONFINITE: "the state, the right-hand side or the step size became non-finite "
                       "(NaN or inf)",
-    Status.STEP_UNDERFLOW: "step size underflow (h < 10 eps |t|, or t + h == t)",
+    Status.STEP_UNDERFLOW: "the step size fell to round-off (below ten machine epsilons "
+                           "of t, where t + h no longer differs from t)",
     Status.NEWTON: "the Newton iteration for the implicit stages did not converge "
                    "(try a smaller h)",
     Status.BAD_STEP: f"no usable fixed step (h not positive and finite, or more than "
@@ -32,7 +33,7 @@ _FAIL_REASON = {
 
 def fail_reason(code: Status, max_steps: int) -> str:
     """Why a run that ended with ``code`` failed, in words."""
-    return _FAIL_REASON.get(code, f"max_steps = {max_steps} attempted steps exceeded")
+    return _FAIL_REASON.get(code, f"more than {max_steps} attempted steps (the step budget)")
 
 
 _N_CHUNKS = 20

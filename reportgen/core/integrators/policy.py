@@ -49,6 +49,21 @@ DEFAULT_MAX_STEPS = 10_000_000
 #: Below, DOP853 at rtol 1e-15 is within ~2e-12 in a fifth of the time (3 ms against
 #: 13–15 ms: with dense outputs levi_civita pays a gauss6 step per output).
 REGULARIZE_ECCENTRICITY = 0.9
+#: an eccentricity computed from a state written to ~16 digits is off by a few ulp (e = 0.9
+#: from x = 0.1, vy = √19 with GM = 1 comes out 0.8999999999999997): within this of the
+#: threshold counts as on it
+ECCENTRICITY_ROUNDOFF = 1e-12
+#: A bound Kepler orbit run over at least this many periods goes to ``levi_civita`` whatever
+#: its eccentricity.  Cartesian DOP853's energy error grows by about rtol every orbit
+#: (atol = rtol/100; |ΔE/E| after 1000 orbits at rtol 1e-13: 2.4e-12 at e = 0, 7.7e-11 at
+#: 0.5, 1.4e-10 at 0.7, 1.0e-10 at 0.9; at rtol 1e-10: 3.5e-9 … 3.4e-7), so over N orbits
+#: it ends ~N·rtol, past the rtol asked; levi_civita keeps it at round-off (≤ 3e-14 at
+#: every e and rtol 1e-8 … 1e-13 over 1000 orbits).  Levi-Civita + DOP853 drifts like
+#: DOP853 (6.2e-11 at rtol 1e-13, e = 0.9, 1000 orbits; no better than 4.7e-12 at any
+#: rtol), so it is not the choice.  Cost (e = 0.9, 1000 orbits, 10,001 outputs): 0.51 s
+#: at rtol 1e-13 against DOP853's 0.05 s (benchmarks/kepler_auto.py).  Below this many
+#: orbits DOP853's energy error is within ~30·rtol and the e < 0.9 choice stays DOP853.
+KEPLER_MANY_ORBITS = 100
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -132,8 +147,10 @@ def choose_auto(model, rtol: float, n_periods: float | None = None,
     """``method = "auto"``: (method name, one-sentence reason) from the model's structure.
 
     Decision (from benchmarks/bench_pendulum.py, see benchmarks/README.md): stiff ->
-    scipy Radau; a bound Kepler orbit (the model offers ``levi_civita``; ``y0`` given) with
-    e >= ``REGULARIZE_ECCENTRICITY`` -> ``levi_civita``; otherwise DOP853 with dense
+    scipy Radau; a bound Kepler orbit (the model offers ``levi_civita``; ``y0`` given) run
+    over ``KEPLER_MANY_ORBITS`` periods or more, or with e >= ``REGULARIZE_ECCENTRICITY``
+    (to round-off) -> ``levi_civita`` (the energy at round-off, where DOP853's grows about
+    rtol per orbit); otherwise DOP853 with dense
     output, which reaches a given accuracy fastest over short and moderate runs; for
     long runs (``n_periods`` >= ``LONG_RUN_PERIODS``) of a separable Hamiltonian a
     symplectic method keeps the energy error bounded where DOP853's error grows linearly
@@ -153,10 +170,20 @@ def choose_auto(model, rtol: float, n_periods: float | None = None,
         return STIFF_FALLBACK, (f"model '{model.name}' is marked stiff, so the implicit scipy "
                                 "Radau solver is used.")
     eccentricity = _bound_kepler_eccentricity(model, y0)
-    if eccentricity is not None and eccentricity >= REGULARIZE_ECCENTRICITY:
+    if (eccentricity is not None and n_periods is not None
+            and n_periods >= KEPLER_MANY_ORBITS):
+        return "levi_civita", (
+            f"Kepler orbit (e = {eccentricity:.4g}) over {n_periods:.4g} orbits: with DOP853 "
+            "the energy error would grow by about the tolerance every orbit, ending near "
+            f"{n_periods:.4g} × rtol = {n_periods * rtol:.1e} (measured); Levi-Civita "
+            "regularization with Gauss–Legendre 6 steps uniformly in eccentric anomaly and "
+            "keeps the energy at round-off over any number of orbits, so it meets "
+            f"rtol = {rtol:g} on the energy.")
+    if (eccentricity is not None
+            and eccentricity >= REGULARIZE_ECCENTRICITY - ECCENTRICITY_ROUNDOFF):
         return "levi_civita", (
             f"Kepler orbit with e = {eccentricity:.4g} ≥ {REGULARIZE_ECCENTRICITY:g}: "
-            "Levi-Civita regularization with Gauss-Legendre 6 steps uniformly in eccentric "
+            "Levi-Civita regularization with Gauss–Legendre 6 steps uniformly in eccentric "
             "anomaly and keeps the energy at round-off, where DOP853 cannot reach its "
             "accuracy (measured).")
     if model.separable is not None and n_periods is not None and n_periods >= LONG_RUN_PERIODS:
@@ -272,5 +299,6 @@ def solve_fictitious_time(model, y0, t_eval, t_index: int | None, spec: SolverSp
                         status=STATUS_OF_CODE[sol.code], message="" if sol.ok else sol.message)
 
 
-__all__ = ["LONG_RUN_PERIODS", "REGULARIZE_ECCENTRICITY", "PolicyResult", "RunStatus",
-           "SolverSpec", "choose_auto", "is_explicit_adaptive", "solve", "solve_fictitious_time"]
+__all__ = ["KEPLER_MANY_ORBITS", "LONG_RUN_PERIODS", "REGULARIZE_ECCENTRICITY", "PolicyResult",
+           "RunStatus", "SolverSpec", "choose_auto", "is_explicit_adaptive", "solve",
+           "solve_fictitious_time"]

@@ -20,6 +20,8 @@ from __future__ import annotations
 
 from ...scene.content import fmt as _fmt
 from .config import PRESETS, HamiltonianConfig, _PresetFormulas
+from .first_order import FirstOrderSimulation
+from .first_order_report import FirstOrderReport
 from .report import HamiltonianReport
 from .simulation import HamiltonianSimulation
 from .symbols import formula_text, symbol_text
@@ -29,7 +31,8 @@ def fmt(x, digits: int = 10) -> str:
     """A number of a title: :func:`~reportgen.scene.content.fmt` with a true minus sign."""
     return _fmt(x, digits).replace("-", "−")
 
-class HamiltonianScene(HamiltonianSimulation, HamiltonianReport):
+class HamiltonianScene(FirstOrderSimulation, HamiltonianSimulation, FirstOrderReport,
+                       HamiltonianReport):
     kind = "hamiltonian"
     order = 95
     summary = "any system written as H(q, p, t) or L(q, q̇, t): derived, compiled, checked"

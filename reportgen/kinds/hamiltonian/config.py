@@ -186,7 +186,11 @@ class HamiltonianConfig(SceneConfig):
                                         description="named functions of q, p (or q̇) and t")
     initial: dict[str, Real] = Field(description="the coordinates and p_<q> (for H) or "
                                                  "<q>_dot (for L); with `energy`, one of "
-                                                 "those may be left out and is solved for "
+                                                 "those may be left out and is solved for. "
+                                                 "For an L linear in the velocities (a "
+                                                 "first-order Lagrangian, notes (3.36–3.38)) "
+                                                 "the coordinates only: the velocities follow "
+                                                 "from them, and giving them is refused "
                                                  "[config units]")
     run: OwnUnitsRunConfig
     section: SurfaceOfSection | None = None
@@ -257,9 +261,16 @@ class HamiltonianConfig(SceneConfig):
         missing = [k for k in wanted if k not in self.initial]
         if "energy" in self.initial:
             if len(missing) != 1 or missing[0] in coords:
+                first_order = (" — or, for an L linear in the velocities (a first-order "
+                               "Lagrangian, notes (3.36–3.38)), give the coordinates only: its "
+                               "velocities and energy follow from them"
+                               if sys_.L is not None and set(missing) == set(velocities) else "")
                 raise _problem("initial.energy", f"leave out exactly one of {', '.join(speeds)}"
-                               " (it is solved for so that H = energy)", missing or "none left out")
-        elif missing:
+                               f" (it is solved for so that H = energy){first_order}",
+                               missing or "none left out")
+        elif missing and not (sys_.L is not None and set(missing) == set(velocities)):
+            # every velocity of an L left out: a first-order L's state is q alone (notes
+            # (3.36–3.38)); whether L is one is decided with SymPy (simulation.build_models)
             raise _problem(f"initial.{missing[0]}", "required key is missing")
         if self.section is not None:
             columns = coords + momenta

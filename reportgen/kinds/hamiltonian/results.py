@@ -105,6 +105,44 @@ _TOTAL_DERIVATIVE = (
       "largest |H - dF/dt| along the run"),
 )
 
+#: a first-order Lagrangian L = a(q, t)·q̇ − V(q, t) reduced (notes (3.36–3.38)): the state is
+#: q alone, the energy function (the invariant H) is V
+_FIRST_ORDER = (
+    _flag("first_order", "whether L is linear in the velocities, reduced to first-order "
+          "equations (notes (3.36–3.38))"),
+    _text("first_order_latex/a", "a_i = dL/dq_dot_i (TeX)", ("coordinate",)),
+    _text("first_order_latex/V", "V = a.q_dot - L, the energy function (TeX)"),
+    _text("first_order_latex/omega", "omega_ij = d_i a_j - d_j a_i, row by row (TeX)",
+          ("coordinate",)),
+    _text("first_order_latex/det", "det omega (TeX)"),
+    _text("first_order_latex/inverse", "the brackets {q_i, q_j} = (omega^-1)_ij, row by row "
+          "(TeX)", ("coordinate",)),
+    _text("first_order_latex/qdot", "the reduced equations dq/dt = omega^-1 (grad V + da/dt) "
+          "(TeX)", ("coordinate",)),
+    Q("first_order_det0", r"\det\omega(0)", "1", "det omega at the initial point"),
+    Q("first_order_det_min", r"\min|\det\omega|", "1", "smallest |det omega| along the run"),
+    _flag("first_order_det_sign_kept", "whether det omega keeps the sign of det omega(0) at "
+          "every sample of the run"),
+    Q("first_order_el_residual", r"\max|E_i|", "1", "largest Euler-Lagrange expression "
+      "d/dt dL/dq_dot - dL/dq along the run, with the reduced velocities"),
+    Q("first_order_el_scale", "", "1", "largest size of the Euler-Lagrange expression's "
+      "terms along the run (its rounding scale)"),
+    _flag("first_order_bracket_generates", "whether {q_i, V} = dq_i/dt simplifies for "
+          "every coordinate (a t-independent L)"),
+    _flag("first_order_energy_rate_zero", "whether dV/dt = grad V . dq/dt + dV/dt "
+          "simplifies to zero"),
+    _flag("first_order_linear", "whether the reduced equations are dq/dt = A q with a "
+          "constant A (closed form q(t) = exp(tA) q(0))"),
+    Q("first_order_A", "A", "1", "the constant matrix of linear reduced equations",
+      ("coordinate", "coordinate_j"), optional=True),
+    Q("first_order_closed_form", r"e^{tA}q_0", "1", "the closed form exp(tA) q(0) along the "
+      "run (linear reduced equations)", ("t", "coordinate"), optional=True),
+    Q("first_order_closed_form_error", r"\max|q - e^{tA}q_0|", "1", "largest difference of "
+      "the integration and the closed form (linear reduced equations)", optional=True),
+    Q("first_order_closed_form_scale", r"\max|q|", "1", "largest |q| along the run",
+      optional=True),
+)
+
 SCHEMA = ResultsSchema(
     time=TIME,
     invariants=(Q("H", "H", "1", "Hamiltonian", ("t",)),),
@@ -202,6 +240,7 @@ SCHEMA = ResultsSchema(
         _text("poincare_edge_momentum", "the momentum that vanishes on the edge",
               optional=True),
         *(replace(q, optional=True) for q in _TRANSFORM),
+        *(replace(q, optional=True) for q in _FIRST_ORDER),
         *(replace(q, optional=True) for q in _NOETHER),
         *(replace(q, optional=True) for q in _TOTAL_DERIVATIVE),
         _text("hj_separation", "the separation of the quadrature solution", optional=True),
@@ -226,13 +265,18 @@ SCHEMA = ResultsSchema(
 
 def schema_for(coordinates: Iterable[str], observables: Iterable[str],
                new_columns: Iterable[str] = (),
-               tex: Callable[[str], str] = str, noether: bool = False) -> ResultsSchema:
+               tex: Callable[[str], str] = str, noether: bool = False,
+               first_order: bool = False) -> ResultsSchema:
     """:data:`SCHEMA` with what a config names: the columns (the coordinates, then
     ``p_<q>``, and a canonical transformation's new variables), the invariants (H, each
     observable, the momentum of each coordinate that may turn out cyclic) and the
-    results per column and per observable.  ``tex(name)`` gives a name's TeX symbol."""
+    results per column and per observable.  ``tex(name)`` gives a name's TeX symbol.
+    ``first_order``: L linear in the velocities (notes (3.36–3.38)): the columns are the
+    coordinates alone, the reduction's results are stored and Hamilton's are not."""
     coordinates, observables = list(coordinates), list(observables)
     columns = [Q(q, tex(q), "1", f"coordinate {q}", ("t",)) for q in coordinates]
+    if first_order:
+        return _first_order_schema(columns, observables, tex)
     columns += [Q(f"p_{q}", tex(f"p_{q}"), "1", f"momentum conjugate to {q}", ("t",))
                 for q in coordinates]
     columns += [Q(c, tex(c), "1", f"new canonical variable {c}", ("t",)) for c in new_columns]
@@ -255,3 +299,28 @@ def schema_for(coordinates: Iterable[str], observables: Iterable[str],
         ]
     return SCHEMA.merged(ResultsSchema(columns=tuple(columns), invariants=tuple(invariants),
                                        analysis=tuple(analysis), time=TIME))
+
+
+#: what every run stores, first-order or not
+_ALWAYS = frozenset({"angles", "latex/H", "latex/q", "latex/L", "coordinates", "given",
+                     "separable", "time_dependent", "H0", "initial_state"})
+
+
+def _first_order_schema(columns: list[Q], observables: list[str],
+                        tex: Callable[[str], str]) -> ResultsSchema:
+    """The schema of a reduced first-order L: the reduction's results required, Hamilton's
+    (momenta, Jacobi identity, Legendre checks) not stored."""
+    required = {q.name for q in _FIRST_ORDER if not q.optional} | _ALWAYS
+    analysis = [replace(q, optional=q.name not in required) for q in SCHEMA.analysis]
+    analysis += [Q(f"initial_{c.name}", c.symbol + "(0)" if c.symbol else "", "1",
+                   f"initial value of {c.name}") for c in columns]
+    for f in observables:
+        analysis += [
+            _text(f"poisson_{f}", f"{{{f}, V}} of the reduced bracket, simplified"),
+            _flag(f"conserved_{f}", f"whether {f} is conserved"),
+            _text(f"latex/observable_{f}", f"the observable {f} (TeX)"),
+        ]
+    invariants = [*SCHEMA.invariants,
+                  *(Q(f, tex(f), "1", f"observable {f}", ("t",)) for f in observables)]
+    return ResultsSchema(columns=tuple(columns), invariants=tuple(invariants),
+                         analysis=tuple(analysis), time=TIME, open_groups=SCHEMA.open_groups)
