@@ -413,7 +413,7 @@ def kepler_against_heyoka(e=0.9, orbits=1000, outputs=10_001, repeats=5,
     heyoka's, and our time over heyoka's (> 1: we are behind).
     """
     from ..core.integrators import integrate
-    from ..core.integrators.regularized import STEP_CONSTANT
+    from ..core.integrators.regularized import SAFETY, STEP_CONSTANT
     from ..core.models import kepler
 
     y0 = np.array([1 - e, 0.0, 0.0, math.sqrt((1 + e) / (1 - e))])
@@ -435,10 +435,11 @@ def kepler_against_heyoka(e=0.9, orbits=1000, outputs=10_001, repeats=5,
                  ("dop853", 1e-14, "Cartesian DOP853 rtol 1e-14"),
                  ("levi_civita_dop853", 1e-13, "Levi-Civita + DOP853 rtol 1e-13"),
                  ("levi_civita_dop853", 1e-15, "Levi-Civita + DOP853 rtol 1e-15")]
-    # levi_civita (Gauss–Legendre 6) at N steps per orbit: the rtol its step rule
-    # (regularized.steps_per_orbit) turns into N; at rtol 1e-13 it takes its own N
+    # levi_civita (Gauss–Legendre 6) at N steps per orbit: the rtol its grid rule
+    # (regularized.grid_steps_per_orbit, a tenth of rtol: SAFETY) turns into N; at rtol
+    # 1e-13 it takes its own N
     for n in (16, 24, 48):
-        ours_runs.append(("levi_civita", STEP_CONSTANT * speed / (n - 0.5) ** 6,
+        ours_runs.append(("levi_civita", STEP_CONSTANT * speed / (SAFETY * (n - 0.5) ** 6),
                           f"Levi-Civita + Gauss–Legendre 6, {n}/orbit"))
     ours_runs.append(("levi_civita", 1e-13, "Levi-Civita + GL6 rtol 1e-13 (auto)"))
     rows = []

@@ -9,16 +9,23 @@ eccentric anomaly, so the physical step shrinks ∝ r at pericentre and a highly
 orbit costs no more than a circle), and brought back to the requested physical times:
 
 1. The step: gauss6 on (LC) is the (3,3) Padé approximant of the oscillator's flow, so
-   its phase error per orbit is ∝ 1/N⁶ with N steps per orbit; N is chosen so that the
-   position error per orbit is ≈ ``rtol`` · a (:func:`steps_per_orbit`, measured), like an
-   adaptive method's tolerance, which bounds the error per stretch of steps rather than
-   over any number of orbits.
-2. Output, two passes: t(s) is a state component.  The first run stores the state every
-   ds; the s of each requested t is found by Newton's method on the quintic Hermite
-   interpolant of t(s) (the transform's ``fictitious_times``, error O(ds⁶)).
-   The second run steps (≤ ds) straight to those s, so every output is a gauss6 state,
-   not an interpolated one, and a Taylor step of Δs ~ 1e-12 puts it at t exactly
-   (the transform's ``shift_to_times``).
+   its phase error per orbit is ∝ 1/N⁶ with N steps per orbit; :func:`steps_per_orbit`
+   gives the N for a position error per orbit of ≈ ``rtol`` · a (measured), and the run
+   takes :func:`grid_steps_per_orbit` = the N for a tenth of that (``SAFETY``), so that
+   the error stays below ``rtol`` · a over about ten orbits, as the two-pass version did
+   through the extra steps its dense outputs forced.
+2. One pass, solved in closed form.  The (w, w') part of (LC) is linear with constant
+   coefficients, so gauss6's stage equations are linear and are solved exactly
+   (:func:`_stage_weights`: a 3×3 elimination, what simplified Newton with the exact
+   Jacobian reaches in one iteration): a step of size σ is a fixed matrix R(σ) on each
+   (w_k, w_k') and a quadratic form for its t increment σ Σ b_i |W_i|².  R(ds) is a
+   rotation of (w, w'/ω) by an angle φ (it conserves the quadratic invariant
+   ω²|w|² + |w'|²), so the state after n steps, R(ds)ⁿ u₀, is the rotation by nφ,
+   evaluated directly: no round-off accumulates in it, and t is summed with compensation.
+   Each output t lies in one step [t_n, t_{n+1}]; its state is one gauss6 step of size
+   σ from the grid state u_n, σ solved from t_n + τ(σ) = t by Newton's method, started on
+   the quintic Hermite interpolant of t over the step.  Every output is thus a gauss6
+   state (n steps of ds, one of σ), at t exactly.
 3. Energy, angular momentum and the LRL vector are quadratic invariants of (LC) (the
    oscillator's energy, its angular momentum w × w' and its Fradkin tensor), which Gauss
    collocation conserves exactly: they stay at round-off at every output.  The phase
@@ -43,16 +50,18 @@ from dataclasses import replace
 import numpy as np
 
 from .base import Method, Solution
+from .status import Status
+from .symplectic import Gauss6
 
 #: gauss6 on (LC) at N steps per orbit: the largest position error over one orbit is
 #: ≈ STEP_CONSTANT · a · √((1 + e)/(1 − e)) / N⁶ (measured for e = 0 … 0.99 at N = 16 … 64:
 #: 0.36, 1.16, 2.65, 5.07 at e = 0, 0.5, 0.9, 0.99; the phase error in s is the same
 #: oscillator's at every e, times the pericentre speed in t)
 STEP_CONSTANT = 0.36
-#: fewest steps per orbit (below it the quintic interpolation of t(s) loses its order)
+#: fewest steps per orbit (below it the quintic first guess of an output's σ loses its order)
 MIN_STEPS_PER_ORBIT = 16
-#: fictitious-time steps of the first pass kept at once (bounds the memory of long runs)
-CHUNK_STEPS = 100_000
+#: the run's steps aim at this fraction of ``rtol`` · a per orbit (:func:`grid_steps_per_orbit`)
+SAFETY = 0.1
 #: gauss6's step budget per run (as the policy's default)
 DEFAULT_MAX_STEPS = 10_000_000
 
@@ -61,6 +70,13 @@ def steps_per_orbit(rtol: float, eccentricity: float) -> int:
     """N steps per orbit for a position error per orbit of ≈ ``rtol`` · a."""
     speed = math.sqrt((1.0 + eccentricity) / (1.0 - eccentricity))
     return max(MIN_STEPS_PER_ORBIT, math.ceil((STEP_CONSTANT * speed / rtol) ** (1.0 / 6.0)))
+
+
+def grid_steps_per_orbit(rtol: float, eccentricity: float) -> int:
+    """The steps per orbit ``levi_civita`` takes at ``rtol``: :func:`steps_per_orbit` for
+    ``SAFETY`` · ``rtol`` (10^(1/6) ≈ 1.47 times as many; measured at e = 0.99, rtol 1e-12,
+    20 orbits: position error 1.8e-11 at 132 steps per orbit, ≤ 1e-11 from ~146)."""
+    return steps_per_orbit(SAFETY * rtol, eccentricity)
 
 
 def _bound_orbit(method: str, model, y0):
@@ -75,14 +91,25 @@ def _bound_orbit(method: str, model, y0):
     return lc, energy
 
 
-def _gauss6(reg, state, s, ds, progress=None) -> Solution:
-    """(LC) from ``state`` at s[0] to the fictitious times ``s`` with gauss6, steps ≤ ``ds``."""
-    from .compiled_run import run_compiled
-    from .symplectic import Gauss6
+_COMPILED = [False]
 
-    return run_compiled(Gauss6(), reg, np.ascontiguousarray(state, dtype=np.float64),
-                        np.ascontiguousarray(s, dtype=np.float64), 0.0, 0.0, ds, progress,
-                        DEFAULT_MAX_STEPS)
+
+def _warm() -> float:
+    """Compile (or load from numba's cache) the kernel once per process; the seconds."""
+    if _COMPILED[0]:
+        return 0.0
+    from .levi_civita_kernels import lc_gauss6_outputs as _lc_gauss6_outputs
+
+    t0 = time.perf_counter()
+    Y = np.empty((2, 5))
+    _lc_gauss6_outputs(Gauss6.A, Gauss6.b, Gauss6.c, -1.0, 0.1, np.array([1.0, 0, 0, 0.5]),
+                       np.array([0.0, 0.01]), 0, 2, Y, np.zeros(3), 100)
+    _COMPILED[0] = True
+    return time.perf_counter() - t0
+
+
+#: kernel calls (chunks of the outputs) when a progress callback is given
+_PROGRESS_CHUNKS = 20
 
 
 class LeviCivita(Method):
@@ -99,64 +126,48 @@ class LeviCivita(Method):
     compiled = False
 
     def solve(self, model, y0, t_eval, rtol, atol, progress=None) -> Solution:
+        from .levi_civita_kernels import lc_gauss6_outputs as _lc_gauss6_outputs
+
+        t_eval = np.ascontiguousarray(t_eval, dtype=np.float64)
         lc, energy = _bound_orbit(self.name, model, y0)
         elements = lc.orbital_elements(y0)
-        n_orbit = steps_per_orbit(rtol, elements["eccentricity"])
+        n_orbit = grid_steps_per_orbit(rtol, elements["eccentricity"])
         ds = lc.fictitious_period(energy) / n_orbit
-        reg = lc.model(energy)
-        state0 = lc.to_regularized(*y0, t=float(t_eval[0]))
+        compile_s = _warm()
         t0 = time.perf_counter()
-        s_out, first = self._fictitious_times(lc, reg, state0, t_eval, ds, elements,
-                                              n_orbit, progress)
-        if not first.ok:
-            return self._solution(t_eval, np.full((t_eval.size, 4), np.nan), first, [first],
-                                  time.perf_counter() - t0, rtol, atol)
-        # second pass: gauss6 straight to each output's s (steps ≤ ds), so every output is
-        # a state of the method itself, invariant at round-off; then the tiny shift to t
-        second = _gauss6(reg, state0, s_out, ds, progress=None if progress is None else
-                         (lambda f: progress(0.5 + 0.5 * f)))
-        x, y, vx, vy, _ = lc.from_regularized(lc.shift_to_times(second.y, t_eval, energy))
+        state0 = lc.to_regularized(*y0, t=float(t_eval[0]))
+        N = t_eval.size
+        Yr = np.full((N, 5), np.nan)
+        carry = np.array([0.0, float(t_eval[0]), 0.0])
+        n_chunks = _PROGRESS_CHUNKS if (progress is not None and N > _PROGRESS_CHUNKS) else 1
+        bounds = np.linspace(0, N, n_chunks + 1).round().astype(int)
+        status = 0
+        for k in range(n_chunks):
+            status = _lc_gauss6_outputs(Gauss6.A, Gauss6.b, Gauss6.c, float(energy), ds,
+                                        np.ascontiguousarray(state0[:4]), t_eval,
+                                        int(bounds[k]), int(bounds[k + 1]), Yr, carry,
+                                        DEFAULT_MAX_STEPS)
+            if progress is not None:
+                progress(float(bounds[k + 1]) / N)
+            if status != 0:
+                break
+        with np.errstate(invalid="ignore"):  # the NaN rows a failed run leaves
+            x, y, vx, vy, _ = lc.from_regularized(Yr)
         Y = np.column_stack([x, y, vx, vy])
         Y[0] = y0  # t_eval[0] is the start: y0 exactly, as every method returns it
-        return self._solution(t_eval, Y, second, [first, second], time.perf_counter() - t0,
-                              rtol, atol)
-
-    @staticmethod
-    def _fictitious_times(lc, reg, state0, t_eval, ds, elements, n_orbit, progress):
-        """First pass: (LC) every ``ds`` from ``state0`` until t passes ``t_eval[-1]``, in
-        chunks; the s of each output (``lc.fictitious_times``, ``lc`` the model's
-        transform) and the last chunk's run (with every chunk's counters added)."""
-        # t(s) − t0 ≥ T (s/s_orbit − e/π) (Kepler's equation, E ∝ s): steps to t_end
-        span = float(t_eval[-1] - t_eval[0])
-        needed = math.ceil((span / elements["period"] + elements["eccentricity"] / math.pi)
-                           * n_orbit) + 2
-        chunk = min(CHUNK_STEPS, needed)  # one run, unless very long
-        h = float(reg.params[0])
-        s_out = np.empty(t_eval.size)
-        done, s0, state, counts = 0, 0.0, state0, np.zeros(3)
-        while done < t_eval.size:
-            sol = _gauss6(reg, state, np.arange(chunk + 1) * ds, ds)
-            counts += (sol.nfev, sol.nsteps, sol.compile_time_s)
-            if not sol.ok:
-                break
-            upto = int(np.searchsorted(t_eval, sol.y[-1, 4], side="right"))
-            s_out[done:upto] = s0 + lc.fictitious_times(ds, sol.y, t_eval[done:upto], h)
-            done, s0, state = upto, s0 + chunk * ds, sol.y[-1]
-            if progress is not None:
-                progress(0.5 * done / t_eval.size)  # the second pass reports the rest
-        s_out[0] = 0.0
-        return s_out, replace(sol, nfev=int(counts[0]), nsteps=int(counts[1]),
-                              compile_time_s=float(counts[2]))
-
-    def _solution(self, t_eval, Y, last, runs, wall, rtol, atol) -> Solution:
-        compile_s = sum(r.compile_time_s for r in runs)
-        message = "ok" if last.ok else (f"{self.name}: the gauss6 run in fictitious time "
-                                        f"failed: {last.message}")
+        steps = int(carry[0]) + N  # the grid's steps and one step of size σ per output
+        code = Status.OK if status == 0 else (Status.MAX_STEPS if status == 1
+                                              else Status.NEWTON)
+        message = "ok"
+        if status == 1:
+            message = (f"{self.name}: more than {DEFAULT_MAX_STEPS} gauss6 steps in "
+                       f"fictitious time (the step budget)")
+        elif status == 2:
+            message = (f"{self.name}: the fictitious time of an output did not converge")
         return Solution(t=t_eval.copy(), y=Y, method=self.name, rtol=float(rtol),
-                        atol=float(atol), h=None, nfev=sum(r.nfev for r in runs),
-                        nsteps=sum(r.nsteps for r in runs), nreject=0, code=last.code,
-                        message=message, wall_time_s=wall - compile_s,
-                        compile_time_s=compile_s)
+                        atol=float(atol), h=None, nfev=3 * steps, nsteps=steps, nreject=0,
+                        code=code, message=message,
+                        wall_time_s=time.perf_counter() - t0, compile_time_s=compile_s)
 
 
 class LeviCivitaDop853(Method):
