@@ -358,7 +358,7 @@ def kinds() -> list[dict[str, Any]]:
     """
     from .kinds import KINDS
     from .scene.catalogue import _SHARED_KEYS, _field_rows
-    from .scene.schema import _UNIT_BRACKET
+    from .scene.schema import split_unit
 
     out = []
     for cls in KINDS.values():
@@ -370,12 +370,10 @@ def kinds() -> list[dict[str, Any]]:
             if not (kind or default):  # a table header: [params], [[bodies]]
                 table = key.strip("[]") if indent == 4 else table
                 continue
-            unit = _UNIT_BRACKET.search(meaning)  # the unit the value converter reads
+            description, unit = split_unit(meaning)  # the unit the value converter reads
             keys.append({"key": f"{table}.{key}" if indent > 4 and table else key,
-                         "type": kind, "default": default,
-                         "description": " ".join((meaning[:unit.start()] + meaning[unit.end():]
-                                                  ).split()) if unit else meaning,
-                         "units": unit.group(1).strip() if unit else ""})
+                         "type": kind, "default": default, "description": description,
+                         "units": unit})
         out.append({"name": cls.kind, "summary": cls.summary,
                     "presets": list(cls.presets), "keys": keys})
     return out

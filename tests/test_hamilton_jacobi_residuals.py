@@ -21,6 +21,7 @@ import textwrap
 import numpy as np
 import pytest
 from scipy import integrate, optimize
+from test_oscillator import TEXT as OSCILLATOR_TEXT
 
 from reportgen.core import hamilton_jacobi as hj
 from reportgen.core.models import oscillator as osc
@@ -144,19 +145,7 @@ def test_swap_bracket_symbolic_and_by_differences():
 
 
 # --------------------------------------------------------------- the oscillator scene
-OSCILLATOR = """
-kind = "oscillator"
-[params]
-m = 2.0
-omega = 1.5
-[initial]
-q = 1.0
-p = 0.5
-[run]
-t_end = 25.0
-samples = 1001
-study = false
-"""
+OSCILLATOR = OSCILLATOR_TEXT  # m = 2, ω = 1.5, q0 = 1, p0 = 0.5 over t = 25
 
 
 @pytest.fixture(scope="module")

@@ -136,14 +136,24 @@ def decode(value):
 QUANTITIES_ATTR = "__quantities__"
 
 
+#: the attr marking a dimension scale of ``/analysis`` (an index, not a result)
+DIMENSION_ATTR = "reportgen_dimension"
+
+
+def is_dimension(item) -> bool:
+    """Whether ``item`` is one of the index datasets ``archive.store._analysis_dimensions``
+    adds to ``/analysis`` (every reader of results skips them)."""
+    return isinstance(item, h5py.Dataset) and bool(item.attrs.get(DIMENSION_ATTR, False))
+
+
 def read_mapping(group: h5py.Group) -> dict[str, Any]:
     out: dict[str, Any] = {k: decode(v) for k, v in group.attrs.items()
                            if k != QUANTITIES_ATTR}
     for key, item in group.items():
         if isinstance(item, h5py.Group):
             out[key] = read_mapping(item)
-        elif item.attrs.get("reportgen_dimension", False):
-            continue  # an index of /analysis (archive.store._analysis_dimensions)
+        elif is_dimension(item):
+            continue
         elif item.dtype.kind == "O":
             out[key] = decode(item[()])
         else:

@@ -59,6 +59,7 @@ from ..support.layout import printable
 from .check import STATUSES as _CHECKED_STATUSES
 from .check import check_archive, is_int, is_number
 from .h5io import (  # noqa: F401 - FORMAT* are part of this module's interface
+    DIMENSION_ATTR,
     FORMAT,
     FORMAT_VERSION,
     OLDEST_READABLE,
@@ -67,6 +68,7 @@ from .h5io import (  # noqa: F401 - FORMAT* are part of this module's interface
     attr_value,
     dataset,
     decode,
+    is_dimension,
     provenance,
     read_mapping,
     read_table,
@@ -241,10 +243,6 @@ def _row_scale(g: h5py.Group, tab: h5py.Dataset, name: str, long_name: str) -> N
     tab.dims[0].attach_scale(scale)
 
 
-#: the attr marking a dimension scale of ``/analysis`` (an index, not a result)
-DIMENSION_ATTR = "reportgen_dimension"
-
-
 def _analysis_dimensions(g: h5py.Group, schema: ResultsSchema, main: h5py.Group | None) -> None:
     """Every array below ``/analysis`` on named dimensions: the declared ``dims`` of its
     quantity (``t`` carries the main run's times), ``<result>_<axis>`` for an array the
@@ -285,11 +283,6 @@ def _analysis_dimensions(g: h5py.Group, schema: ResultsSchema, main: h5py.Group 
                 scale.make_scale(name)
                 scales[(dim, n)] = scale
             ds.dims[axis].attach_scale(scale)
-
-
-def is_dimension(item) -> bool:
-    """Whether ``item`` is one of the index datasets :func:`_analysis_dimensions` adds."""
-    return isinstance(item, h5py.Dataset) and bool(item.attrs.get(DIMENSION_ATTR, False))
 
 
 def described(ds: h5py.Dataset, long_name: str, units: str = "", symbol: str = ""):

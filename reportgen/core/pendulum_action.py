@@ -30,6 +30,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from . import pendulum_theory as theory
+from .models.pendulum import linear_boundary_solution
 
 #: finite-difference steps: this fraction of the ends' size (θ) and of the distance from T
 #: to the nearest singular time k π/ω (T).  With Richardson's O(h⁴) the truncation is
@@ -105,19 +106,17 @@ def linear_path(t, theta0, theta1, T, omega):
         ω [−θ0 cos ω(T − t) + θ1 cos ωt] / sin ωT [rad/s].
     """
     t = np.asarray(t, dtype=np.float64)
-    s = math.sin(omega * T)
-    theta = (theta0 * np.sin(omega * (T - t)) + theta1 * np.sin(omega * t)) / s
-    theta_dot = omega * (-theta0 * np.cos(omega * (T - t)) + theta1 * np.cos(omega * t)) / s
+    theta = linear_boundary_solution(t, theta0, theta1, T, omega)
+    theta_dot = omega * (-theta0 * np.cos(omega * (T - t)) + theta1 * np.cos(omega * t)) \
+        / math.sin(omega * T)
     return theta, theta_dot
 
 
 def simpson(y, t) -> float:
-    """Composite Simpson sum of ``y`` on the uniform grid ``t`` (an odd number of points)."""
-    y = np.asarray(y, dtype=np.float64)
-    if y.size % 2 == 0 or y.size < 3:
-        raise ValueError(f"simpson: got {y.size} points, expected an odd number ≥ 3")
-    h = (t[-1] - t[0]) / (y.size - 1)
-    return float(h / 3.0 * (y[0] + y[-1] + 4.0 * y[1:-1:2].sum() + 2.0 * y[2:-1:2].sum()))
+    """Composite Simpson sum of ``y`` on the grid ``t`` (scipy's)."""
+    from scipy.integrate import simpson as scipy_simpson
+
+    return float(scipy_simpson(np.asarray(y, dtype=np.float64), x=t))
 
 
 def phase_space_action(t, q, q_dot, p, inertia, omega) -> float:

@@ -546,8 +546,8 @@ def _step_text(h, unit: str) -> str:
         return ""
     if not math.isfinite(h) or h <= 0:
         return ""
-    return f"step h = {fmt(h)}" + (f" {unit_text(unit)}" if unit_text(unit) not in
-                                    ("", "dimensionless") else "")
+    shown = unit_text(unit)
+    return f"step h = {fmt(h)}" + (f" {shown}" if shown not in ("", "dimensionless") else "")
 
 
 def method_labels(data: ArchiveData) -> dict[str, str]:

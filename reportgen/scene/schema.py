@@ -155,6 +155,16 @@ _CONDITION = re.compile(r",\s*[^,]*[=<>≤≥][^,]*$")
 _TEXT_SYMBOL = re.compile(r"([A-Za-zα-ωΑ-Ωϑϕϵ])([\u0307\u0308]?)([0-9₀-₉]*)")
 
 
+def split_unit(text: str) -> tuple[str, str]:
+    """(the text without its unit bracket, the unit) of a config field's description:
+    "precession rate φ̇0 [rad/s] (or give `steady`)" -> ("precession rate φ̇0 (or give
+    `steady`)", "rad/s"); ("…", "") when it declares none."""
+    found = _UNIT_BRACKET.search(text)
+    if found is None:
+        return text, ""
+    return " ".join((text[:found.start()] + text[found.end():]).split()), found.group(1).strip()
+
+
 def quantity_of_description(text: str) -> tuple[str, str, str]:
     """(the quantity in words, its unit, its TeX symbol or "") of a config field's
     description: "precession rate φ̇0 [rad/s] (or give `steady`)" -> ("precession rate
