@@ -2,9 +2,14 @@
 wall time of Cartesian DOP853, Levi-Civita + DOP853 and Levi-Civita + Gauss–Legendre 6
 (``levi_civita``) at the scene's tolerances (atol = rtol/100), 10 outputs per orbit.
 
-``python benchmarks/kepler_auto.py [e,e,...] [orbits,...] [rtol,...]``; the numbers behind
-``KEPLER_MANY_ORBITS`` in reportgen/core/integrators/policy.py.  Not a test: wall times
+``python benchmarks/kepler_auto.py [e,e,...] [orbits,...] [rtol,...]``; earlier numbers behind
+the Kepler choice in reportgen/core/integrators/policy.py.  Not a test: wall times
 depend on the machine (best of 3 after a warm-up, compile excluded).
+
+``python benchmarks/kepler_auto.py policy``: the grid behind ``auto``'s choice for a bound
+Kepler orbit (e = 0.1 … 0.95, 1 … 1000 orbits, rtol 1e-8 … 1e-13, 100 outputs per orbit):
+Cartesian DOP853 and ``levi_civita`` at the asked rtol, and whether each meets it on the
+energy.
 
 Without arguments: issue 34's case instead, Kepler e = 0.9 over 1000 orbits at 10,001
 outputs, ``levi_civita`` at 16, 24 and 48 steps per orbit and at rtol 1e-13 (what auto
@@ -109,9 +114,39 @@ def against_heyoka(e=0.9, orbits=1000, outputs=10_001, repeats=5):
     return rows
 
 
+def policy_grid(es=(0.1, 0.3, 0.5, 0.7, 0.9, 0.95), orbits=(1, 10, 100, 1000),
+                rtols=(1e-8, 1e-10, 1e-12, 1e-13), outputs_per_orbit=100):
+    """The measurement behind ``auto``'s Kepler choice (``KEPLER_ENERGY_MEASURED`` in
+    policy.py): Cartesian DOP853 and ``levi_civita`` at the asked rtol, max |ΔE/E| over the
+    outputs and whether it meets the rtol; returns the rows."""
+    rows = []
+    for e in es:
+        for n in orbits:
+            for rtol in rtols:
+                line = f"e = {e:<4} {n:5d} orbits rtol {rtol:.0e}:"
+                for method in ("dop853", "levi_civita"):
+                    wall, worst, _end = run(e, n, rtol, method, outputs_per_orbit, repeats=5)
+                    rows.append({"e": e, "orbits": n, "rtol": rtol, "method": method,
+                                 "error": worst, "wall_time_s": wall})
+                    line += (f"  {method:<11} |ΔE/E| {worst:.1e} "
+                             f"({'meets' if worst <= rtol else f'{worst / rtol:.0f}x'}) "
+                             f"{wall * 1e3:8.3f} ms")
+                print(line, flush=True)
+    missed = [r for r in rows if r["method"] == "dop853" and r["error"] > r["rtol"]]
+    met = [r for r in rows if r["method"] == "levi_civita" and r["error"] <= r["rtol"]]
+    print(f"DOP853 missed the rtol on the energy in {len(missed)} of {len(rows) // 2} cases "
+          f"(by {min(r['error'] / r['rtol'] for r in missed):.0f}x to "
+          f"{max(r['error'] / r['rtol'] for r in missed):.0f}x); levi_civita met it in "
+          f"{len(met)}" if missed else "DOP853 met every rtol")
+    return rows
+
+
 def main(argv):
     if not argv:
         against_heyoka()
+        return
+    if argv[0] == "policy":
+        policy_grid()
         return
     es = [float(v) for v in (argv[0] if argv else "0,0.5,0.7,0.9").split(",")]
     orbits = [int(v) for v in (argv[1] if len(argv) > 1 else "10,100,1000").split(",")]

@@ -376,3 +376,22 @@ def test_generated_reports_pass_the_gate(name, tmp_path):
     assert outcome.status in ("ok", "unstable"), outcome.message
     findings = gate_of(tmp_path / "out" / name)
     assert findings == [], f"{name}: {len(findings)} findings\n" + "\n".join(findings)
+
+
+def test_a_sweep_with_an_odd_count_of_results_labels_its_lowest_visible_panels():
+    # five results on a 3 x 2 grid: the sixth panel is hidden, so the second column's x
+    # label goes on its second panel, with its tick labels (not on the hidden one)
+    from reportgen.rendering.plots.common import sweep_results
+
+    x = np.linspace(1.0, 2.0, 30)
+    analysis = {f"r{k}": x ** k for k in range(1, 6)}
+    fig = sweep_results({"initial.x": x}, analysis, np.ones(x.size, bool),
+                        keys={"initial.x": ("x0", "m")},
+                        ylabels={f"r{k}": f"result {k} [m]" for k in range(1, 6)})
+    drawn(fig)
+    assert figure_findings(fig) == []
+    shown = [ax for ax in fig.axes if ax.get_visible()]
+    labelled = [ax for ax in shown if ax.get_xlabel()]
+    assert len(shown) == 5 and len(labelled) == 2
+    for ax in labelled:
+        assert any(t.get_visible() and t.get_text() for t in ax.get_xticklabels())

@@ -36,8 +36,9 @@ ADAPTIVE_COMPILED = [n for n, m in METHODS.items() if m.compiled and m.adaptive]
 EXPLICIT_COMPILED = [n for n, m in METHODS.items() if m.compiled and not m.implicit]
 SYMMETRIC = [n for n, m in METHODS.items() if m.symmetric]
 GAUSS = [n for n, m in METHODS.items() if m.implicit and m.symplectic]
-GENERAL = [n for n, m in METHODS.items()
-           if not m.needs_separable and not m.needs_kepler]  # fit any model
+GENERAL = [n for n, m in METHODS.items()  # fit any model (heyoka and taylor: the models
+           if not m.needs_separable and not m.needs_kepler  # they translate)
+           and n not in ("heyoka", "taylor")]
 
 
 @numba.njit(cache=True)
@@ -275,7 +276,7 @@ def test_method_flags():
         if m.needs_separable:
             assert m.symplectic and not m.adaptive
         if m.peer:
-            assert m.label.startswith("scipy") and not m.compiled
+            assert m.label.startswith(("scipy", "heyoka")) and not m.compiled
         assert m.compiled == hasattr(m, "start") != hasattr(m, "solve")
     assert METHODS["radau"].label == "scipy Radau (stiff fallback)"
 

@@ -17,8 +17,7 @@ import sys
 import numpy as np
 import pytest
 
-from reportgen.core.integrators import choose_auto
-from reportgen.core.integrators.policy import KEPLER_MANY_ORBITS
+from reportgen.core.integrators import choose_auto, integrate
 from reportgen.core.models import kepler
 from reportgen.kinds.central_force import CentralForceScene
 from reportgen.scene.config import parse_config_text
@@ -58,15 +57,29 @@ def test_auto_reaches_the_asked_energy_error_on_a_long_eccentric_orbit():
     assert dop853 > 10 * 2e-13
 
 
-@pytest.mark.parametrize("e, n_periods, chosen", [
-    (0.5, KEPLER_MANY_ORBITS, "levi_civita"),
-    (0.0, 1000.0, "levi_civita"),
-    (0.5, KEPLER_MANY_ORBITS - 1, "dop853"),
-    (0.7, 10.0, "dop853"),
-    (0.5, None, "dop853"),
-])
-def test_auto_on_kepler_by_the_length_of_the_run(e, n_periods, chosen):
-    assert choose_auto(MODEL, 1e-13, n_periods=n_periods, y0=pericentre_state(e))[0] == chosen
+@pytest.mark.parametrize("e, n_periods", [
+    (0.5, 1000.0), (0.0, 1000.0), (0.5, 99.0), (0.7, 10.0), (0.3, 1.0), (0.5, None)])
+def test_auto_sends_every_bound_kepler_orbit_to_levi_civita(e, n_periods):
+    method, reason = choose_auto(MODEL, 1e-13, n_periods=n_periods, y0=pericentre_state(e))
+    assert method == "levi_civita"
+    assert "round-off" in reason and "misses" in reason
+
+
+@pytest.mark.parametrize("e, orbits, rtol", [(0.3, 3, 1e-8), (0.7, 10, 1e-10),
+                                             (0.95, 2, 1e-12)])
+def test_the_choice_is_the_method_that_meets_the_rtol_on_the_energy(e, orbits, rtol):
+    # the measurement behind the rule (policy.KEPLER_ENERGY_MEASURED), on short runs: at
+    # the asked rtol DOP853's |ΔE/E| is past it, levi_civita's within it
+    y0 = pericentre_state(e)
+    t = np.linspace(0.0, orbits * 2 * math.pi, 100 * orbits + 1)
+    e0 = kepler.energy(*y0, 1.0, 1.0)
+
+    def energy_error(method):
+        y = integrate(MODEL, y0, t, method=method, rtol=rtol, atol=rtol * 1e-2).y
+        return float(np.max(np.abs(kepler.energy(*y.T, 1.0, 1.0) / e0 - 1.0)))
+
+    assert energy_error("dop853") > rtol
+    assert energy_error("levi_civita") <= rtol
 
 
 def test_auto_threshold_eccentricity_tolerates_round_off():

@@ -10,7 +10,7 @@ animations) could not take at face value:
   data, no virtual dataset), no group that contains itself, at most :data:`MAX_DEPTH`
   levels and :data:`MAX_OBJECTS` objects;
 * **sizes, before reading**: each dataset at most :data:`MAX_DATASET_ELEMENTS` elements
-  (:data:`MAX_STRINGS` for text), all together at most :data:`MAX_TOTAL_ELEMENTS`;
+  (:data:`MAX_STRINGS` for variable-length text), all together at most :data:`MAX_TOTAL_ELEMENTS`;
   chunks at most :data:`MAX_CHUNK_BYTES`; a large dataset that stores nothing (declared
   only) is refused; attributes at most :data:`MAX_ATTR_ELEMENTS` elements; the config
   texts at most :data:`MAX_TEXT_BYTES`;
@@ -75,7 +75,7 @@ _ROOT_ATTRS = {
 #: run attributes with a fixed type (when present)
 _RUN_TEXT = ("method", "method_reason", "status", "message", "reference_label")
 _RUN_NUMBERS = ("rtol", "atol", "h", "nfev", "nsteps", "nreject", "wall_time_s",
-                "compile_time_s")
+                "compile_time_s", "warm_up_time_s")
 _RUN_NUMBER_PREFIXES = ("drift_", "scale_")
 #: the checks table: field -> type
 _CHECK_FIELDS = {"quantity": "text", "value": "number", "reference": "number",
@@ -171,7 +171,10 @@ class _Walk:
             raise _Problem(f"{name}: data of type {_short(ds.dtype)}, not numbers, text "
                            "or a table of them")
         size = _count(ds.shape)
-        limit = MAX_STRINGS if kind == "text" else MAX_DATASET_ELEMENTS
+        # variable-length text becomes a Python string per element; fixed-width text (a
+        # sweep's status of 10⁷ members) is read as bytes, like numbers
+        limit = MAX_STRINGS if kind == "text" and h5py.check_string_dtype(
+            ds.dtype).length is None else MAX_DATASET_ELEMENTS
         if size > limit:
             raise _Problem(f"{name}: {_shape(ds.shape)} = {size} elements, more than the "
                            f"{limit} an archive may hold in one dataset")

@@ -23,7 +23,8 @@ Layout (``format_version`` 2, see SPEC.md "Archive")::
     /study/error_vs_runtime   table (one row per method x tolerance), attrs reference_kind,
                               on the dimension scale /study/row
     /sweep                    a family of runs ([sweep], see reportgen.scene.sweep), on the
-                              dimension scale /sweep/member: status, message (M,) strings,
+                              dimension scale /sweep/member: status, message (M,) strings
+                              (fixed-width UTF-8, attr _Encoding; older archives: variable),
                               values/<config path>, analysis/<result> (M,) float64,
                               labels/<result> (M,) strings; points/<set>/ (only for a
                               kind giving per-member point sets): its own dimension scale
@@ -315,30 +316,33 @@ def sweep_units(sweep, path: str) -> str:
 def _write_sweep(g: h5py.Group, sweep, schema: ResultsSchema) -> None:
     """A sweep's family on the dimension ``member`` (netCDF-style scale), so that
     ``xarray.open_dataset(path, group="sweep", engine="h5netcdf")`` (and the groups
-    ``sweep/values``, ``sweep/analysis``) show every array on ``member``."""
-    member = described(dataset(g, "member", np.arange(sweep.size, dtype=np.int64)),
-                       "member of the sweep", "1")
+    ``sweep/values``, ``sweep/analysis``) show every array on ``member``.
+
+    Written a slice of :data:`SWEEP_SLICE` members at a time, in chunks of
+    :data:`SWEEP_CHUNK`; text (status, message, labels) as fixed-width UTF-8 strings, as
+    wide as the longest value (a family of 10⁷ members repeats a few values: gzip keeps
+    them small, and reading them back makes no Python string per member)."""
+    size = sweep.size
+    member = _member_array(g, "member", size, np.dtype(np.int64),
+                           lambda lo, hi: np.arange(lo, hi, dtype=np.int64))
+    described(member, "member of the sweep", "1")
     member.make_scale("member")
     for name, values, what in (("status", sweep.status, "the member's run status"),
                                ("message", sweep.message, "why the member is not ok")):
-        ds = g.create_dataset(name, data=np.array([str(v) for v in values], dtype=object),
-                              dtype=STR)
-        described(ds, what)
-        ds.dims[0].attach_scale(member)
+        described(_member_text(g, name, values), what).dims[0].attach_scale(member)
     labels = g.create_group("labels")
     for name, values in sweep.labels.items():
-        ds = labels.create_dataset(name, data=np.array([str(v) for v in values],
-                                                       dtype=object), dtype=STR)
+        ds = _member_text(labels, name, values)
         described(ds, _quantity(schema.result, name).description)
         ds.dims[0].attach_scale(member)
     sub = g.create_group("values")
     for name, values in sweep.values.items():
-        ds = described(dataset(sub, name, np.asarray(values, dtype=np.float64)),
-                       f"swept value of {name}", sweep_units(sweep, name))
+        ds = described(_member_numbers(sub, name, values), f"swept value of {name}",
+                       sweep_units(sweep, name))
         ds.dims[0].attach_scale(member)
     sub = g.create_group("analysis")
     for name, values in sweep.analysis.items():
-        ds = dataset(sub, name, np.asarray(values, dtype=np.float64))
+        ds = _member_numbers(sub, name, values)
         ds.attrs.update(_quantity(schema.result, name).cf_attrs)
         ds.dims[0].attach_scale(member)
     for key, value in sweep.attrs.items():
@@ -347,6 +351,63 @@ def _write_sweep(g: h5py.Group, sweep, schema: ResultsSchema) -> None:
         points = g.create_group("points")
         for name, pset in sweep.points.items():
             _write_points(points.create_group(name), pset)
+
+
+#: members of a sweep written or read at once (bounds the conversion buffers)
+SWEEP_SLICE = 1 << 20
+#: members per chunk of a sweep's arrays
+SWEEP_CHUNK = 1 << 16
+
+
+def _member_array(g: h5py.Group, name: str, size: int, dtype, part) -> h5py.Dataset:
+    """A (size,) dataset on ``member`` filled by ``part(lo, hi)`` a slice at a time, with
+    the archive's filters (fletcher32, shuffle, gzip)."""
+    if size == 0:
+        return g.create_dataset(name, shape=(0,), dtype=dtype)
+    ds = g.create_dataset(name, shape=(size,), dtype=dtype, chunks=(min(size, SWEEP_CHUNK),),
+                          fletcher32=True, shuffle=True, compression="gzip",
+                          compression_opts=4)
+    for lo in range(0, size, SWEEP_SLICE):
+        hi = min(lo + SWEEP_SLICE, size)
+        ds[lo:hi] = part(lo, hi)
+    return ds
+
+
+def _member_numbers(g: h5py.Group, name: str, values) -> h5py.Dataset:
+    values = np.asarray(values, dtype=np.float64)
+    return _member_array(g, name, values.size, values.dtype, lambda lo, hi: values[lo:hi])
+
+
+def _member_text(g: h5py.Group, name: str, values) -> h5py.Dataset:
+    """Text on ``member`` as fixed-width UTF-8 (``_Encoding`` tells xarray to decode it)."""
+    from ..scene.sweep import text_codes
+
+    codes, names = text_codes(values)
+    encoded = [n.encode("utf-8") for n in names]
+    width = max([1, *(len(e) for e in encoded)])
+    dtype = h5py.string_dtype("utf-8", width)  # numpy bytes marked UTF-8 for HDF5
+    table = np.array(encoded or [b""], dtype=dtype)
+    ds = _member_array(g, name, codes.size, dtype, lambda lo, hi: table[codes[lo:hi]])
+    ds.attrs["_Encoding"] = "utf-8"
+    return ds
+
+
+def _read_member_text(ds: h5py.Dataset) -> np.ndarray:
+    """A sweep's text array as an object array of shared strings: fixed-width text read
+    a slice at a time as codes; variable-length text (older archives) as it is."""
+    from ..scene.sweep import text_array, text_codes
+
+    if h5py.check_string_dtype(ds.dtype).length is None:
+        return np.array(decode(ds[()]), dtype=object).reshape(ds.shape)
+    size = ds.shape[0]
+    codes = np.zeros(size, dtype=np.int32)
+    index: dict[str, int] = {}
+    for lo in range(0, size, SWEEP_SLICE):
+        hi = min(lo + SWEEP_SLICE, size)
+        part, names = text_codes(ds[lo:hi])
+        mapping = np.array([index.setdefault(n, len(index)) for n in names], dtype=np.int32)
+        codes[lo:hi] = mapping[part.astype(np.intp)]
+    return text_array(codes, list(index))
 
 
 def _write_points(g: h5py.Group, pset) -> None:
@@ -508,10 +569,9 @@ def _read_sweep(g: h5py.Group):
     return SweepData(
         values={k: g["values"][k][()] for k in names},
         analysis={k: ds[()] for k, ds in g["analysis"].items()},
-        labels={k: np.array(decode(ds[()]), dtype=object)
-                for k, ds in g.get("labels", {}).items()},
-        status=np.array(decode(g["status"][()]), dtype=object),
-        message=np.array(decode(g["message"][()]), dtype=object),
+        labels={k: _read_member_text(ds) for k, ds in g.get("labels", {}).items()},
+        status=_read_member_text(g["status"]),
+        message=_read_member_text(g["message"]),
         attrs=attrs,
         points={k: _read_points(p) for k, p in g.get("points", {}).items()})
 

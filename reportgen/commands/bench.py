@@ -20,9 +20,20 @@ from pathlib import Path
 import numpy as np
 
 from ..scene.config import ConfigError
+from ..support.peers import against_peer, compared_range, is_peer
 from ..support.timing import best_time
+from . import default_paths
 
 BASELINE, BASELINE_RTOL = "scipy_dop853", 1e-10
+
+
+def bench_tolerances() -> tuple[float, ...]:
+    """Our adaptive methods' ladder in ``reportgen bench``: the study's fine ladder, then on
+    in quarter decades to 1e-14, where heyoka's tight runs are matched."""
+    from ..core.study import FINE_TOLERANCES
+
+    return tuple(sorted({*FINE_TOLERANCES, *(10.0 ** (-k / 4) for k in range(49, 57))},
+                        reverse=True))
 
 
 def _decode(v):
@@ -37,7 +48,7 @@ def study_rows(records: np.ndarray) -> list[dict]:
 
 def scene_bench(scene, print=builtins.print) -> dict | None:
     """Run one scene with its study on and print the matched-error speed ratio."""
-    from ..core.study import FINE_TOLERANCES, matched_error_speedup
+    from ..core.study import matched_error_speedup
 
     if scene.config.run is None:
         print(f"{scene.source.name}: integrates nothing; skipped")
@@ -50,7 +61,8 @@ def scene_bench(scene, print=builtins.print) -> dict | None:
         update={"study": True, "study_budget": math.inf}), "report": scene.config.report.model_copy(
         update={"sections": None})})
     scene = type(scene)(config, scene.source)
-    scene.study_tolerances = FINE_TOLERANCES
+    scene.study_tolerances = bench_tolerances()
+    scene.study_extra_methods = ("taylor",)
     start = time.perf_counter()
     results = scene.simulate()
     elapsed = time.perf_counter() - start
@@ -78,13 +90,104 @@ def scene_bench(scene, print=builtins.print) -> dict | None:
     print(line + f" | compile {compile_s:.2f} s | study {elapsed:.1f} s "
                  f"({results.study_attrs.get('reference_kind', '')})")
     out = {"scene": scene.source.name, "baseline": base, "matches": matched["matches"],
-           "compile_time_s": compile_s}
+           "compile_time_s": compile_s, "kind": scene.kind, "rows": rows}
+    if any(r["method"] == "heyoka" for r in rows):
+        out["range"] = compared_range(results.study_attrs.get("reference_agreement", math.nan))
+        out["heyoka"] = against_peer(rows, error_range=out["range"])
+        for m in out["heyoka"]:
+            ours = m["ours"]
+            text = (f"  vs heyoka tol {m['tolerance']:.0e}: {m['error_max']:.1e} in "
+                    f"{m['wall_time_s'] * 1e3:8.3f} ms (JIT {m['compile_time_s']:.2f} s)")
+            if ours is None:
+                print(text + " | none of ours as accurate: BEHIND")
+            else:
+                print(text + f" | ours {_setting(ours)}: {ours['error_max']:.1e} in "
+                             f"{ours['wall_time_s'] * 1e3:8.3f} ms → heyoka/ours "
+                             f"{m['ratio']:.2f} ({'ahead' if m['ratio'] >= 1 else 'BEHIND'})")
     if scene.kind == "heavy_top" and scene.config.band is None:
         out["textbook"] = heavy_top_textbook(scene, print=print)
     return out
 
 
 TARGET_SPEEDUP = 300.0
+
+
+def _setting(row) -> str:
+    """"dop853 rtol 1e-09" or "gauss6 h 0.0123": a study row's method and knob."""
+    knob = (f"rtol {row['tolerance']:.0e}" if math.isfinite(row["tolerance"])
+            else f"h {row['h']:.3g}")
+    return f"{row['method']} {knob}"
+
+
+def error_over_tolerance(rows, method: str) -> float:
+    """The median over a method's measured adaptive rows of (max error over the run) / its
+    tolerance: how far past its tolerance a method's global error lands on this scene."""
+    ratios = [r["error_max"] / r["tolerance"] for r in rows
+              if r["method"] == method and r["status"] in ("ok", "inaccurate")
+              and math.isfinite(r["tolerance"]) and r["error_max"] > 0]
+    return float(np.median(ratios)) if ratios else math.nan
+
+
+def behind_reason(rows, worst: dict) -> str:
+    """Why we are behind heyoka at its run ``worst`` (one of
+    :func:`~reportgen.support.peers.against_peer`'s), from the scene's study ``rows``: how
+    far past its tolerance each method's global error lands here, and our smallest error."""
+    ours = [r for r in rows if r["status"] in ("ok", "inaccurate")
+            and not is_peer(r["method"])]
+    best = min(ours, key=lambda r: r["error_max"], default=None)
+    dop = error_over_tolerance(rows, "dop853")
+    hy = error_over_tolerance(rows, "heyoka")
+    head = (f"global error / tolerance here: heyoka {hy:.2g}, DOP853 {dop:.2g} (order 8 "
+            "against Taylor order 8-19 raised with the digits asked)")
+    if worst["ours"] is None:
+        floor = (f"; none of ours reaches {worst['error_max']:.1e} (smallest: "
+                 f"{best['error_max']:.1e}, {_setting(best)})" if best else "")
+        return head + floor
+    return head + f"; ours needs {_setting(worst['ours'])} there"
+
+
+def heyoka_table(results: list[dict], print=builtins.print) -> list[dict]:
+    """One row per integrating scene: across heyoka's runs whose max error lies in
+    1e-13..1e-6 (:data:`~reportgen.support.peers.PEER_ERROR_RANGE`; its low end raised to
+    what the scene's reference runs resolve, :func:`~reportgen.support.peers.compared_range`),
+    the one where we do
+    worst, our fastest run at least as accurate, both times, and heyoka's time over ours
+    (≥ 1: we are at least as fast); with how many of heyoka's errors we are ahead at.
+    A row below 1 carries its reason."""
+    rows = []
+    compared = [r for r in results if r.get("heyoka") is not None]
+    if not compared:
+        return rows
+    print("\nAgainst heyoka at matched error (max error over the run, same reference, same "
+          "outputs; best of repeats, compile/JIT excluded). ratio = heyoka's time / ours "
+          "(≥ 1: ours at least as fast), at the error where ours does worst")
+    print(f"  {'scene':<40} {'heyoka error':>12} {'heyoka ms':>10} {'ours ms':>10} "
+          f"{'ratio':>6}  ahead at")
+    for r in compared:
+        matched = r["heyoka"]
+        if not matched:
+            lo, hi = r["range"]
+            print(f"  {r['scene']:<40} no heyoka run with an error in {lo:.1e}..{hi:.0e}")
+            rows.append({"scene": r["scene"], "ratio": math.nan, "reason": "no run in range"})
+            continue
+        worst = min(matched, key=lambda m: m["ratio"])
+        ahead = sum(m["ratio"] >= 1.0 for m in matched)
+        ours = worst["ours"]
+        ours_ms = f"{ours['wall_time_s'] * 1e3:10.3f}" if ours else f"{'—':>10}"
+        line = (f"  {r['scene']:<40} {worst['error_max']:12.1e} "
+                f"{worst['wall_time_s'] * 1e3:10.3f} {ours_ms} {worst['ratio']:6.2f}  "
+                f"{ahead} of {len(matched)}")
+        reason = ""
+        if worst["ratio"] < 1.0:
+            reason = behind_reason(r.get("rows", []), worst)
+            line += f"\n      behind: {reason}"
+        print(line)
+        rows.append({"scene": r["scene"], "ratio": worst["ratio"], "ahead": ahead,
+                     "compared": len(matched), "reason": reason, "worst": worst})
+    behind = [x for x in rows if x["ratio"] < 1.0]
+    print(f"  {len(rows) - len(behind)} of {len(rows)} scenes at or ahead of heyoka at every "
+          "matched error")
+    return rows
 
 
 def summarize(results: list[dict], print=builtins.print) -> None:
@@ -515,13 +618,6 @@ def _plot_long_run(periods, rel_error, method, out_dir: Path) -> Path:
     return out_dir / "longtime_energy.svg"
 
 
-def default_paths() -> list[str]:
-    for candidate in (Path.cwd() / "configs", Path(__file__).resolve().parents[2] / "configs"):
-        if candidate.is_dir():
-            return [str(candidate)]
-    return []
-
-
 def run_bench(paths: list[str], out_dir: str = "output/bench", long_run: bool = True,
               print=builtins.print) -> int:
     from ..pipeline.stages import UsageError, collect_configs, validate_all
@@ -537,10 +633,13 @@ def run_bench(paths: list[str], out_dir: str = "output/bench", long_run: bool = 
           "wall time = min of repeats after a warm-up, compile excluded")
     results = [r for r in (scene_bench(scene, print=print) for scene in scenes) if r]
     summarize(results, print=print)
+    heyoka_table(results, print=print)
     if long_run:
         long_time_energy(out_dir=Path(out_dir), print=print)
         kepler_against_rebound(print=print)
         kepler_against_heyoka(print=print)
         from .bench_nbody import pythagorean_against_rebound
         pythagorean_against_rebound(print=print)
+        from .bench_single import single_run_against_warm
+        single_run_against_warm(print=print)
     return 0

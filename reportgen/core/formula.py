@@ -428,7 +428,10 @@ def section_rows(crossings: np.ndarray, column: int, value: float, direction: st
 
 
 def compiled_model(system: FormulaSystem, name: str = "formula"):
-    """The :class:`~reportgen.core.model.OdeModel` of ``system`` (state: q then p)."""
+    """The :class:`~reportgen.core.model.OdeModel` of ``system`` (state: q then p).
+
+    ``extra["formula_system"]`` is ``system`` itself: the symbolic right-hand side, for what
+    needs the equations rather than compiled code (:mod:`reportgen.core.heyoka_systems`)."""
     from .integrators.kernels import wrap_for_callback
     from .model import OdeModel, Separable
 
@@ -439,4 +442,5 @@ def compiled_model(system: FormulaSystem, name: str = "formula"):
     separable = (Separable(n=system.n, drift=module.drift, kick=module.kick)
                  if system.separable else None)
     return OdeModel(name=name, columns=system.columns, rhs=module.rhs,
-                    params=system.param_array(), separable=separable, jac=module.jac)
+                    params=system.param_array(), separable=separable, jac=module.jac,
+                    extra={"formula_system": system})

@@ -56,6 +56,7 @@ import numpy as np
 import scipy
 
 from .integrators import METHODS, integrate
+from .integrators.heyoka_peer import heyoka_module, heyoka_version
 from .integrators.scipy_peer import PeerTimeLimit
 
 DEFAULT_TOLERANCES = tuple(10.0 ** -k for k in range(4, 13))
@@ -74,6 +75,19 @@ MIN_PEER_RUN_S = 0.2  # a peer's first run may always take this long
 PEER_RUN_CAP_S = 10 * TIME_CAP_S
 REPEAT_BELOW_S = 0.1  # slower runs are timed once (noise is small relative to their time)
 MIN_RTOL = {"scipy_radau": 1e-10, "scipy_lsoda": 1e-12}
+HEYOKA = "heyoka"
+#: methods a study runs only when asked (``extra_methods``): the Taylor integrator compiles
+#: a module per order for each model (cold: 8.6 s for the pendulum, 40 s for three bodies;
+#: ~10 ms from numba's cache), too dear for every report's study; ``reportgen bench`` asks
+OPT_IN = frozenset({"taylor"})
+
+
+def heyoka_tolerances(tolerances) -> list[float]:
+    """heyoka's ladder: the peers' tolerances, then on in decades to 1e-14 (its Taylor
+    order grows with the digits asked for, so its tight end is where it is strongest)."""
+    ladder = sorted(tolerances, reverse=True)
+    tight = min(ladder, default=1e-4)
+    return ladder + [10.0 ** -k for k in range(4, 15) if 10.0 ** -k < tight * (1 - 1e-9)]
 SCIPY_FLOOR = 100 * np.finfo(float).eps
 
 _RECORD_DTYPE = np.dtype([
@@ -132,7 +146,8 @@ def peer_key(method: str, model, y0, t_eval, grid, y_ref, budget_s: float = math
                          "grid": [list(g) for g in grid], "time_cap": TIME_CAP_S,
                          "budget": None if math.isinf(budget_s) else budget_s,
                          "repeat_below": REPEAT_BELOW_S, "format": PEER_ROWS_FORMAT,
-                         "scipy": scipy.__version__, "numpy": np.__version__},
+                         "scipy": scipy.__version__, "numpy": np.__version__,
+                         **({"heyoka": heyoka_version()} if method == HEYOKA else {})},
                         sort_keys=True).encode("utf-8"))
     for array in (np.asarray(model.params, dtype=np.float64), y0, t_eval, y_ref):
         h.update(np.ascontiguousarray(array, dtype=np.float64).tobytes())
@@ -274,9 +289,21 @@ def predicted_cost(costs: list[float]) -> float:
 
 
 def _at_round_off_floor(rows, name) -> bool:
-    """Two last runs of ``name`` below 1e-11 and not 2x apart: smaller steps only cost time."""
-    errs = [r["error_max"] for r in rows if r["method"] == name]
-    return len(errs) >= 2 and errs[-1] < 1e-11 and errs[-1] > 0.5 * errs[-2]
+    """The last run of ``name`` below 1e-11 and less than 2x below an earlier one: smaller
+    steps only cost time.  The earlier run is the one before it on a fixed-step ladder, and
+    on a tolerance ladder the one a decade looser or more (``reportgen bench`` steps in
+    quarter decades, where two neighbours are never 2x apart)."""
+    mine = [r for r in rows if r["method"] == name]
+    if len(mine) < 2 or not mine[-1]["error_max"] < 1e-11:
+        return False
+    last = mine[-1]
+    earlier = mine[-2]
+    if math.isfinite(last["tolerance"]):
+        looser = [r for r in mine[:-1] if r["tolerance"] >= 10.0 * last["tolerance"] * (1 - 1e-9)]
+        if not looser:
+            return False
+        earlier = looser[-1]
+    return last["error_max"] > 0.5 * earlier["error_max"]
 
 
 def default_steps(model, y0, t_eval) -> np.ndarray:
@@ -305,7 +332,7 @@ def work_precision(model, y0, t_eval, reference=None, methods=None, tolerances=N
                    steps=None, repeats=3, progress=None, our_tolerances=None,
                    cache: RowCache | None = None,
                    budget_s: float = DEFAULT_BUDGET_S,
-                   reference_kind: str = "exact") -> StudyResult:
+                   reference_kind: str = "exact", extra_methods=()) -> StudyResult:
     """Run the work-precision sweep.
 
     Parameters
@@ -318,7 +345,8 @@ def work_precision(model, y0, t_eval, reference=None, methods=None, tolerances=N
         None makes reference runs (see module docstring).
     methods : list of str or None
         Default: every method in ``METHODS`` that fits the model (``radau`` is the
-        same solver as the ``scipy_radau`` peer and is left out).
+        same solver as the ``scipy_radau`` peer and is left out, and the methods of
+        :data:`OPT_IN` are run only when named in ``extra_methods``).
     tolerances : sequence of float
         rtol values for adaptive methods (atol = 1e-2 rtol), loosest first.
     our_tolerances : sequence of float or None
@@ -344,10 +372,13 @@ def work_precision(model, y0, t_eval, reference=None, methods=None, tolerances=N
     t_eval = np.asarray(t_eval, dtype=np.float64)
     tolerances = sorted(DEFAULT_TOLERANCES if tolerances is None else tolerances, reverse=True)
     ours = tolerances if our_tolerances is None else sorted(our_tolerances, reverse=True)
-    if methods is None:  # a method for one force law only (levi_civita) is not "skipped"
+    if methods is None:  # a method for one force law only (levi_civita) is not "skipped";
+        # nor is heyoka where it is not installed (an optional extra)
         methods = [n for n, m in METHODS.items()
                    if n != "radau" and not (m.needs_separable and model.separable is None)
-                   and (not m.needs_kepler or (m.fits(model) and _bound_orbit(model, y0)))]
+                   and (not m.needs_kepler or (m.fits(model) and _bound_orbit(model, y0)))
+                   and (n != HEYOKA or heyoka_module() is not None)
+                   and (n not in OPT_IN or n in extra_methods)]
     skipped = [n for n in methods if not METHODS[n].fits(model)]
     methods = [n for n in methods if n not in skipped]
     if steps is None and any(not METHODS[n].adaptive for n in methods):
@@ -378,7 +409,9 @@ def work_precision(model, y0, t_eval, reference=None, methods=None, tolerances=N
     for k, name in enumerate(methods):
         m = METHODS[name]
         y_ref = refs.get(name, refs["default"])
-        if m.adaptive:
+        if name == HEYOKA:  # no floor: heyoka goes on past scipy's, as our methods do
+            grid = [("rtol", r) for r in heyoka_tolerances(tolerances)]
+        elif m.adaptive:
             grid = [("rtol", r) for r in (tolerances if m.peer else ours)
                     if r >= MIN_RTOL.get(name, 0.0) and (not m.peer or r >= SCIPY_FLOOR)]
         else:
@@ -515,3 +548,4 @@ def matched_error_speedup(rows, baseline="scipy_dop853", baseline_rtol=1e-10):
                            | {"speedup": b["wall_time_s"] / best["wall_time_s"]})
     matches.sort(key=lambda r: -r["speedup"])
     return {"baseline": b, "matches": matches}
+

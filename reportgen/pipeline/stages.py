@@ -7,6 +7,7 @@ process pool (``--jobs``); a scene that fails does not stop the others.
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import json
 import math
@@ -185,6 +186,7 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
                           config_text=scene.source.text, config_sha256=scene.source.sha256,
                           results=results, resolved_config=scene.resolved_config(),
                           physics_key=key, schema=scene.results_schema())
+            del results  # the report reads the archive; a 10⁷-member family is ~570 MiB
             if scene.sweep is not None:  # its finished blocks are in the archive now
                 from ..scene.sweep import discard_partial
 
@@ -645,7 +647,8 @@ def _run_on_dask(scenes, out_root, force, formats, scheduler, progress,
                    for s in todo]
         for scene in sweeps:  # here, its member blocks spread over the cluster
             outcome = run_scene(str(scene.source.path), out_root, force, formats,
-                                sweep_submit=_dask_blocks(client, scene))
+                                progress=progress.within(scene.source.name),
+                                sweep_submit=DaskBlocks(client, scene, time_limit))
             progress.scene_done(outcome)
             outcomes.append(outcome)
         deadline = None if time_limit is None else time.monotonic() + time_limit * len(todo)
@@ -673,21 +676,149 @@ def _run_on_dask(scenes, out_root, force, formats, scheduler, progress,
     return outcomes
 
 
-def sweep_block_portable(config_text: str, lo: int, hi: int, values: dict) -> object:
+def sweep_block_portable(config_text: str, lo: int, hi: int, values: dict) -> dict:
     """Members ``lo:hi`` of the sweep of the config ``config_text``: the task a Dask
-    worker runs for one block (:meth:`reportgen.scene.simulation.Simulation.sweep_block`)."""
+    worker runs for one block (:meth:`reportgen.scene.simulation.Simulation.sweep_block`),
+    sent back as flat arrays (:func:`reportgen.scene.sweep.block_arrays`: text as codes)."""
+    from ..scene.sweep import block_arrays
+
+    return block_arrays(_sweep_scene(config_text).sweep_block(lo, hi, values))
+
+
+@functools.lru_cache(maxsize=4)
+def _sweep_scene(config_text: str) -> Scene:
+    """The scene of a sweep's config, loaded once per worker process, not once a block."""
     from ..scene.config import parse_config_text
 
-    return load_scene(parse_config_text(config_text)).sweep_block(lo, hi, values)
+    return load_scene(parse_config_text(config_text))
 
 
-def _dask_blocks(client, scene: Scene):
-    """A sweep's ``submit``: each block of members a task on the cluster."""
-    def submit(lo: int, hi: int, values: dict):
-        return client.submit(sweep_block_portable, scene.source.text, lo, hi, values,
-                             pure=False, key=f"reportgen-{scene.source.name}-{lo}-{hi}-"
-                                             f"{scene.source.sha256[:12]}-{os.getpid()}")
-    return submit
+#: blocks of a sweep in flight on a Dask cluster per worker thread: one running, one
+#: waiting beside it so a thread never idles while the client saves a block.  The rest
+#: wait in this process as (lo, hi) only, so neither the client, the scheduler nor a
+#: worker ever holds more than this many blocks.
+SWEEP_BLOCKS_PER_THREAD = 2
+#: times one block is sent before its failure ends the sweep (Dask itself re-runs the
+#: tasks of a lost worker; this covers a task that still fails, e.g. KilledWorker
+#: after ``distributed.scheduler.allowed-failures`` losses)
+SWEEP_BLOCK_TRIES = 3
+#: seconds a sweep waits while the cluster has no worker before it gives up
+SWEEP_NO_WORKER_S = 300.0
+#: seconds between looks at the clock and at the cluster while no block finishes
+SWEEP_POLL_S = 2.0
+
+
+class DaskBlocks:
+    """A sweep's ``submit`` (:data:`reportgen.scene.sweep.Submit`) on a Dask cluster: a
+    bounded window of member blocks in flight (:data:`SWEEP_BLOCKS_PER_THREAD` per
+    worker thread), refilled as each finishes; each result handed back at once and its
+    future released, so the cluster forgets it.
+
+    A block whose task fails (its worker lost more often than the scheduler allows, or
+    an error) is sent again, up to :data:`SWEEP_BLOCK_TRIES` times; then the sweep stops
+    with a message naming the block and the error.  It also stops, never hangs, when
+    ``time_limit`` seconds pass or the cluster has had no worker for
+    :data:`SWEEP_NO_WORKER_S` seconds.  Whatever it stops, the finished blocks are on disk
+    and a rerun resumes them.  ``max_in_flight``: the most blocks it had out at once."""
+
+    def __init__(self, client, scene: Scene, time_limit: float | None = None):
+        self.client, self.scene, self.time_limit = client, scene, time_limit
+        self.max_in_flight = 0
+        self.resent = 0
+        self._window, self._window_at = 0, -math.inf
+
+    def window(self) -> int:
+        """Blocks in flight at most: per worker thread, looked up every few seconds (a
+        worker lost or joined changes it)."""
+        now = time.monotonic()
+        if now - self._window_at > SWEEP_POLL_S:
+            threads = sum(self.client.nthreads().values())
+            self._window = max(2, SWEEP_BLOCKS_PER_THREAD * threads)
+            self._window_at = now
+        return self._window
+
+    def _submit(self, lo: int, hi: int, values: dict, tries: int):
+        import numpy as np
+
+        scene = self.scene
+        key = (f"reportgen-{scene.source.name}-{lo}-{hi}-{scene.source.sha256[:12]}-"
+               f"{os.getpid()}" + (f"-try{tries}" if tries > 1 else ""))
+        return self.client.submit(sweep_block_portable, scene.source.text, lo, hi,
+                                  {p: np.array(v) for p, v in values.items()}, pure=False,
+                                  key=key)
+
+    def __call__(self, chunks):
+        from distributed import wait
+
+        chunks = iter(chunks)
+        deadline = None if not self.time_limit else time.monotonic() + self.time_limit
+        pending: dict = {}  # future -> (b, lo, hi, values, tries)
+        no_worker_since = None
+        try:
+            more = True
+            while True:
+                while more and len(pending) < self.window():
+                    item = next(chunks, None)
+                    if item is None:
+                        more = False
+                        break
+                    b, lo, hi, values = item
+                    pending[self._submit(lo, hi, values, 1)] = (b, lo, hi, values, 1)
+                    self.max_in_flight = max(self.max_in_flight, len(pending))
+                if not pending:
+                    return
+                try:
+                    done = wait(list(pending), timeout=SWEEP_POLL_S,
+                                return_when="FIRST_COMPLETED").done
+                except TimeoutError:
+                    done = set()
+                finished = []
+                for future in done:
+                    b, lo, hi, values, tries = pending.pop(future)
+                    if future.status == "finished":
+                        finished.append((b, future.result()))
+                    else:
+                        self._again(future, b, lo, hi, values, tries, pending)
+                    future.release()
+                for item in finished:
+                    yield item
+                if deadline is not None and time.monotonic() > deadline:
+                    raise TimeoutError(
+                        f"time limit of {self.time_limit:g} s exceeded on the Dask cluster with "
+                        f"{len(pending)} blocks still running: the sweep was stopped "
+                        "(--time-limit; 0 for none); its finished blocks are kept and a "
+                        "rerun resumes them")
+                if finished:
+                    no_worker_since = None
+                elif not self.client.nthreads():
+                    no_worker_since = no_worker_since or time.monotonic()
+                    if time.monotonic() - no_worker_since > SWEEP_NO_WORKER_S:
+                        raise RuntimeError(
+                            f"the Dask cluster has had no worker for {SWEEP_NO_WORKER_S:g} s: "
+                            "the sweep was stopped; its finished blocks are kept and a "
+                            "rerun resumes them")
+                else:
+                    no_worker_since = None
+        finally:
+            if pending:  # stopped early: the cluster drops what still runs
+                try:
+                    self.client.cancel(list(pending))
+                except Exception:  # noqa: BLE001 - a client already closed: nothing to drop
+                    pass
+
+    def _again(self, future, b, lo, hi, values, tries, pending) -> None:
+        """Send a failed block again, or stop the sweep naming it."""
+        try:
+            error = future.exception(timeout=SWEEP_POLL_S)
+            why = f"{type(error).__name__}: {error}"
+        except Exception as exc:  # noqa: BLE001 - cancelled: the scheduler dropped it
+            why = f"{type(exc).__name__}: {exc}" if str(exc) else type(exc).__name__
+        if tries >= SWEEP_BLOCK_TRIES:
+            raise RuntimeError(f"members {lo}:{hi} of the sweep failed on the Dask cluster "
+                               f"{tries} times, last: {why[:300]}; the finished blocks are "
+                               "kept and a rerun resumes them")
+        self.resent += 1
+        pending[self._submit(lo, hi, values, tries + 1)] = (b, lo, hi, values, tries + 1)
 
 
 def write_index(out_root: str, outcomes: list[Outcome] = ()) -> Path:

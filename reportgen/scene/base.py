@@ -118,6 +118,9 @@ class Scene:
     #: rtol ladder of the study's runs of our adaptive methods (None: the study's default);
     #: ``reportgen bench`` sets a finer one so that the run matching scipy is the cheapest
     study_tolerances: tuple[float, ...] | None = None
+    #: methods the study runs beyond its default list (``reportgen bench``: the Taylor
+    #: integrator, whose compile is too dear for every report's study)
+    study_extra_methods: tuple[str, ...] = ()
     #: which faces this class has: "simulation" (:class:`~.simulation.Simulation`),
     #: "report" (:class:`~.report.Report`) or both (a kind's joined class)
     faces: ClassVar[frozenset[str]] = frozenset()

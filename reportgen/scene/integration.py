@@ -31,7 +31,13 @@ _lyapunov = lazy_module("reportgen.core.lyapunov")
 
 
 def _solution_attrs(sol) -> dict[str, Any]:
-    """The archived attributes of an integrator Solution."""
+    """The archived attributes of an integrator Solution.
+
+    ``wall_time_s`` is the time of the run that produced the archived trajectory;
+    ``compile_time_s`` (compiling or loading the driver, 0 once loaded in this process)
+    and ``warm_up_time_s`` (a rehearsal of the run just before it, whole when short,
+    :func:`reportgen.core.integrators.compiled_run.warm_up_run`; 0 for a method that has
+    none) are outside it and kept beside it."""
     return {
         "method": sol.method,
         "rtol": sol.rtol,
@@ -42,6 +48,7 @@ def _solution_attrs(sol) -> dict[str, Any]:
         "nreject": int(sol.nreject),
         "wall_time_s": float(sol.wall_time_s),
         "compile_time_s": float(sol.compile_time_s),
+        "warm_up_time_s": float(sol.warm_up_time_s),
         "status": sol.status,
         "message": "" if sol.status == "ok" else sol.message,
     }
@@ -221,12 +228,14 @@ class IntegratingSimulation(Simulation):
                                        progress=progress, cache=default_cache(),
                                        budget_s=self.config.run.study_budget,
                                        reference_kind=reference_kind,
-                                       our_tolerances=self.study_tolerances)
+                                       our_tolerances=self.study_tolerances,
+                                       extra_methods=self.study_extra_methods)
         results.study = result.to_records()
         results.study_attrs = {"reference_kind": result.reference_kind,
                                "budget_s": float(self.config.run.study_budget),
                                "over_budget": ",".join(result.over_budget),
-                               "reference_size": result.reference_size}
+                               "reference_size": result.reference_size,
+                               "reference_agreement": result.reference_agreement}
 
     def judge_accuracy(self, results: Results) -> None:
         """The runs (:meth:`Simulation.judge_accuracy`), then every study row: "inaccurate"

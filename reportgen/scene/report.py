@@ -457,10 +457,14 @@ class Report(Scene):
             notes.append(f"The study integrates t ∈ [0, {fmt(t_study, 4)}]{unit} only (the "
                          f"report's run goes to {fmt(t_end, 6)}{unit}): "
                          f"{cls.study_horizon_reason}")
+        heyoka = _heyoka_note(study, data.study_attrs)
+        if heyoka:
+            notes.append(heyoka)
         if "cached" in study.dtype.names and np.any(study["cached"]):
             cached = study[study["cached"].astype(bool)]
             where = sorted({(str(r["measured_at"]), str(r["machine"])) for r in cached})
-            notes.append("The scipy rows were measured earlier and taken from the peer "
+            names = ", ".join(dict.fromkeys(str(v) for v in cached["label"]))
+            notes.append(f"The rows of {names} were measured earlier and taken from the peer "
                          "measurement cache (reportgen cache info): "
                          + "; ".join(f"{m} on {w}" for m, w in where)
                          + ". reportgen's own methods were timed in this run.")
@@ -496,10 +500,51 @@ class Report(Scene):
             figures=[cls.figure("work_precision", fig,
                                 "Work-precision diagram: max error over the run against wall "
                                 "time. Filled markers on solid (or dash-dot) lines: reportgen's "
-                                "compiled integrators; hollow markers on dashed lines: scipy "
-                                "solve_ivp.")],
+                                "compiled integrators; hollow markers on dashed lines: "
+                                + ("scipy solve_ivp and heyoka (Taylor series, LLVM)."
+                                   if np.any(study["method"] == "heyoka")
+                                   else "scipy solve_ivp."))],
             tables=[table], notes=notes)
 
+
+
+def _heyoka_note(study, attrs=None) -> str:
+    """What the heyoka rows of a study say against ours ("" when it has none): at each
+    error heyoka reached in :data:`~reportgen.support.peers.PEER_ERROR_RANGE`, our fastest run
+    at least as accurate, and heyoka's time over ours."""
+    attrs = attrs or {}
+    rows = [{name: (v.decode() if isinstance(v, bytes) else v)
+             for name, v in zip(study.dtype.names, r.tolist(), strict=True)} for r in study]
+    if not any(r["method"] == "heyoka" for r in rows):
+        return ""
+    from ..support.peers import against_peer, compared_range
+
+    lo, hi = compared_range(float(attrs.get("reference_agreement", math.nan)))
+    matched = against_peer(rows, error_range=(lo, hi))
+    jit = [r["compile_time_s"] for r in rows if r["method"] == "heyoka"
+           and math.isfinite(r["compile_time_s"])]
+    head = (f"heyoka (Taylor series compiled by LLVM; {fmt(sum(jit), 2)} s of JIT "
+            f"compilation in all, not in its times) against reportgen's methods at matched "
+            "error: ")
+    if not matched:
+        return head + (f"none of heyoka's runs has a max error between {fmt_err(lo)} and "
+                       f"{fmt_err(hi)}, the range compared.")
+    ahead = [m for m in matched if m["ratio"] >= 1.0]
+    parts = []
+    for m in matched:
+        if m["ours"] is None:
+            parts.append(f"{fmt_err(m['error_max'])}: none of ours as accurate")
+        else:
+            parts.append(f"{fmt_err(m['error_max'])}: {fmt(m['ratio'], 2)}×")
+    text = head + (f"at {len(matched)} of its errors between {fmt_err(lo)} and "
+                   f"{fmt_err(hi)}, our fastest run at least as accurate was faster at "
+                   f"{len(ahead)}. heyoka's time over ours, by heyoka's error: "
+                   + "; ".join(parts) + ".")
+    if len(ahead) < len(matched) and not any(r["method"] == "taylor" for r in rows):
+        text += (" reportgen's own Taylor-series integrator, which takes heyoka's steps, is "
+                 "not in this study (it compiles a module per order for each model, too "
+                 "dear for every report); reportgen bench measures it against heyoka.")
+    return text
 
 
 def no_period_reason(data: ArchiveData, period: float, *, noun: str, min_samples: int,

@@ -86,6 +86,10 @@ SOURCES: dict[str, Source] = {
                         "Szebehely & Peters",
                         "V. Szebehely, C. F. Peters, Complete solution of a general problem "
                         "of three bodies, Astron. J. 72, 876 (1967) (Burrau's problem)."),
+    "murray": Source(r"\bMurray (?:&|and) Dermott\b", "Murray & Dermott",
+                     "C. D. Murray, S. F. Dermott, Solar System Dynamics, Cambridge University "
+                     "Press (1999) (ch. 3, the restricted three-body problem; §9.4, chaos in "
+                     "the circular restricted problem)."),
     # "Hénon–Heiles" names the system; "Hénon & Heiles" cites the paper
     "henon": Source(r"\bH[ée]non & Heiles\b", "Hénon & Heiles",
                     "M. Hénon, C. Heiles, The applicability of the third integral of motion: "

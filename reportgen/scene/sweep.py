@@ -28,10 +28,15 @@ A kind may return per-member point sets (:meth:`reportgen.scene.simulation.Simul
 each member keeps at most ``max_points`` points of each set (default 2000, the first ones),
 and its result ``<set>_points`` counts all it had, so a report can say what was capped.
 
-Members run in blocks; each finished block is kept on disk next to the archive (in
-``.sweep-<key>/``), so a sweep killed half-way resumes at its first unfinished block.
-Memory stays bounded by the per-member scalars and the capped point sets, never by
-trajectories.
+Members run in blocks; each finished block is saved on disk next to the archive (in
+``.sweep-<key>/``) as it comes back and dropped from memory, so a sweep killed half-way
+(the client, or a worker of a Dask cluster) resumes at its first unfinished block.  With
+``submit`` (``reportgen run --scheduler``) the blocks run on a Dask cluster, a bounded
+window of them at a time (:class:`reportgen.pipeline.stages.DaskBlocks`).  The family is
+then assembled from the saved blocks into compact arrays: float64 results, and text
+(status, message, labels) as codes into its few distinct values, held as shared strings
+(8 bytes a member: a 10⁷-member family is ~50 bytes a member in all).  Memory stays
+bounded by the per-member scalars and the capped point sets, never by trajectories.
 """
 
 from __future__ import annotations
@@ -42,7 +47,7 @@ import json
 import math
 import os
 import shutil
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -52,7 +57,8 @@ import numpy as np
 from ..support.fsutil import temp_name
 from .config import ConfigError, _short
 
-__all__ = ["SweepSpec", "SweepData", "PointSet", "parse_sweep", "run_sweep", "member_data"]
+__all__ = ["SweepSpec", "SweepData", "PointSet", "parse_sweep", "run_sweep", "member_data",
+           "block_arrays", "text_codes", "text_array"]
 
 #: keys of a range value; the others of [sweep] that are not swept config paths
 RANGE_KEYS = frozenset({"start", "stop", "num", "spacing"})
@@ -311,6 +317,19 @@ class PointSet:
         return np.bincount(np.asarray(self.member, dtype=np.int64), minlength=members)
 
     @staticmethod
+    def section_crossings(results, components, surface, axes) -> dict[str, PointSet]:
+        """A member's surface-of-section crossings as the point set ``poincare``, from its
+        analysis entry ``poincare`` (``t``, the two plotted coordinates ``u`` and ``v``, and
+        the whole ``state`` there, of ``components``); ``surface`` ((coordinate, value,
+        direction)) and ``axes`` (the plotted pair) describe it.  Empty without crossings."""
+        pts = results.analysis.get("poincare")
+        if pts is None:
+            return {}
+        return {"poincare": PointSet(
+            columns={"t": pts["t"], "u": pts["u"], "v": pts["v"], "state": pts["state"]},
+            components=tuple(components), attrs={"surface": list(surface), "axes": list(axes)})}
+
+    @staticmethod
     def concat(sets: list[PointSet], offsets: list[int] | None = None) -> PointSet:
         """One set of the rows of ``sets`` in turn, their members shifted by ``offsets``."""
         offsets = offsets if offsets is not None else [0] * len(sets)
@@ -358,23 +377,95 @@ class SweepData:
         return np.asarray(self.status) == OK
 
     def counts(self) -> dict[str, int]:
-        names, counts = np.unique(np.asarray(self.status, dtype=str), return_counts=True)
-        return {str(n): int(c) for n, c in zip(names, counts, strict=True)}
+        """Members of each status, by status name (sorted)."""
+        codes, names = text_codes(self.status)
+        found = np.bincount(codes, minlength=len(names))
+        return {n: int(found[i]) for i, n in sorted(enumerate(names), key=lambda x: x[1])
+                if found[i]}
 
 
-def _save_block(path: Path, block: SweepBlock) -> None:
-    """One finished block, written whole under a temporary name, then renamed."""
+def text_codes(values) -> tuple[np.ndarray, list[str]]:
+    """``values`` (n,) text (str, StrEnum, bytes of UTF-8 or objects) as (codes, names):
+    ``names[codes[i]]`` is ``str(values[i])``, names in order of first appearance.
+
+    A sweep's status, message and labels hold a few distinct values over up to 10⁷
+    members: each distinct value is found by one vectorised comparison, the rest (a
+    member's own message, say) one by one."""
+    arr = np.asarray(values)
+    arr = arr.ravel() if arr.ndim else arr.reshape(1)
+    n = arr.size
+    codes = np.zeros(n, dtype=np.int32)
+    raw: list[Any] = []
+    rest: np.ndarray | None = None  # indexes not yet coded (None: all of them)
+    while len(raw) < 16:
+        sub = arr if rest is None else arr[rest]
+        if sub.size == 0:
+            break
+        hit = np.asarray(sub == sub[0], dtype=bool)
+        if hit.shape != sub.shape or not hit[0]:
+            break  # not comparable as a whole (a NaN, say): one by one below
+        where = np.flatnonzero(hit) if rest is None else rest[hit]
+        codes[where] = len(raw)
+        raw.append(sub[0])
+        rest = np.flatnonzero(~hit) if rest is None else rest[~hit]
+    if rest is None:
+        rest = np.arange(n)
+    if rest.size:
+        index = {_text(v): i for i, v in enumerate(raw)}
+        for i in rest.tolist():
+            codes[i] = index.setdefault(_text(arr[i]), len(index))
+        names = list(index)
+    else:
+        names = [_text(v) for v in raw]
+    return codes.astype(_code_dtype(len(names))), names
+
+
+def _text(value: Any) -> str:
+    if isinstance(value, (bytes, np.bytes_)):
+        return bytes(value).decode("utf-8", "replace")
+    return str(value)
+
+
+def _code_dtype(distinct: int) -> np.dtype:
+    return np.dtype(np.uint8 if distinct <= 1 << 8 else np.uint16 if distinct <= 1 << 16
+                    else np.int32)
+
+
+def text_array(codes: np.ndarray, names: list[str]) -> np.ndarray:
+    """The object array of ``names[codes]``: one Python string per distinct value, shared
+    by every member that has it (8 bytes a member, not one string each)."""
+    table = np.empty(len(names), dtype=object)
+    table[:] = [str(n) for n in names]
+    return table[np.asarray(codes, dtype=np.intp)] if len(names) else \
+        np.full(len(codes), "", dtype=object)
+
+
+def block_arrays(block: SweepBlock) -> dict[str, np.ndarray]:
+    """A finished block as flat numpy arrays (what a block file holds and a Dask worker
+    sends back): numbers as float64, each text array as codes into its distinct values
+    (``status/codes``, ``status/names``), point sets as their columns."""
+    n = len(block.status)
     arrays = {f"analysis/{k}": np.asarray(v, dtype=np.float64) for k, v in block.analysis.items()}
-    arrays.update({f"labels/{k}": np.asarray(v, dtype=str) for k, v in block.labels.items()})
+    texts = {"status": block.status,
+             "message": block.message if block.message is not None else np.full(n, "")}
+    texts.update({f"labels/{k}": v for k, v in block.labels.items()})
+    for name, values in texts.items():
+        codes, names = text_codes(values)
+        arrays[f"{name}/codes"] = codes
+        arrays[f"{name}/names"] = np.asarray(names, dtype=str) if names else np.zeros(0, "U1")
     for name, points in block.points.items():
         arrays[f"points/{name}/member"] = np.asarray(points.member, dtype=np.int64)
         arrays[f"points/{name}/components"] = np.asarray(points.components, dtype=str)
         arrays[f"points/{name}/attrs"] = np.asarray(json.dumps(points.attrs))
         arrays.update({f"points/{name}/columns/{k}": np.asarray(v, dtype=np.float64)
                        for k, v in points.columns.items()})
-    arrays["status"] = np.asarray(block.status, dtype=str)
-    if block.message is not None:
-        arrays["message"] = np.asarray(block.message, dtype=str)
+    return arrays
+
+
+def _save_block(path: Path, block: SweepBlock | dict[str, np.ndarray]) -> None:
+    """One finished block (a SweepBlock or its :func:`block_arrays`), written whole
+    under a temporary name, then renamed."""
+    arrays = block if isinstance(block, dict) else block_arrays(block)
     tmp = temp_name(path)
     with open(tmp, "wb") as fh:
         np.savez(fh, **arrays)
@@ -383,16 +474,29 @@ def _save_block(path: Path, block: SweepBlock) -> None:
     os.replace(tmp, path)
 
 
-def _load_block(path: Path) -> SweepBlock | None:
+def _block_members(path: Path) -> int | None:
+    """The number of members a saved block holds, or None if it is unreadable."""
     try:
         with np.load(path, allow_pickle=False) as z:
-            analysis = {k.split("/", 1)[1]: z[k] for k in z.files if k.startswith("analysis/")}
-            labels = {k.split("/", 1)[1]: z[k] for k in z.files if k.startswith("labels/")}
-            return SweepBlock(analysis=analysis, status=z["status"], labels=labels,
-                              message=z["message"] if "message" in z.files else None,
-                              points=_load_points(z))
-    except (OSError, ValueError, KeyError):
-        return None  # unreadable: run the block again
+            if "status/codes" in z.files:
+                return int(z["status/codes"].shape[0])
+            return int(z["status"].shape[0])  # a block saved before the codes
+    except (OSError, ValueError, KeyError, EOFError):
+        return None
+
+
+def _block_texts(z) -> dict[str, tuple[np.ndarray, list[str]]]:
+    """Every text array of a saved block as (codes, names), by name ("status",
+    "message", "labels/<name>")."""
+    out = {}
+    for key in z.files:
+        if key.endswith("/codes") and not key.startswith("points/"):
+            name = key[:-len("/codes")]
+            out[name] = (z[key], [str(v) for v in z[f"{name}/names"]])
+        elif key in ("status", "message") or (key.startswith("labels/") and
+                                              key.count("/") == 1):
+            out[key] = text_codes(z[key])  # a block saved before the codes
+    return out
 
 
 def _load_points(z) -> dict[str, PointSet]:
@@ -413,9 +517,14 @@ def partial_folder(folder: Path, key: str) -> Path:
     return Path(folder) / f".sweep-{key[:16]}"
 
 
-#: ``submit(lo, hi, values)``: start members ``lo:hi`` elsewhere (a Dask cluster), giving
-#: something whose ``result()`` is their SweepBlock
-Submit = Callable[[int, int, dict[str, np.ndarray]], Any]
+#: ``submit(chunks)``: run the blocks ``chunks`` (an iterator of ``(b, lo, hi, values)``:
+#: block number, members ``lo:hi``, their swept values) elsewhere (a Dask cluster,
+#: :class:`reportgen.pipeline.stages.DaskBlocks`) and yield ``(b, result)`` as each
+#: finishes, in any order; ``result`` a SweepBlock or its :func:`block_arrays`.  It takes
+#: the next chunk only when it has room for it, so the blocks waiting to run are never
+#: all in memory; a block that fails for good raises, naming it.
+Submit = Callable[[Iterator[tuple[int, int, int, dict[str, np.ndarray]]]],
+                  Iterator[tuple[int, "SweepBlock | dict[str, np.ndarray]"]]]
 
 
 def run_sweep(spec: SweepSpec, run_block: Callable[[int, int, dict[str, np.ndarray]], SweepBlock],
@@ -423,72 +532,107 @@ def run_sweep(spec: SweepSpec, run_block: Callable[[int, int, dict[str, np.ndarr
               min_block: int = 1, submit: Submit | None = None) -> tuple[SweepData, int]:
     """Every member's results, block by block: ``run_block(lo, hi, values)`` gives members
     ``lo:hi`` (``values``: the swept keys' values of those members; blocks of at least
-    ``min_block`` members unless the table sets ``block``).  With ``submit``, every
-    unfinished block is submitted at once and collected as it finishes instead.  Blocks
-    already finished under ``folder`` for this ``key`` (a killed run) are read, not run
-    again.  Returns the sweep and the number of members resumed from disk."""
+    ``min_block`` members unless the table sets ``block``).  With ``submit`` the blocks
+    run elsewhere and come back in any order (:data:`Submit`).  Each finished block is
+    saved under ``folder`` at once and dropped from memory; blocks already finished there
+    for this ``key`` (a killed run) are not run again.  The family is then assembled from
+    the saved blocks into compact arrays: float64 results, text as shared strings.
+    Returns the sweep and the number of members resumed from disk."""
     values = spec.values()
     size, block = spec.size, spec.block_size(min_block)
     partial = partial_folder(folder, key)
     partial.mkdir(parents=True, exist_ok=True)
+    for stale in partial.glob(".*.tmp"):  # a block half-written when a run was killed
+        stale.unlink(missing_ok=True)
     (partial / "key").write_text(key, encoding="utf-8")
     starts = list(range(0, size, block))
-    found: dict[int, SweepBlock] = {}
+    ends = [min(lo + block, size) for lo in starts]
+    paths = [partial / f"block-{b:06d}.npz" for b in range(len(starts))]
+    done: set[int] = set()
     resumed = 0
-    for b, lo in enumerate(starts):
-        hi = min(lo + block, size)
-        path = partial / f"block-{b:06d}.npz"
-        done = _load_block(path) if path.exists() else None
-        if done is not None and len(done.status) == hi - lo:
-            found[b] = done
-            resumed += hi - lo
-    todo = [b for b in range(len(starts)) if b not in found]
+    for b, path in enumerate(paths):
+        if path.exists() and _block_members(path) == ends[b] - starts[b]:
+            done.add(b)
+            resumed += ends[b] - starts[b]
 
-    def finished(b: int, done: SweepBlock) -> None:
-        _save_block(partial / f"block-{b:06d}.npz", done)
-        found[b] = done
-        if progress is not None:
-            progress(len(found) / len(starts))
+    def chunks() -> Iterator[tuple[int, int, int, dict[str, np.ndarray]]]:
+        for b in range(len(starts)):
+            if b not in done:
+                lo, hi = starts[b], ends[b]
+                yield b, lo, hi, {p: v[lo:hi] for p, v in values.items()}
 
-    def chunk(b: int) -> tuple[int, int, dict[str, np.ndarray]]:
-        lo, hi = starts[b], min(starts[b] + block, size)
-        return lo, hi, {p: v[lo:hi] for p, v in values.items()}
-
-    if submit is None:
-        for b in todo:
-            finished(b, run_block(*chunk(b)))
-    else:
-        pending = {b: submit(*chunk(b)) for b in todo}
-        for b, future in pending.items():  # each saved as soon as it and those before it end
-            finished(b, future.result())
-    blocks = [found[b] for b in range(len(starts))]
-    names = dict.fromkeys(k for blk in blocks for k in blk.analysis)
-    label_names = dict.fromkeys(k for blk in blocks for k in blk.labels)
-    analysis = {}
-    for name in names:
-        analysis[name] = np.concatenate([
-            np.asarray(blk.analysis[name], dtype=np.float64) if name in blk.analysis
-            else np.full(len(blk.status), np.nan) for blk in blocks])
-    labels = {name: np.concatenate([
-        np.asarray(blk.labels[name], dtype=str) if name in blk.labels
-        else np.full(len(blk.status), "") for blk in blocks]).astype(object)
-        for name in label_names}
-    status = np.concatenate([np.asarray(blk.status, dtype=str) for blk in blocks])
-    message = np.concatenate([np.asarray(blk.message, dtype=str) if blk.message is not None
-                              else np.full(len(blk.status), "") for blk in blocks])
-    points = {}
-    for name in dict.fromkeys(k for blk in blocks for k in blk.points):
-        having = [(blk.points[name], starts[b]) for b, blk in enumerate(blocks)
-                  if name in blk.points]
-        points[name] = PointSet.concat([p for p, _ in having], [lo for _, lo in having])
-        points[name].attrs["max_points"] = spec.max_points
-    data = SweepData(values=values, analysis=analysis, labels=labels,
-                     status=status.astype(object),
-                     message=message.astype(object),
-                     attrs={"paths": json.dumps(spec.paths), "shape": json.dumps(spec.shape),
-                            "zip": spec.zip, "block": block},
-                     points=points)
+    finished = (submit(chunks()) if submit is not None
+                else ((b, run_block(lo, hi, vals)) for b, lo, hi, vals in chunks()))
+    try:
+        for b, result in finished:
+            if b in done:
+                continue  # a block that came back twice (run again after a lost worker)
+            _save_block(paths[b], result)
+            del result
+            done.add(b)
+            if progress is not None:
+                progress(len(done) / len(starts))
+    finally:
+        close = getattr(finished, "close", None)
+        if close is not None:
+            close()  # a pool stops what it still runs
+    missing = [b for b in range(len(starts)) if b not in done]
+    if missing:
+        raise RuntimeError(f"the sweep's members {starts[missing[0]]}:{ends[missing[0]]} "
+                           f"(and {len(missing) - 1} more blocks) never came back; the "
+                           f"{len(done)} finished blocks are kept in {partial} and a rerun "
+                           "resumes them")
+    data = _assemble(paths, starts, size, values)
+    data.attrs = {"paths": json.dumps(spec.paths), "shape": json.dumps(spec.shape),
+                  "zip": spec.zip, "block": block}
+    for pset in data.points.values():
+        pset.attrs["max_points"] = spec.max_points
     return data, resumed
+
+
+class _TextColumn:
+    """One text array of the family, assembled block by block as codes."""
+
+    def __init__(self, size: int):
+        self.codes = np.zeros(size, dtype=np.int32)
+        self.index: dict[str, int] = {"": 0}  # members of a block without it: ""
+
+    def put(self, lo: int, codes: np.ndarray, names: list[str]) -> None:
+        mapping = np.array([self.index.setdefault(n, len(self.index)) for n in names],
+                           dtype=np.int32)
+        if mapping.size:
+            self.codes[lo:lo + len(codes)] = mapping[np.asarray(codes, dtype=np.intp)]
+
+    def array(self) -> np.ndarray:
+        return text_array(self.codes, list(self.index))
+
+
+def _assemble(paths: list[Path], starts: list[int], size: int,
+              values: dict[str, np.ndarray]) -> SweepData:
+    """The family from its saved blocks, read one at a time into compact arrays."""
+    analysis: dict[str, np.ndarray] = {}
+    texts: dict[str, _TextColumn] = {"status": _TextColumn(size),
+                                     "message": _TextColumn(size)}
+    having: dict[str, list[tuple[PointSet, int]]] = {}
+    for path, lo in zip(paths, starts, strict=True):
+        with np.load(path, allow_pickle=False) as z:
+            for key in z.files:
+                if key.startswith("analysis/"):
+                    column = z[key]
+                    target = analysis.setdefault(key[len("analysis/"):],
+                                                 np.full(size, np.nan))
+                    target[lo:lo + column.size] = column
+            for name, (codes, names) in _block_texts(z).items():
+                texts.setdefault(name, _TextColumn(size)).put(lo, codes, names)
+            for name, pset in _load_points(z).items():
+                having.setdefault(name, []).append((pset, lo))
+    points = {name: PointSet.concat([p for p, _ in sets], [lo for _, lo in sets])
+              for name, sets in having.items()}
+    labels = {name[len("labels/"):]: column.array() for name, column in texts.items()
+              if name.startswith("labels/")}
+    return SweepData(values=values, analysis=analysis, labels=labels,
+                     status=texts["status"].array(), message=texts["message"].array(),
+                     points=points)
 
 
 def discard_partial(folder: Path, key: str) -> None:

@@ -76,6 +76,9 @@ class Solution:
     wall_time_s: float
     compile_time_s: float
     crossings: np.ndarray | None = None
+    #: a compiled run's rehearsal just before it (:func:`.compiled_run.warm_up_run`), in
+    #: neither ``wall_time_s`` nor ``compile_time_s``; 0 for the others
+    warm_up_time_s: float = 0.0
 
     @property
     def ok(self) -> bool:

@@ -4,9 +4,11 @@ from __future__ import annotations
 
 from .base import Method
 from .explicit_rk import DOP853, RK4, RK45
+from .heyoka_peer import Heyoka
 from .regularized import LeviCivita, LeviCivitaDop853
 from .scipy_peer import RadauFallback, ScipyDOP853, ScipyLSODA, ScipyRadau, ScipyRK45
 from .symplectic import Gauss4, Gauss6, Verlet, Yoshida4, Yoshida6, Yoshida8
+from .taylor import Taylor
 
 METHODS: dict[str, Method] = {
     m.name: m
@@ -17,5 +19,7 @@ METHODS: dict[str, Method] = {
         LeviCivita(), LeviCivitaDop853(),
         RadauFallback(),
         ScipyRK45(), ScipyDOP853(), ScipyLSODA(), ScipyRadau(),
+        Heyoka(),
+        Taylor(),
     )
 }

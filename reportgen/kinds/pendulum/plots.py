@@ -92,26 +92,40 @@ def boundary_value(t, theta_exact, theta_numeric, theta_nonlinear, *, ax=None):
 
 def period_family(amplitude, measured, exact, *, curve=None, small_angle=None):
     """A sweep's periods against amplitude: members (markers, or a line when dense), the
-    exact curve and the small-angle period; below, the relative error of each member."""
+    exact curve and the small-angle period; below, the relative error of each member.
+
+    A dense family is drawn as per-bin extremes (:func:`envelope`: the same pixels, a
+    bounded size whatever the members); for 10⁷ members the arrays are used in place
+    where they are already in amplitude order (a range sweep's are), and the error is
+    computed in one buffer, so the figure costs two member arrays of memory."""
     fig, (ax, ax_err) = new_figure_grid(2, 1, figsize=(6.4, 5.6), sharex=True)
     ax, ax_err = ax[0], ax_err[0]
-    order = np.argsort(amplitude)
-    x, y = np.asarray(amplitude)[order], np.asarray(measured)[order]
+    x = np.asarray(amplitude, dtype=float)
+    ordered = x.size < 2 or bool(np.all(x[1:] >= x[:-1]))
+    order = None if ordered else np.argsort(x, kind="stable")
+
+    def sort(v):
+        v = np.asarray(v, dtype=float)
+        return v if order is None else v[order]
+
+    x, y = sort(x), sort(measured)
     if curve is not None:
         ax.plot(curve["amplitude"], curve["period"], color=REFERENCE, lw=2.5,
                 label="exact 4K(k)√(l/g)")
     else:
-        ax.plot(x, np.asarray(exact)[order], color=REFERENCE, lw=2.5, label="exact 4K(k)√(l/g)")
+        ax.plot(*envelope(x, sort(exact)), color=REFERENCE, lw=2.5, label="exact 4K(k)√(l/g)")
     dense = x.size > 80
-    # a dense family is drawn as per-bin extremes (envelope): the same pixels, bounded size
     ax.plot(*envelope(x, y), "-" if dense else "o", color=HIGHLIGHT, ms=3.5, lw=1.2,
             label=f"integrated ({x.size} members)")
     if small_angle is not None and np.size(small_angle):
-        sa = np.asarray(small_angle)[order]
-        ax.plot(*envelope(x, sa), "--", color=CONTEXT, label="small-angle 2π√(l/g)")
+        ax.plot(*envelope(x, sort(np.broadcast_to(small_angle, x.shape))), "--",
+                color=CONTEXT, label="small-angle 2π√(l/g)")
     ax.set_ylabel("period T [s]")
     place_legend(ax, loc="upper left")
-    rel = np.maximum(np.abs(y / np.asarray(exact)[order] - 1), 1e-17)
+    rel = np.divide(y, sort(exact))  # |T/T_exact - 1| in one buffer
+    rel -= 1.0
+    np.abs(rel, out=rel)
+    np.maximum(rel, 1e-17, out=rel)
     ax_err.semilogy(*envelope(x, rel), color=HIGHLIGHT, **member_markers(dense))
     ax_err.set_ylabel(r"$|T - T_\mathrm{exact}|/T_\mathrm{exact}$ (dimensionless)")
     ax_err.set_xlabel("amplitude θ₀ [rad]")

@@ -10,8 +10,12 @@ encounters.  Energy, total momentum and angular momentum are the
 conserved quantities; a run whose energy error exceeds ``energy_tolerance`` is
 flagged unstable, never drawn silently.
 
+With ``[restricted]``: the planar circular restricted problem in the frame rotating with
+two primaries of mass ratio μ (Murray & Dermott ch. 3), a test particle integrated in
+regularized (Thiele–Burrau) variables; a sweep over its start draws a surface of section.
+
 Archive columns: x1, y1, z1, x2, y2, z2, x3, y3, z3 (positions body by body), then
-vx1, vy1, vz1, …, vz3 in the same order.
+vx1, vy1, vz1, …, vz3 in the same order; restricted runs: x, y, vx, vy (rotating frame).
 """
 
 from __future__ import annotations
@@ -31,7 +35,8 @@ class ThreeBodyScene(ThreeBodySimulation, ThreeBodyReport):
     kind = "three_body"
     order = 40
     summary = "three gravitating bodies: Sun–Earth–Moon (relative and Jacobi coordinates), " \
-              "figure-eight, Pythagorean problem"
+              "figure-eight, Pythagorean problem; the planar circular restricted problem " \
+              "in the rotating frame"
     Config = ThreeBodyConfig
     presets = PRESETS
     name_in_words = "Three gravitating bodies"
@@ -43,7 +48,10 @@ class ThreeBodyScene(ThreeBodySimulation, ThreeBodyReport):
     @classmethod
     def default_title(cls, config):
         """``Pythagorean three-body problem (masses 3, 4, 5)``; without a preset, the
-        bodies' names (when given) and masses."""
+        bodies' names (when given) and masses; for the restricted problem, μ, the start
+        and the Jacobi constant."""
+        if config.restricted is not None:
+            return ThreeBodyReport.restricted_title(config)
         masses = ", ".join(fmt(float(m), 4) for m in config.params.masses)
         preset = cls.preset_as_given(config)
         words = cls.PRESET_WORDS.get(preset or "")

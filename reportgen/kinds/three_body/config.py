@@ -1,5 +1,6 @@
 """``three_body`` config: masses, initial states, labels, presets (Sun–Earth–Moon,
-figure-eight, Pythagorean)."""
+figure-eight, Pythagorean); or ``[restricted]``, the planar circular restricted problem
+in the rotating frame (a test particle and two primaries of mass ratio μ)."""
 
 from __future__ import annotations
 
@@ -7,10 +8,10 @@ import math
 from typing import Annotated
 
 import numpy as np
-from pydantic import Field, model_validator
+from pydantic import AfterValidator, Field, model_validator
 
 from ...scene.base import SceneConfig
-from ...scene.config import OwnUnitsRunConfig, Positive, Real, Strict
+from ...scene.config import OwnUnitsRunConfig, Positive, Real, Strict, _finite
 
 Vector3 = Annotated[list[Real], Field(min_length=3, max_length=3)]
 
@@ -38,9 +39,79 @@ class Initial(Strict):
                                                   "[config units of length/time]")
 
 
+class Restricted(Strict):
+    """``[restricted]``: the planar circular restricted three-body problem in the frame
+    rotating with the primaries (Murray & Dermott §3.2): masses 1 − μ at (−μ, 0) and μ at
+    (1 − μ, 0), G = m1 + m2 = 1, separation 1, mean motion 1 (so the unit of time is the
+    primaries' period / 2π).  The test particle starts at (x, y) with (ẋ, ẏ), or with ẏ
+    solved from the Jacobi constant C."""
+
+    mu: Annotated[float, Field(gt=0, le=0.5), AfterValidator(_finite)] = Field(
+        description="mass ratio μ = m2/(m1 + m2) of the smaller primary, 0 < μ ≤ 0.5 "
+                    "[dimensionless]")
+    x: Real = Field(description="initial position x in the rotating frame, in units of the "
+                                "primaries' separation [dimensionless]")
+    y: Real = Field(0.0, description="initial position y in the rotating frame, in units of "
+                                     "the primaries' separation [dimensionless]")
+    vx: Real = Field(0.0, description="initial velocity ẋ in the rotating frame, in units of "
+                                      "the separation times the mean motion [dimensionless]")
+    vy: Real | None = Field(None, description="initial velocity ẏ in the rotating frame "
+                                              "[dimensionless]; leave it out and give jacobi "
+                                              "to have it solved for (ẏ ≥ 0)")
+    jacobi: Real | None = Field(None, description="Jacobi constant C = 2Ω − ẋ² − ẏ² "
+                                                  "(then ẏ ≥ 0 is solved for, so that a "
+                                                  "sweep's members share one C) "
+                                                  "[dimensionless]")
+
+    @model_validator(mode="after")
+    def _a_start_the_level_allows(self):
+        for name, xp in (("larger", -self.mu), ("smaller", 1.0 - self.mu)):
+            if self.y == 0.0 and self.x == xp:
+                raise ValueError(f"restricted.x / restricted.y: the particle starts at the "
+                                 f"{name} primary ({xp:g}, 0) (a collision)")
+        if (self.vy is None) == (self.jacobi is None):
+            raise ValueError("restricted.vy / restricted.jacobi: give exactly one of them "
+                             "(got " + ("both" if self.vy is not None else "neither") + ")")
+        if self.jacobi is not None:
+            ceiling = 2.0 * omega(self.x, self.y, self.mu) - self.vx ** 2
+            if self.jacobi > ceiling:
+                raise ValueError(
+                    f"restricted.jacobi: the start (x, y) = ({self.x:.12g}, {self.y:.12g}) "
+                    f"lies in the region the level C = {self.jacobi!r} forbids (inside its "
+                    f"zero-velocity curve, where ẏ² = 2Ω − C − ẋ² < 0): C may be at most "
+                    f"2Ω − ẋ² = {ceiling:.12g} there")
+        return self
+
+    def initial_state(self) -> tuple[float, float, float, float]:
+        """(x, y, ẋ, ẏ), ẏ = +√(2Ω − C − ẋ²) when ``jacobi`` is given."""
+        if self.vy is not None:
+            return self.x, self.y, self.vx, self.vy
+        vy2 = 2.0 * omega(self.x, self.y, self.mu) - self.jacobi - self.vx ** 2
+        return self.x, self.y, self.vx, math.sqrt(max(vy2, 0.0))
+
+    def jacobi_constant(self) -> float:
+        """C of the initial state (the given one, or 2Ω − v² from vy)."""
+        x, y, vx, vy = self.initial_state()
+        return self.jacobi if self.jacobi is not None else \
+            2.0 * omega(x, y, self.mu) - vx * vx - vy * vy
+
+
+def omega(x: float, y: float, mu: float) -> float:
+    """Ω = (x² + y²)/2 + (1 − μ)/r1 + μ/r2 at (x, y) (the config's check of
+    restricted.jacobi; the numerics use :mod:`reportgen.core.models.restricted_three_body`)."""
+    return (0.5 * (x * x + y * y) + (1.0 - mu) / math.hypot(x + mu, y)
+            + mu / math.hypot(x - 1.0 + mu, y))
+
+
 class ThreeBodyConfig(SceneConfig):
-    params: Params
-    initial: Initial
+    params: Params | None = Field(None, description="G and the masses (not with the "
+                                                       "restricted problem's table)")
+    initial: Initial | None = Field(None, description="the bodies' positions and velocities "
+                                                      "(not with the restricted problem's "
+                                                      "table)")
+    restricted: Restricted | None = Field(None, description="the planar circular restricted "
+                                                            "problem, instead of the params "
+                                                            "and initial tables")
     run: OwnUnitsRunConfig
     names: list[str] = Field(["body 1", "body 2", "body 3"], min_length=3, max_length=3,
                              description="labels of the bodies in figures")
@@ -52,11 +123,40 @@ class ThreeBodyConfig(SceneConfig):
                                                       "checks the return to the start "
                                                       "[config units of time]")
     energy_tolerance: Positive = Field(1e-8, description="relative energy error above which "
-                                                         "the run is flagged unstable "
-                                                         "[dimensionless]")
+                                                         "the run is flagged unstable (for the "
+                                                         "restricted problem: the Jacobi "
+                                                         "constant's error relative to its "
+                                                         "term 2Ω) [dimensionless]")
+
+    @model_validator(mode="after")
+    def _one_problem(self):
+        if self.restricted is None:
+            if self.params is None or self.initial is None:
+                missing = " and ".join(t for t in ("params", "initial")
+                                       if getattr(self, t) is None)
+                raise ValueError(f"{missing.replace(' and ', ' / ')}: required key is "
+                                 f"missing: [{missing.replace(' and ', '] and [')}] (the "
+                                 "masses and the bodies' states), or [restricted] for the "
+                                 "restricted problem")
+            return self
+        given = [t for t in ("params", "initial") if getattr(self, t) is not None]
+        if given:
+            raise ValueError(f"{' / '.join(given)}: [restricted] is the whole physics of the "
+                             "restricted problem (masses 1 − μ and μ, G = 1, the particle's "
+                             f"start): leave out [{'] and ['.join(given)}]")
+        if self.period is not None:
+            raise ValueError("period: a known period is checked on the full problem's "
+                             "bodies; the restricted problem has none to give")
+        return self
+
+    @property
+    def is_restricted(self) -> bool:
+        return self.restricted is not None
 
     @model_validator(mode="after")
     def _no_collision(self):
+        if self.initial is None:
+            return self
         pos = np.asarray(self.initial.positions, dtype=float)
         for i in range(3):
             for j in range(i + 1, 3):

@@ -12,6 +12,15 @@ from ...rendering.plots.motion import Motion, _columns, _trails
 
 def motion(data, frames: int) -> Motion:
     run = data.runs["main"]
+    restricted = getattr(data.config, "restricted", None)
+    if restricted is not None:  # the particle in the rotating frame, the primaries at rest
+        mu = float(restricted.mu)
+
+        def primaries(ax):
+            ax.plot([-mu, 1.0 - mu], [0.0, 0.0], "o", color="0.4", ms=6, ls="none")
+
+        return _trails(data, frames, [tuple(_columns(run, "x", "y"))], ["particle"],
+                       "restricted three-body problem (rotating frame)", extra=primaries)
     bodies = [tuple(_columns(run, f"x{i}", f"y{i}")) for i in (1, 2, 3)]
     names = list(data.config.get("names") or ["body 1", "body 2", "body 3"])
     return _trails(data, frames, bodies, names, "three bodies (x–y plane)")

@@ -12,23 +12,34 @@ import numpy as np
 from ...lazy import lazy_module
 from ...scene.base import Section
 from ...scene.content import SectionContent, Table, fmt, fmt_err
-from ...scene.report import Report
-from .results import SCHEMA
+from .report_restricted import (
+    RESTRICTED_FAMILY,
+    RESTRICTED_SECTIONS,
+    RestrictedReport,
+    is_restricted,
+)
+from .results import RESTRICTED_SCHEMA, SCHEMA
 
 plots = lazy_module("reportgen.rendering.plots.gravitation")
 style = lazy_module("reportgen.rendering.plots.style")
 
 
-class ThreeBodyReport(Report):
-    """The three-body sections, drawn from the archive alone."""
+class ThreeBodyReport(RestrictedReport):
+    """The three-body sections, drawn from the archive alone (the restricted problem's:
+    :class:`.RestrictedReport`)."""
 
-    schema = SCHEMA
+    schema = SCHEMA.merged(RESTRICTED_SCHEMA)
     gallery_name = "Three bodies"
-    gallery_figures = ("orbits",)
+    gallery_figures = ("orbits", "restricted_section", "restricted_orbit")
+    config_symbols = {"restricted.x": "x_0", "restricted.y": "y_0",
+                      "restricted.vx": r"\dot{x}_0", "restricted.vy": r"\dot{y}_0",
+                      "restricted.jacobi": "C", "restricted.mu": r"\mu"}
 
     @classmethod
     def gallery_headline(cls, data):
         from ...scene import gallery
+        if is_restricted(data):
+            return cls.restricted_gallery_headline(data)
         a = data.analysis
         energy = gallery.worst_check(data, "energy")
         drift = f"energy drift {gallery.distance(energy.rel_error)}" if energy else ""
@@ -51,8 +62,10 @@ class ThreeBodyReport(Report):
         Section("periodicity", "Return after one period", integrates=True),
         Section("encounters", "Pair distances and close encounters", integrates=True),
         Section("invariants", "Energy, momentum and angular momentum", integrates=True),
+        *RestrictedReport.restricted_sections,
         Section("error_vs_runtime", "Error against run time", integrates=True),
     )
+    family_sections = RestrictedReport.restricted_family_sections
 
     @staticmethod
     def _positions(run) -> np.ndarray:
@@ -61,7 +74,10 @@ class ThreeBodyReport(Report):
 
     @classmethod
     def default_sections(cls, data):
-        names = [s.name for s in cls.sections]
+        if is_restricted(data):
+            return list(RESTRICTED_SECTIONS)
+        names = [s.name for s in cls.sections if s.name not in RESTRICTED_SECTIONS
+                 or s.name == "error_vs_runtime"]
         if not data.analysis.get("hierarchical", False):
             names.remove("moon")
         if data.config.period is None:
@@ -75,7 +91,26 @@ class ThreeBodyReport(Report):
     PERIODIC_FRACTION = 1e-3
 
     @classmethod
+    def held_family_sections(cls, data):
+        """The restricted problem's family sections for a restricted sweep only; its
+        regions need the members' common Jacobi constant."""
+        held = super().held_family_sections(data)
+        if not is_restricted(data):
+            return [n for n in held if n not in RESTRICTED_FAMILY]
+        if "zero_velocity" not in data.analysis:
+            held = [n for n in held if n != "restricted_regions"]
+        return held
+
+    @classmethod
+    def family_words(cls, data):
+        if is_restricted(data):
+            return cls.restricted_family_words(data)
+        return super().family_words(data)
+
+    @classmethod
     def prose_case(cls, data):
+        if is_restricted(data):
+            return cls.restricted_case(data)
         """Periodic (a period to return after), hierarchical, or neither; the fate the
         behaviour verdict names (bound, escape, collision), chaotic or not; equal masses;
         released at rest; close encounters (closest approach under :attr:`CLOSE_FRACTION`
@@ -92,7 +127,7 @@ class ThreeBodyReport(Report):
         returned = float(a.get("return_position_error", math.nan))
         # the preset's words only for the preset's physics: the figure-eight with one mass
         # changed is not the figure-eight (its "period" is the preset's, not its own)
-        return {"preset": str(cls.preset_as_given(cfg) or ""),
+        return {"restricted": False, "preset": str(cls.preset_as_given(cfg) or ""),
                 "periodic": returned < cls.PERIODIC_FRACTION * size0,
                 "returned": math.isfinite(returned),
                 "return_error": fmt_err(returned),
@@ -120,6 +155,8 @@ class ThreeBodyReport(Report):
         """``Three equal masses on a periodic orbit, period 6.32591: back at the start
         within 4.1e-8``: the scene's case (periodic, hierarchical, or scattering with its
         fate) with its defining numbers."""
+        if is_restricted(data):
+            return cls.restricted_describe(data)
         c, a, cfg = cls.prose_case(data), data.analysis, data.config
         t_end = f"{fmt(float(data.runs['main'].t[-1]), 4)} {cfg.time_unit}".strip()
         if c["periodic"]:
@@ -147,6 +184,8 @@ class ThreeBodyReport(Report):
 
     @classmethod
     def headline(cls, data):
+        if is_restricted(data):
+            return cls.restricted_headline(data)
         p, a = data.config.params, data.analysis
         names = data.config.names
         out = [("bodies", ", ".join(f"{n}: m = {fmt(x)}" for n, x in zip(names, p.masses,

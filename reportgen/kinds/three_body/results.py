@@ -115,3 +115,73 @@ SCHEMA = ResultsSchema(
           optional=True),
     ),
 )
+
+
+# ------------------------------------------------------------------------------------
+# [restricted]: the planar circular restricted problem in the rotating frame (units:
+# separation of the primaries, G(m1 + m2) = 1, mean motion 1 -- all numbers "1")
+_LAGRANGE = ("lagrange_point",)
+
+RESTRICTED_SCHEMA = ResultsSchema(
+    time=SCHEMA.time,
+    columns=(
+        Q("x", "x", "1", "position x in the rotating frame", ("t",)),
+        Q("y", "y", "1", "position y in the rotating frame", ("t",)),
+        Q("vx", r"\dot{x}", "1", "velocity x in the rotating frame", ("t",)),
+        Q("vy", r"\dot{y}", "1", "velocity y in the rotating frame", ("t",)),
+    ),
+    invariants=(
+        Q("jacobi_constant", "C", "1", "Jacobi constant C = 2 Omega - v^2", ("t",)),
+    ),
+    analysis=(
+        Q("mu", r"\mu", "1", "mass ratio of the smaller primary, m2/(m1 + m2)"),
+        Q("jacobi_constant", "C", "1", "Jacobi constant of the initial state"),
+        Q("jacobi_error_max", r"\max|C - C(0)|", "1", "largest error of the Jacobi constant "
+          "over the stored samples and the crossings of y = 0"),
+        Q("jacobi_error_relative", r"\max|C - C(0)|/2\Omega", "1", "largest error of the "
+          "Jacobi constant relative to its term 2 Omega at the same point (samples and "
+          "crossings)"),
+        Q("jacobi_tolerance", "", "1", "error of the Jacobi constant relative to 2 Omega "
+          "above which the run is flagged unstable"),
+        Q("closest_approach_1", r"r_{1,\mathrm{min}}", "1", "closest sampled distance to the "
+          "larger primary"),
+        Q("closest_approach_2", r"r_{2,\mathrm{min}}", "1", "closest sampled distance to the "
+          "smaller primary"),
+        Q("formulation", "", "", "regularized (Thiele-Burrau, DOP853 in fictitious time) or "
+          "cartesian", kind="str"),
+        Q("region", "", "", "which regions the level C opens: the gates L1, L2, L3 and the "
+          "triangular points", kind="str"),
+        Q("behaviour", "", "", "physical behaviour: the regions the orbit is confined to",
+          kind="str", optional=True),
+        Q("lagrange_points/x", "x", "1", "x of the Lagrange points L1 to L5", _LAGRANGE,
+          optional=True),
+        Q("lagrange_points/y", "y", "1", "y of the Lagrange points L1 to L5", _LAGRANGE,
+          optional=True),
+        Q("lagrange_points/jacobi", "C", "1", "Jacobi constant at the Lagrange points L1 to "
+          "L5", _LAGRANGE, optional=True),
+        Q("zero_velocity/x", "x", "1", "grid of the plane, x", ("grid_x",), optional=True),
+        Q("zero_velocity/y", "y", "1", "grid of the plane, y", ("grid_y",), optional=True),
+        Q("zero_velocity/level", r"2\Omega - C", "1", "2 Omega - C on the grid: negative in "
+          "the forbidden region", ("grid_y", "grid_x"), optional=True),
+        Q("separation_growth", r"\max d/d_0", "1", "growth of the separation of two orbits "
+          "started 1e-10 apart", optional=True),
+        Q("lyapunov_time", r"T_\lambda", "1", "Lyapunov time 1/lambda of a chaotic orbit",
+          optional=True),
+        # a sweep member's crossings of y = 0 upward (the family's surface of section)
+        Q("poincare/t", "t", "1", "times of the crossings of y = 0 upward", ("crossing",),
+          optional=True),
+        Q("poincare/u", "x", "1", "x at the crossings", ("crossing",), optional=True),
+        Q("poincare/v", r"\dot{x}", "1", "x velocity at the crossings", ("crossing",),
+          optional=True),
+        Q("poincare/state", "", "", "state (x, y, vx, vy) at the crossings",
+          ("crossing", "component"), optional=True),
+        Q("poincare_points", "", "1", "crossings per orbit", optional=True),
+        # the family: the section's edge at the members' common C
+        Q("poincare_grid/u", "x", "1", "grid of the section, x", ("grid_u",), optional=True),
+        Q("poincare_grid/v", r"\dot{x}", "1", "grid of the section, x velocity",
+          ("grid_v",), optional=True),
+        Q("poincare_grid/vy2", r"\dot{y}^2", "1", "y velocity squared on the section at the "
+          "family's Jacobi constant", ("grid_v", "grid_u"), optional=True),
+        Q("poincare_jacobi", "C", "1", "the members' common Jacobi constant", optional=True),
+    ),
+)

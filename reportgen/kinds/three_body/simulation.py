@@ -1,7 +1,8 @@
 """``three_body`` simulation: the Cartesian run with its conserved quantities, pair
 distances, the return after one period and, for a hierarchical triple, the light body's
 osculating orbit, the lecture notes' coordinates relative to body 1 (notes (3.32)–(3.34))
-and Jacobi coordinates (the standard hierarchical choice; not in the notes)."""
+and Jacobi coordinates (the standard hierarchical choice; not in the notes).  A config
+with ``[restricted]`` runs the restricted problem instead (:mod:`.simulation_restricted`)."""
 
 from __future__ import annotations
 
@@ -10,21 +11,30 @@ import math
 import numpy as np
 
 from ...lazy import lazy_module
-from ...scene.integration import IntegratingSimulation
 from ...scene.results import AuditCase, Check, Results
+from ...scene.schema import ResultsSchema
 from .config import FIGURE_EIGHT_PERIOD, HIERARCHY_RATIO, ThreeBodyConfig
-from .results import SCHEMA
+from .results import RESTRICTED_SCHEMA, SCHEMA
+from .simulation_restricted import SECTION, RestrictedSimulation
 
 core = lazy_module("reportgen.core.models.nbody")
 kepler_core = lazy_module("reportgen.core.models.kepler")
 integrators = lazy_module("reportgen.core.integrators")
 
 
-class ThreeBodySimulation(IntegratingSimulation):
-    """Three bodies under Newtonian gravity, integrated in Cartesian coordinates."""
+class ThreeBodySimulation(RestrictedSimulation):
+    """Three bodies under Newtonian gravity, integrated in Cartesian coordinates (or, with
+    ``[restricted]``, the restricted problem: :class:`.RestrictedSimulation`)."""
 
-    schema = SCHEMA
+    #: labels of both problems' results (the report's); each run stores its own
+    #: (:meth:`results_schema`)
+    schema = SCHEMA.merged(RESTRICTED_SCHEMA)
     config: ThreeBodyConfig
+    #: a restricted sweep's members compute their crossings only for its section
+    computed_on_request = ("error_vs_runtime", SECTION)
+
+    def results_schema(self) -> ResultsSchema:
+        return RESTRICTED_SCHEMA if self.config.restricted is not None else SCHEMA
 
     @classmethod
     def audit_cases(cls):
@@ -58,9 +68,13 @@ class ThreeBodySimulation(IntegratingSimulation):
 
     # --------------------------------------------------------------- simulation
     def models(self) -> list:
+        if self.config.restricted is not None:
+            return [self.restricted_model()]
         return [core.model(self.config.params.G, self.masses)]
 
     def simulate(self, progress=None) -> Results:
+        if self.config.restricted is not None:
+            return self.simulate_restricted(progress)
         run, cfg = self.config.run, self.config
         G, m = cfg.params.G, self.masses
         (model,) = self.models()
@@ -221,3 +235,14 @@ class ThreeBodySimulation(IntegratingSimulation):
         el = kepler_core.orbital_elements(*pos[0, 1, :2] - pos[0, 0, :2],
                                           *vel[0, 1, :2] - vel[0, 0, :2], G * (m[0] + m[1]))
         a["earth_eccentricity"] = el["eccentricity"]
+
+    # ------------------------------------------------------------------ sweeps
+    @staticmethod
+    def member_points(results) -> dict:
+        return RestrictedSimulation.restricted_points(results)
+
+    def sweep_extras(self, sweep) -> dict:
+        return self.restricted_extras(sweep) if self.config.restricted is not None else {}
+
+    def sweep_checks(self, sweep) -> list[Check]:
+        return self.restricted_checks(sweep) if self.config.restricted is not None else []

@@ -243,13 +243,7 @@ class TwoCenterSimulation(IntegratingSimulation):
     @classmethod
     def member_points(cls, results) -> dict[str, PointSet]:
         """A member's crossings of y = 0 (ẏ > 0): time, x, ẋ and the whole state there."""
-        pts = results.analysis.get("poincare")
-        if pts is None:
-            return {}
-        return {"poincare": PointSet(
-            columns={"t": pts["t"], "u": pts["u"], "v": pts["v"], "state": pts["state"]},
-            components=tuple(core.COLUMNS),
-            attrs={"surface": list(cls.SURFACE), "axes": list(cls.AXES)})}
+        return PointSet.section_crossings(results, core.COLUMNS, cls.SURFACE, cls.AXES)
 
     def sweep_extras(self, sweep) -> dict:
         """When every member has one energy E (and the centres are not swept): C(x, ẋ) on

@@ -6,6 +6,7 @@ import textwrap
 
 import numpy as np
 
+from ...support.peers import is_peer
 from .style import (
     CONTEXT,
     HIGHLIGHT,
@@ -103,7 +104,7 @@ def error_against_time(t, errors: dict[str, np.ndarray], *, time_unit="s",
 def work_precision(study: np.ndarray, *, error_field="error_max", ax=None):
     """Log-log work-precision diagram: error against wall time, one line per method.
 
-    Our methods are solid lines with filled markers; scipy peers dashed, hollow.
+    Our methods are solid lines with filled markers; peers (scipy, heyoka) dashed, hollow.
     """
     fig, ax = new_figure(ax, figsize=(6.8, 5.6))
     methods = list(dict.fromkeys(study["method"]))
@@ -119,12 +120,14 @@ def work_precision(study: np.ndarray, *, error_field="error_max", ax=None):
         if not keep.any():
             continue
         order = np.argsort(time[keep])
-        peer = str(method).startswith("scipy")
+        peer = is_peer(method)
         ax.loglog(
             time[keep][order], np.maximum(err[keep][order], 1e-17),
             color=MANY_SERIES[i % len(MANY_SERIES)],
             linestyle="--" if peer else ("-" if i < len(MANY_SERIES) else "-."),
-            marker=markers[i % len(markers)],
+            # past the palette's length the markers shift by one, so that a method sharing
+            # a colour with an earlier one differs from it in marker too
+            marker=markers[(i + i // len(MANY_SERIES)) % len(markers)],
             markerfacecolor="none" if peer else None,
             label=str(rows["label"][0]),
         )
@@ -218,8 +221,11 @@ def sweep_results(values: dict[str, np.ndarray], analysis: dict[str, np.ndarray]
         ax.set_ylabel(label if "$" in label else textwrap.fill(label, 26))
         if as_lines and others and name == names[0]:  # one legend serves every panel
             place_legend(ax, fontsize=8)
-    for ax in grid[-1]:
-        ax.set_xlabel(key_axis_label(keys[paths[0]]))
+    for column in grid.T:  # the lowest visible panel of each column (an odd count of
+        shown = [ax for ax in column if ax.get_visible()]  # results hides the last one)
+        if shown:
+            shown[-1].set_xlabel(key_axis_label(keys[paths[0]]))
+            shown[-1].tick_params(labelbottom=True)
     return fig
 
 
