@@ -117,3 +117,30 @@ def test_the_peer_rule_the_report_reads_agrees_with_the_registry():
     for name, m in METHODS.items():
         if name != "radau":  # the stiff fallback (scipy's Radau): never a study row
             assert is_peer(name) == m.peer, name
+
+
+def test_the_bench_table_gives_each_scene_its_worst_ratio_and_a_reason_below_one():
+    from reportgen.commands.bench import behind_reason, heyoka_table
+
+    ahead_rows = [_row("heyoka", 1e-8, 2e-4, tol=1e-8), _row("taylor", 5e-9, 1e-4, tol=1e-8)]
+    behind_rows = [
+        _row("heyoka", 1e-8, 2e-4, tol=1e-8), _row("heyoka", 3e-12, 3e-4, tol=1e-12),
+        _row("taylor", 5e-9, 1e-4, tol=1e-8), _row("taylor", 8e-12, 1.5e-4, tol=1e-11),
+        _row("taylor", 7e-12, 1.6e-4, tol=1e-12),  # its floor: a decade gained < 2x
+        _row("dop853", 2e-12, 9e-4, tol=1e-14), _row("dop853", 1e-7, 1e-4, tol=1e-9)]
+    results = [{"scene": "a", "heyoka": against_peer(ahead_rows), "rows": ahead_rows,
+                "range": (1e-13, 1e-6)},
+               {"scene": "b", "heyoka": against_peer(behind_rows), "rows": behind_rows,
+                "range": (1e-13, 1e-6)}]
+    lines = []
+    table = heyoka_table(results, print=lines.append)
+    a, b = table
+    assert a["ratio"] == pytest.approx(2.0) and a["reason"] == "" and a["ahead"] == 1
+    assert b["ratio"] == pytest.approx(3e-4 / 9e-4) and b["ahead"] == 1
+    assert "errors stop at 7.0e-12" in b["reason"] and "dop853 rtol 1e-14" in b["reason"]
+    assert any("1 of 2 scenes at or ahead" in line for line in lines)
+    # a Taylor run that matches but is slower says so, with both tolerances
+    slow = behind_reason(behind_rows, {"error_max": 8e-12, "tolerance": 1e-11, "ratio": 0.8,
+                                       "ours": {"method": "taylor", "tolerance": 1e-12,
+                                                "h": math.nan}})
+    assert "takes 1.25x heyoka's time (tol 1e-11)" in slow

@@ -245,7 +245,7 @@ def _fput(hy, model, xs):
         left = q[2 * i - 1] if i > 0 else None
         d = right - left if right is not None and left is not None else (
             right if right is not None else -left)
-        f = 4.0 * d ** 3
+        f = 4.0 * (d * d * d)  # heyoka differentiates d**3 as a real power: NaN at d = 0
         if i < m:
             grad[2 * i].append(f)
         if i > 0:
