@@ -437,7 +437,7 @@ class Report(Scene):
                     fastest = good[np.argmin(good["wall_time_s"])]
                     matched = (f"{_setting(fastest)}: {fmt_err(float(fastest['error_max']))} in "
                                f"{fmt(float(fastest['wall_time_s']) * 1e3, 3)} ms")
-                    speedup = f"{fmt(float(base['wall_time_s']) / float(fastest['wall_time_s']), 3)}×"
+                    speedup = _times(float(base["wall_time_s"]) / float(fastest["wall_time_s"]))
             rows.append([label, matched, speedup,
                          f"{fmt_err(float(best['error_max']))} ({_setting(best)})", cell])
         notes = [f"{_mark(k)} {text}" for k, text in enumerate(reasons, 1)]
@@ -508,6 +508,11 @@ class Report(Scene):
 
 
 
+def _times(ratio: float) -> str:
+    """A speed ratio as a factor: "1190×" (whole from 100 on, no exponent), "34.6×"."""
+    return f"{ratio:.0f}×" if ratio >= 100 else f"{fmt(ratio, 3)}×"
+
+
 def _heyoka_note(study, attrs=None) -> str:
     """What the heyoka rows of a study say against ours ("" when it has none): at each
     error heyoka reached in :data:`~reportgen.support.peers.PEER_ERROR_RANGE`, our fastest run
@@ -536,9 +541,10 @@ def _heyoka_note(study, attrs=None) -> str:
             parts.append(f"{fmt_err(m['error_max'])}: none of ours as accurate")
         else:
             parts.append(f"{fmt_err(m['error_max'])}: {fmt(m['ratio'], 2)}×")
+    count = ("none" if not ahead else "all" if len(ahead) == len(matched) else len(ahead))
     text = head + (f"at {len(matched)} of its errors between {fmt_err(lo)} and "
                    f"{fmt_err(hi)}, our fastest run at least as accurate was faster at "
-                   f"{len(ahead)}. heyoka's time over ours, by heyoka's error: "
+                   f"{count}. heyoka's time over ours, by heyoka's error: "
                    + "; ".join(parts) + ".")
     if len(ahead) < len(matched) and not any(r["method"] == "taylor" for r in rows):
         text += (" reportgen's own Taylor-series integrator, which takes heyoka's steps, is "
