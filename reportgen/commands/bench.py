@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from ..scene.config import ConfigError
-from ..support.peers import against_peer, compared_range
+from ..support.peers import against_peer, compared_range, study_rows
 from ..support.timing import best_time
 from . import default_paths
 
@@ -34,16 +34,6 @@ def bench_tolerances() -> tuple[float, ...]:
 
     return tuple(sorted({*FINE_TOLERANCES, *(10.0 ** (-k / 4) for k in range(49, 57))},
                         reverse=True))
-
-
-def _decode(v):
-    return v.decode("utf-8") if isinstance(v, bytes) else v
-
-
-def study_rows(records: np.ndarray) -> list[dict]:
-    """Structured study records as a list of plain dicts (str fields decoded)."""
-    return [{name: _decode(r[name].item() if hasattr(r[name], "item") else r[name])
-             for name in records.dtype.names} for r in records]
 
 
 def scene_bench(scene, print=builtins.print) -> dict | None:
@@ -81,9 +71,7 @@ def scene_bench(scene, print=builtins.print) -> dict | None:
             f"in {base['wall_time_s'] * 1e3:8.2f} ms")
     if matched["matches"]:
         best = matched["matches"][0]
-        knob = (f"rtol {best['tolerance']:.0e}" if math.isfinite(best["tolerance"])
-                else f"h {best['h']:.3g}")
-        line += (f" | ours: {best['method']} {knob}: {best['error_max']:.1e} in "
+        line += (f" | ours: {_setting(best)}: {best['error_max']:.1e} in "
                  f"{best['wall_time_s'] * 1e3:7.3f} ms → {best['speedup']:6.0f}×")
     else:
         line += " | none of our runs reached that error"

@@ -199,7 +199,8 @@ def judge_records(records: np.ndarray, limit: float, reason) -> int:
 def reference_run(model, y0, t_eval) -> np.ndarray:
     """The reference-run recipe every kind shares where no closed form exists: compiled
     DOP853 at rtol 1e-14, atol 1e-16 (tighter than scipy allows).  Returns y, shape (N, d)."""
-    return integrate(model, y0, t_eval, method="dop853", rtol=1e-14, atol=1e-16).y
+    return integrate(model, y0, t_eval, method="dop853", rtol=1e-14, atol=1e-16,
+                     warm_up=False).y
 
 
 def _reference_runs(model, y0, t_eval):
@@ -213,14 +214,16 @@ def _reference_runs(model, y0, t_eval):
     fixed step does not converge in reach (hamiltonian_two_centres: 14.8 million
     evaluations still 2.3e-4 from the dop853 reference, which scipy converges to).  Not
     budgeted: a reference cut short for time would put a floor under every error."""
-    ref_dop = integrate(model, y0, t_eval, method="dop853", rtol=1e-14, atol=1e-16)
+    ref_dop = integrate(model, y0, t_eval, method="dop853", rtol=1e-14, atol=1e-16,
+                        warm_up=False)
     span = t_eval[-1] - t_eval[0]
-    prev = integrate(model, y0, t_eval, method="gauss6", h=2.0 * span / max(ref_dop.nsteps, 1))
+    prev = integrate(model, y0, t_eval, method="gauss6", h=2.0 * span / max(ref_dop.nsteps, 1),
+                     warm_up=False)
     last_diff = math.inf
     converged = False
     for _ in range(_GAUSS_REF_MAX_HALVINGS):
         # halve the step actually used (a step longer than the output spacing is cut to it)
-        cur = integrate(model, y0, t_eval, method="gauss6", h=prev.h / 2.0)
+        cur = integrate(model, y0, t_eval, method="gauss6", h=prev.h / 2.0, warm_up=False)
         ok = prev.status == "ok" and cur.status == "ok"
         diff = float(np.max(np.abs(cur.y - prev.y))) if ok else math.inf
         prev = cur
@@ -312,7 +315,7 @@ def default_steps(model, y0, t_eval) -> np.ndarray:
     h0 = the mean step of dop853 at rtol 1e-6 (a long step for a low-order method),
     but no longer than the output spacing (longer steps would be cut to it anyway).
     """
-    probe = integrate(model, y0, t_eval, method="dop853", rtol=1e-6, atol=1e-8)
+    probe = integrate(model, y0, t_eval, method="dop853", rtol=1e-6, atol=1e-8, warm_up=False)
     h0 = (t_eval[-1] - t_eval[0]) / max(probe.nsteps, 1)
     if t_eval.size > 1:
         h0 = min(h0, float(np.min(np.diff(t_eval))))
@@ -464,7 +467,9 @@ def _sweep(model, y0, t_eval, name, grid, y_ref, repeats, stamp, budget: Budget,
             run = functools.partial(m.solve, model, y0, t_eval, kw["rtol"], kw["atol"],
                                     time_limit=max(limit, MIN_PEER_RUN_S))
         else:
-            run = functools.partial(integrate, model, y0, t_eval, method=name, **kw)
+            # _timed takes the best of repeats after a warm-up run: no rehearsal each
+            run = functools.partial(integrate, model, y0, t_eval, method=name, warm_up=False,
+                                    **kw)
         try:
             sol, compile_s, n, cost = _timed(run, repeats, max(allowance - spent, 0.0))
         except PeerTimeLimit:

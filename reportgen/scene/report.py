@@ -517,12 +517,12 @@ def _heyoka_note(study, attrs=None) -> str:
     """What the heyoka rows of a study say against ours ("" when it has none): at each
     error heyoka reached in :data:`~reportgen.support.peers.PEER_ERROR_RANGE`, our fastest run
     at least as accurate, and heyoka's time over ours."""
+    from ..support.peers import against_peer, compared_range, study_rows
+
     attrs = attrs or {}
-    rows = [{name: (v.decode() if isinstance(v, bytes) else v)
-             for name, v in zip(study.dtype.names, r.tolist(), strict=True)} for r in study]
+    rows = study_rows(study)
     if not any(r["method"] == "heyoka" for r in rows):
         return ""
-    from ..support.peers import against_peer, compared_range
 
     lo, hi = compared_range(float(attrs.get("reference_agreement", math.nan)))
     matched = against_peer(rows, error_range=(lo, hi))

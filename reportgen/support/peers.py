@@ -10,6 +10,16 @@ from __future__ import annotations
 MEASURED = ("ok", "inaccurate")
 
 
+def study_rows(records) -> list[dict]:
+    """A study table (the structured records of ``/study/error_vs_runtime``) as a list of
+    plain dicts, its byte fields decoded."""
+    def plain(value):
+        value = value.item() if hasattr(value, "item") else value
+        return value.decode("utf-8") if isinstance(value, bytes) else value
+
+    return [{name: plain(r[name]) for name in records.dtype.names} for r in records]
+
+
 def is_peer(method: str) -> bool:
     """Whether the study rows of ``method`` are a peer's, not ours: scipy's solve_ivp
     methods and heyoka (the registry's ``peer`` flag; a test holds the two equal)."""

@@ -90,6 +90,18 @@ class Solution:
         return "ok" if self.ok else "failed"
 
 
+def cut_at_first_bad(Y: np.ndarray, n_ok: int, t_eval: np.ndarray) -> tuple[int, bool, float]:
+    """Outputs ``Y`` of a whole-run method (a peer's, the Taylor run's), of which the first
+    ``n_ok`` rows were produced: every row from the first non-finite one among those (else
+    from ``n_ok``) is set to NaN.  Returns (that first bad row, ``len(Y)`` when every row is
+    good; whether it is a non-finite one; the time of the last good output)."""
+    finite = np.all(np.isfinite(Y[:n_ok]), axis=1)
+    nonfinite = not finite.all()
+    bad = int(np.argmin(finite)) if nonfinite else int(n_ok)
+    Y[bad:] = np.nan
+    return bad, nonfinite, float(t_eval[bad - 1]) if bad > 0 else float(t_eval[0])
+
+
 class Method:
     """Base class: capability flags and the structure check."""
 

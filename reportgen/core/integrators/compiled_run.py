@@ -155,9 +155,11 @@ def default_step(method: Method, kern, model, y0, t_eval, rtol) -> float:
     return float(min(max(h, tp * 1e-9), tp / 4.0))
 
 
-def run_compiled(method: Method, model, y0, t_eval, rtol, atol, h, progress, max_steps):
+def run_compiled(method: Method, model, y0, t_eval, rtol, atol, h, progress, max_steps,
+                 warm_up: bool = True):
     """Run a compiled ``method``: compile or load its driver (``compile_time_s``), set the
-    run up, warm it (:func:`warm_up_run`, ``warm_up_time_s``), then the timed run.
+    run up, warm it (:func:`warm_up_run`, ``warm_up_time_s``; not with ``warm_up`` False),
+    then the timed run.
 
     ``wall_time_s`` is the time of the driver calls that produce the returned trajectory,
     from its first step to its last output: compiling, the default step's probes, the
@@ -183,7 +185,7 @@ def run_compiled(method: Method, model, y0, t_eval, rtol, atol, h, progress, max
     n_chunks = _N_CHUNKS if (progress is not None and i_end > _N_CHUNKS) else 1
     bounds = ((0, i_end) if n_chunks == 1
               else np.linspace(0, i_end, n_chunks + 1).round().astype(int))
-    warm_s = warm_up_run(method, kern, model, y0, t_eval, rtol, atol, step)
+    warm_s = warm_up_run(method, kern, model, y0, t_eval, rtol, atol, step) if warm_up else 0.0
     status = codes.OK
     wall = 0.0
     for k in range(n_chunks):

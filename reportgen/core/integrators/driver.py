@@ -14,7 +14,7 @@ from .registry import METHODS
 
 def integrate(model, y0, t_eval, method: str = "dop853", rtol: float = 1e-10,
               atol: float = 1e-12, h: float | None = None, progress=None,
-              max_steps: int = 10_000_000) -> Solution:
+              max_steps: int = 10_000_000, warm_up: bool = True) -> Solution:
     """Integrate ``model`` from ``y0`` at ``t_eval[0]``, returning the state at ``t_eval``.
 
     Parameters
@@ -36,6 +36,10 @@ def integrate(model, y0, t_eval, method: str = "dop853", rtol: float = 1e-10,
     max_steps : int
         Budget of attempted steps, accepted and rejected (a fixed-step run: its steps,
         counted before any is taken); ``code`` MAX_STEPS beyond it.
+    warm_up : bool
+        Rehearse a compiled run just before timing it
+        (:func:`.compiled_run.warm_up_run`); False where nobody reads the time of this one
+        run (a reference run, a probe) or the caller times repeats itself (the study).
 
     Notes
     -----
@@ -68,7 +72,7 @@ def integrate(model, y0, t_eval, method: str = "dop853", rtol: float = 1e-10,
         return Solution(t=t_eval.copy(), y=y0[None, :].copy(), method=method, rtol=rtol,
                         atol=atol, h=h, nfev=0, nsteps=0, nreject=0, code=SolveCode.OK,
                         message="ok", wall_time_s=0.0, compile_time_s=0.0)
-    return run_compiled(m, model, y0, t_eval, rtol, atol, h, progress, max_steps)
+    return run_compiled(m, model, y0, t_eval, rtol, atol, h, progress, max_steps, warm_up)
 
 
 __all__ = ["integrate", "warm_up", "MethodMismatch", "SolveCode", "Solution"]

@@ -16,12 +16,11 @@ series' recurrences once): ``nsteps`` is its step count and ``nfev`` is -1.
 from __future__ import annotations
 
 import functools
-import math
 import time
 
 import numpy as np
 
-from .base import Method, MethodMismatch, Solution, SolveCode
+from .base import Method, MethodMismatch, Solution, SolveCode, cut_at_first_bad
 
 
 @functools.cache
@@ -108,14 +107,11 @@ class Heyoka(Method):
         grid = np.asarray(grid, dtype=np.float64).reshape(-1, d)
         n_ok = min(len(grid), N)
         Y[:n_ok] = grid[:n_ok]
-        finite = np.all(np.isfinite(Y[:n_ok]), axis=1)
+        bad, nonfinite, t_last = cut_at_first_bad(Y, n_ok, t_eval)
         hy = heyoka_module()
         code, message = SolveCode.OK, "ok"
-        if outcome != hy.taylor_outcome.time_limit or n_ok < N or not finite.all():
-            bad = int(np.argmin(finite)) if not finite.all() else n_ok
-            Y[bad:] = np.nan
-            t_last = t_eval[bad - 1] if bad > 0 else t_eval[0]
-            nonfinite = (outcome == hy.taylor_outcome.err_nf_state) or not finite.all()
+        if outcome != hy.taylor_outcome.time_limit or bad < N:
+            nonfinite = nonfinite or outcome == hy.taylor_outcome.err_nf_state
             code = SolveCode.NONFINITE if nonfinite else SolveCode.SOLVER_ERROR
             message = (f"{self.label} failed after t = {t_last:.6g}: "
                        f"{str(outcome).rsplit('.', 1)[-1].replace('_', ' ')}")
@@ -124,4 +120,4 @@ class Heyoka(Method):
         return Solution(t=t_eval.copy(), y=Y, method=self.name, rtol=float(rtol),
                         atol=float(rtol), h=None, nfev=-1, nsteps=int(nsteps), nreject=-1,
                         code=code, message=message, wall_time_s=wall,
-                        compile_time_s=jit if math.isfinite(jit) else 0.0)
+                        compile_time_s=jit)

@@ -11,7 +11,7 @@ import warnings
 
 import numpy as np
 
-from .base import Method, Solution, SolveCode
+from .base import Method, Solution, SolveCode, cut_at_first_bad
 
 EPS = np.finfo(float).eps
 SCIPY_MIN_RTOL = 100 * EPS  # solve_ivp clamps rtol below this (with a warning)
@@ -65,15 +65,12 @@ class ScipyMethod(Method):
         n_ok = res.t.size
         if n_ok:
             Y[:n_ok] = res.y.T
-        finite = np.all(np.isfinite(Y[:n_ok]), axis=1)
+        bad, nonfinite, t_last = cut_at_first_bad(Y, n_ok, t_eval)
         code, message = SolveCode.OK, "ok"
-        if not res.success or n_ok < N or not finite.all():
-            bad = int(np.argmin(finite)) if not finite.all() else n_ok
-            Y[bad:] = np.nan
-            t_last = t_eval[bad - 1] if bad > 0 else t_eval[0]
+        if not res.success or bad < N:
             # solve_ivp reports failure as prose only; what we can tell structurally is
             # a non-finite state (ours to check) versus any other solver failure
-            code = SolveCode.SOLVER_ERROR if finite.all() else SolveCode.NONFINITE
+            code = SolveCode.NONFINITE if nonfinite else SolveCode.SOLVER_ERROR
             message = (f"{self.label} failed after t = {t_last:.6g}: "
                        f"{res.message if not res.success else 'non-finite state'}")
         if progress is not None:

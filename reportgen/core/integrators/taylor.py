@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .base import Method, MethodMismatch, Solution, SolveCode
+from .base import Method, MethodMismatch, Solution, SolveCode, cut_at_first_bad
 
 
 class Taylor(Method):
@@ -53,13 +53,10 @@ class Taylor(Method):
         compile_s += module_s
         status = SolveCode.from_code(code)
         message = "ok"
-        if status is SolveCode.OK:
-            finite = np.all(np.isfinite(Y), axis=1)
-            if not finite.all():  # a finite step whose dense output overflowed
-                bad = int(np.argmin(finite))
-                Y[bad:] = np.nan
-                status = SolveCode.NONFINITE
-                t_last = float(t_eval[bad - 1]) if bad > 0 else float(t_eval[0])
+        if status is SolveCode.OK:  # a finite step whose dense output overflowed?
+            _bad, nonfinite, t_cut = cut_at_first_bad(Y, len(Y), t_eval)
+            if nonfinite:
+                status, t_last = SolveCode.NONFINITE, t_cut
         if status is not SolveCode.OK:
             why = {SolveCode.NONFINITE: "non-finite state or step",
                    SolveCode.STEP_UNDERFLOW: "step size underflow",
