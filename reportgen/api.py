@@ -338,7 +338,9 @@ class Run:
             if start >= 0:
                 parts.append(f"<div style='max-width:40em' title='{e(svg.name)}'>"
                              f"{text[start:]}</div>")
-        return "\n".join(parts)
+        from .scene.typeset import typeset_html
+
+        return typeset_html("\n".join(parts))  # as the report's pages are typeset
 
 
 def open(path: str | Path) -> Run:  # noqa: A001 - reportgen.open, like io.open

@@ -25,6 +25,7 @@ class _Structure(HTMLParser):
         self._capture: str | None = None
         self._text = ""
         self._row_cells = 0
+        self._script: str | None = None
 
     def handle_starttag(self, tag, attrs):
         a = dict(attrs)
@@ -41,8 +42,12 @@ class _Structure(HTMLParser):
             self._capture, self._text = tag, ""
         elif tag == "tr":
             self._row_cells = 0
+        elif tag in ("sub", "sup"):
+            self._script = tag
 
     def handle_endtag(self, tag):
+        if tag in ("sub", "sup"):
+            self._script = None
         if tag == self._capture:
             text = " ".join(self._text.split())
             self.items.append([{"td": "row"}.get(tag, tag), text])
@@ -50,7 +55,19 @@ class _Structure(HTMLParser):
 
     def handle_data(self, data):
         if self._capture:
-            self._text += data
+            self._text += _script(data, self._script) if self._script else data
+
+
+_SCRIPTS = {"sub": str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉"),
+            "sup": str.maketrans("0123456789−", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")}
+
+
+def _script(text: str, tag: str) -> str:
+    """A sub- or superscript as it reads: Unicode's small digits, else ``_{…}``/``^{…}``."""
+    small = text.translate(_SCRIPTS[tag])
+    if all(not c.isascii() or c in " ." for c in small):
+        return small
+    return ("_" if tag == "sub" else "^") + "{" + text + "}"
 
 
 def html_structure(html: str) -> list[list[str]]:

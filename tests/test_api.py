@@ -151,7 +151,7 @@ def test_to_xarray_sweep(out):
 def test_repr_html_shows_title_status_headline_and_figures(out):
     _, single, _ = out
     page = reportgen.open(single.folder)._repr_html_()
-    assert "Pendulum — API test (θ0 = 0.3)" in page and "ok" in page
+    assert "Pendulum — API test (θ<sub>0</sub> = 0.3)" in page and "ok" in page  # typeset
     assert "libration" in page and "period" in page  # the headline facts
     assert 1 <= page.count("<svg") <= api.REPR_FIGURES
 

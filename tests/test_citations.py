@@ -125,6 +125,7 @@ def test_configuration_and_figures_are_not_read():
     ("Hairer, Lubich & Wanner's Geometric Numerical Integration", ["gni"]),
     ("dense output (Hairer, Nørsett & Wanner II.6)", ["hairer"]),
     ("the textbook's three steps; Goldstein §6.4", ["textbook", "goldstein"]),
+    ("a planetary orbit (Waalkens, Dullin & Richter 2004)", ["waalkens"]),
 ])
 def test_cited_documents(text, keys):
     assert cited(page(text)) == keys

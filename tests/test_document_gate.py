@@ -37,7 +37,7 @@ def figure(**kw):
 def rules(findings: list[str]) -> set[str]:
     """The rule names in findings ("... : rule: ...")."""
     names = {"series", "legend", "label", "limits", "text", "overflow", "number", "config",
-             "python", "tex", "fill"}
+             "python", "tex", "fill", "type", "provenance"}
     return {part.strip() for f in findings for part in f.split(":") if part.strip() in names}
 
 
@@ -202,7 +202,7 @@ def test_labels_past_the_figure_or_over_each_other_are_found():
     left, right = fig.subplots(1, 2)
     for ax in (left, right):
         ax.plot([0, 1], [0, 1])
-        ax.set(ylabel="y [m]", xlabel="initial precession rate φ̇0 [rad/s] of each member "
+        ax.set(ylabel="y [m]", xlabel="initial precession rate φ̇₀ [rad/s] of each member "
                                       "of the family (dimensionless)")
     found = drawn(fig)
     assert rules(found) == {"text"} and "overlaps" in " ".join(found), found
@@ -210,7 +210,7 @@ def test_labels_past_the_figure_or_over_each_other_are_found():
     fig = Figure(figsize=(6, 3), layout="constrained")
     for ax in fig.subplots(1, 2):
         ax.plot([0, 1], [0, 1])
-        ax.set(ylabel="y [m]", xlabel="precession rate φ̇0 [rad/s]")
+        ax.set(ylabel="y [m]", xlabel="precession rate φ̇₀ [rad/s]")
     assert drawn(fig) == []
 
 
@@ -232,11 +232,11 @@ def test_words_in_a_figure_are_held_to_the_text_rules(label, rule):
 
 # ------------------------------------------------------------------ page rules
 def test_a_table_wider_than_the_page_is_found():
-    wide = "<table><tr>" + "".join(f"<td>1.234567890123e-{i:02d}</td>" for i in range(14)) \
+    wide = "<table><tr>" + "".join(f"<td>1.23456789012{i:02d}</td>" for i in range(14)) \
         + "</tr></table>"
     found = page_findings(laid_out("<p>Numbers.</p>" + wide))
     assert rules(found) == {"overflow"}, found
-    assert "1.234567890123e-00" in found[0]
+    assert "1.2345678901200" in found[0]
     narrow = "<table><tr>" + "".join(f"<td>{i}.5</td>" for i in range(14)) + "</tr></table>"
     assert page_findings(laid_out("<p>Numbers.</p>" + narrow)) == []
 
@@ -246,11 +246,14 @@ def test_a_long_unbreakable_word_is_found():
     assert rules(found) == {"overflow"}, found
 
 
-@pytest.mark.parametrize("cell", ["nan", "NaN", "inf", "−inf", "−0", "-0.000", "−0.0e+00"])
-def test_a_number_that_is_not_one_is_found(cell):
+@pytest.mark.parametrize("cell, also", [
+    ("nan", ()), ("NaN", ()), ("inf", ()), ("−inf", ()), ("−0", ()), ("−0.000", ()),
+    ("-0.000", ("type",)), ("−0.0e+00", ("type",)),  # a hyphen, E-notation: type findings too
+])
+def test_a_number_that_is_not_one_is_found(cell, also):
     found = page_findings(laid_out(f"<table><tr><td>period T [s]</td><td>{cell}</td></tr>"
                                    "</table>"))
-    assert rules(found) == {"number"}, found
+    assert rules(found) == {"number", *also}, found
 
 
 @pytest.mark.parametrize("text, rule", [
@@ -274,15 +277,35 @@ def test_config_python_and_tex_in_prose_are_found(text, rule):
 
 def test_legitimate_prose_passes():
     body = ("<h1>Heavy top — Fig. 4.3 as printed</h1>"
-            "<p class='kind'>Scene <code>heavy_top_fig4.3</code> · kind <code>heavy_top</code>"
-            " — the archive <code>run.h5</code> and its <code>/config</code>.</p>"
+            "<p class='kind'>The archive <code>run.h5</code>; <code>reportgen cache info</code>."
+            "</p>"
             "<p>Kepler orbit with e = 0.95, period 10.25 s, θ₀ = −0.5 rad, ω² = g/l; "
             "see Fig. 4.3 and (1.19), i.e. the small-angle limit, e.g. at t = 0 s; "
-            "errors 1.2e-13 (rtol 1e-12); DOP853 and solve_ivp; 3 × 10⁻⁵; x86_64.</p>"
+            "errors 1.2 × 10<sup>−13</sup> (rtol 10<sup>−12</sup>); DOP853, RK45 and "
+            "scipy's Radau; 3 × 10⁻⁵; I<sub>1</sub> = I<sub>3</sub>, θ<sub>0</sub>, "
+            "r<sub>12</sub>; a well-known x-axis; pp. 119-131; H2O.</p>"
             "<table><tr><th>quantity</th><th>value [rad/s]</th></tr>"
             "<tr><td>ω₁ at t = 0</td><td>−0.25</td></tr>"
             "<tr><td>date</td><td>2026-01-05</td></tr></table>")
     assert page_findings(laid_out(body)) == []
+
+
+@pytest.mark.parametrize("text, rule", [
+    ("The energy E = -0.34 J at the start.", "type"),
+    ("The final angle θ(T) = (-0.1) rad.", "type"),
+    ("An error of 4.2e-15 against the closed form.", "type"),
+    ("A tilt of 1E-6 rad.", "type"),
+    ("A symmetric body, I1 = I2, spins.", "type"),
+    ("The angle θ1 of the first rod.", "type"),
+    ("The masses m1 and m2 in kg.", "type"),
+    ("The trajectory is in /runs/main of the archive.", "provenance"),
+    ("Integrated at rtol=0.5 with DOP853.", "provenance"),
+    ("The peers call <code>solve_ivp</code> here.", "config"),
+    ("Scene pendulum_large of the pack.", "config"),
+])
+def test_typography_and_provenance_in_the_body_are_found(text, rule):
+    found = page_findings(laid_out(f"<p>{text}</p>"))
+    assert rules(found) == {rule}, found
 
 
 def test_the_configuration_section_is_exempt():
@@ -292,15 +315,16 @@ def test_the_configuration_section_is_exempt():
     assert rules(found) == {"config"}, found  # a config key even in a code span
 
 
-def test_an_almost_empty_interior_page_is_found():
+def test_an_almost_empty_page_is_found():
     page_break = "<div style='break-before: page'></div>"
     short = paragraphs(60) + page_break + paragraphs(3) + page_break + paragraphs(60)
     found = page_findings(laid_out(short))
     assert rules(found) == {"fill"} and found[0].startswith("page 3:"), found
-    full = paragraphs(60) + page_break + paragraphs(30) + page_break + paragraphs(60)
+    full = paragraphs(60) + page_break + paragraphs(30) + page_break + paragraphs(25)
     assert page_findings(laid_out(full)) == []
-    # the last page and the one the configuration starts on may be short
-    assert page_findings(laid_out(paragraphs(60) + page_break + paragraphs(2))) == []
+    # the last page too: a footer or two lines of the configuration alone is a finding
+    found = page_findings(laid_out(paragraphs(60) + page_break + paragraphs(2)))
+    assert rules(found) == {"fill"}, found
 
 
 # ------------------------------------------------------------------ the product
@@ -386,7 +410,7 @@ def test_a_sweep_with_an_odd_count_of_results_labels_its_lowest_visible_panels()
     x = np.linspace(1.0, 2.0, 30)
     analysis = {f"r{k}": x ** k for k in range(1, 6)}
     fig = sweep_results({"initial.x": x}, analysis, np.ones(x.size, bool),
-                        keys={"initial.x": ("x0", "m")},
+                        keys={"initial.x": ("$x_0$", "m")},
                         ylabels={f"r{k}": f"result {k} [m]" for k in range(1, 6)})
     drawn(fig)
     assert figure_findings(fig) == []

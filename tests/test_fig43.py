@@ -101,6 +101,15 @@ def test_each_single_case_run_goes_once_round_the_band(archives, name):
     assert abs(run["phi"][-1] - run["phi"][0]) >= 2 * math.pi
 
 
+#: matplotlib's mathtext draws a sub- or superscript at this fraction of its text's size
+SCRIPT_SCALE = 0.7
+
+
+def _plain(text: str) -> str:
+    """A figure text as written before typesetting: ``ω$_{3}$ =`` as ``ω3 =``."""
+    return re.sub(r"\$[_^]\{([^}]*)\}\$", r"\1", text)
+
+
 def _texts(fig):
     """(text, font size [pt], bounding box in display coordinates) of every visible,
     non-empty text of ``fig`` (titles, annotations, legends)."""
@@ -134,7 +143,7 @@ def test_slide_lays_fig43_out_as_a_row_with_large_text_and_no_overlap(fig43):
     fig = _slide_fig43(fig43)
     assert tuple(fig.get_size_inches()) == pytest.approx((10.0, 5.625))
     texts = _texts(fig)
-    subtitles = [t for t in texts if t[0].startswith("ω3 =")]
+    subtitles = [t for t in texts if _plain(t[0]).startswith("ω3 =")]
     assert len(subtitles) == 3
     assert not _overlaps(texts)  # subtitles, panel labels, circle labels: none touch
     inside = fig.bbox
@@ -153,7 +162,8 @@ def test_slide_lays_fig43_out_as_a_row_with_large_text_and_no_overlap(fig43):
 def test_overlap_and_font_checks_catch_what_the_stretched_figure_did(fig43):
     # seeded failures: the same three subtitles at 14 pt in a box too narrow for a row
     fig = _slide_fig43(fig43, Size("narrow", 4.0, 3.0, min_font=SLIDE_MIN_FONT))
-    assert any(a.startswith("ω3") and b.startswith("ω3") for a, b in _overlaps(_texts(fig)))
+    assert any(_plain(a).startswith("ω3") and _plain(b).startswith("ω3")
+               for a, b in _overlaps(_texts(fig)))
     # and the report's figure stretched to the slide, its text scaled (the old export)
     fig = _figure(fig43, SIZES["report"])
     fig.set_size_inches(10.0, 5.625)
@@ -169,7 +179,13 @@ def test_slide_export_from_the_shipped_config(archives, tmp_path, cli):
     assert Image.open(out / "fig4_3-fig4_3.png").size == (800, 450)
     svg = (out / "fig4_3-fig4_3.svg").read_text()
     sizes = [float(s) for s in re.findall(r"font-size: ([\d.]+)px", svg)]
-    assert len(sizes) >= 12 and min(sizes) >= SLIDE_MIN_FONT  # SVG px are points here
+    assert len(sizes) >= 12  # SVG px are points here
+    # every glyph at the slide's size, but a sub- or superscript (ω₃, 10⁻¹⁵: mathtext draws
+    # scripts at 0.7 of the text they belong to, which is itself at least that size)
+    for size in sizes:
+        assert size >= SLIDE_MIN_FONT or any(
+            abs(size / SCRIPT_SCALE - other) < 0.05 and other >= SLIDE_MIN_FONT
+            for other in sizes), size
 
 
 def test_print_and_report_layouts(fig43):

@@ -182,7 +182,7 @@ def test_place_legend_moves_off_the_data_and_out_when_full():
     # a plot filled everywhere: the legend goes above the axes
     fig, ax = new_figure()
     rng = np.random.default_rng(1)
-    ax.plot(rng.random(400), rng.random(400), "o", label="cloud")
+    ax.plot(rng.random(2000), rng.random(2000), "o", label="cloud")  # no free corner
     legend = place_legend(ax)
     FigureCanvasAgg(fig)
     fig.savefig(io.BytesIO(), format="svg")

@@ -213,15 +213,16 @@ def two_centres_reference(m, mu1, mu2, a, cartesian0, t):
 
 # (m, μ1, μ2, a, (x, y, p_x, p_y) at t = 0, t_end ≈ 5 revolutions)
 ORBITS = {
-    # η librating about 0: planetary orbit of μ1, ξ through 0 (across the segment)
+    # η librating about 0: satellite orbit of μ1, ξ through 0 (across the segment); the
+    # names are the literature's (Waalkens, Dullin & Richter, Physica D 196 (2004))
     "librating-equal": (1.0, 1.0, 1.0, 1.0, (1.3, 0.0, 0.1, 1.7), 6.0),
     "librating-unequal": (1.0, 1.0, 0.3, 1.0, (1.5, 0.0, 0.1, 1.35), 12.0),
-    # η librating about π: planetary orbit of μ2
+    # η librating about π: satellite orbit of μ2
     "librating-about-pi": (1.0, 0.3, 1.0, 1.0, (-1.5, 0.0, -0.1, -1.35), 12.0),
-    # η circulating: satellite orbits between two confocal ellipses …
+    # η circulating: planetary orbits between two confocal ellipses …
     "circulating-equal": (1.0, 1.0, 1.0, 1.0, (0.0, 2.0, -0.95, 0.1), 60.0),
     "circulating-unequal": (1.3, 1.0, 0.4, 1.0, (0.0, 2.0, -1.105, 0.13), 60.0),
-    # … and across the segment between the centres
+    # … and lemniscate orbits across the segment between the centres
     "circulating-across": (1.0, 1.0, 1.0, 1.0, (1.4, 0.0, 0.1, 1.8), 6.0),
 }
 ETA_MOTION = {"librating-equal": "about 0", "librating-unequal": "about 0",

@@ -294,7 +294,7 @@ def test_energy_of_double_pendulum_from_L_is_T_plus_V(double_pendulum):
     # the initial momenta are ∂L/∂q̇ at the written velocities
     p0 = double_pendulum_momenta(DP0["a"], DP0["b"], DP0["a_dot"], DP0["b_dot"])
     assert np.max(np.abs(scene.initial_state()[2:] - p0)) <= 1e-14
-    assert results.analysis["given"] == "L" and not results.analysis["separable"]
+    assert results.analysis["given"] == "L" and not results.analysis["kinetic_potential_split"]
 
 
 def test_energy_of_spherical_pendulum_from_L_is_T_plus_V(spherical):

@@ -1,9 +1,9 @@
 """Heavy symmetric top against its closed form (lecture notes §10.1, eqs. 10.21-10.50;
-Goldstein 3rd ed. §5.7, eqs. 5.62-5.73; FIELD-NOTES "Heavy top").
+Goldstein 3rd ed. §5.7, eqs. 5.62-5.73).
 
 References checked here:
 - f(u) = (1 − u²)(α − βu) − (b − au)² = β(u − u1)(u2 − u)(u3 − u)   (10.31; Goldstein 5.71)
-- T = 4K(k²)/√(β(u3 − u1)), k² = (u2 − u1)/(u3 − u1)                (FIELD-NOTES; Goldstein 5.72)
+- T = 4K(k²)/√(β(u3 − u1)), k² = (u2 − u1)/(u3 − u1)                (notes (10.31); Goldstein §5.7)
 - Δφ per period = ∮ (b − au)/(1 − u²) dt                               (10.26)
 - u(t) = u1 + (u2 − u1) sn²(½√(β(u3 − u1)) t + τ0 | k²)   (Jacobi form of Goldstein 5.72)
 - steady precession I1 cos θ φ̇² − I3ω3 φ̇ + Mgl = 0 and (10.46)        (10.45-10.46)

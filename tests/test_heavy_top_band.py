@@ -7,7 +7,7 @@ References checked here:
 - the Fig. 4.3 cases by the sign of φ̇ = (b − a cos θ)/sin²θ (10.26) on the circles
   (Goldstein §5.7): loops change sign, waves keep it, cusps have φ̇ = 0 on the upper one
 - u(t) = (4/β)℘(t + x0 + ω′) + (u1 + u2 + u3)/3 against the Jacobi sn² form
-  u1 + (u2 − u1) sn²(λt + τ0 | k²) (FIELD-NOTES "Heavy top"), and T = 2ω = 4K(k²)/√(β(u3 − u1))
+  u1 + (u2 − u1) sn²(λt + τ0 | k²) (notes (10.31); Goldstein §5.7), and T = 2ω = 4K(k²)/√(β(u3 − u1))
 """
 
 from __future__ import annotations

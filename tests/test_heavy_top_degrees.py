@@ -23,6 +23,7 @@ def visible(page: str) -> str:
     for pattern in (r"<svg.*?</svg>", r"<style.*?</style>", r'<pre class="config">.*?</pre>',
                     r"<head>.*?</head>", r'<table class="checks">.*?</table>'):
         page = re.sub(pattern, " ", page, flags=re.S)
+    page = re.sub(r"</?su[bp]>", "", page)  # typeset subscripts (θ<sub>1</sub>) read as θ1
     return " ".join(html.unescape(re.sub(r"<[^>]+>", " ", page)).split())
 
 

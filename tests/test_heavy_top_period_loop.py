@@ -3,7 +3,7 @@ the scale of ℘ in u = λ℘ + μ.
 
 References checked here:
 - ∫_{x1}^{x2} dx/√(c(x − x1)(x2 − x)(x3 − x)) = 2K(k²)/√(c(x3 − x1)), k² = (x2 − x1)/(x3 − x1):
-  the heavy top's T = 4K(k²)/√(β(u3 − u1)) of FIELD-NOTES "Heavy top" (Goldstein 5.72) for any
+  the heavy top's T = 4K(k²)/√(β(u3 − u1)) of notes (10.31) (Goldstein §5.7) for any
   leading coefficient c; K from scipy.special.ellipk / ellipkm1 (Cephes), not our Carlson
 - lemniscatic lattice g2 = 1, g3 = 0: e = ½, 0, −½, ω1 = Γ(1/4)²/(4√π)      (DLMF 23.5(iii))
 - the periodic trapezoidal rule on an analytic integrand converges like exp(−N d), d the

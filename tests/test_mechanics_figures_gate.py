@@ -17,6 +17,7 @@ from reportgen.core import heavy_top_theory as theory
 from reportgen.kinds.heavy_top import plots as top_plots
 from reportgen.kinds.heavy_top import report as top_report
 from reportgen.rendering.gate import figure_findings
+from reportgen.rendering.plots.finish import finish_figure
 from reportgen.rendering.report import kind_of_archive
 from reportgen.scene.content import fmt
 
@@ -36,6 +37,7 @@ def drawn(data, section: str) -> dict:
     out = {}
     for spec in getattr(scene, f"section_{section}")(data).figures:
         FigureCanvasAgg(spec.figure)
+        finish_figure(spec.figure)  # typeset, multipliers folded, as save_figure does
         spec.figure.savefig(io.BytesIO(), format="svg")
         out[spec.name] = (spec.figure, figure_findings(spec.figure))
     return out

@@ -81,9 +81,11 @@ def test_counting_three_longitudinal_four_transverse(c2h2):
     transverse = [i for i, t in enumerate(types) if t.startswith("transverse")]
     pairs = {int(groups[i]) for i in transverse}
     assert len(pairs) == 2 and all(np.sum(groups == g) == 2 for g in pairs)  # two twofold bends
+    # named by the bonds that hold their potential energy (two kinds: C–H and C≡C), and by
+    # their parity under the centre of inversion
     assert sorted(t for t in types if t.startswith("longitudinal")) == [
-        "longitudinal, antisymmetric stretch", "longitudinal, symmetric stretch",
-        "longitudinal, symmetric stretch"]
+        "longitudinal, antisymmetric C–H stretch", "longitudinal, symmetric C–C stretch",
+        "longitudinal, symmetric C–H stretch"]
 
 
 def test_longitudinal_frequencies_are_the_four_mass_chain(c2h2):

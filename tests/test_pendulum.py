@@ -1,7 +1,7 @@
 """Pendulum scene against closed forms.
 
 References: exact period T = 4 K(k) sqrt(l/g), k = sin(θ0/2) (DLMF 22.19.4; lecture notes §1);
-θ(t) from sin(θ/2) = k sn(K(m) − ω0 t | m), m = k² (DLMF 22.19.2; FIELD-NOTES);
+θ(t) from sin(θ/2) = k sn(K(m) − ω0 t | m), m = k² (DLMF 22.19.2);
 linear boundary-value solution (1.21) and its action (2.4).
 """
 

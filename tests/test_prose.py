@@ -26,11 +26,20 @@ def scene_of(name: str, text: str):
 
 
 def visible_text(page: str) -> str:
-    """The words a reader sees: no SVG (figures, typeset equations), style or config."""
+    """The words a reader sees: no SVG (figures, typeset equations), style or config; sub-
+    and superscripts as Unicode characters (I<sub>1</sub> reads I₁)."""
     for pattern in (r"<svg.*?</svg>", r"<style.*?</style>", r'<pre class="config">.*?</pre>',
                     r"<head>.*?</head>"):
         page = re.sub(pattern, " ", page, flags=re.S)
-    return html.unescape(re.sub(r"<[^>]+>", " ", page))
+    return html.unescape(re.sub(r"<[^>]+>", " ", _scripts(page)))
+
+
+def _scripts(page: str) -> str:
+    """``<sub>``/``<sub>`` runs as Unicode sub- and superscript characters."""
+    table = {"sub": str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉"),
+             "sup": str.maketrans("0123456789−", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")}
+    return re.sub(r"<(sub|sup)>([^<]*)</\1>",
+                  lambda m: m.group(2).translate(table[m.group(1)]), page)
 
 
 # ------------------------------------------------------------------ default titles
@@ -263,8 +272,8 @@ def test_symmetric_body_report_says_symmetric(cli, tmp_path):
 
 
 def test_asymmetric_body_report_keeps_the_elliptic_case(cli, tmp_path):
-    page = visible_text(run_report(cli, tmp_path, "asym", RIGID.format(
-        I1=1.0, I2=2.0, I3=3.0, omega="[2.0, 0.1, 0.1]")))
+    page = " ".join(visible_text(run_report(cli, tmp_path, "asym", RIGID.format(
+        I1=1.0, I2=2.0, I3=3.0, omega="[2.0, 0.1, 0.1]"))).split())
     assert "I₁ < I₂ < I₃" in page and "intermediate axis (here axis 2)" in page
     assert "does not start near the intermediate axis, so it shows no flip" in page
     assert "Dzhanibekov" not in page and not re.search(r"\bsymmetric body", page)
@@ -302,9 +311,9 @@ def test_hamiltonian_report_shows_no_python_or_tex(cli, tmp_path):
 # ------------------------------------------------------------------ case prose (issue 31)
 def subtitle(page: str) -> str:
     """The header's subtitle (describe(data)) as shown."""
-    found = re.search(r'<p class="kind">(.*?)<span class="note">', page, flags=re.S)
+    found = re.search(r'<p class="kind">(.*?)</p>', page, flags=re.S)
     assert found, "no subtitle"
-    return " ".join(html.unescape(re.sub(r"<[^>]+>", " ", found.group(1))).split())
+    return " ".join(html.unescape(re.sub(r"<[^>]+>", " ", _scripts(found.group(1)))).split())
 
 
 def test_steady_top_is_not_described_by_nutation(cli, tmp_path):
@@ -320,7 +329,7 @@ def test_steady_top_is_not_described_by_nutation(cli, tmp_path):
     assert "the axis draws loops" not in shown and "θ oscillates between" not in shown
     # φ̇ of the fast root, (I3ω3 + √(I3²ω3² − 4 I1 Mgl cos θ0))/(2 I1 cos θ0) with the
     # preset's I1 = 1, I3 = 0.5, Mgl = 1, ω3 = 6, θ0 = 1: (3 + √(9 − 4 cos 1))/(2 cos 1)
-    assert re.search(r"steady precession at θ0 = 57\.3°, φ̇ = 5\.196 rad/s \(the fast root",
+    assert re.search(r"steady precession at θ₀ = 57\.3°, φ̇ = 5\.196 rad/s \(the fast root",
                      subtitle(page))
 
 
@@ -378,13 +387,38 @@ def test_figure_eight_prose_is_its_own(cli, tmp_path):
         "Three equal masses on the figure-eight choreography, period 6.32591")
 
 
-def test_satellite_orbit_prose(cli, tmp_path):
-    page = run_report(cli, tmp_path, "sat", UNTITLED["two_center"]
+def test_planetary_orbit_prose(cli, tmp_path):
+    """The ring round both centres is a planetary orbit, as the literature names it, and
+    the prose cites where the names come from (Waalkens, Dullin & Richter 2004)."""
+    page = run_report(cli, tmp_path, "planet", UNTITLED["two_center"]
                       + "\n        study = false\n")
     shown = " ".join(visible_text(page).split())
-    assert "This orbit is a satellite orbit" in shown and "encircles both centres" in shown
-    assert "This orbit is planetary" not in shown
-    assert subtitle(page).startswith("A satellite orbit round both centres at E = ")
+    assert "This orbit is a planetary orbit" in shown and "encircles both centres" in shown
+    assert "This orbit is a satellite orbit" not in shown
+    assert subtitle(page).startswith("A planetary orbit round both centres at E = ")
+    assert "(Waalkens, Dullin & Richter 2004)" in shown
+    assert "<b>Waalkens, Dullin &amp; Richter</b>" in page  # its entry in the sources list
+
+
+def test_satellite_orbit_prose(cli, tmp_path):
+    """The orbit about one centre is a satellite orbit (Waalkens, Dullin & Richter 2004)."""
+    page = run_report(cli, tmp_path, "sat", """kind = "two_center"
+        [params]
+        mu = 1.0
+        a = 1.0
+        [initial]
+        x = 1.6
+        y = 0.0
+        vx = 0.0
+        vy = 1.2
+        [run]
+        t_end = 10.0
+        study = false
+        """)
+    shown = " ".join(visible_text(page).split())
+    assert "This orbit is a satellite orbit" in shown and "about the centre at (1, 0)" in shown
+    assert "This orbit is a planetary orbit" not in shown
+    assert subtitle(page).startswith("A satellite orbit about the centre at (1, 0) at E = ")
 
 
 def test_symmetric_body_tables_say_marginal_in_words(cli, tmp_path):

@@ -6,7 +6,9 @@ slimmed PDF figures) with ``python tests/report_content.py output/pendulum_small
 its HTML part was written again for issue 31 (the contents list under the title, the
 end time in words in check names, the study table's run count in its method cell) and
 for issues 32–33 (citations naming their document, the Sources list, the end variations
-of S, the phase-space action and the ω → 0 limit), the arrays kept.
+of S, the phase-space action and the ω → 0 limit) and issue 41 (the text typeset: real
+sub- and superscripts, a × 10ⁿ; library routines in words; the drift's scale), the arrays
+kept.
 The HTML must have the same sections, headings, figures, fact labels, table headers and
 row labels (rows of the timed study excepted), and the archive the same trajectory and
 invariants to 1e-12.

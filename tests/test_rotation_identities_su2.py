@@ -254,6 +254,9 @@ def test_stereographic_scale_factor_and_composition(shipped):
 
 def test_report_shows_the_new_sections(shipped):
     page = (shipped / "report.html").read_text(encoding="utf-8")
+    # the typesetter writes U₂ as U<sub>2</sub> and Rᵀ as R<sup>T</sup>: read them back
+    page = re.sub(r"<sub>(\d)</sub>", lambda m: "₀₁₂₃₄₅₆₇₈₉"[int(m.group(1))], page)
+    page = re.sub(r"<sup>T</sup>", "ᵀ", page)
     visible = " ".join(html.unescape(re.sub(r"<[^>]+>", " ", page)).split())
     for text in ("Matrix identities (textbook ex. 4.1–4.4)",
                  "Euler angles in SU(2) (notes (9.17)–(9.18))",

@@ -123,4 +123,6 @@ def test_euler_angles_are_shown_in_degrees(tmp_path, write_config, cli):
     # 0.5 rad = 28.6479°, 0.8 rad = 45.8366°, 0.3 rad = 17.1887°; the z-y-z angles of the
     # same rotation are φ − 90°, θ, ψ + 90° (Goldstein's y-convention)
     assert "28.6479°, 45.8366°, 17.1887° (0.5, 0.8, 0.3 rad)" in text
-    assert f"{math.degrees(0.5) - 90:.6g}°, 45.8366°, {math.degrees(0.3) + 90:.6g}°" in text
+    # (the page's minus sign is U+2212)
+    assert (f"{math.degrees(0.5) - 90:.6g}°, 45.8366°, {math.degrees(0.3) + 90:.6g}°"
+            .replace("-", "−")) in text

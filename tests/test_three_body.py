@@ -170,7 +170,7 @@ def test_figure_eight_with_one_mass_changed_is_not_the_choreography():
     assert not any("after one period" in c.quantity for c in r.checks)
     data = SimpleNamespace(analysis=r.analysis, config=scene.config, runs=r.runs, sweep=None)
     case = ThreeBodyScene.prose_case(data)
-    assert case["preset"] == "" and not case["periodic"] and not case["equal_masses"]
+    assert not case["figure_eight"] and not case["periodic"] and not case["equal_masses"]
     words = ThreeBodyScene.describe(data)
     assert "figure-eight" not in words and "equal" not in words and "not periodic" in words
     # the preset as given keeps its name, its return check and its words

@@ -16,7 +16,9 @@ from reportgen.kinds import load_scene
 from reportgen.scene.config import ConfigError, parse_config_text
 
 MU, A = 1.0, 1.0
-SATELLITE = (0.0, 1.6, 1.05, 0.0)  # configs/two_center_satellite.toml: ≥ 0.89 a from a centre
+PLANETARY = (0.0, 1.6, 1.05, 0.0)  # configs/two_center_planetary.toml: ≥ 0.89 a from a centre
+#: configs/two_center_satellite.toml: about the centre at (1, 0), its region holds it
+SATELLITE = (1.6, 0.0, 0.0, 1.2)
 #: from (2, 0) with angular momentum 0.01 about C2 = (1, 0): pericentre ≈ L²/2μ = 5e-5
 NEAR_COLLISION = (2.0, 0.0, 0.0, 0.01)
 
@@ -80,11 +82,11 @@ def test_conversions_and_jacobian():
 
 def test_smooth_orbit_agrees_with_cartesian():
     t = np.linspace(0.0, 60.0, 3001)
-    model, sol = regularized_run(SATELLITE, t)
+    model, sol = regularized_run(PLANETARY, t)
     # outputs located at the physical times, not interpolated in t
     assert np.max(np.abs(sol.y[:, reg.T_INDEX] - t)) <= 1e-13
     X = np.column_stack(reg.from_regularized(sol.y, A)[:4])
-    ref = integrate(cart.model(MU, A), np.array(SATELLITE), t, rtol=1e-13, atol=1e-15)
+    ref = integrate(cart.model(MU, A), np.array(PLANETARY), t, rtol=1e-13, atol=1e-15)
     assert np.max(np.abs(X - ref.y)) <= 1e-9
 
 
@@ -135,11 +137,11 @@ def test_free_fall_through_the_collision():
 
 
 @pytest.mark.parametrize("state, extra, expected", [
-    (SATELLITE, "", "cartesian"),                        # far from both centres
-    ((1.6, 0.0, 0.0, 1.2), "", "regularized"),           # shipped planetary: region holds C2
+    (PLANETARY, "", "cartesian"),                        # far from both centres
+    (SATELLITE, "", "regularized"),                      # its region holds C2
     (NEAR_COLLISION, "", "regularized"),
     (NEAR_COLLISION, 'method = "rk45"', "cartesian"),    # a named non-DOP853 method
-    (SATELLITE, 'formulation = "regularized"', "regularized"),
+    (PLANETARY, 'formulation = "regularized"', "regularized"),
     ((3.0, 0.0, 0.0, 1.5), "", "cartesian"),             # unbound (E > 0)
 ])
 def test_auto_formulation(state, extra, expected):
@@ -149,7 +151,7 @@ def test_auto_formulation(state, extra, expected):
 
 def test_auto_criterion_is_the_region_of_motion():
     # closest_approach_bound is a lower bound of min(r1, r2) along the run
-    for state in (SATELLITE, (1.6, 0.0, 0.0, 1.2), (0.0, 2.5, 0.7, 0.1)):
+    for state in (PLANETARY, SATELLITE, (0.0, 2.5, 0.7, 0.1)):
         E = float(cart.energy(*state, MU, A))
         C = float(cart.separation_constant(*state, MU, A))
         bound = cart.closest_approach_bound(E, C, MU, A)
@@ -163,4 +165,4 @@ def test_auto_criterion_is_the_region_of_motion():
 
 def test_regularized_needs_dop853():
     with pytest.raises(ConfigError, match="run.method"):
-        scene(SATELLITE, extra='formulation = "regularized"\nmethod = "yoshida6"')
+        scene(PLANETARY, extra='formulation = "regularized"\nmethod = "yoshida6"')

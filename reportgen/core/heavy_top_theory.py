@@ -211,7 +211,8 @@ def check_admissible(r: Roots, c: TopConstants) -> None:
 #: start w0 is an exact root and a rounded steady rate (10.45) splits the double root
 #: by only ~1e-15 relative (measured over θ0 ∈ [0.3, 2.8], ω3 ∈ [3, 50])
 STEADY_RTOL = 1e-10
-#: |b/a − u2| below this fraction of (u2 − u1) counts as b/a = u2 (cusps)
+#: |φ̇| on the upper circle below this fraction of |φ̇| on the lower one counts as
+#: b/a = u2 (cusps)
 CUSP_RTOL = 1e-10
 
 
@@ -219,7 +220,8 @@ def classify(r: Roots, c: TopConstants) -> str:
     """Fig. 4.3 case from where b/a falls relative to [u1, u2] (notes §10.1; Goldstein §5.7).
 
     "loops": u1 < b/a < u2 (φ̇ changes sign); "cusps": b/a = u2 (φ̇ = 0 at the top
-    turning circle); "waves": b/a outside [u1, u2].  Degenerate cases: "sleeping"
+    turning circle: |φ̇| there at most ``CUSP_RTOL`` times |φ̇| on the lower one); "waves":
+    b/a outside [u1, u2].  Degenerate cases: "sleeping"
     (on the vertical at rest) and "steady" (u1 = u2, steady precession).
     b/a = u1 cannot occur: there f'(u1) = −β(1 − u1²) < 0.
     """
@@ -231,7 +233,12 @@ def classify(r: Roots, c: TopConstants) -> str:
     if c.a == 0.0:
         return "waves"  # φ̇ = b/(1 − u²) keeps the sign of b
     x = -c.B / c.a  # 1 − b/a
-    if abs(x - r.w1) <= CUSP_RTOL * width:
+    # φ̇ = (b − a u)/(1 − u²) = a (w − x)/(w (2 − w)) on the circles: cusps when φ̇ on the upper
+    # one vanishes against φ̇ on the lower (not b/a against the band's width: near the vertical
+    # 1 − u² ≈ 2w magnifies a tiny w1 − x into a finite φ̇)
+    upper = abs(r.w1 - x) * r.w2 * (2.0 - r.w2)
+    lower = abs(r.w2 - x) * r.w1 * (2.0 - r.w1)
+    if upper <= CUSP_RTOL * lower or (r.w1 == 0.0 and x == 0.0):
         return "cusps"
     return "loops" if r.w1 < x < r.w2 else "waves"
 
@@ -242,7 +249,8 @@ def nutation_rate(r: Roots, c: TopConstants) -> float:
 
 
 def nutation_period(r: Roots, c: TopConstants) -> float:
-    """T = 2K(k²)/λ = 4K(k²)/√(β (u3 − u1)) (FIELD-NOTES; Goldstein 5.72-5.73).
+    """T = 2K(k²)/λ = 4K(k²)/√(β (u3 − u1)): the period of t = ∫du/√f(u), notes (10.31)
+    (Goldstein §5.7).
 
     k² = 0 (steady precession; sleeping top) gives the small-oscillation limit
     2π/√(β (u3 − u1)); NaN for an unstable sleeping top (u3 ≤ 1).
@@ -312,7 +320,7 @@ def precession_quadrature(r: Roots, c: TopConstants) -> float:
 
 def u_closed_form(t, r: Roots, c: TopConstants):
     """cos θ(t) = u1 + (u2 − u1) sn²(λ t + τ0 | k²): the Jacobi form of the quadrature
-    t = ∫du/√f(u) (Goldstein 5.72; DLMF §22.15; FIELD-NOTES "Heavy top").
+    t = ∫du/√f(u), notes (10.31) (Goldstein §5.7; DLMF §22.15).
 
     τ0 places the initial state: sn²τ0 = (u0 − u1)/(u2 − u1), on the rising branch
     (τ0 ∈ [0, K]) when u̇0 = −sin θ0 θ̇0 > 0, else on the falling one (2K − τ0).
@@ -694,6 +702,11 @@ def _weierstrass_phase(lattice: weierstrass.Lattice, target: float, top: float) 
         z = np.array([complex(x, omega_prime)])
         return float(weierstrass.wp_minus_e3(z, lattice)[0].real) - target
 
+    low, high = excess(0.0), excess(omega)
+    if low * high > 0.0:
+        # a start on a turning circle: the target lies within the series' rounding of an
+        # end, where ℘ is stationary, and no sign change brackets it
+        return 0.0 if abs(low) <= abs(high) else omega
     return float(_optimize().brentq(excess, 0.0, omega, xtol=1e-16 * omega, rtol=4 * np.finfo(float).eps,
                                     maxiter=200))
 

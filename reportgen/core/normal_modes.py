@@ -523,36 +523,6 @@ def mode_parity(modes: np.ndarray, M: np.ndarray, inversion: np.ndarray | None) 
     return out
 
 
-def stretch_character(mode: np.ndarray, coords: list[tuple[str, float, np.ndarray]],
-                      parity: str = "") -> str:
-    """'symmetric stretch' / 'antisymmetric stretch' / 'bend' from the potential-energy split.
-
-    The mode's potential energy ½ Σ k (b·η)² is split over internal coordinates;
-    the larger of the stretch and bend shares names the mode.  With a centre of symmetry
-    (``parity`` "g" or "u", :func:`mode_parity`) a stretch is symmetric when it is even
-    under the inversion — so C₂H₂'s ν1, whose C–H bonds lengthen while C≡C shortens, is
-    symmetric; without one, stretches that all lengthen together are symmetric (Herzberg's
-    ν1/ν3 convention).
-    """
-    stretch, bend, signs = 0.0, 0.0, []
-    for label, k, b in coords:
-        s = float(b @ mode)
-        e = 0.5 * k * s * s
-        if label.startswith("stretch"):
-            stretch += e
-            if abs(s) > 1e-8 * max(1.0, np.linalg.norm(mode)):
-                signs.append(np.sign(s))
-        else:
-            bend += e
-    if bend >= stretch:
-        return "bend"
-    if parity:
-        return "symmetric stretch" if parity == "g" else "antisymmetric stretch"
-    if len(signs) > 1 and len(set(signs)) > 1:
-        return "antisymmetric stretch"
-    return "symmetric stretch"
-
-
 def node_count(mode: np.ndarray, tol: float = 1e-9) -> int:
     """Sign changes along a one-dimensional chain (zeros skipped)."""
     v = mode[np.abs(mode) > tol * np.max(np.abs(mode))]
@@ -649,17 +619,18 @@ def rigid_body_basis(mol: Molecule, M: np.ndarray) -> tuple[np.ndarray, list[str
 
 
 def classify_modes(modes: ModeSet, M: np.ndarray, system: str, mol: Molecule | None = None,
-                   rigid_labels: list[str] | tuple[str, ...] = ()) -> list[str]:
+                   rigid_labels: list[str] | tuple[str, ...] = (),
+                   names: list[str] | None = None) -> list[str]:
     """A type label per mode of ``modes`` (ascending ω).
 
     Zero modes take ``rigid_labels`` in order ("translation", "rotation"), then
-    "zero mode (floppy)".  Vibrations of a molecule are named by their potential-energy
-    split (:func:`stretch_character`: symmetric / antisymmetric stretch, bend — by the
-    parity under the inversion when there is a centre of symmetry) and, for a
-    linear molecule, by their geometry (:func:`mode_types_linear`: longitudinal,
-    transverse in-plane / out-of-plane).  A chain or row of pendula (``system`` "chain" or
-    "pendula") names each mode by its node count (:func:`node_count`; two pendula: "in
-    phase" / "out of phase", Goldstein §6.3); any other system: "normal mode".
+    "zero mode (floppy)".  Vibrations of a molecule take ``names`` (one per vibration, by
+    the internal coordinates that hold their energy: the kind's words) and, for a linear
+    molecule, their geometry (:func:`mode_types_linear`: longitudinal, transverse in-plane
+    / out-of-plane; a transverse vibration is named by its geometry alone).  A chain or
+    row of pendula (``system`` "chain" or "pendula") names each mode by its node count
+    (:func:`node_count`; two pendula: "in phase" / "out of phase", Goldstein §6.3); any
+    other system: "normal mode".
 
     Parameters
     ----------
@@ -670,28 +641,29 @@ def classify_modes(modes: ModeSet, M: np.ndarray, system: str, mol: Molecule | N
     mol : Molecule or None
         Required for ``system == "molecule"``.
     rigid_labels : sequence of str
+    names : list of str or None
+        A molecule's vibrations' names ("vibration" each when None).
 
     Returns
     -------
     list of str, length n
     """
     n = M.shape[0]
-    coords = mol.internal_coordinates() if mol is not None else []
-    axis = mol.axis() if mol is not None else None
-    parity = mode_parity(modes.modes, M, mol.inversion() if mol is not None else None)
-    types = []
-    for k in range(n):
+    zero = [rigid_labels[k] if k < len(rigid_labels) else "zero mode (floppy)"
+            for k in range(modes.n_zero)]
+    if mol is not None:
+        names = list(names) if names is not None else ["vibration"] * (n - modes.n_zero)
+        axis = mol.axis()
+        if axis is not None:
+            w1, _ = transverse_directions(axis)
+            geo = mode_types_linear(modes.modes[:, modes.n_zero:], M, axis, w1)
+            names = [g if g.startswith("transverse") else f"{g}, {name}"
+                     for g, name in zip(geo, names, strict=True)]
+        return zero + names
+    types = list(zero)
+    for k in range(modes.n_zero, n):
         eta = modes.modes[:, k]
-        if k < modes.n_zero:
-            types.append(rigid_labels[k] if k < len(rigid_labels) else "zero mode (floppy)")
-        elif mol is not None:
-            kind = stretch_character(eta, coords, parity[k])
-            if axis is not None:
-                w1, _ = transverse_directions(axis)
-                geo = mode_types_linear(eta[:, None], M, axis, w1)[0]
-                kind = geo if geo.startswith("transverse") else f"{geo}, {kind}"
-            types.append(kind)
-        elif system in ("chain", "pendula"):
+        if system in ("chain", "pendula"):
             nodes = node_count(eta)
             if system == "pendula" and n == 2:
                 types.append("in phase" if nodes == 0 else "out of phase")

@@ -25,6 +25,38 @@ def complementary_parameter(theta0, theta_dot0, omega0):
     return math.cos(0.5 * theta0) ** 2 - (theta_dot0 / (2.0 * omega0)) ** 2
 
 
+#: |1 - k^2| below this: on the separatrix.  E differs from the separatrix energy
+#: 2 m g l (measured from the bottom) by |1 - k^2| of it, E - E_s = -2 m g l (1 - k^2), and
+#: 1e-12 is finer than an integration at the default rtol holds the energy: such a run cannot
+#: tell libration from rotation, and the exact period 4K(k)/omega0 ~ (2/omega0) ln(16/|1 - k^2|)
+#: is set by the residue alone
+SEPARATRIX_ON = 1e-12
+#: |1 - k^2| below this: near the separatrix.  The motion then spends more than half of
+#: each period (or turn) beyond 135 degrees from the bottom: 56 % at 1 - k^2 = 1e-2, 57 % at
+#: k^2 - 1 = 1e-2 (t(theta) = F(phi | k^2)/omega0, DLMF 22.19.2), and ~80 % at 1e-6
+SEPARATRIX_NEAR = 1e-2
+
+
+def separatrix_proximity(m1) -> str:
+    """"on", "near" or "far": |1 - k^2| against :data:`SEPARATRIX_ON` and
+    :data:`SEPARATRIX_NEAR` (``m1`` = 1 - k^2, :func:`complementary_parameter`)."""
+    gap = abs(m1)
+    if gap < SEPARATRIX_ON:
+        return "on"
+    return "near" if gap < SEPARATRIX_NEAR else "far"
+
+
+def motion_case(m1) -> str:
+    """The case the words of a report follow: "libration", "rotation" (each far from the
+    separatrix), "libration near the separatrix", "rotation near the separatrix", or
+    "separatrix" (:func:`separatrix_proximity`; the sign of 1 - k^2 decides the side)."""
+    proximity = separatrix_proximity(m1)
+    if proximity == "on":
+        return "separatrix"
+    side = "libration" if m1 > 0.0 else "rotation"
+    return f"{side} near the separatrix" if proximity == "near" else side
+
+
 #: below this |1 - k^2| scipy's double-precision ellipj no longer resolves the motion
 #: (measured against 40-digit mpmath: 4e-9 error at 1 - k^2 = 2.5e-7 over 12 periods)
 EXACT_SOLUTION_MIN_M1 = 1e-8

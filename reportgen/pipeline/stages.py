@@ -176,21 +176,7 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
 
                 helper = FigureHelper()  # warms up its drawing while this simulates
             t0 = time.perf_counter()
-            results = (scene.simulate_sweep(folder, progress, submit=sweep_submit)
-                       if scene.sweep is not None else scene.simulate(progress=progress))
-            for name, run in results.runs.items():
-                if run.status != "ok":
-                    results.flag(run.status, f"run '{name}': {run.message}")
-            results.wall_time_s = time.perf_counter() - start
-            write_archive(archive, kind=scene.kind, title=scene.title, scene=scene.source.name,
-                          config_text=scene.source.text, config_sha256=scene.source.sha256,
-                          results=results, resolved_config=scene.resolved_config(),
-                          physics_key=key, schema=scene.results_schema())
-            del results  # the report reads the archive; a 10⁷-member family is ~570 MiB
-            if scene.sweep is not None:  # its finished blocks are in the archive now
-                from ..scene.sweep import discard_partial
-
-                discard_partial(folder, key)
+            simulate_scene(scene, folder, progress, sweep_submit, start=start, key=key)
             outcome.stages.append("simulate")
             outcome.stage_s["simulate"] = time.perf_counter() - t0
         elif stored.config_sha256 != scene.source.sha256:
@@ -236,6 +222,34 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
             if worker is not None:
                 worker.close()
     return outcome
+
+
+def simulate_scene(scene: Scene, folder: Path, progress: Callable[[float], None] | None = None,
+                   sweep_submit=None, start: float | None = None,
+                   key: str | None = None) -> Path:
+    """The simulate stage alone: run ``scene`` and write ``folder/run.h5`` (atomically),
+    whatever is there; returns the archive's path.  ``start``: when the scene's run began
+    (its archived wall time counts from it; default now); ``key``: its physics key, if
+    the caller has it already."""
+    start = time.perf_counter() if start is None else start
+    archive = Path(folder) / "run.h5"
+    results = (scene.simulate_sweep(folder, progress, submit=sweep_submit)
+               if scene.sweep is not None else scene.simulate(progress=progress))
+    for name, run in results.runs.items():
+        if run.status != "ok":
+            results.flag(run.status, f"run '{name}': {run.message}")
+    results.wall_time_s = time.perf_counter() - start
+    key = key or scene.physics_key()
+    write_archive(archive, kind=scene.kind, title=scene.title, scene=scene.source.name,
+                  config_text=scene.source.text, config_sha256=scene.source.sha256,
+                  results=results, resolved_config=scene.resolved_config(),
+                  physics_key=key, schema=scene.results_schema())
+    del results  # the report reads the archive; a 10⁷-member family is ~570 MiB
+    if scene.sweep is not None:  # its finished blocks are in the archive now
+        from ..scene.sweep import discard_partial
+
+        discard_partial(folder, key)
+    return archive
 
 
 class Progress:

@@ -3,7 +3,7 @@
 A report template writes an equation as ``{% filter eq %}\\dot u^2 = f(u){% endfilter %}``
 (mathtext, a TeX subset: ``\\frac``, ``\\sqrt``, ``\\dot``, Greek, sub/superscripts …).
 :func:`equation_html` gives ``<span class="eq" role="math" aria-label="TeX">`` holding an
-``<svg>`` of the glyphs as paths (Computer Modern, the textbook's look), sized in points
+``<svg>`` of the glyphs as paths (STIX, the body text's family), sized in points
 and lowered by its depth so that its baseline sits on the line's; the same element serves
 the HTML and the PDF, and no font has to be installed to show it.
 
@@ -26,7 +26,7 @@ from markupsafe import Markup
 
 #: text size of the equations in points (the body's is 11 pt; math reads better larger)
 EQUATION_POINTS = 12.0
-FONTSET = "cm"
+FONTSET = "stix"
 #: bump when the drawing changes, so that no cached drawing survives
 _VERSION = "2"
 _SUPERSAMPLE = 8  # layout measured at 8 x 72 dpi: sizes to 1/8 pt

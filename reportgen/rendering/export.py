@@ -99,6 +99,7 @@ def sized_figures(data, size: Size, only: tuple[str, ...] = ()) -> Iterator[tupl
     is stretched to the size and its text scaled.  The caller may clear each figure once
     it is done with it."""
     from .plots import style  # noqa: F401 - the figure style, before anything draws
+    from .plots.finish import finish_figure
     from .report import kind_of_archive
 
     scene = kind_of_archive(data)
@@ -115,6 +116,7 @@ def sized_figures(data, size: Size, only: tuple[str, ...] = ()) -> Iterator[tupl
             if laid_out_for(fig) != size:  # not drawn for it: stretched, text scaled
                 fig.set_size_inches(*size.inches(tuple(fig.get_size_inches())))
                 _scale_text(fig, size.text_scale)
+            finish_figure(fig)
             yield fig_id, fig
 
 

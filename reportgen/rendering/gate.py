@@ -41,13 +41,17 @@ Page rules (per page)
                  ``None``/``True``/``False``
     ``tex``      no raw TeX: ``\\command``, ``_{``, ``^{``, a caret exponent ``r^2``,
                  ``$…$``, a symbol with an ASCII subscript (``L_z``, ``V_eff``)
-    ``fill``     no interior page (not the first or the last, nor the one the
-                 configuration starts on) filled to less than a quarter of its height
+    ``type``     typeset as a textbook (issue 41): no ASCII hyphen as a minus sign
+                 (``-0.34``), no E-notation (``4.2e-15``: a × 10ⁿ), no symbol with a
+                 plain-digit subscript (``I1``, ``θ0``: I₁, θ₀; a ``<sub>`` is read as one)
+    ``provenance`` no slug, archive path (``/runs/main``), library call or ``rtol=`` in
+                 the body: they belong to the colophon (``snake_case`` is the ``config``
+                 rule's, in prose and code spans alike)
+    ``fill``     no page after the first filled to less than a quarter of its height
 
-The appended configuration (``<section id="config">``) and the footer are exempt from the
-text rules.  A ``<code>`` span in prose is meant for a file name, an archive path or the
-scene's or kind's name: it may hold ``snake_case`` and dots, but it is still held to the
-config, Python and TeX rules (so ``<code>[sweep]</code>`` is a finding).
+The appended configuration and colophon (``<section id="config">``) and the footer are
+exempt from the text rules.  A ``<code>`` span in the body may name a file (``run.h5``) or
+a command (``reportgen cache info``); it is held to the other rules like prose.
 """
 
 from __future__ import annotations
@@ -542,8 +546,16 @@ _BRACKET_TABLE = re.compile(r"\[\[\s*([\w.]+)\s*\]\]|\[\s*([A-Za-z_][\w.]*)\s*\]
 _SNAKE = re.compile(r"(?<![\w/.])([A-Za-z][A-Za-z0-9]*_[A-Za-z0-9_]*[A-Za-z0-9])(?![\w(])")
 #: a symbol with an ASCII subscript (``L_z``, ``V_eff``, ``r_Kepler``): TeX notation
 _SUBSCRIPTED = re.compile(r"[A-Za-z]\d?_[A-Za-z0-9]{1,7}")
-#: names of library routines and platforms that prose may cite (a citation, not code)
-_ROUTINE = re.compile(r"solve_ivp|solve_bvp|odeint|x86_64|aarch64|[a-z]+_?\d+bit")
+#: typography a textbook never prints (issue 41): a hyphen as a minus sign, E-notation, a
+#: symbol with a plain-digit subscript
+_HYPHEN_MINUS = re.compile(r"(?<![^\s(\[{=,;:/±<>≤≥≈~×·])-(?=\.?\d)")
+_E_NOTATION = re.compile(r"(?<![\w.])\d+(?:\.\d+)?[eE][+\-−]?\d+(?!\w|\.\d)")
+_DIGIT_SUBSCRIPT = re.compile(r"(?<![\w.\\'’])[A-Za-zα-ωΑ-Ωϑϕϵℓ][\u0300-\u036f]*\d{1,2}"
+                              r"(?!(?![⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺])[\w\u0300-\u036f]|\.\d)")
+#: provenance that belongs to the colophon: an archive path, a tolerance as code
+_ARCHIVE_PATH = re.compile(r"(?<![\w/.])/(?:study|runs|analysis|sweep|config|provenance|checks)"
+                           r"(?![\w])")
+_RTOL_CODE = re.compile(r"\b[ar]tol\s?=")
 _PYTHON = [
     (re.compile(r"\*\*"), "'**'"),
     (re.compile(r"[\w)]\s?\*\s?[\w(]"), "'*' as a product"),
@@ -584,7 +596,6 @@ def _page_findings(document) -> list[str]:
     pages = [_read_page(page._page_box) for page in document.pages]
     tables, keys = _config_names("\n".join(t for p in pages for t in p["config_text"]))
     findings: list[str] = []
-    config_page = next((i for i, p in enumerate(pages) if p["config_starts"]), None)
     for i, page in enumerate(pages):
         where = f"page {i + 1}"
         for right, text in page["overflow"]:
@@ -594,10 +605,9 @@ def _page_findings(document) -> list[str]:
                  for f in _text_findings(text, in_code, tables, keys)]
         for text, count in Counter(texts).items():  # one line for a repeated cell
             findings.append(f"{where}: {text}" + (f" ({count} times)" if count > 1 else ""))
-        interior = 0 < i < len(pages) - 1 and i != config_page
-        if interior and page["fill"] < _MIN_FILL:
+        if i > 0 and page["fill"] < _MIN_FILL:
             findings.append(f"{where}: fill: the page is {100 * page['fill']:.0f} % full "
-                            "(an interior page needs a quarter)")
+                            "(a page needs a quarter)")
     return findings
 
 
@@ -607,8 +617,7 @@ def _read_page(page_box) -> dict:
     content_x0 = page_box.content_box_x()
     content_x1 = content_x0 + page_box.width
     content_y0 = page_box.content_box_y()
-    page = {"overflow": [], "texts": [], "config_text": [], "config_starts": False,
-            "fill": 0.0}
+    page = {"overflow": [], "texts": [], "config_text": [], "fill": 0.0}
     bottom = content_y0
 
     def walk(box, in_config: bool, in_code: bool, in_footer: bool, reported: bool):
@@ -617,8 +626,6 @@ def _read_page(page_box) -> dict:
         tag = getattr(box, "element_tag", None)
         if element is not None and not isinstance(box, boxes.TextBox):
             in_config = in_config or element.get("id") == "config"
-            if in_config and tag == "h2":
-                page["config_starts"] = True
             in_code = in_code or tag in ("code", "pre", "kbd", "samp")
             in_footer = in_footer or tag == "footer"
         left = box.border_box_x()
@@ -670,24 +677,27 @@ def _line_texts(block, in_code: bool) -> tuple[list[str], list[str]]:
     prose: list[str] = []
     code: list[str] = []
 
-    def collect(box, coding: bool):
+    def collect(box, coding: bool, script: str | None = None):
         if isinstance(box, boxes.TextBox):
+            text = box.text.translate(_SCRIPTS[script]) if script else box.text
             if coding:
                 if code and code[-1] is not None:
-                    code[-1] += box.text
+                    code[-1] += text
                 else:
-                    code.append(box.text)
+                    code.append(text)
                 prose.append(" ")
             else:
                 if code and code[-1] is not None:
                     code.append(None)
-                prose.append(box.text)
+                prose.append(text)
             return
         if isinstance(box, boxes.BlockContainerBox) and box is not block:
             return  # a nested block reports its own lines
-        coding = coding or getattr(box, "element_tag", None) in ("code", "kbd", "samp")
+        tag = getattr(box, "element_tag", None)
+        coding = coding or tag in ("code", "kbd", "samp")
+        script = tag if tag in ("sub", "sup") else script
         for child in getattr(box, "children", ()):
-            collect(child, coding)
+            collect(child, coding, script)
         if isinstance(box, boxes.LineBox):
             prose.append(" ")
             if code and code[-1] is not None:
@@ -697,6 +707,15 @@ def _line_texts(block, in_code: bool) -> tuple[list[str], list[str]]:
         return [], [_box_text(block, lines="\n")]
     collect(block, False)
     return ["".join(prose)], [c for c in code if c]
+
+
+#: sub- and superscript text as the gate reads it: Unicode's small digits and signs, so
+#: that I<sub>1</sub> reads "I₁", not the plain-digit "I1"
+_SCRIPTS = {
+    "sub": str.maketrans("0123456789+−-=()aeoxhklmnpstiruvj",
+                         "₀₁₂₃₄₅₆₇₈₉₊₋₋₌₍₎ₐₑₒₓₕₖₗₘₙₚₛₜᵢᵣᵤᵥⱼ"),
+    "sup": str.maketrans("0123456789+−-=()n", "⁰¹²³⁴⁵⁶⁷⁸⁹⁺⁻⁻⁼⁽⁾ⁿ"),
+}
 
 
 def _config_names(config_text: str) -> tuple[set[str], set[str]]:
@@ -760,8 +779,18 @@ def _text_findings(text: str, in_code: bool, tables: set[str], keys: set[str]) -
             add("config", "key", m)
         elif _SUBSCRIPTED.fullmatch(word):
             add("tex", "an underscore subscript", m)
-        elif not in_code and not _ROUTINE.fullmatch(word):
+        else:
             add("config", "identifier", m)
+    for m in _HYPHEN_MINUS.finditer(text):
+        add("type", "an ASCII hyphen as a minus sign", m)
+    for m in _E_NOTATION.finditer(text):
+        add("type", "E-notation", m)
+    for m in _DIGIT_SUBSCRIPT.finditer(text):
+        add("type", "a plain-digit subscript", m)
+    for m in _ARCHIVE_PATH.finditer(text):
+        add("provenance", "an archive path", m)
+    for m in _RTOL_CODE.finditer(text):
+        add("provenance", "a tolerance as code", m)
     for pattern, what in _PYTHON:
         for m in pattern.finditer(text):
             add("python", what, m)

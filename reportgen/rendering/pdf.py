@@ -51,13 +51,112 @@ def render_pdf(html_for_pdf: str, target: Path, base_url: Path) -> list[str]:
     gc_thresholds = gc.get_threshold()
     gc.set_threshold(max(10_000, gc_thresholds[0]), *gc_thresholds[1:])
     try:
-        document = weasyprint.HTML(string=html_for_pdf, base_url=str(base_url)).render()
+        fonts, font_config = _font_faces()
+        html = weasyprint.HTML(string=html_for_pdf, base_url=str(base_url))
+        document = html.render(stylesheets=[fonts], font_config=font_config)
         findings = page_findings(document)
+        for layout in _fill_layouts() if _short_pages(findings) else ():
+            # a page under a quarter full (the configuration's last lines alone, say): the
+            # appended configuration set another way, kept if it leaves fewer short pages
+            other = html.render(stylesheets=[fonts, layout], font_config=font_config)
+            other_findings = page_findings(other)
+            if _short_pages(other_findings) < _short_pages(findings):
+                document, findings = other, other_findings
+            if not _short_pages(findings):
+                break
         pdf = document.write_pdf()
     finally:
         gc.set_threshold(*gc_thresholds)
     atomic_write(target, pdf)
     return findings
+
+
+def _short_pages(findings: list[str]) -> int:
+    """How many of the gate's findings are pages less than a quarter full."""
+    return sum(": fill: " in f for f in findings)
+
+
+#: other layouts, tried in turn when the first leaves a page less than a quarter full:
+#: the appended configuration in two columns (its tail then fits the page before); a
+#: section's introduction free to end a page (kept with its figure, a long one can push
+#: both overleaf); both; the configuration starting a page of its own, with and without
+#: (WeasyPrint takes these as user style sheets, below the page's own: hence !important)
+_COMPACT_CONFIG = ("pre.config { column-count: 2 !important; column-gap: 1.5em !important; "
+                   "font-size: 0.7em !important; orphans: 4 !important; "
+                   "widows: 4 !important; }")
+_LOOSE_KEEPS = ("h2 + p, h2 + p + dl.facts { break-after: auto !important; "
+                "break-inside: auto !important; }")
+_CONFIG_PAGE = "#config { break-before: page !important; }"
+FILL_LAYOUTS = (_COMPACT_CONFIG, _LOOSE_KEEPS, _COMPACT_CONFIG + _LOOSE_KEEPS, _CONFIG_PAGE,
+                _CONFIG_PAGE + _LOOSE_KEEPS)
+_LAYOUTS = None
+
+
+def _fill_layouts():
+    global _LAYOUTS
+    if _LAYOUTS is None:
+        from weasyprint import CSS
+
+        _LAYOUTS = [CSS(string=css) for css in FILL_LAYOUTS]
+    return _LAYOUTS
+
+
+#: the fonts matplotlib ships that a report uses (family -> {(weight, style): file}): STIX
+#: for its body, its figures' words and their mathtext, embedded in the PDF from these
+#: files whatever the machine has installed
+_SHIPPED_FONTS = {
+    "STIXGeneral": {("normal", "normal"): "STIXGeneral.ttf",
+                    ("normal", "italic"): "STIXGeneralItalic.ttf",
+                    ("bold", "normal"): "STIXGeneralBol.ttf",
+                    ("bold", "italic"): "STIXGeneralBolIta.ttf"},
+    "STIXNonUnicode": {("normal", "normal"): "STIXNonUni.ttf",
+                       ("normal", "italic"): "STIXNonUniIta.ttf",
+                       ("bold", "normal"): "STIXNonUniBol.ttf",
+                       ("bold", "italic"): "STIXNonUniBolIta.ttf"},
+    **{f"STIXSize{n}Sym": {("normal", "normal"): f"STIXSiz{n}SymReg.ttf"}
+       for n in ("One", "Two", "Three", "Four", "Five")},
+    # the fallback for a character STIX's face lacks (‖ in bold, say): a serif that
+    # matplotlib ships too, so that no machine's own fonts decide it
+    "DejaVu Serif": {("normal", "normal"): "DejaVuSerif.ttf",
+                     ("normal", "italic"): "DejaVuSerif-Italic.ttf",
+                     ("bold", "normal"): "DejaVuSerif-Bold.ttf",
+                     ("bold", "italic"): "DejaVuSerif-BoldItalic.ttf"},
+}
+
+
+def font_face_css() -> str:
+    """``@font-face`` rules for the STIX fonts in matplotlib's data folder (found without
+    importing matplotlib); "" where they are not there."""
+    import importlib.util
+
+    spec = importlib.util.find_spec("matplotlib")
+    if spec is None or not spec.submodule_search_locations:
+        return ""
+    folder = Path(spec.submodule_search_locations[0]) / "mpl-data" / "fonts" / "ttf"
+    rules = []
+    for family, faces in _SHIPPED_FONTS.items():
+        for (weight, style), name in faces.items():
+            path = folder / name
+            if path.is_file():
+                rules.append(f'@font-face {{ font-family: "{family}"; font-weight: {weight}; '
+                             f'font-style: {style}; src: url("{path.as_uri()}"); }}')
+    return "\n".join(rules)
+
+
+_FONTS = None
+
+
+def _font_faces():
+    """(stylesheet, font configuration) of :func:`font_face_css`, made once per process:
+    WeasyPrint loads each font file when a document first uses it."""
+    global _FONTS
+    if _FONTS is None:
+        from weasyprint import CSS
+        from weasyprint.text.fonts import FontConfiguration
+
+        config = FontConfiguration()
+        _FONTS = (CSS(string=font_face_css(), font_config=config), config)
+    return _FONTS
 
 
 def write_pdf(html_text: str, target: Path, base_url: Path,
@@ -173,7 +272,7 @@ _WARM_UP_SVG = (
     'viewBox="0 0 120 60"><defs><clipPath id="c"><rect x="0" y="0" width="120" '
     'height="60"/></clipPath></defs><g clip-path="url(#c)"><path d="M 0 50 L 40 10 '
     'L 80 30 L 120 5" fill="none" stroke="#1f77b4" stroke-width="1.5" '
-    'stroke-dasharray="5.55,2.4"/></g><text x="4" y="58" font-family="DejaVu Sans" '
+    'stroke-dasharray="5.55,2.4"/></g><text x="4" y="58" font-family="STIXGeneral" '
     'font-size="8">−0.5 1e-10 θ ω <tspan font-style="italic">t</tspan></text></svg>')
 
 

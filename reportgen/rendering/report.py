@@ -34,6 +34,7 @@ from ..scene.content import FigureSpec, SectionContent, fmt, fmt_err
 from ..scene.report import method_words
 from ..scene.schema import unit_text
 from ..scene.sources import with_sources
+from ..scene.typeset import plain_text, typeset_html, visible_text
 from ..support.forked import JobProcess, serve
 from ..support.fsutil import atomic_write
 from ..support.layout import template_dir
@@ -69,6 +70,7 @@ def environment() -> jinja2.Environment:
         _ENV.filters["cell"] = table_cell
         _ENV.filters["eq_display"] = display_equation
         _ENV.filters["prose"] = prose_text
+        _ENV.filters["plain"] = plain_text  # typeset in Unicode alone (an attribute)
     return _ENV
 
 
@@ -180,8 +182,10 @@ def save_figure(spec: FigureSpec, fig_id: str, folder: Path,
     with the result.
     """
     from .gate import figure_findings
+    from .plots.finish import finish_figure
 
     folder.mkdir(parents=True, exist_ok=True)
+    finish_figure(spec.figure)
     files = {}
     svg_text = ""
     gate: list[str] = []
@@ -235,7 +239,7 @@ def kind_of_archive(data: ArchiveData):
 
 
 #: bump when the figure drawing changes in a way a cached figure set must not survive
-FIGURES_FORMAT = 2
+FIGURES_FORMAT = 3
 
 
 def figures_key(data: ArchiveData, formats: tuple[str, ...]) -> str:
@@ -414,6 +418,11 @@ def _draw_section(scene, section, data: ArchiveData, out_dir: Path,
             from .svgslim import warm_cache
 
             warm_cache(str(saved.svg), slim_cache(out_dir))
+    return _section_record(section, content, figures)
+
+
+def _section_record(section, content: SectionContent, figures: list[dict]) -> dict[str, Any]:
+    """A drawn section as the plain dict the figures manifest keeps and the page renders."""
     return {
         "name": section.name, "title": section.title, "description": section.description,
         "figures": figures,
@@ -423,6 +432,29 @@ def _draw_section(scene, section, data: ArchiveData, out_dir: Path,
                     "notes": list(content.notes),
                     "equations": [list(e) for e in content.equations]},
     }
+
+
+def report_text(data: ArchiveData) -> str:
+    """What a reader of the scene's report reads, as one line of text: its page's visible
+    text (typeset, without the appended configuration and the footer) followed by the
+    words of every figure (titles, axis labels, legend entries, annotations).  The figures
+    are drawn but not saved, and nothing is written: what the claims test reads
+    (:mod:`reportgen.scene.claims`)."""
+    from .plots.finish import figure_words
+
+    scene = kind_of_archive(data)
+    sections, words = [], []
+    for section in scene.chosen_sections(data):
+        content: SectionContent = getattr(scene, f"section_{section.name}")(data)
+        figures = []
+        for spec in content.figures:
+            words += figure_words(spec.figure)
+            figures.append({"id": f"{section.name}-{spec.name}", "caption": spec.caption,
+                            "files": {}, "svg": Markup("")})
+            spec.figure.clear()
+        sections.append(_section_record(section, content, figures))
+    page = render_html(build_context(data, None, sections=sections, inline=False))
+    return visible_text(page) + " " + " ".join(" ".join(w.split()) for w in words)
 
 
 def cached_sections(out_dir: Path, key: str) -> list[dict[str, Any]] | None:
@@ -491,13 +523,16 @@ def _with_inline_svg(sections: list[dict[str, Any]], out_dir: Path) -> list[dict
     return out
 
 
-def build_context(data: ArchiveData, out_dir: Path,
-                  sections: list[dict[str, Any]] | None = None) -> dict[str, Any]:
-    """The one plain dict the scene template renders."""
+def build_context(data: ArchiveData, out_dir: Path | None,
+                  sections: list[dict[str, Any]] | None = None,
+                  inline: bool = True) -> dict[str, Any]:
+    """The one plain dict the scene template renders.  ``inline``: read each figure's
+    SVG from ``out_dir/figures`` (else the sections carry their own ``svg``)."""
     scene = kind_of_archive(data)
     if sections is None:
         sections, _ = figures_stage(data, out_dir)
-    sections = _with_inline_svg(sections, out_dir)
+    if inline:
+        sections = _with_inline_svg(sections, out_dir)
     runs = []
     labels = method_labels(data)
     for name, run in data.runs.items() if data.sweep is None else ():  # members: their section
@@ -510,6 +545,7 @@ def build_context(data: ArchiveData, out_dir: Path,
                      "nreject": a.get("nreject"), "wall_time_s": a.get("wall_time_s"),
                      "compile_time_s": a.get("compile_time_s"), "status": a.get("status"),
                      "message": a.get("message", ""), "samples": len(run.t),
+                     "rtol": _setting_value(a.get("rtol")), "atol": _setting_value(a.get("atol")),
                      "step": _step_text(a.get("h"), scene.schema.time.unit
                                         if scene.schema is not None else "s")})
     return {
@@ -532,10 +568,46 @@ def build_context(data: ArchiveData, out_dir: Path,
         "wall_time_s": float(data.attrs.get("wall_time_s", 0.0)),
         "sections": sections,
         "config_text": data.config_text,
+        "study_methods": ([] if data.study is None
+                          else list(dict.fromkeys(str(m) for m in data.study["method"]))),
+        "study_calls": _library_calls(data),
+        "cached_machines": _cached_machines(data),
         "attrs": data.attrs,
         "provenance": data.provenance,
         "version": __version__,
     }
+
+
+def _setting_value(value) -> str | None:
+    """A run's tolerance as the colophon lists it ("1e-12"), None where it has none."""
+    try:
+        value = float(value)
+    except (TypeError, ValueError):
+        return None
+    return f"{value:g}" if math.isfinite(value) and value > 0 else None
+
+
+#: the library routine each peer of the study calls (named in the colophon, not the body)
+_PEER_CALLS = {"scipy": "scipy.integrate.solve_ivp", "heyoka": "heyoka.taylor_adaptive",
+               "rebound": "rebound.Simulation"}
+
+
+def _library_calls(data: ArchiveData) -> list[str]:
+    """The library routines the study's peer runs went through."""
+    if data.study is None:
+        return []
+    methods = {str(m) for m in data.study["method"]}
+    return [call for prefix, call in _PEER_CALLS.items()
+            if any(m == prefix or m.startswith(prefix + "_") for m in methods)]
+
+
+def _cached_machines(data: ArchiveData) -> list[str]:
+    """Where the study's rows taken from the peer cache were measured (the colophon's)."""
+    study = data.study
+    if study is None or "cached" not in (study.dtype.names or ()):
+        return []
+    cached = study[study["cached"].astype(bool)]
+    return sorted({f"{str(r['machine'])}, {str(r['measured_at'])}" for r in cached})
 
 
 def _step_text(h, unit: str) -> str:
@@ -559,8 +631,10 @@ def method_labels(data: ArchiveData) -> dict[str, str]:
 
 
 def render_html(context: dict[str, Any]) -> str:
-    """The scene's report page, ending with the documents its text cites."""
-    return with_sources(environment().get_template("scene.html.j2").render(**context))
+    """The scene's report page, ending with the documents its text cites, typeset
+    (:func:`reportgen.scene.typeset.typeset_html`)."""
+    return typeset_html(with_sources(
+        environment().get_template("scene.html.j2").render(**context)))
 
 
 def build_report(archive_path: Path, formats=("html", "pdf"), out_dir: Path | None = None,
@@ -619,9 +693,9 @@ def write_formats(html_text: str, out_dir: Path, formats,
 def build_index(out_dir: Path, groups: list[dict[str, Any]]) -> Path:
     """``index.html``: the gallery of every scene in ``out_dir`` (written atomically);
     ``groups``: the cards by kind (:func:`reportgen.pipeline.stages.gallery_groups`)."""
-    text = environment().get_template("index.html.j2").render(
+    text = typeset_html(environment().get_template("index.html.j2").render(
         groups=groups, count=sum(len(g["entries"]) for g in groups), version=__version__,
-        created=datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC"))
+        created=datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC")))
     path = Path(out_dir) / "index.html"
     atomic_write(path, text.encode("utf-8"))
     return path
@@ -645,7 +719,7 @@ def build_audit_report(audit_path: Path, formats=("html", "pdf")) -> list[Path]:
                             f"audit-case{i}", out_dir / "figures")
         flagged.append({"case": case, "figure": saved})
     rows = [{name: row[name] for name in data["table"].dtype.names} for row in data["table"]]
-    html_text = environment().get_template("audit.html.j2").render(
+    html_text = typeset_html(environment().get_template("audit.html.j2").render(
         rows=rows, cases=data["cases"], overview=figures[0], flagged=flagged,
-        attrs=data["attrs"], provenance=data["provenance"], version=__version__)
+        attrs=data["attrs"], provenance=data["provenance"], version=__version__))
     return write_formats(html_text, out_dir, formats)

@@ -171,6 +171,11 @@ class Scene:
         except ValidationError as exc:
             raise ConfigError(format_validation_error(source.label, exc, cls.Config)
                               + problems) from None
+        if (preset is not None and "title" not in source.data
+                and "title" in cls.presets[preset] and cls.preset_as_given(config) is None):
+            # the preset's title names the preset's scene; a config that changes its
+            # physics is another scene, titled by its own numbers (default_title)
+            config = config.model_copy(update={"title": ""})
         spec = None
         if sweep_table is not None:
             spec, sweep_problems = _sweep.parse_sweep(sweep_table, source.label)

@@ -74,7 +74,7 @@ class RunConfig(Strict):
     study: bool = Field(True, description="run the error-against-run-time study")
     study_budget: Annotated[float, Field(gt=0, allow_inf_nan=True)] = Field(
         1.0, description="wall-clock time the study's timed runs may take together [s] (inf: "
-                         "no budget; scipy DOP853's rtol-1e-10 baseline is always measured)")
+                         "no budget; scipy DOP853's baseline at rtol 1e-10 is always measured)")
 
 
 class OwnUnitsRunConfig(RunConfig):

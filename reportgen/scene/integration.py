@@ -54,6 +54,10 @@ def _solution_attrs(sol) -> dict[str, Any]:
     }
 
 
+#: the scales of a run's invariants: by name, or a function (t, y) -> {name: scale} of the
+#: run (see :meth:`IntegratingSimulation.integrate`)
+InvariantScales = dict[str, float] | Callable[[np.ndarray, np.ndarray], dict[str, float]] | None
+
 #: how far a configured step may sit from a whole fraction of the output spacing (rounding
 #: of the decimal the config writes; 0.005 / 0.001 is 5.000000000000001)
 STEP_MATCH = 1e-9
@@ -145,7 +149,7 @@ class IntegratingSimulation(Simulation):
         invariants: Callable[[np.ndarray, np.ndarray], dict[str, np.ndarray]] | None = None,
         progress: ProgressFn | None = None,
         n_periods: float | None = None,
-        invariant_scales: dict[str, float] | None = None,
+        invariant_scales: InvariantScales = None,
         method: str | None = None,
         method_reason: str | None = None,
         fictitious_time: tuple[int, tuple[str, ...], Callable] | None = None,
@@ -154,7 +158,10 @@ class IntegratingSimulation(Simulation):
 
         ``invariants(t, y)`` gives the conserved quantities, each shape (N,);
         their drift (relative to ``invariant_scales[name]``, default the
-        invariant's own size) is part of the run's stability verdict.  The scales
+        invariant's own size) is part of the run's stability verdict.
+        ``invariant_scales`` is a dict, or a function ``(t, y) -> dict`` of the run (a
+        scale measured along it: the size of a quantity's terms); give one for every
+        quantity that may start at or near 0, whose own size is round-off.  The scales
         are archived as run attrs ``scale_<name>``.  ``method`` (with ``method_reason``)
         overrides the config's method, for a scene whose physics decides it.
 
@@ -194,7 +201,7 @@ class IntegratingSimulation(Simulation):
 
     def run_record(self, res, columns, y: np.ndarray | None = None,
                    invariants: Callable[[np.ndarray, np.ndarray], dict[str, np.ndarray]]
-                   | None = None, invariant_scales: dict[str, float] | None = None) -> RunRecord:
+                   | None = None, invariant_scales: InvariantScales = None) -> RunRecord:
         """The archived run of a solver-policy result (:class:`PolicyResult`): attrs, the
         invariants and the stability verdict (see :meth:`integrate`).  ``y`` (N, len(columns))
         replaces the solution's states when the integrated variables are not the archived
@@ -202,12 +209,13 @@ class IntegratingSimulation(Simulation):
         sol = res.solution
         y = sol.y if y is None else y
         inv = invariants(sol.t, y) if invariants is not None else {}
+        scales = invariant_scales(sol.t, y) if callable(invariant_scales) else invariant_scales
         attrs = _solution_attrs(sol) | {
             "method_reason": res.reason, "solver_status": res.status.value,
             "status": res.status.verdict, "message": res.message}
         record = RunRecord(t=sol.t, y=y, columns=list(columns), invariants=inv, attrs=attrs)
-        _stability.assess_run(record, rtol=self.config.run.rtol, scales=invariant_scales)
-        for name, scale in (invariant_scales or {}).items():
+        _stability.assess_run(record, rtol=self.config.run.rtol, scales=scales)
+        for name, scale in (scales or {}).items():
             record.attrs[f"scale_{name}"] = float(scale)
         return record
 

@@ -388,12 +388,17 @@ class Report(Scene):
         rows = []
         for name, values in rec.invariants.items():
             drift = rec.attrs.get(f"drift_{name}", float("nan"))
+            scale = scales.get(name)
             rows.append([(labels or {}).get(name, name), fmt(float(values[0])),
+                         fmt(float(scale), 4) if scale is not None else "its largest |I|",
                          fmt_err(drift)])
-        table = Table(caption=f"Conserved quantities (bound on the drift of a numerically "
-                              f"stable run: relative drift ≤ "
-                              f"{fmt_err(rec.attrs.get('drift_bound', math.nan))})",
-                      header=["quantity", "initial value", "max relative drift"], rows=rows)
+        table = Table(caption=f"Conserved quantities: the largest drift |I(t) − I(0)| over "
+                              f"the run, divided by the quantity's scale (declared by the "
+                              f"scene, else its own largest size). Bound of a numerically "
+                              f"stable run: "
+                              f"{fmt_err(rec.attrs.get('drift_bound', math.nan))}.",
+                      header=["quantity", "initial value", "scale", "max drift / scale"],
+                      rows=rows)
         return SectionContent(
             figures=[cls.figure("invariants", fig,
                                 caption or "Drift of the conserved quantities.")],
@@ -464,10 +469,11 @@ class Report(Scene):
             cached = study[study["cached"].astype(bool)]
             where = sorted({(str(r["measured_at"]), str(r["machine"])) for r in cached})
             names = ", ".join(dict.fromkeys(str(v) for v in cached["label"]))
-            notes.append(f"The rows of {names} were measured earlier and taken from the peer "
-                         "measurement cache (reportgen cache info): "
-                         + "; ".join(f"{m} on {w}" for m, w in where)
-                         + ". reportgen's own methods were timed in this run.")
+            when = sorted({m[:10] for m, _ in where})
+            notes.append(f"The rows of {names} were measured earlier ({', '.join(when)}) "
+                         "and taken from the peer measurement cache (reportgen cache info; "
+                         "the colophon names the machine). reportgen's own methods were "
+                         "timed in this run.")
         reference = data.study_attrs.get("reference_kind", "")
         budget = float(data.study_attrs.get("budget_s", math.inf))
         if math.isfinite(budget):
@@ -475,7 +481,7 @@ class Report(Scene):
                          "the configuration: each method's ladder stops before a rung that "
                          "would overrun its share, so the tightest tolerances and smallest "
                          "steps may be absent; scipy DOP853 is always run down to the "
-                         "rtol-1e-10 baseline.")
+                         "baseline at rtol 1e-10.")
         over = [m for m in str(data.study_attrs.get("over_budget", "")).split(",") if m]
         if over:
             labels = {str(m): str(lab) for m, lab in zip(study["method"], study["label"],
@@ -491,8 +497,8 @@ class Report(Scene):
                               f"as accurate as the baseline ({target}), the smallest error "
                               f"reached, and the runs' status (notes below). Reference: "
                               f"{reference}. Wall time: minimum over repeats "
-                              "after a warm-up; compile time excluded. All runs are in "
-                              "the archive's /study/error_vs_runtime.",
+                              "after a warm-up; compile time excluded. Every run is in "
+                              "the archive's study table (see the colophon).",
                       header=["method", "fastest at baseline error", "speed-up",
                               "smallest error", "status"],
                       rows=rows)
@@ -501,9 +507,9 @@ class Report(Scene):
                                 "Work-precision diagram: max error over the run against wall "
                                 "time. Filled markers on solid (or dash-dot) lines: reportgen's "
                                 "compiled integrators; hollow markers on dashed lines: "
-                                + ("scipy solve_ivp and heyoka (Taylor series, LLVM)."
+                                + ("scipy's integrators and heyoka (Taylor series, LLVM)."
                                    if np.any(study["method"] == "heyoka")
-                                   else "scipy solve_ivp."))],
+                                   else "scipy's integrators."))],
             tables=[table], notes=notes)
 
 

@@ -78,6 +78,13 @@ SOURCES: dict[str, Source] = {
     "danby": Source(r"\bDanby\b", "Danby",
                     "J. M. A. Danby, Fundamentals of Celestial Mechanics, 2nd ed., "
                     "Willmann-Bell (1988)."),
+    # the names of the two-fixed-centres orbit classes (satellite, planetary, lemniscate)
+    "waalkens": Source(r"\bWaalkens\b", "Waalkens, Dullin & Richter",
+                       "H. Waalkens, H. R. Dullin, P. H. Richter, The problem of two fixed "
+                       "centers: bifurcations, actions, monodromy, Physica D 196, 265 (2004) "
+                       "(the orbit classes of Euler's problem as C. V. L. Charlier named them "
+                       "in Die Mechanik des Himmels (1902): satellite, planetary and "
+                       "lemniscate orbits)."),
     "yoshida": Source(r"\bYoshida\b", "Yoshida",
                       "H. Yoshida, Construction of higher order symplectic integrators, "
                       "Phys. Lett. A 150, 262 (1990)."),

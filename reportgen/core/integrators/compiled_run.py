@@ -21,7 +21,7 @@ from .status import Status
 #: why a run failed, for people (MAX_STEPS: :func:`fail_reason`)
 _FAIL_REASON = {
     Status.NONFINITE: "the state, the right-hand side or the step size became non-finite "
-                      "(NaN or inf)",
+                      "(not a number, or infinite)",
     Status.STEP_UNDERFLOW: "the step size fell to round-off (below ten machine epsilons "
                            "of t, where t + h no longer differs from t)",
     Status.NEWTON: "the Newton iteration for the implicit stages did not converge "

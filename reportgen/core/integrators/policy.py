@@ -166,17 +166,17 @@ def choose_auto(model, rtol: float, n_periods: float | None = None,
         return "levi_civita", (
             f"Kepler orbit (e = {eccentricity:.4g}){length}: Levi-Civita regularization with "
             "Gauss–Legendre 6 steps uniformly in eccentric anomaly and keeps the energy at "
-            f"round-off, meeting rtol = {rtol:g} on it; Cartesian DOP853 at that rtol "
+            f"round-off, meeting rtol {rtol:g} on it; Cartesian DOP853 at that rtol "
             "misses it, its energy error growing by about rtol every orbit (measured at "
             f"{KEPLER_ENERGY_MEASURED}: 3 to 9600 times the rtol).")
     if model.separable is not None and n_periods is not None and n_periods >= LONG_RUN_PERIODS:
-        return "yoshida6", (f"separable Hamiltonian over {n_periods:g} periods: a symplectic "
+        return "yoshida6", (f"H = T(p) + V(q) over {n_periods:g} periods: a symplectic "
                             "method keeps the energy error bounded instead of drifting.")
     if model.separable is not None:
-        return "dop853", (f"separable but short run: DOP853 with dense output is the fastest "
-                          f"way to reach rtol={rtol:g} here (measured).")
+        return "dop853", (f"H = T(p) + V(q) but a short run: DOP853 with dense output is "
+                          f"the fastest way to reach rtol {rtol:g} here (measured).")
     return "dop853", (f"general non-stiff system: adaptive DOP853 with dense output at "
-                      f"rtol={rtol:g}.")
+                      f"rtol {rtol:g}.")
 
 
 def _bound_kepler_eccentricity(model, y0) -> float | None:

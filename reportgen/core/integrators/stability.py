@@ -105,19 +105,42 @@ def stiffness_signs(sol, explicit_adaptive: bool, model=None) -> str | None:
     return None
 
 
+def drift_scale(values: np.ndarray, scale: float | None = None) -> float:
+    """The size an invariant's drift is measured against: ``scale`` when the caller
+    declares one (the system's own energy or momentum scale, the size of the quantity's
+    terms), else the quantity's own size max(|I(0)|, max |I|).
+
+    The fallback is for quantities bounded away from zero (an energy, a total angular
+    momentum): for one that starts at or near 0 it is round-off, and the drift would be
+    round-off divided by round-off.  Such a quantity must be given its scale."""
+    if scale is not None:
+        return float(scale)
+    values = np.asarray(values, dtype=np.float64)
+    finite = values[np.isfinite(values)]
+    if finite.size == 0:
+        return math.nan
+    return max(abs(float(finite[0])), float(np.max(np.abs(finite))))
+
+
+def absolute_drift(values: np.ndarray) -> float:
+    """max |I(t) − I(0)| (inf when some value is not finite)."""
+    values = np.asarray(values, dtype=np.float64)
+    if values.size == 0 or not np.all(np.isfinite(values)):
+        return math.inf
+    return float(np.max(np.abs(values - values[0])))
+
+
 def relative_drift(values: np.ndarray, scale: float | None = None) -> float:
-    """max |I(t) - I(0)| / scale, with scale = max(|I(0)|, max |I|) unless given."""
+    """max |I(t) − I(0)| / :func:`drift_scale` (the declared ``scale``, else the quantity's
+    own size); the absolute drift when that scale is 0 (a quantity identically zero)."""
     values = np.asarray(values, dtype=np.float64)
     finite = values[np.isfinite(values)]
     if finite.size == 0:
         return math.inf
-    if scale is None:
-        scale = max(abs(finite[0]), float(np.max(np.abs(finite))))
-    if scale == 0.0:
+    size = drift_scale(values, scale)
+    if size == 0.0:
         return float(np.max(np.abs(finite - finite[0])))
-    if finite.size < values.size:
-        return math.inf
-    return float(np.max(np.abs(values - values[0]))) / scale
+    return absolute_drift(values) / size
 
 
 def drift_bound(rtol: float, fixed_step: bool) -> float:
@@ -131,7 +154,9 @@ def assess_run(record, rtol: float, scales: dict[str, float] | None = None) -> N
     :class:`~reportgen.core.integrators.RunStatus` value, read as a :class:`.status.Status`
     so that any spelling of the vocabulary is understood: ok/switched -> "ok",
     stiff -> "unstable", a failure -> "failed"), else ``attrs['status']``.  Also
-    stores ``drift_<name>`` attrs, the relative drift of each invariant.
+    stores ``drift_<name>`` attrs, each invariant's drift relative to its scale
+    (``scales[name]`` when given: an absolute drift against the system's own scale, never
+    divided by the quantity's initial value; :func:`drift_scale`).
     """
 
     attrs = record.attrs
@@ -150,9 +175,12 @@ def assess_run(record, rtol: float, scales: dict[str, float] | None = None) -> N
         attrs[f"drift_{name}"] = drift
         if drift > bound and status == "ok":
             status = "unstable"
+            size = drift_scale(values, scales.get(name))
+            against = ("its declared scale" if name in scales else "its own size")
             messages.append(
-                f"invariant '{name}' drifted by {drift:.2e} (relative), above the bound "
-                f"{bound:.0e} for this tolerance"
+                f"invariant '{name}' drifted by {absolute_drift(values):.2e}, "
+                f"{drift:.2e} of {against} {size:.3g}, above the bound {bound:.0e} for "
+                "this tolerance"
             )
     attrs["drift_bound"] = bound
     attrs["status"] = status

@@ -19,6 +19,11 @@ References
 .. [2] Whittaker, E. T., *A Treatise on the Analytical Dynamics of Particles and Rigid
        Bodies*, 4th ed. (1937), §50 (Euler's problem of two centres).
 .. [3] Pars, L. A., *A Treatise on Analytical Dynamics* (1965), §14.7.
+.. [4] Waalkens, H., Dullin, H. R., Richter, P. H., The problem of two fixed centers:
+       bifurcations, actions, monodromy, *Physica D* 196, 265–310 (2004): the names of
+       the orbit classes (after Charlier, *Die Mechanik des Himmels* (1902)): satellite
+       (about one centre), planetary (round both), lemniscate (through the segment
+       between them).
 """
 
 from __future__ import annotations
@@ -141,9 +146,16 @@ def coordinate_bounds(E, C, mu, a):
 
     Returns
     -------
-    dict with ``xi_min``, ``xi_max`` (inf if unbounded) and ``eta_abs_min``,
-    ``eta_abs_max`` (|η| range), and ``family``: "satellite" (around both centres,
-    η unrestricted), "planetary" (about one centre, |η| ≥ η*), or "unbound".
+    dict with ``beta``, ``xi_min``, ``xi_max`` (inf if unbounded) and ``eta_abs_min``,
+    ``eta_abs_max`` (|η| range), and ``family``, named as in the literature (Charlier,
+    *Die Mechanik des Himmels* (1902); Waalkens, Dullin & Richter, Physica D 196 (2004)):
+
+    * "satellite": β > 0, |η| ≥ η* — about one centre;
+    * "planetary": β ≤ 0 and q(1) = 2a²E + 4aμ + β < 0 — η free, ξ between two roots
+      > 1: round both centres (like a planet round a binary), never on the segment;
+    * "lemniscate": β ≤ 0 and q(1) ≥ 0 — η free, ξ from 1: through the segment between
+      the centres, round them in alternating senses;
+    * "unbound": E ≥ 0.
     """
     b = beta(E, C, a)
     out = {"beta": b}
@@ -171,9 +183,11 @@ def coordinate_bounds(E, C, mu, a):
     if E >= 0:
         out["family"] = "unbound"
     elif b > 0:
+        out["family"] = "satellite"
+    elif A + B + b < 0:  # q(1) < 0: ξ ≥ ξ_min > 1
         out["family"] = "planetary"
     else:
-        out["family"] = "satellite"
+        out["family"] = "lemniscate"
     return out
 
 

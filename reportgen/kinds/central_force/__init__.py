@@ -16,6 +16,7 @@ from __future__ import annotations
 import math
 
 from ...scene.content import fmt as _fmt
+from . import cases
 from .config import PRESETS, CentralForceConfig
 from .report import CentralForceReport, power_potential
 from .simulation import CentralForceSimulation
@@ -36,8 +37,9 @@ class CentralForceScene(CentralForceSimulation, CentralForceReport):
 
     @classmethod
     def default_title(cls, config):
-        """``Kepler orbit, e = 0.95`` (bound), ``Kepler hyperbola, e = 1.3`` (escaping);
-        the power law and the 1/r³ term named with their numbers."""
+        """``Kepler orbit, e = 0.95`` (bound), ``Kepler hyperbola: escape, e = 1.3``
+        (escaping; the conic by :func:`.cases.conic`); the power law and the 1/r³ term named
+        with their numbers, and bound or escaping by the sign of E."""
         p, ini = config.params, config.initial
         if p.potential == "power":
             return (f"Central potential {power_potential(fmt(p.n, 4))}: two bodies started at "
@@ -48,8 +50,9 @@ class CentralForceScene(CentralForceSimulation, CentralForceReport):
         ell = mu * (ini.x * ini.vy - ini.y * ini.vx)
         e = math.sqrt(max(0.0, 1.0 + 2.0 * energy * ell ** 2 / (mu * p.k ** 2)))
         if p.potential == "kepler_inverse_cube":
-            return (f"Kepler potential with a 1/r³ force (ε = {fmt(p.epsilon, 4)}): a "
-                    + ("bound rosette" if energy < 0 else "escaping orbit"))
+            energy -= p.epsilon / r**2
+            return (f"Kepler potential with a 1/r³ force (ε = {fmt(p.epsilon, 4)}): "
+                    + ("a bound orbit" if energy < 0 else "an escaping orbit"))
         if energy < 0:
             return f"Kepler orbit, e = {fmt(e, 4)}"
-        return f"Kepler {'parabola' if energy == 0 else 'hyperbola'}: escape, e = {fmt(e, 4)}"
+        return f"Kepler {cases.conic(e, bound=False)}: escape, e = {fmt(e, 4)}"

@@ -48,7 +48,7 @@ class CentralForceReport(Report):
         if "apsidal_angle_exact" in a and math.isfinite(a.get("apsidal_angle_measured", math.nan)):
             rel = abs(a["apsidal_angle_measured"] / a["apsidal_angle_exact"] - 1)
             return (f"apsidal angle {fmt(math.degrees(a['apsidal_angle_measured']), 5)}°, "
-                    f"{gallery.from_reference(rel, 'the exact quadrature')}{drift}")
+                    f"{gallery.from_reference(rel, 'the exact value')}{drift}")
         return super().gallery_headline(data)
 
     family_sections = (
@@ -68,6 +68,15 @@ class CentralForceReport(Report):
         Section("invariants", "Conserved quantities", integrates=True),
         Section("error_vs_runtime", "Error against run time", integrates=True),
     )
+
+    @classmethod
+    def held_family_sections(cls, data):
+        """The period against Kepler's third law only for a family in V = −k/r (any other
+        potential's period is not the third law's)."""
+        held = super().held_family_sections(data)
+        kepler = (data.config.params.potential == "kepler"
+                  and "params.potential" not in data.sweep.values)
+        return held if kepler else [name for name in held if name != "kepler_family"]
 
     @classmethod
     def section_kepler_family(cls, data):
@@ -95,63 +104,97 @@ class CentralForceReport(Report):
             "their relative difference.")], facts=facts)
 
 
-    #: an eccentricity below this is a circular orbit in the prose
-    CIRCULAR_E = 1e-6
+    #: the shapes that are conics with the force centre (the centre of mass) at a focus
+    CONICS = ("ellipse", "parabola", "hyperbola")
+
+    @classmethod
+    def potential_words(cls, data) -> str:
+        """The potential as a formula: ``V = −k/r``, ``V = −k/r¹·²``, ``V = −k/r − ε/r² (ε = …)``."""
+        p = data.config.params
+        if p.potential == "power":
+            return power_potential(fmt(float(p.n), 4))
+        if p.potential == "kepler_inverse_cube":
+            return f"V = −k/r − ε/r² (ε = {fmt(float(p.epsilon), 4)})"
+        return "V = −k/r"
 
     @classmethod
     def prose_case(cls, data):
-        """The potential (kepler, power, kepler_inverse_cube), bound or escaping, the conic
-        (circle, ellipse, parabola, hyperbola), whether the orbit closes, and the apsidal
-        advance per radial period, from the archive."""
+        """The stored cases the prose follows (``orbit_shape``, ``apsides``,
+        ``heavier_body``: decided at simulate time with their thresholds) and the numbers
+        it quotes, from the archive."""
         a, p = data.analysis, data.config.params
         if data.sweep is not None:
             return {}
-        e = float(a.get("eccentricity", math.nan))
-        bound = a.get("bound") == "yes"
-        conic = ("circle" if e < cls.CIRCULAR_E else "ellipse") if bound else (
-            "parabola" if e == 1.0 else "hyperbola")
-        psi = float(a.get("apsidal_angle_exact", math.nan))
+        shape = str(a["orbit_shape"])
         r_min, r_max = (float(v) for v in np.asarray(a["turning_points"]))
-        return {"potential": str(p.potential), "bound": bound, "conic": conic,
-                "equal_masses": float(p.m1) == float(p.m2),
-                "closed": p.potential == "kepler" and bound, "e": fmt(e, 4),
-                "n": fmt(float(getattr(p, "n", math.nan) or math.nan), 4),
-                "r_min": fmt(r_min, 4), "r_max": fmt(r_max, 4) if math.isfinite(r_max) else "∞",
-                "advance_deg": (f"{math.degrees(2 * psi - 2 * math.pi):.4g}°"
-                                if math.isfinite(psi) else ""),
-                "psi_deg": f"{math.degrees(psi):.5g}°" if math.isfinite(psi) else ""}
+        e = float(a.get("eccentricity", math.nan))
+        psi = 0.5 * float(a.get("apsidal_shift", math.nan)) + math.pi
+        apsides = str(a.get("apsides", ""))
+        heavier = str(a["heavier_body"])
+        mass = {"body 1": ("m₁", p.m1), "body 2": ("m₂", p.m2)}.get(heavier)
+        invariants = data.runs["main"].invariants if "main" in data.runs else {}
+        return {
+            "potential": str(p.potential), "potential_words": cls.potential_words(data),
+            "bound": a.get("bound") == "yes", "shape": shape,
+            "conic": shape in cls.CONICS, "lrl": "lrl_x" in invariants,
+            "e": fmt(e, 4), "r_min": fmt(r_min, 4),
+            "r_max": fmt(r_max, 4) if math.isfinite(r_max) else "∞",
+            "apsides": apsides,
+            "apsides_verb": {"advance": "advances", "regress": "regresses"}.get(apsides, ""),
+            "apsides_sense": {"advance": "with the motion",
+                              "regress": "against the motion"}.get(apsides, ""),
+            "psi": fmt(psi, 4, against=math.pi) if math.isfinite(psi) else "",
+            "psi_against_pi": {"advance": "greater than", "regress": "less than"}.get(apsides,
+                                                                                    ""),
+            "shift_deg": (f"{fmt(abs(math.degrees(2 * psi - 2 * math.pi)), 4)}°"
+                          if math.isfinite(psi) else ""),
+            "shift_threshold": fmt(float(a["apsidal_shift_threshold"])),
+            "pericentres_drawn": "pericentre_positions" in a,
+            "apsides_measured": "apsidal_angle_measured" in a,
+            "period_measured": "period_measured" in a,
+            "heavier": heavier,
+            "heavier_mass": f"{mass[0]} = {fmt(float(mass[1]))} kg" if mass else "",
+            "study_reference": str(data.study_attrs.get("reference_kind", "")),
+        }
 
     @classmethod
     def describe(cls, data):
         """``A bound Kepler ellipse, e = 0.7, a = 1 m: it closes every period T = 6.283
-        s``; an escape by its conic and closest approach; a rosette by its advance."""
+        s``; an escape by its conic and closest approach; a rosette by how its pericentre
+        turns: each by the archive's stored case."""
         if data.sweep is not None:
             return super().describe(data)
-        c, a, p = cls.prose_case(data), data.analysis, data.config.params
-        if c["closed"]:
-            return (f"A bound Kepler {c['conic']}, e = {c['e']}, a = "
+        c, a = cls.prose_case(data), data.analysis
+        pot, shape = c["potential_words"], c["shape"]
+        period = fmt(float(a.get("period", math.nan)), 4)
+        if shape == "ellipse":
+            return (f"A bound Kepler ellipse, e = {c['e']}, a = "
                     f"{fmt(float(a['semi_major_axis']), 4)} m: the relative orbit closes every "
-                    f"period T = {fmt(float(a['period']), 4)} s")
-        pot = {"kepler": "V = −k/r", "power": power_potential(c["n"]),
-               "kepler_inverse_cube": "V = −k/r − ε/r²"}[c["potential"]]
-        if c["potential"] == "kepler_inverse_cube":
-            pot += f" (ε = {fmt(float(p.epsilon), 4)})"
+                    f"period T = {period} s")
+        if shape == "circle":
+            radius = fmt(float(a["semi_major_axis"]), 4)
+            if c["lrl"]:
+                return (f"A bound Kepler circle of radius r = {radius} m: the relative orbit "
+                        f"closes every period T = {period} s")
+            return (f"A circular orbit in {pot}, r = {radius} m: period of revolution "
+                    f"T = {period} s")
         if not c["bound"]:
-            return (f"An escaping orbit in {pot}" + (f", a {c['conic']} with e = {c['e']}"
-                                                      if c["potential"] == "kepler" else "")
-                    + f": the bodies come within {c['r_min']} m of each other and fly apart")
-        return (f"A bound orbit in {pot}, r between {c['r_min']} and {c['r_max']} m: a "
-                f"rosette whose pericentre advances {c['advance_deg']} per radial period"
-                if c["advance_deg"] else f"A bound orbit in {pot}")
+            return (f"An escaping orbit in {pot}" + (f", a {shape} with e = {c['e']}"
+                                                      if c["conic"] else "")
+                    + f": the bodies come no closer than {c['r_min']} m and fly apart")
+        where = f"A bound orbit in {pot}, r between {c['r_min']} and {c['r_max']} m"
+        if shape == "closed":
+            return (f"{where}: it closes, the pericentre turning by less than "
+                    f"{c['shift_threshold']} rad per radial period")
+        return (f"{where}: a rosette whose pericentre {c['apsides_verb']} {c['shift_deg']} "
+                "per radial period")
 
     @classmethod
     def default_sections(cls, data):
         names = [s.name for s in cls.sections]
-        is_kepler = data.config.params.potential == "kepler"
-        bound = data.analysis["bound"] == "yes"
-        if not (is_kepler and bound):
+        if "kepler_position_error" not in data.analysis:  # not a bound Kepler orbit
             names.remove("kepler")
-        if is_kepler or not bound:
+        if "apsidal_angle_exact" not in data.analysis:  # Kepler, unbound, or a circle
             names.remove("apsides")
         if "hj_residual" not in data.analysis:  # unbound, or a circle: no libration in r
             names.remove("hamilton_jacobi")
@@ -167,10 +210,7 @@ class CentralForceReport(Report):
                ("potential", f"{pot}, k = {fmt(p.k)}"),
                ("energy, angular momentum", f"E = {fmt(a['energy'])} J, "
                                             f"L = {fmt(a['angular_momentum'])} kg·m²/s")]
-        if "eccentricity" in a:
-            out.append(("orbit", f"e = {fmt(a['eccentricity'])}, a = "
-                                 f"{fmt(a['semi_major_axis'])} m"
-                        + (f", period {fmt(a['period'])} s" if "period" in a else "")))
+        out += cls.orbit_rows(data)
         if "period_note" in a:
             out.append(("period", a["period_note"]))
         if "kepler_position_error_max" in a:
@@ -179,22 +219,61 @@ class CentralForceReport(Report):
         return out
 
     @classmethod
+    def orbit_rows(cls, data) -> list[tuple[str, str]]:
+        """The orbit's scales in the headline, named for what they are by the stored
+        shape: Kepler elements of a conic; a circle's radius and period of revolution; the
+        turning points and radial period of any other bound orbit."""
+        a, shape = data.analysis, str(data.analysis["orbit_shape"])
+        if "eccentricity" not in a:
+            return []
+        if shape == "circle" and "lrl_x" not in data.runs["main"].invariants:
+            return [("orbit", f"a circle of radius r = {fmt(a['semi_major_axis'])} m, period "
+                              f"of revolution {fmt(a['period'])} s")]
+        if shape in ("closed", "rosette"):
+            return [("orbit, from its turning points",
+                     f"r from {fmt(a['pericentre'])} to {fmt(a['apocentre'])} m, "
+                     f"(rₘₐₓ − rₘᵢₙ)/(rₘₐₓ + rₘᵢₙ) = {fmt(a['eccentricity'])}, radial period "
+                     f"(pericentre to pericentre) {fmt(a['period'])} s"),
+                    ("pericentre per radial period", cls.apsides_words(data))]
+        return [("orbit, Kepler elements", f"e = {fmt(a['eccentricity'])}, a = "
+                                           f"{fmt(a['semi_major_axis'])} m"
+                 + (f", period {fmt(a['period'])} s" if "period" in a else ""))]
+
+    @classmethod
+    def apsides_words(cls, data) -> str:
+        """How the pericentre turns, by the stored ``apsides``: "advances by 44.31°
+        (2ψ − 2π, with the motion)", or "stays put: |2ψ − 2π| < 1e-8 rad"."""
+        c = cls.prose_case(data)
+        if c["apsides"] == "fixed":
+            return f"stays put: |2ψ − 2π| < {c['shift_threshold']} rad"
+        return f"{c['apsides_verb']} by {c['shift_deg']} (2ψ − 2π, {c['apsides_sense']})"
+
+    @classmethod
     def section_orbit(cls, data):
         run, a = data.runs["main"], data.analysis
         ref = lrl = peri = None
+        circle = a["orbit_shape"] == "circle"
         if "kepler_orbit" in a:
             ref = (a["kepler_orbit"]["x"], a["kepler_orbit"]["y"])
-            lrl = tuple(float(v) for v in a["eccentricity_vector"])
+            if not circle:  # a circle's LRL vector vanishes: no pericentre to point to
+                lrl = tuple(float(v) for v in a["eccentricity_vector"])
         elif "pericentre_positions" in a:
             peri = (a["pericentre_positions"]["x"], a["pericentre_positions"]["y"])
-        fig = plots.relative_orbit(run["x"], run["y"], reference=ref, pericentres=peri, lrl=lrl)
+        e = math.hypot(*lrl) if lrl is not None else math.nan
+        fig = plots.relative_orbit(run["x"], run["y"], reference=ref, pericentres=peri, lrl=lrl,
+                                   lrl_label=f"LRL direction (|A|/μk = e = {fmt(e, 4)})")
         caption = "The relative orbit r(t) = r1 − r2, notes (3.21)."
-        if lrl is not None:
+        if ref is not None and circle:
+            caption += (" Dashed: the exact circle from Kepler's equation (the Laplace–Runge–"
+                        "Lenz vector vanishes: a circle has no pericentre).")
+        elif ref is not None:
             caption += (" Dashed: the exact ellipse from Kepler's equation; arrow: the "
                         "direction of the Laplace–Runge–Lenz vector, from the focus to the "
                         "pericentre (its length |A|/μk = e is given in the legend).")
         elif peri is not None:
-            caption += " Triangles: pericentre passages, advancing by twice the apsidal angle."
+            caption += (" Triangles: the pericentre passages found in the run, each 2ψ from "
+                        "the last in the sense of the motion: the pericentre "
+                        + cls.apsides_words(data) + " per radial period.")
         return SectionContent(figures=[cls.figure("orbit", fig, caption)])
 
     @classmethod
@@ -205,10 +284,11 @@ class CentralForceReport(Report):
         facts = [("reduced mass μ = m1 m2/(m1 + m2), notes (3.20)", f"{fmt(a['reduced_mass'])} kg"),
                  ("r1 = (m2/M) r, r2 = −(m1/M) r, notes (3.19)",
                   f"m2/M = {fmt(a['mass_fraction_m2'])}, m1/M = {fmt(a['mass_fraction_m1'])}")]
-        return SectionContent(figures=[cls.figure(
-            "two_body", fig, "Both bodies' tracks in the centre-of-mass frame (R = 0): "
-            "similar conics scaled by m2/M and m1/M about the common focus, on opposite sides.")],
-            facts=facts)
+        caption = ("Both bodies' tracks in the centre-of-mass frame (R = 0): similar curves, "
+                   "scaled by m2/M and m1/M about the centre of mass and on opposite sides of it"
+                   + (", conics with the centre of mass at their common focus."
+                      if a["orbit_shape"] in cls.CONICS else "."))
+        return SectionContent(figures=[cls.figure("two_body", fig, caption)], facts=facts)
 
     @classmethod
     def section_effective_potential(cls, data):
@@ -220,13 +300,20 @@ class CentralForceReport(Report):
                                         curve["effective_potential"], energy=a["energy"],
                                         turning=(r_min, r_max),
                                         circular=(rc, curve["circular_energy"]))
-        facts = [("turning points rₘᵢₙ, rₘₐₓ", f"{fmt(r_min)} m, {fmt(r_max)} m"),
-                 ("radius of the circular orbit at this L", f"{fmt(rc)} m")]
+        if a["bound"] != "yes":
+            turning = [("turning point rₘᵢₙ, the only one (unbound)", f"{fmt(r_min)} m")]
+        elif a["orbit_shape"] == "circle":
+            turning = [("turning points rₘᵢₙ = rₘₐₓ (a circle)", f"{fmt(r_min)} m")]
+        else:
+            turning = [("turning points rₘᵢₙ, rₘₐₓ", f"{fmt(r_min)} m, {fmt(r_max)} m")]
+        facts = turning + [("radius of the circular orbit at this L", f"{fmt(rc)} m")]
         return SectionContent(figures=[cls.figure(
             "effective_potential", fig, "The radial motion in the effective potential "
-            "V(r) + L²/(2μr²), notes (3.28–3.30): the orbit stays where E is above it, "
-            + ("between the turning points." if a["bound"] == "yes" else
-               "outside its one turning point, and escapes."))],
+            "V(r) + L²/(2μr²), notes (3.28–3.30): "
+            + ("a circular orbit sits at its minimum, where E equals it."
+               if a["orbit_shape"] == "circle" else "the orbit stays where E is above it, "
+               + ("between the turning points." if a["bound"] == "yes" else
+                  "outside its one turning point, and escapes.")))],
             facts=facts)
 
     @classmethod
@@ -275,8 +362,9 @@ class CentralForceReport(Report):
         fig = plots.apsidal_angle_family(family["eccentricity"], family["angle"],
                                          near_circular=near, measured=measured,
                                          exact_label=label, near_label=near_label)
-        rows = [["exact, quadrature, Goldstein (3.37)", fmt(a["apsidal_angle_exact"]),
-                 "—"]]
+        how = ("quadrature, Goldstein (3.37)" if a["apsidal_angle_exact_method"] == "quadrature"
+               else "the closed form below")
+        rows = [[f"exact, {how}", fmt(a["apsidal_angle_exact"]), "—"]]
         if "apsidal_angle_measured" in a:
             rows.append(["measured from the run", fmt(a["apsidal_angle_measured"]),
                          fmt_err(abs(a["apsidal_angle_measured"] / a["apsidal_angle_exact"]
@@ -340,7 +428,9 @@ class CentralForceReport(Report):
     def section_invariants(cls, data):
         labels = {"energy": "energy E", "angular_momentum": "angular momentum L",
                   "lrl_x": "LRL vector, x component", "lrl_y": "LRL vector, y component"}
+        lrl = "lrl_x" in data.runs["main"].invariants
         return cls.invariants_section(data, labels=labels,
                                       caption="Drift of the conserved quantities: E and L "
-                                              "relative to their size, the LRL components "
-                                              "relative to μk.")
+                                              "relative to their size"
+                                              + (", the LRL components relative to μk."
+                                                 if lrl else "."))

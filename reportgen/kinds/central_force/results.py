@@ -27,11 +27,14 @@ SCHEMA = ResultsSchema(
     ),
     analysis=(
         # the orbit's scales: Kepler elements, or from the turning points
-        Q("eccentricity", "e", "1", "eccentricity", optional=True),
-        Q("semi_major_axis", "a", "m", "semi-major axis", optional=True),
+        Q("eccentricity", "e", "1", "eccentricity: Kepler's e for V = -k/r, else "
+          "(r_max - r_min)/(r_max + r_min) from the turning points", optional=True),
+        Q("semi_major_axis", "a", "m", "semi-major axis: Kepler's a = -k/(2E) for V = -k/r, "
+          "else (r_min + r_max)/2", optional=True),
         Q("pericentre", r"r_\mathrm{min}", "m", "pericentre distance"),
         Q("apocentre", r"r_\mathrm{max}", "m", "apocentre distance", optional=True),
-        Q("period", "T", "s", "period (Kepler's third law, or the radial period)",
+        Q("period", "T", "s", "period: Kepler's third law for V = -k/r; else the radial "
+          "period (pericentre to pericentre), or a circular orbit's period of revolution",
           optional=True),
         Q("reduced_mass", r"\mu", "kg", "reduced mass m1 m2/(m1 + m2)"),
         Q("total_mass", "M", "kg", "total mass m1 + m2"),
@@ -41,6 +44,21 @@ SCHEMA = ResultsSchema(
         Q("bound", "", "", "whether the orbit is bound (yes or no)", kind="str"),
         Q("period_note", "", "", "why an unbound orbit has no period", kind="str",
           optional=True),
+        # the cases the report's words follow, with their thresholds (cases.py)
+        Q("orbit_shape", "", "", "the orbit: circle or ellipse (bound) and parabola or "
+          "hyperbola (unbound) for V = -k/r; else circle, closed or rosette (bound, by the "
+          "apsidal shift) or escape", kind="str"),
+        Q("circular_threshold", "", "1", "eccentricity below which the orbit is a circle"),
+        Q("apsidal_shift", r"2\psi - 2\pi", "rad", "turn of the pericentre per radial "
+          "period, 2 psi - 2 pi from the exact apsidal angle psi (positive: with the motion)",
+          optional=True),
+        Q("apsides", "", "", "how the pericentre moves: advance, regress, or fixed when "
+          "|2 psi - 2 pi| is below the threshold (bound non-circular orbits)", kind="str",
+          optional=True),
+        Q("apsidal_shift_threshold", "", "rad", "|2 psi - 2 pi| per radial period below "
+          "which the apsides are fixed"),
+        Q("heavier_body", "", "", "the heavier body: body 1, body 2 or neither (equal "
+          "masses to 1e-12)", kind="str"),
         Q("turning_points", r"r_\mathrm{min}, r_\mathrm{max}", "m",
           "turning points of the radial motion", ("turning",)),
         Q("mass_fraction_m1", "m_1/M", "1", "mass fraction of body 1"),
@@ -82,8 +100,10 @@ SCHEMA = ResultsSchema(
         Q("period_measured_note", "", "", "why the period was not measured", kind="str",
           optional=True),
         # the apsidal angle (other potentials, bound)
-        Q("apsidal_angle_exact", r"\Delta\varphi", "rad", "apsidal angle by quadrature",
-          optional=True),
+        Q("apsidal_angle_exact", r"\Delta\varphi", "rad", "exact apsidal angle, by quadrature "
+          "or the closed form", optional=True),
+        Q("apsidal_angle_exact_method", "", "", "how the exact apsidal angle was computed: "
+          "quadrature or closed form", kind="str", optional=True),
         Q("apsidal_angle_near_circular", r"\pi/\sqrt{2 - n}", "rad",
           "near-circular limit of the apsidal angle", optional=True),
         Q("apsidal_angle_closed_form", r"\pi/\sqrt{1 - 2\mu\epsilon/L^2}", "rad",

@@ -8,8 +8,11 @@ import math
 import numpy as np
 
 from ...lazy import lazy_module
+from ...scene.content import fmt, fmt_err
 from ...scene.integration import IntegratingSimulation
 from ...scene.results import AccuracyScale, AuditCase, Check, Results
+from . import apsides as exact_apsides
+from . import cases
 from .config import CentralForceConfig
 from .results import SCHEMA
 
@@ -100,7 +103,9 @@ class CentralForceSimulation(IntegratingSimulation):
                 "lrl_x": mu * k, "lrl_y": mu * k}
 
     def radial_scales(self) -> dict:
-        """Eccentricity, semi-major axis, period: Kepler elements, or from the turning points."""
+        """Eccentricity, semi-major axis, period: Kepler elements; or from the turning
+        points, with the radial period (pericentre to pericentre), or a circle's period of
+        revolution 2πμr²/|L|."""
         if self.is_kepler:
             el = self.elements
             out = {"eccentricity": el["eccentricity"], "semi_major_axis": el["semi_major_axis"],
@@ -111,10 +116,43 @@ class CentralForceSimulation(IntegratingSimulation):
         r_min, r_max = core.turning_points(self.energy0, self.L0, self.mu, *self.pot)
         out = {"pericentre": r_min}
         if math.isfinite(r_max):
-            out.update(apocentre=r_max, eccentricity=(r_max - r_min) / (r_max + r_min),
-                       semi_major_axis=0.5 * (r_max + r_min),
-                       period=core.radial_period(self.energy0, self.L0, self.mu, *self.pot))
+            e = (r_max - r_min) / (r_max + r_min)
+            out.update(apocentre=r_max, eccentricity=e, semi_major_axis=0.5 * (r_max + r_min),
+                       period=self._radial_period(r_min, r_max, e))
         return out
+
+    def _radial_period(self, r_min: float, r_max: float, e: float) -> float:
+        if e < cases.CIRCULAR_E:  # no radial motion: the period of revolution
+            return 2.0 * math.pi * self.mu * (0.5 * (r_min + r_max)) ** 2 / abs(self.L0)
+        if self.config.params.potential == "power":
+            return exact_apsides.radial_period_power(r_min, r_max, self.n, self.L0, self.mu)
+        return exact_apsides.radial_period_inverse_cube(self.energy0, self.mu,
+                                                        self.config.params.k)
+
+    def apsidal_angle(self) -> float:
+        """ψ, pericentre to apocentre, of this bound orbit: π/√(1 − 2με/L²) for V = −k/r
+        (ε = 0) and −k/r − ε/r²; the power law's by quadrature (:mod:`.apsides`)."""
+        if self.config.params.potential == "power":
+            r_min, r_max = core.turning_points(self.energy0, self.L0, self.mu, *self.pot)
+            return exact_apsides.apsidal_angle_power(r_min, r_max, self.n)
+        return exact_apsides.apsidal_angle_inverse_cube(self.L0, self.mu, self.epsilon)
+
+    def orbit_facts(self, scales: dict) -> dict:
+        """The stored cases the report's words follow (:mod:`.cases`): the orbit's shape,
+        how its apsides move (2ψ − 2π per radial period, bound non-circular orbits) and
+        which body is heavier, with the thresholds they were decided by."""
+        p = self.config.params
+        e = float(scales.get("eccentricity", math.nan))
+        facts = {"heavier_body": cases.heavier_body(p.m1, p.m2),
+                 "circular_threshold": cases.CIRCULAR_E,
+                 "apsidal_shift_threshold": cases.APSIDAL_SHIFT_NONE}
+        shift = math.nan
+        if self.bound and e >= cases.CIRCULAR_E:
+            shift = 2.0 * self.apsidal_angle() - 2.0 * math.pi
+            facts.update(apsidal_shift=shift, apsides=cases.apsides(shift))
+        facts["orbit_shape"] = cases.orbit_shape(kepler=self.is_kepler, bound=self.bound,
+                                                 eccentricity=e, shift=shift)
+        return facts
 
     def models(self) -> list:
         return [core.model(self.config.params.k, self.mu, self.n, self.epsilon)]
@@ -144,6 +182,7 @@ class CentralForceSimulation(IntegratingSimulation):
         a.update({"reduced_mass": self.mu, "total_mass": p.m1 + p.m2, "energy": self.energy0,
                   "angular_momentum": self.L0, "potential": p.potential,
                   "bound": "yes" if self.bound else "no"})
+        a.update(self.orbit_facts(scales))
         if not self.bound:
             a["period_note"] = ("unbound orbit (E ≥ 0): no period; the apocentre is at "
                                 "infinity")
@@ -156,7 +195,7 @@ class CentralForceSimulation(IntegratingSimulation):
         a["effective_potential_curve"] = self._effective_potential_curve(r_min, r_max)
         if self.is_kepler and self.bound:
             self._kepler_checks(results, main)
-        elif self.bound:
+        elif a["orbit_shape"] in ("closed", "rosette"):
             self._apsides(results, main)
         if self.bound and hamilton_jacobi.applies(r_min, r_max):
             self._hamilton_jacobi(results, main)
@@ -166,13 +205,15 @@ class CentralForceSimulation(IntegratingSimulation):
         L_inv = main.invariants["angular_momentum"]
         results.checks.append(Check("angular momentum L(t_end)", float(L_inv[-1]),
                                     float(L_inv[0]), "kg·m²/s", "L(0), Noether charge, notes (3.27)"))
-        ref = None
+        ref, ref_kind = None, "exact"
         if self.is_kepler and self.bound:
             el = self.elements
+            ref_kind = "the solution of Kepler's equation E − e sin E = M at every time"
 
             def ref(ts):
                 return np.column_stack(core.kepler_state(ts, el))
-        self.study(results, model, y0, np.linspace(0.0, run.t_end, 201), reference=ref)
+        self.study(results, model, y0, np.linspace(0.0, run.t_end, 201), reference=ref,
+                   reference_kind=ref_kind)
         return results
 
     def _hamilton_jacobi(self, results: Results, main) -> None:
@@ -219,8 +260,8 @@ class CentralForceSimulation(IntegratingSimulation):
         if run.t_end < 2.2 * period:
             return "the run is shorter than two orbits"
         return (f"a pericentre passage spans fewer than {self.MIN_SAMPLES_PER_PASSAGE} "
-                f"samples (e = {e:.3g}: the body sweeps through pericentre in about "
-                f"{(1.0 - e) ** 1.5 / (2 * math.pi):.2g} of a period)")
+                f"samples (e = {fmt(e, 3)}: the body sweeps through pericentre in about "
+                f"{fmt_err((1.0 - e) ** 1.5 / (2 * math.pi))} of a period)")
 
     def _kepler_checks(self, results: Results, main) -> None:
         el, a = self.elements, results.analysis
@@ -273,16 +314,23 @@ class CentralForceSimulation(IntegratingSimulation):
     def _apsides(self, results: Results, main) -> None:
         a, mu = results.analysis, self.mu
         k, n, eps = self.pot
-        exact = core.apsidal_angle(self.energy0, self.L0, mu, k, n, eps)
-        a["apsidal_angle_exact"] = exact
+        method = "quadrature"
         if self.config.params.potential == "power":
+            exact = self.apsidal_angle()
             a["apsidal_angle_near_circular"] = core.apsidal_angle_near_circular(n)
-        else:
+        else:  # the closed form, checked by the quadrature where E − V_eff keeps figures
             closed = core.apsidal_angle_inverse_cube(self.L0, mu, eps)
             a["apsidal_angle_closed_form"] = closed
-            results.checks.append(Check("apsidal angle by quadrature", exact, closed, "rad",
-                                        "π/√(1 − 2με/L²) (Landau & Lifshitz §15, problem 3)"))
-        a["apsidal_angle_family"] = self._apsidal_angle_family()
+            if a["eccentricity"] >= self.FAMILY_MIN_E_QUADRATURE:
+                exact = core.apsidal_angle(self.energy0, self.L0, mu, k, n, eps)
+                results.checks.append(Check("apsidal angle by quadrature", exact, closed,
+                                            "rad", "π/√(1 − 2με/L²) (Landau & Lifshitz §15, "
+                                                   "problem 3)"))
+            else:
+                exact, method = closed, "closed form"
+        a["apsidal_angle_exact"] = exact
+        a["apsidal_angle_exact_method"] = method
+        a["apsidal_angle_family"] = self._apsidal_angle_family(a["eccentricity"])
         period = a["period"]
         if not self._passages_resolved(a["eccentricity"], period):
             a["apsidal_angle_note"] = ("fewer than two resolved pericentre passages: "
@@ -305,19 +353,27 @@ class CentralForceSimulation(IntegratingSimulation):
         results.checks.append(Check("radial period from pericentre passages", t_meas, period,
                                     "s", "2 ∫ dr/ṙ from rₘᵢₙ to rₘₐₓ, Goldstein (3.17)"))
 
-    def _apsidal_angle_family(self) -> dict:
+    #: the apsidal-angle family spans e from the circle (the power law; the 1/r³ term's
+    #: quadrature from FAMILY_MIN_E_QUADRATURE, where E − V_eff still has figures to lose)
+    #: to this orbit's e × FAMILY_REACH, at least FAMILY_MIN_SPAN
+    FAMILY_REACH, FAMILY_MIN_SPAN, FAMILY_MIN_E_QUADRATURE = 1.15, 0.1, 0.02
+
+    def _apsidal_angle_family(self, e0: float) -> dict:
         """Exact apsidal angle against eccentricity at this L, from near-circular orbits up
-        to a little beyond this orbit's energy (bound orbits only)."""
-        mu, L, E0 = self.mu, self.L0, self.energy0
+        to a little beyond this orbit's (bound orbits only)."""
+        top = min(max(self.FAMILY_REACH * e0, self.FAMILY_MIN_SPAN), max(0.98, e0))
+        if self.config.params.potential == "power":
+            ecc = np.unique(np.append(np.linspace(0.0, top, 40), e0))
+            return {"eccentricity": ecc,
+                    "angle": exact_apsides.apsidal_angle_family_power(ecc, self.n)}
+        # V = −k/r − ε/r²: Kepler's radial motion with L² → C = L² − 2με; r_min = p/(1 + e),
+        # E = −μk²(1 − e²)/(2C) (p = C/(μk)); the quadrature at each
+        mu, L = self.mu, self.L0
         k, n, eps = self.pot
-        rc = core.circular_radius(L, mu, k, n, eps)
-        e_circ = float(core.effective_potential(rc, L, mu, k, n, eps))
-        e_max = E0 + 0.3 * (E0 - e_circ) if E0 < 0 else E0
-        energies = e_circ + (min(e_max, 0.0) - e_circ) * np.linspace(0.02, 0.97, 40) ** 2
-        energies = np.unique(np.append(energies[energies < 0], E0))
-        ecc, ang = [], []
-        for E in energies:
-            r1, r2 = core.turning_points(E, L, mu, k, n, eps)
-            ecc.append((r2 - r1) / (r2 + r1))
-            ang.append(core.apsidal_angle(E, L, mu, k, n, eps))
-        return {"eccentricity": np.array(ecc), "angle": np.array(ang)}
+        C = L * L - 2.0 * mu * eps
+        ecc = np.linspace(self.FAMILY_MIN_E_QUADRATURE, top, 40)
+        if e0 >= self.FAMILY_MIN_E_QUADRATURE:
+            ecc = np.unique(np.append(ecc, e0))
+        ang = [core.apsidal_angle(-mu * k * k * (1.0 - e * e) / (2.0 * C), L, mu, k, n, eps)
+               for e in ecc]
+        return {"eccentricity": ecc, "angle": np.array(ang)}

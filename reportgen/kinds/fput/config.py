@@ -10,6 +10,19 @@ from ...scene.config import Positive, Real, RunConfig, Strict
 #: the largest number of stiff springs a config may ask for (2m masses)
 MAX_STIFF_SPRINGS = 50
 
+#: the stiff spring holding most of I(0) has handed its energy on once it holds less than
+#: this share of I; energy starts concentrated in one spring when it holds at least this
+EXCHANGE_SHARE = 0.7
+#: the chain has two time scales (stiff springs much faster than the soft ones) when ω is at
+#: least this many times the soft springs' typical frequency √(24⟨Δ²⟩) along the run
+#: (measured: GNI's data at ω = 50 give 21, ω = 10 gives 3.9)
+STIFF_RATIO = 5.0
+#: ω·max|I − I(0)|/I(0) below this is "of order one" (I(t) − I(0) = O(1/ω)); GNI's data
+#: give 0.16 at ω = 50
+ORDER_ONE = 10.0
+#: I(0) below this fraction of the total energy: the stiff springs start at rest
+AT_REST = 1e-12
+
 
 class Params(Strict):
     """``[params]``: the chain in the scaled units of Hairer GNI §I.5.1.

@@ -41,7 +41,27 @@ SCHEMA = ResultsSchema(
           r"\omega \max|I - I(0)|/I(0)", "1",
           "largest relative deviation of I times omega"),
         Q("exchange_time", r"t_\mathrm{ex}", "1",
-          "first time the first stiff spring holds less than 0.7 I", optional=True),
+          "first time the stiff spring that starts with most of I holds less than "
+          "exchange_share of I (when it starts with at least that share, m >= 2)",
+          optional=True),
+        Q("stiff_at_rest", "", "", "whether the stiff springs start at rest: I(0) <= 1e-12 "
+          "of the total energy", kind="bool"),
+        Q("first_spring", "j_0", "1", "the stiff spring holding most of I(0) (1-based)",
+          kind="int"),
+        Q("first_spring_share", r"I_{j_0}(0)/I(0)", "1", "its share of I(0) (NaN at rest)"),
+        Q("exchange_share", "", "1", "share of I below which the first spring has handed its "
+          "energy on, and from which energy starts concentrated in one spring"),
+        Q("order_one_bound", "", "1", "omega max|I - I(0)|/I(0) below this is of order one"),
+        Q("adiabatic_order_one", "", "", "whether omega max|I - I(0)|/I(0) is below "
+          "order_one_bound", kind="bool", optional=True),
+        Q("soft_frequency", r"\omega_\mathrm{soft}", "1", "typical frequency of the soft "
+          "springs along the run, sqrt(24 <Delta^2>) over their elongations Delta"),
+        Q("stiffness_ratio", r"\omega/\omega_\mathrm{soft}", "1",
+          "frequency of the stiff springs over the soft springs' typical frequency"),
+        Q("stiff_ratio_bound", "", "1", "stiffness_ratio from which the chain has two time "
+          "scales"),
+        Q("two_time_scales", "", "", "whether stiffness_ratio >= stiff_ratio_bound: the stiff "
+          "springs oscillate much faster than the soft ones", kind="bool"),
         Q("study_t_end", r"t_{study}", "1", "end of the error-against-run-time study's "
           "integration", optional=True),
     ),

@@ -14,7 +14,7 @@ import numpy as np
 from ...lazy import lazy_module
 from ...scene.integration import IntegratingSimulation
 from ...scene.results import AuditCase, Check, Results
-from .config import FputConfig
+from .config import AT_REST, EXCHANGE_SHARE, ORDER_ONE, STIFF_RATIO, FputConfig
 from .results import SCHEMA
 
 core = lazy_module("reportgen.core.models.fput")
@@ -52,6 +52,60 @@ class FputSimulation(IntegratingSimulation):
     def models(self) -> list:
         return [core.model(self.config.params.m, self.config.params.omega)]
 
+    def exchange(self, q, p, t, e0: float) -> dict:
+        """The oscillatory energies Iⱼ of the stiff springs along the run (GNI eq. I.5.3),
+        where I starts (the spring holding most of I(0), and its share), when that spring
+        first holds less than EXCHANGE_SHARE of I (only when it starts with at least that
+        share, m ≥ 2), and the adiabatic invariant's excursion ω·max|I − I(0)|/I(0) (not
+        defined when the stiff springs start at rest: I(0) ≤ AT_REST × |H|)."""
+        omega = self.config.params.omega
+        osc = core.oscillatory_energies(q, p, omega)
+        total = osc.sum(axis=1)
+        dev = np.abs(total - total[0])
+        at_rest = bool(total[0] <= AT_REST * max(abs(e0), 1e-300))
+        first = int(np.argmax(osc[0]))
+        share = float(osc[0, first] / total[0]) if not at_rest else math.nan
+        out = {
+            "m": self.config.params.m,
+            "omega": omega,
+            "energy": e0,
+            "oscillatory_energies": osc,
+            "oscillatory_energy_total": total,
+            "oscillatory_energy_scaled_deviation": core.scaled_adiabatic_deviation(total,
+                                                                                   omega),
+            "oscillatory_energy_initial": float(total[0]),
+            # GNI §I.5.1: I(t) = I(0) + O(1/ω); ω max|I − I(0)| stays of order one
+            "oscillatory_energy_max_deviation": float(np.max(dev)),
+            "oscillatory_energy_deviation_times_omega": float(omega * np.max(dev)),
+            "oscillatory_energy_relative_deviation_times_omega":
+                math.nan if at_rest else float(omega * np.max(dev) / abs(total[0])),
+            "stiff_at_rest": at_rest,
+            "first_spring": first + 1,
+            "first_spring_share": share,
+            "exchange_share": EXCHANGE_SHARE,
+            "order_one_bound": ORDER_ONE,
+        }
+        if not at_rest:
+            out["adiabatic_order_one"] = bool(
+                out["oscillatory_energy_relative_deviation_times_omega"] < ORDER_ONE)
+        if self.config.params.m >= 2 and not at_rest and share >= EXCHANGE_SHARE:
+            below = osc[:, first] < EXCHANGE_SHARE * total
+            if np.any(below):
+                out["exchange_time"] = float(t[int(np.argmax(below))])
+        return out
+
+    def time_scales(self, q) -> dict:
+        """ω against the soft springs' typical frequency √(24⟨Δ²⟩) along the run (Δ their
+        elongations q₂ᵢ₊₁ − q₂ᵢ, ends fixed: V = Δ⁴ between two unit masses has
+        V″/μ = 24Δ²): two time scales when ω is STIFF_RATIO times it or more."""
+        omega = self.config.params.omega
+        padded = np.pad(np.asarray(q, dtype=float), ((0, 0), (1, 1)))
+        soft = padded[:, 1::2] - padded[:, 0::2]
+        frequency = float(np.sqrt(24.0 * np.mean(soft**2)))
+        ratio = omega / frequency if frequency > 0 else math.inf
+        return {"soft_frequency": frequency, "stiffness_ratio": ratio,
+                "stiff_ratio_bound": STIFF_RATIO, "two_time_scales": bool(ratio >= STIFF_RATIO)}
+
     def simulate(self, progress=None) -> Results:
         prm, run = self.config.params, self.config.run
         n = 2 * prm.m
@@ -69,29 +123,9 @@ class FputSimulation(IntegratingSimulation):
                               n_periods=run.t_end * prm.omega / (2 * math.pi),
                               invariant_scales={"energy": abs(e0)} if e0 else None)
         results.runs["main"] = main
-        osc = core.oscillatory_energies(main.y[:, :n], main.y[:, n:], prm.omega)
-        total = osc.sum(axis=1)
-        dev = np.abs(total - total[0])
         energy = main.invariants["energy"]
-        results.analysis.update({
-            "m": prm.m,
-            "omega": prm.omega,
-            "energy": e0,
-            "oscillatory_energies": osc,
-            "oscillatory_energy_total": total,
-            "oscillatory_energy_scaled_deviation": core.scaled_adiabatic_deviation(total,
-                                                                                   prm.omega),
-            "oscillatory_energy_initial": float(total[0]),
-            # GNI §I.5.1: I(t) = I(0) + O(1/ω); ω max|I − I(0)| stays of order one
-            "oscillatory_energy_max_deviation": float(np.max(dev)),
-            "oscillatory_energy_deviation_times_omega": float(prm.omega * np.max(dev)),
-            "oscillatory_energy_relative_deviation_times_omega":
-                float(prm.omega * np.max(dev) / abs(total[0])) if total[0] else math.nan,
-        })
-        if prm.m >= 2 and total[0] > 0:
-            below = osc[:, 0] < 0.7 * total
-            if np.any(below):
-                results.analysis["exchange_time"] = float(t[int(np.argmax(below))])
+        results.analysis.update(self.exchange(main.y[:, :n], main.y[:, n:], main.t, e0))
+        results.analysis.update(self.time_scales(main.y[:, :n]))
         # H is conserved exactly by the flow (GNI eq. I.5.1)
         results.checks.append(Check("energy H(t_end)", float(energy[-1]), e0, "",
                                     "H(0), conserved (GNI eq. I.5.1)", scale=abs(e0) or None))

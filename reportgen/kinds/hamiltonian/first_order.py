@@ -21,6 +21,7 @@ import numpy as np
 from ...lazy import lazy_module
 from ...scene.results import Check, Results
 from .config import STUDY_STEPS
+from .simulation import invariant_scales, vanishes_for
 
 formula = lazy_module("reportgen.core.formula")
 numeric = lazy_module("reportgen.core.numeric")
@@ -125,7 +126,7 @@ class FirstOrderSimulation:
             brackets[name] = sympy.simplify(fo.bracket(space, f, V))
             rate = sum((sympy.diff(f, q) * v for q, v in zip(space.q, fo.qdot, strict=True)),
                        sympy.diff(f, space.t))
-            conserved[name] = sympy.simplify(rate) == 0
+            conserved[name] = vanishes_for(system, rate)
 
         def quantities(tt, y):
             vals = system.values(y, tt)
@@ -138,9 +139,15 @@ class FirstOrderSimulation:
         h0 = float(np.ravel(numeric.evaluate(V, vals0))[0])
         # V's scale: |V(0)| or the size of its parts, so that V(0) = 0 is still measured
         scales = {"H": max(abs(h0), float(np.max(mechanics.roundoff_scale(V, vals0))),
-                           1e-300)} if h_conserved else None
+                           1e-300)} if h_conserved else {}
+        kept = {n: system.observables[n] for n, c in conserved.items() if c}
+
+        def scales_along(tt, y):
+            """V's scale, and each conserved observable's: the size of its terms."""
+            return {**scales, **invariant_scales(system, kept, [], system.values(y, tt))}
+
         main = self.integrate(model, y0, t, invariants=quantities, progress=progress,
-                              invariant_scales=scales)
+                              invariant_scales=scales_along)
         results.runs["main"] = main
         vals = system.values(main.y, main.t)
         moving = [n for n, c in conserved.items() if not c] + ([] if h_conserved else ["H"])
@@ -168,7 +175,7 @@ class FirstOrderSimulation:
             "qdot": [system.latex(e) for e in fo.qdot]}
         a["coordinates"] = list(space.names)
         a["given"] = "L"
-        a["separable"] = False
+        a["kinetic_potential_split"] = False  # no momenta: the state is q alone
         a["time_dependent"] = bool(system.time_dependent)
         a["angles"] = self._angles(system)
         a["H0"] = h0

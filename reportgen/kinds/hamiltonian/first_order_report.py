@@ -104,7 +104,7 @@ class FirstOrderReport:
                             f"({cls._freedom(data)})"),
                  ("energy V(0)", fmt(a["H0"]))]
         if run is not None and "drift_H" in run.attrs:
-            facts.append(("relative drift of V", fmt_err(run.attrs["drift_H"])))
+            facts.append(("drift of V, relative to its scale", fmt_err(run.attrs["drift_H"])))
         return facts
 
     @classmethod
@@ -156,7 +156,7 @@ class FirstOrderReport:
              else "no: V changes along the run")]
         run = data.runs["main"]
         if "drift_H" in run.attrs:
-            facts.append(("largest relative drift of V along the run",
+            facts.append(("largest drift of V along the run, relative to its scale",
                           fmt_err(run.attrs["drift_H"])))
         figures, notes = [], []
         if a["first_order_linear"]:
@@ -193,9 +193,10 @@ class FirstOrderReport:
         content = cls.invariants_section(
             data, labels={n: f"${cls.name_tex(data, n)}$" for n in data.runs["main"].invariants},
             time_unit=cls.UNITS,
-            caption="Relative drift of the energy function V = a·q̇ − L and of every "
-                    "observable whose rate ∇f·q̇ + ∂f/∂t simplifies to zero.")
+            caption="Drift of the energy function V = a·q̇ − L and of every observable whose "
+                    "rate ∇f·q̇ + ∂f/∂t simplifies to zero, each relative to its scale.")
         content.tables = []  # the kind's template typesets it (symbol_tables: its names)
+        cls.relabel_drift(content)
         moving = data.analysis.get("observables")
         if moving:
             from . import plots

@@ -17,6 +17,7 @@ from ...rendering.plots.style import (
     new_figure_grid,
     place_legend,
 )
+from ...scene.content import fmt
 from .symbols import symbol_tex
 
 #: the unit of a formula system's quantities (but its angles): the config's own
@@ -75,7 +76,7 @@ def phase_portrait(q, p, grid_q, grid_p, H, H0: float, qname: str, angle: bool =
         ax.set_xlim(-np.pi, np.pi)
     else:
         ax.plot(q, p, color=HIGHLIGHT, linewidth=2.0)
-    ax.plot([], [], color=HIGHLIGHT, linewidth=2.0, label=f"this run, H = {H0:.6g}")
+    ax.plot([], [], color=HIGHLIGHT, linewidth=2.0, label=f"this run, H = {fmt(H0, 6)}")
     ax.plot([], [], color=CONTEXT, label="other levels of H")
     xlabel, ylabel = labels or (f"{_math(qname)} [{UNITS}]", f"{_math('p_' + qname)} [{UNITS}]")
     ax.set_xlabel(xlabel)

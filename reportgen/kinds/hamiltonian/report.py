@@ -13,13 +13,14 @@ from ...lazy import lazy_module
 from ...rendering.equations import equation_html
 from ...scene.base import Section
 from ...scene.content import SectionContent, fmt, fmt_err
-from ...scene.report import Report, section_colours, section_point_notes
+from ...scene.report import Report, method_words, section_colours, section_point_notes
 from .config import (
     JACOBI_SAMPLES,
     STUDY_STEPS,
     family_energy,
 )
 from .report_canonical import CanonicalSections
+from .report_tables import SymbolTables
 from .results import SCHEMA
 from .symbols import dot_tex, split_sum, symbol_parts, symbol_tex, symbol_text, symbol_words
 
@@ -28,7 +29,7 @@ plots = lazy_module("reportgen.kinds.hamiltonian.plots")
 section_plots = lazy_module("reportgen.rendering.plots.sections")
 
 
-class HamiltonianReport(CanonicalSections, Report):
+class HamiltonianReport(CanonicalSections, SymbolTables, Report):
     """The sections of a formula system, drawn from the archive alone."""
 
     schema = SCHEMA
@@ -220,7 +221,8 @@ class HamiltonianReport(CanonicalSections, Report):
                                      f"{int(kept[crossing].max())} per orbit)")]
         h_error = sweep.analysis.get("poincare_H_relative_error")
         if h_error is not None and np.any(np.isfinite(h_error)):
-            facts.append(("max |H − H(0)|/|H(0)| at the crossings, over the members",
+            facts.append(("max |H − H(0)| at the crossings relative to the energy scale, over "
+                          "the members",
                           fmt_err(float(np.nanmax(h_error)))))
         energy = family_energy(sweep)
         if energy is not None:
@@ -260,87 +262,28 @@ class HamiltonianReport(CanonicalSections, Report):
         surface of section's crossings."""
         if data.sweep is not None:
             return {"behaviour": "", "crossings": 0, "lyapunov_time": "", "transform_kind": "",
+                    "given": "", "chaos_threshold": "", "plane_map": False, "dof": 0,
                     "tables": {"invariants": [], "brackets": [], "hamilton_jacobi": []}}
         a = data.analysis
         behaviour = str(a.get("behaviour", ""))
         pts = a.get("poincare")
         return {"behaviour": behaviour.split(":", 1)[0] if behaviour else "",
+                "given": str(a.get("given", "")),
+                "plane_map": cls.plane_map(data),
+                "dof": len(cls.coordinates(data)),
+                "chaos_threshold": fmt(float(a.get("chaos_growth_threshold", math.nan)), 2),
                 "lyapunov_time": fmt(float(a.get("lyapunov_time", math.nan)), 3),
                 "crossings": len(pts["u"]) if pts is not None else 0,
                 "transform_kind": str(a.get("transform_kind", "")),
                 "tables": cls.symbol_tables(data)}
 
     @classmethod
-    def symbol_tables(cls, data) -> dict[str, list[dict]]:
-        """The tables whose cells are symbols or brackets, by section, for the kind's
-        template to typeset (``symbol_table``: the columns ``tex`` hold TeX): a section's
-        own tables are printed as text, where p_y and A_xy have no spelling.  Each table:
-        ``header``, ``rows``, ``caption``, ``tex``."""
-        a, run = data.analysis, data.runs.get("main")
-        tables: dict[str, list[dict]] = {"invariants": [], "brackets": [], "hamilton_jacobi": []}
-        if run is not None:
-            tables["invariants"].append({
-                "header": ["quantity", "initial value", "max relative drift"],
-                "rows": [[cls.name_tex(data, n), fmt(float(v[0])),
-                          fmt_err(run.attrs.get(f"drift_{n}", math.nan))]
-                         for n, v in run.invariants.items()],
-                "caption": "Conserved quantities (bound on the drift of a numerically stable run: "
-                           "relative drift ≤ "
-                           f"{fmt_err(run.attrs.get('drift_bound', math.nan))})",
-                "tex": [0]})
-        observables = [k[len("poisson_"):] for k in a
-                       if k.startswith("poisson_") and not k.endswith(("_latex", "_max"))]
-        if observables:
-            tables["brackets"].append({
-                "header": ["observable f", "{f, H}", "conserved", "max |{f, H}| on the run"],
-                "rows": [[cls.name_tex(data, f), cls.cell_tex(a[f"poisson_{f}_latex"]),
-                          "yes" if a[f"conserved_{f}"] else "no",
-                          fmt_err(a[f"poisson_{f}_max"])] for f in observables],
-                "caption": "{f, H} = Σ ∂f/∂q ∂H/∂p − ∂f/∂p ∂H/∂q, simplified by SymPy "
-                           "(archived in /analysis); f is conserved when {f, H} + ∂f/∂t = 0. "
-                           "The last column evaluates {f, H} along the run.",
-                "tex": [0, 1]})
-        pairs = a.get("pair_brackets")
-        if pairs and "latex" in pairs:
-            tables["brackets"].append({
-                "header": ["bracket", "simplified"],
-                "rows": [[rf"\{{{cls.name_tex(data, f)}, {cls.name_tex(data, g)}\}}",
-                          cls.cell_tex(b)]
-                         for f, g, b in zip(pairs["f"], pairs["g"], pairs["latex"],
-                                            strict=True)],
-                "caption": "Brackets between the observables, simplified.",
-                "tex": [0, 1]})
-        if "hj_constants" in a:
-            tables["hamilton_jacobi"].append({
-                "header": ["constant", "value", "max relative drift"],
-                "rows": [[cls.name_tex(data, k), fmt(v), fmt_err(a["hj_constant_drift"][k])]
-                         for k, v in a["hj_constants"].items()],
-                "caption": "The separated constants at t = 0 and their relative drift along "
-                           "the integration.",
-                "tex": [0]})
-        return tables
-
-    @classmethod
-    def cell_tex(cls, tex) -> str:
-        """A bracket's TeX for a table cell; one too long to read typeset (a cell does not
-        wrap) is said to be so: the archive holds it whole."""
-        tex = str(tex)
-        return tex if len(tex) <= cls.LONGEST_EQUATION // 2 else r"\mathrm{(too\ long;\ archived)}"
-
-    #: what the names of a preset (or of a separation's constants) mean beyond their
-    #: spelling: the central potential's ``L2`` is L², not L with index 2
-    NAMED_SYMBOLS = {"central_potential": {"L2": "L^{2}"}, "central": {"L2": "L^{2}"}}
-
-    @classmethod
-    def name_tex(cls, data, name: str) -> str:
-        """A name's TeX (:func:`symbol_tex`), unless the scene's preset or separation gives
-        it a meaning of its own (:attr:`NAMED_SYMBOLS`)."""
-        if str(name) == "noether_charge":  # the declared symmetry's charge, not a config name
-            return r"Q_{\mathrm{N}}"
-        for key in (getattr(data.config, "preset", None), data.analysis.get("hj_separation")):
-            if key is not None and str(name) in cls.NAMED_SYMBOLS.get(str(key), {}):
-                return cls.NAMED_SYMBOLS[str(key)][str(name)]
-        return symbol_tex(str(name))
+    def plane_map(cls, data) -> bool:
+        """Whether the surface of section is a map of a plane: two degrees of freedom on one
+        energy surface (H does not depend on t); otherwise the figure is a projection."""
+        a = data.analysis
+        return len(cls.coordinates(data)) == 2 and not a.get("time_dependent", False) \
+            and not a.get("first_order", False)
 
     @classmethod
     def behaviour(cls, data):
@@ -350,11 +293,13 @@ class HamiltonianReport(CanonicalSections, Report):
         if data.sweep is not None or "separation_growth" not in a:
             return super().behaviour(data)
         growth = float(a["separation_growth"])
+        threshold = fmt(float(a.get("chaos_growth_threshold", math.nan)), 2)
         if "lyapunov_time" in a:
             return (f"chaotic: two orbits 10⁻¹⁰ apart separate by {fmt(growth, 2)}× over the "
-                    f"run, as exp(t/T) with Lyapunov time T ≈ {fmt(float(a['lyapunov_time']), 2)}")
+                    f"run (chaos is called from {threshold}×), as exp(t/T) with Lyapunov time "
+                    f"T ≈ {fmt(float(a['lyapunov_time']), 2)}")
         return (f"regular: two orbits 10⁻¹⁰ apart separate by only {fmt(growth, 2)}× over the "
-                "run (no exponential divergence)")
+                f"run, below the {threshold}× that marks exponential divergence")
 
     @classmethod
     def describe(cls, data):
@@ -383,14 +328,16 @@ class HamiltonianReport(CanonicalSections, Report):
     def headline(cls, data):
         a = data.analysis
         run = data.runs.get("main")
+        split = ("; H = T(p) + V(q), kinetic and potential parts split"
+                 if a.get("kinetic_potential_split", False) else "")
         facts = [("system", f"{'L' if a['given'] == 'L' else 'H'} in "
                             f"{', '.join(map(symbol_text, cls.coordinates(data)))} "
                             f"({len(a['coordinates'])} degree"
-                            f"{'s' if len(a['coordinates']) > 1 else ''} of freedom"
-                            f"{', separable' if a['separable'] else ''})"),
+                            f"{'s' if len(a['coordinates']) > 1 else ''} of freedom{split})"),
                  ("H(0)", fmt(a["H0"]))]
         if run is not None and "drift_H" in run.attrs:
-            facts.append(("relative drift of H", fmt_err(run.attrs["drift_H"])))
+            facts.append(("drift of H, relative to its energy scale",
+                          fmt_err(run.attrs["drift_H"])))
         conserved = [k[len("conserved_"):] for k, v in a.items()
                      if k.startswith("conserved_") and v]
         if conserved:  # typeset: A_xy has no spelling in text (the headline is not archived)
@@ -425,14 +372,15 @@ class HamiltonianReport(CanonicalSections, Report):
                 continue
             eqs.append(("ṗ = −∂H/∂q" if i == 0 else "", f"{dot_tex(p)} = {e}"))
         if long:  # named by their left-hand sides; the archive holds them whole
-            eqs.append(("too long to read typeset, not shown (their TeX is archived in "
-                        "/analysis/latex)", r",\ ".join(long)))
+            eqs.append(("too long to read typeset, not shown (the archive holds their TeX)",
+                        r",\ ".join(long)))
         for i, name in enumerate(k[len("observable_"):] for k in tex if k.startswith("observable_")):
             eqs.append(("observables" if i == 0 else "",
                         f"{cls.name_tex(data, name)} = {tex['observable_' + name]}"))
-        facts = [("H separable (T(p) + V(q))", "yes: symplectic splitting methods apply"
-                  if a["separable"] else "no"),
-                 ("H depends on t", "yes: H is not conserved" if a["time_dependent"] else "no")]
+        facts = [("H = T(p) + V(q), its kinetic and potential parts split",
+                  cls.split_words(a)),
+                 ("H depends on t", "yes: H is not conserved" if a["time_dependent"] else
+                  "no: H is conserved")]
         if a["given"] == "L":
             facts.append(("max |p − ∂L/∂q̇| along the run",
                           fmt_err(a["legendre_momentum_error"])))
@@ -447,6 +395,17 @@ class HamiltonianReport(CanonicalSections, Report):
         return SectionContent(facts=facts, equations=eqs)
 
 
+
+    @staticmethod
+    def split_words(a) -> str:
+        """Whether H = T(p) + V(q), from the archived structure (no t, every ∂²H/∂q∂p zero):
+        the split a symplectic splitting method needs, not separation of variables."""
+        if a.get("kinetic_potential_split", False):
+            return ("yes: kinetic and potential parts split, so symplectic splitting methods "
+                    "apply (a drift by T, a kick by V)")
+        if a.get("time_dependent", False):
+            return "no: H depends on t"
+        return "no: H mixes coordinates and momenta (some ∂²H/∂q∂p ≠ 0)"
 
     @classmethod
     def section_trajectory(cls, data):
@@ -494,23 +453,32 @@ class HamiltonianReport(CanonicalSections, Report):
         on_surface = ""
         if "poincare_H_relative_error" in a:
             error = fmt_err(a["poincare_H_relative_error"])
-            facts.append(("max |H − H(0)|/|H(0)| at the crossings", error))
-            on_surface = f"; every crossing lies on the energy surface H = H(0) to {error}"
+            facts.append(("max |H − H(0)| at the crossings, relative to the energy scale",
+                          error))
+            on_surface = (f"; every crossing lies on the energy surface H = H(0) to {error} of "
+                          "the energy scale")
+        if not cls.plane_map(data):
+            shape = ("The section of a system of more than two degrees of freedom is not a "
+                     "plane: the figure projects the crossings onto two of their coordinates. "
+                     if len(cls.coordinates(data)) > 2 else
+                     "H depends on t, so there is no energy surface: the figure projects the "
+                     "crossings onto two of their coordinates. ")
+        else:
+            shape = {"chaotic": "This orbit is chaotic (its behaviour, above): its crossings "
+                                "scatter over an area of the section instead of lying on a "
+                                "curve, as a regular orbit's would. ",
+                     "regular": "This orbit is regular (quasi-periodic; its behaviour, above): "
+                                "its crossings lie on a closed curve, or a chain of islands, "
+                                "and fill it in as they accumulate. "}.get(
+                cls.prose_case(data)["behaviour"],
+                "A regular (quasi-periodic) orbit crosses the surface on a closed "
+                "curve; a chaotic one scatters over an area. ")
         return SectionContent(
             figures=[cls.figure("poincare", fig,
                                 cls.surface_words(data, s_col, value, direction, u, v)
                                 + f" at each of the {len(pts['u'])} crossings{on_surface}.")],
             facts=facts,
-            notes=[{"chaotic": "This orbit is chaotic (its behaviour, above): its crossings "
-                                "scatter over an area of the section instead of lying on a "
-                                "curve, as a regular orbit's would. ",
-                    "regular": "This orbit is regular (quasi-periodic; its behaviour, above): "
-                               "its crossings lie on a closed curve, or a chain of islands, "
-                               "and fill it in as they accumulate. "}.get(
-                       cls.prose_case(data)["behaviour"],
-                       "A regular (quasi-periodic) orbit crosses the surface on a closed "
-                       "curve; a chaotic one scatters over an area. ")
-                   + cls.located_words(data)] if len(pts["u"]) else
+            notes=[shape + cls.located_words(data)] if len(pts["u"]) else
                   ["The orbit did not cross the surface of section during the run."])
 
     @staticmethod
@@ -523,7 +491,8 @@ class HamiltonianReport(CanonicalSections, Report):
                     "surface, to rounding in the step's time: the crossings are as accurate as "
                     "the steps whatever the number of stored samples (Hairer, Nørsett & Wanner "
                     "§II.6).")
-        return (f"The run's method ({run.attrs.get('method', '')}) has no continuous extension "
+        return (f"The run's method ({method_words(run.attrs.get('method', ''))}) has no "
+                "continuous extension "
                 "here: each crossing is located between stored samples by cubic Hermite "
                 "interpolation with the derivatives from Hamilton's equations, so its "
                 "accuracy depends on the sampling.")
@@ -534,10 +503,11 @@ class HamiltonianReport(CanonicalSections, Report):
         content = cls.invariants_section(
             data, labels={n: f"${cls.name_tex(data, n)}$" for n in data.runs["main"].invariants},
             time_unit=cls.UNITS,
-            caption="Relative drift of H and of every conserved quantity: observables "
-                          "whose total time derivative {f, H} + ∂f/∂t simplifies to zero, and "
-                          "the momenta of cyclic coordinates.")
+            caption="Drift of H and of every conserved quantity (observables whose total "
+                    "time derivative {f, H} + ∂f/∂t simplifies to zero, the momenta of cyclic "
+                    "coordinates), each relative to its scale.")
         content.tables = []  # the kind's template typesets it (symbol_tables: its names)
+        cls.relabel_drift(content)
         moving = a.get("observables")
         if moving:
             run = data.runs["main"]

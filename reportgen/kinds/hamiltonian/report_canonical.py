@@ -5,8 +5,10 @@ canonical transformation (finite or infinitesimal) and the Hamilton–Jacobi com
 from __future__ import annotations
 
 import numpy as np
+from markupsafe import Markup
 
 from ...lazy import lazy_module
+from ...rendering.equations import equation_html
 from ...scene.content import SectionContent, fmt, fmt_err
 from .config import (
     JACOBI_ROUNDOFF,
@@ -27,16 +29,32 @@ class CanonicalSections:
         are typeset by the kind's template (:meth:`symbol_tables`)."""
         a = data.analysis
         cyclic = [symbol_text(str(c)) for c in a["cyclic"]]
-        facts = [("cyclic coordinates", ", ".join(cyclic) + (
+        facts = []
+        observables = [k[len("conserved_"):] for k in a if k.startswith("conserved_")]
+        kept = [f for f in observables if a[f"conserved_{f}"]]
+        moving = [f for f in observables if not a[f"conserved_{f}"]]
+        if kept:  # typeset: A_xy has no spelling in text
+            facts.append(("observables conserved ({f, H} + ∂f/∂t simplifies to 0)",
+                          cls.names_html(data, kept)))
+        if moving:
+            facts.append(("observables not conserved ({f, H} + ∂f/∂t ≠ 0)",
+                          cls.names_html(data, moving)))
+        facts += [("cyclic coordinates (H does not contain them)", ", ".join(cyclic) + (
                       " (its conjugate momentum is conserved)" if len(cyclic) == 1 else
-                      " (their conjugate momenta are conserved)") if cyclic else "none"),
-                 ("Jacobi identity {f,{g,h}} + {g,{h,f}} + {h,{f,g}}",
-                  cls.jacobi_words(a))]
+                      " (their conjugate momenta are conserved)") if cyclic else
+                   "none: H depends on every coordinate"),
+                  ("Jacobi identity {f,{g,h}} + {g,{h,f}} + {h,{f,g}}",
+                   cls.jacobi_words(a))]
         triple = a.get("jacobi_triple_latex")
         equations = [] if triple is None else [
             ("the Jacobi identity is checked for", r",\quad ".join(
                 f"{n} = {t}" for n, t in zip("fgh", triple, strict=True)))]
         return SectionContent(facts=facts, equations=equations)
+
+    @classmethod
+    def names_html(cls, data, names: list[str]):
+        """Names typeset, comma-separated (a symbol such as A_xy has no spelling in text)."""
+        return Markup(", ").join(equation_html(cls.name_tex(data, f)) for f in names)
 
     @classmethod
     def jacobi_words(cls, a) -> str:
@@ -152,10 +170,13 @@ class CanonicalSections:
         if run is not None:
             facts.append(("max |(Q, P) from integrating K − (Q, P) of the H orbit|",
                           fmt_err(a["transform_run_difference"])))
+        elif not a["transform_K_latex"]:
+            facts.append(("K as a formula in (Q, P)", "not found: SymPy solves only relations "
+                          "linear in the old variables; K = H + ∂F/∂t is evaluated along the "
+                          "run instead"))
         else:
-            facts.append(("K as a formula in (Q, P)", "not found (the old variables are not "
-                          "linear in the new ones); K = H + ∂F/∂t, above, is evaluated along "
-                          "the run"))
+            facts.append(("K as a formula in (Q, P)", "found (above), but it still holds old "
+                          "variables or other names: not integrated on its own"))
         caption = ("The new variables along the integrated orbit" +
                    (f"; dashed: {symbol_text(new[0])} from integrating K's own Hamilton "
                     "equations from (Q₀, P₀)." if run is not None else "."))

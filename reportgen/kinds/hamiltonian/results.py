@@ -154,6 +154,9 @@ SCHEMA = ResultsSchema(
           "started 1e-10 apart", optional=True),
         Q("lyapunov_time", r"T_\lambda", "1", "Lyapunov time 1/lambda of a chaotic orbit",
           optional=True),
+        Q("chaos_growth_threshold", r"G_\mathrm{chaos}", "1", "growth of the separation of "
+          "two orbits within the run from which the orbit is called chaotic (below it: "
+          "regular)", optional=True),
         _text("angles", "coordinates H depends on 2 pi-periodically", ("angle",)),
         _text("latex/H", "the Hamiltonian (TeX)"),
         _text("latex/qdot", "Hamilton's equations dq/dt = dH/dp (TeX)", ("coordinate",)),
@@ -166,7 +169,9 @@ SCHEMA = ResultsSchema(
               optional=True),
         _text("coordinates", "names of the coordinates", ("coordinate",)),
         _text("given", "what the config gives: H or L"),
-        _flag("separable", "whether H = T(p) + V(q)"),
+        _flag("kinetic_potential_split", "whether H = T(p) + V(q): no t, every mixed "
+              "second derivative d2H/dq_i dp_j simplifies to zero (the split symplectic "
+              "splitting methods need; not separation of variables)"),
         _flag("time_dependent", "whether H depends on t"),
         _text("cyclic", "coordinates H does not contain", ("cyclic",)),
         Q("H0", "H_0", "1", "H of the initial state"),
@@ -303,7 +308,8 @@ def schema_for(coordinates: Iterable[str], observables: Iterable[str],
 
 #: what every run stores, first-order or not
 _ALWAYS = frozenset({"angles", "latex/H", "latex/q", "latex/L", "coordinates", "given",
-                     "separable", "time_dependent", "H0", "initial_state"})
+                     "kinetic_potential_split", "time_dependent", "H0",
+                     "initial_state"})
 
 
 def _first_order_schema(columns: list[Q], observables: list[str],

@@ -25,6 +25,38 @@ numeric = lazy_module("reportgen.core.numeric")
 mechanics = lazy_module("reportgen.core.mechanics")
 canonical = lazy_module("reportgen.core.canonical")
 hamilton_jacobi = lazy_module("reportgen.core.hamilton_jacobi")
+lyapunov = lazy_module("reportgen.core.lyapunov")
+
+def vanishes_for(system, expr) -> bool:
+    """Whether ``expr`` (a rate df/dt) simplifies to zero for this system: with its named
+    constants as symbols, or else at their values taken exactly (each float as the binary
+    rational it is), so that L_z of an oscillator with ω_x = ω_y written as two constants
+    is found conserved (the threshold: exactly zero, no tolerance)."""
+    import sympy
+
+    if sympy.simplify(expr) == 0:
+        return True
+    exact = {system.param_symbols[k]: sympy.Rational(v) for k, v in system.params.items()}
+    return bool(exact) and sympy.simplify(expr.xreplace(exact)) == 0
+
+
+def invariant_scales(system, quantities: dict, cyclic, vals) -> dict[str, float]:
+    """The scale each conserved quantity's drift is measured against, along the run
+    (``vals``: the run's values): for an observable (or a charge), the largest size of its
+    terms, Σ|term| (:func:`~reportgen.core.mechanics.roundoff_scale`), so that one that
+    starts at 0 (a total momentum) is judged against the momenta it is built from, never
+    against its own round-off; for the momentum of a cyclic coordinate, the largest
+    |momentum| of the run (the system's own momentum scale)."""
+    out = {}
+    for name, expr in quantities.items():
+        size = np.max(mechanics.roundoff_scale(expr, vals))
+        out[name] = max(float(size), 1e-300)
+    if cyclic:
+        momenta = np.stack([np.abs(np.broadcast_to(vals[p], np.shape(vals[system.space.t])))
+                            for p in system.space.p])
+        out.update({f"p_{c}": max(float(np.max(momenta)), 1e-300) for c in cyclic})
+    return out
+
 
 class HamiltonianSimulation(HamiltonianStructure, HamiltonianAnalysis, IntegratingSimulation):
     """A system given as H(q, p, t) or L(q, q̇, t): derived, compiled, integrated, checked."""
@@ -176,8 +208,7 @@ class HamiltonianSimulation(HamiltonianStructure, HamiltonianAnalysis, Integrati
         for name, f in system.observables.items():
             bracket = mechanics.poisson_bracket(space, f, H)
             brackets[name] = bracket
-            total = sympy.simplify(bracket + sympy.diff(f, space.t))
-            conserved[name] = total == 0
+            conserved[name] = vanishes_for(system, bracket + sympy.diff(f, space.t))
         cyclic = mechanics.cyclic_coordinates(space, H)
         h_conserved = not system.time_dependent
         symmetry = self._noether(system) if self.config.noether is not None else None
@@ -198,22 +229,26 @@ class HamiltonianSimulation(HamiltonianStructure, HamiltonianAnalysis, Integrati
 
         angles = self._angles(system)
         a["angles"] = angles
-        scales = {}
         vals0 = system.values(y0[None, :], np.array([0.0]))
         h0 = float(np.ravel(numeric.evaluate(H, vals0))[0])  # a scalar if constant
+        scales = {}
         if h_conserved:
             # the energy's scale: the largest of |H0| and its parts at p = 0 and the rest, so
             # that a zero-energy orbit is measured against its kinetic and potential energy
             v0 = float(np.ravel(numeric.evaluate(H.subs({p: 0 for p in space.p}), vals0))[0])
             scales["H"] = max(abs(h0), abs(v0), abs(h0 - v0), 1e-300)
-        if symmetry is not None:
-            # the charge's scale: the size of its parts at t = 0 (a charge may start at 0)
-            size = float(np.max(mechanics.roundoff_scale(symmetry[1], vals0)))
-            scales["noether_charge"] = max(size, 1e-300)
+        kept = {n: system.observables[n] for n, c in conserved.items() if c}
+        if charge is not None:
+            kept["noether_charge"] = charge
+
+        def scales_along(tt, y):
+            """Each invariant's scale, measured along the run (:func:`invariant_scales`)."""
+            return {**scales, **invariant_scales(system, kept, cyclic, system.values(y, tt))}
+
         surface = self._surface(system)
         located = surface is not None and self._locates_on_steps()
         main = self.integrate(model, y0, t, invariants=quantities, progress=progress,
-                              invariant_scales=scales or None,
+                              invariant_scales=scales_along,
                               section=surface if located else None)
         crossings = self._crossings if located else None
         results.runs["main"] = main
@@ -241,7 +276,7 @@ class HamiltonianSimulation(HamiltonianStructure, HamiltonianAnalysis, Integrati
         a["latex"] = latex
         a["coordinates"] = list(space.names)
         a["given"] = "L" if system.L is not None else "H"
-        a["separable"] = bool(system.separable)
+        a["kinetic_potential_split"] = self._kinetic_potential_split(system)
         a["time_dependent"] = bool(system.time_dependent)
         a["cyclic"] = [str(c) for c in cyclic]
         a["H0"] = h0
@@ -280,7 +315,9 @@ class HamiltonianSimulation(HamiltonianStructure, HamiltonianAnalysis, Integrati
         if self.config.transform is not None:
             self._transform(results, system, main)
         if symmetry is not None:
-            self._noether_along(results, system, main, *symmetry, scales["noether_charge"])
+            self._noether_along(results, system, main, *symmetry, main.attrs.get(
+                "scale_noether_charge") or invariant_scales(
+                    system, {"noether_charge": symmetry[1]}, [], vals)["noether_charge"])
         if self.config.total_derivative is not None:
             self._total_derivative(a, system, main)
         if self.config.hamilton_jacobi is not None:
@@ -292,6 +329,7 @@ class HamiltonianSimulation(HamiltonianStructure, HamiltonianAnalysis, Integrati
         if (system.n >= 2 or system.time_dependent) and not self.family_member:
             # chaotic or regular: a chaotic orbit's study ends before its Lyapunov time
             horizon = min(horizon, self.divergence(results, model, y0, t))
+            a["chaos_growth_threshold"] = float(lyapunov.CHAOTIC_GROWTH)
             a["behaviour"] = self._chaos_words(a)
         a["study_t_end"] = float(horizon)
         self.study(results, model, y0, np.linspace(0.0, horizon, 201))
@@ -339,13 +377,16 @@ class HamiltonianSimulation(HamiltonianStructure, HamiltonianAnalysis, Integrati
 
     @staticmethod
     def _chaos_words(a: dict) -> str:
-        """The behaviour verdict from the divergence of two orbits 1e-10 apart."""
+        """The behaviour verdict from the divergence of two orbits 1e-10 apart: chaotic when
+        their separation grows by ``chaos_growth_threshold`` within the run."""
+        threshold = a["chaos_growth_threshold"]
         if "lyapunov_time" in a:
             return (f"chaotic: two orbits 1e-10 apart separate by {a['separation_growth']:.1e}"
-                    f"× over the run, as e^(t/T) with Lyapunov time T ≈ "
-                    f"{a['lyapunov_time']:.2g}")
+                    f"× over the run (chaos from {threshold:.0e}×), as e^(t/T) with Lyapunov "
+                    f"time T ≈ {a['lyapunov_time']:.2g}")
         return (f"regular: two orbits 1e-10 apart separate by only "
-                f"{a['separation_growth']:.2g}× over the run (no exponential divergence)")
+                f"{a['separation_growth']:.2g}× over the run, below the {threshold:.0e}× of "
+                "exponential divergence")
 
     @staticmethod
     def member_points(results) -> dict[str, PointSet]:

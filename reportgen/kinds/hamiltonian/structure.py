@@ -31,6 +31,21 @@ class HamiltonianStructure:
     """Mixed into :class:`.simulation.HamiltonianSimulation` (its ``config`` and
     ``integrate``)."""
 
+    @staticmethod
+    def _kinetic_potential_split(system) -> bool:
+        """Whether H = T(p) + V(q): H does not contain t and every mixed second derivative
+        ∂²H/∂qᵢ∂pⱼ simplifies to zero (the threshold: exactly zero).  It is the structure a
+        symplectic splitting method needs (a drift by T, a kick by V), and it is not what a
+        reader calls "separable" (separation of variables in the Hamilton–Jacobi equation,
+        notes §7), which the report does not claim from it."""
+        import sympy
+
+        space = system.space
+        if system.first_order is not None or space.t in system.H.free_symbols:
+            return False
+        return all(sympy.simplify(sympy.diff(system.H, q, p)) == 0
+                   for q in space.q for p in space.p)
+
     def _transform(self, results, system, main) -> None:
         """New variables along the run, the symplectic condition MᵀJM = J there and the
         fundamental brackets {Qᵢ, Pⱼ} = δᵢⱼ (computed from M, relative to the size of their

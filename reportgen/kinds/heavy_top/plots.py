@@ -193,7 +193,9 @@ def time_series(t, theta, theta_closed, phi_dot, u_error, *, theta1, theta2,
     ax.set_ylabel("θ [rad]")
     ax.ticklabel_format(axis="y", useOffset=False)  # no "1e−12+1" offsets: θ as it is
     lo, hi = float(np.nanmin(theta)), float(np.nanmax(theta))
-    if hi - lo <= 1e-6 * abs(hi):  # steady precession: round-off only, a band of ±2 %
+    if hi == 0.0:  # exactly upright throughout: θ = 0, a small band about it
+        ax.set_ylim(-1e-3, 1e-3)
+    elif hi - lo <= 1e-6 * abs(hi):  # steady precession: round-off only, a band of ±2 %
         ax.set_ylim(0.98 * lo, 1.02 * hi)
     # above the axes: θ(t) fills the band between the circles, peaks in every corner
     fig.legend(*ax.get_legend_handles_labels(), loc="outside upper center", ncol=2,
@@ -213,20 +215,23 @@ def time_series(t, theta, theta_closed, phi_dot, u_error, *, theta1, theta2,
 
 def steady_rates(omega3, slow, fast, *, omega3_min, omega3_config, rate_config, rate_measured,
                  ax=None):
-    """The two steady-precession rates (notes (10.45)) against ω3, with the existence bound
-    (notes (10.46))."""
+    """The two steady-precession rates (notes (10.45)) against the spin, with the existence
+    bound (notes (10.46)), in size: −ω3 mirrors the motion (φ̇ → −φ̇), and below the horizontal
+    the fast root is negative, so |φ̇| against |ω3| draws every case on one log axis."""
     fig, ax = new_figure(ax, figsize=(6.8, 4.4))
-    ax.semilogy(omega3, slow, color=REFERENCE, label="slow root")
-    ax.semilogy(omega3, fast, color=SEPARATRIX, label="fast root")
+    spin = np.abs(np.asarray(omega3, dtype=float))
+    ax.semilogy(spin, np.abs(slow), color=REFERENCE, label="slow root")
+    if np.any(np.isfinite(fast)):
+        ax.semilogy(spin, np.abs(fast), color=SEPARATRIX, label="fast root")
     if np.isfinite(omega3_min):
         ax.axvline(omega3_min, color=CONTEXT, linestyle=":",
-                   label=f"notes (10.46): ω3 ≥ {fmt(omega3_min, 4)} rad/s")
-    ax.plot([omega3_config], [abs(rate_config)], "o", color=HIGHLIGHT, markersize=7,
+                   label=f"notes (10.46): |ω3| ≥ {fmt(omega3_min, 4)} rad/s")
+    ax.plot([abs(omega3_config)], [abs(rate_config)], "o", color=HIGHLIGHT, markersize=7,
             label="this scene (closed form)")
     if np.isfinite(rate_measured):
-        ax.plot([omega3_config], [abs(rate_measured)], "x", color="k", markersize=9,
+        ax.plot([abs(omega3_config)], [abs(rate_measured)], "x", color="k", markersize=9,
                 label="mean dφ/dt of the integration")
-    ax.set_xlabel("spin ω3 [rad/s]")
+    ax.set_xlabel("spin |ω3| [rad/s]")
     ax.set_ylabel("|dφ/dt| steady precession [rad/s]")
     ax.legend(loc="best")
     return fig

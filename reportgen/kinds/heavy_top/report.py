@@ -73,7 +73,7 @@ class HeavyTopReport(FamilySections, WeierstrassSection, Report):
             exact = "the exact " + gallery.reference_words(steady.source)
             return (f"steady precession φ̇ = {fmt(steady.value, 5)} rad/s, "
                     f"{gallery.from_reference(steady.rel_error, exact)}")
-        if a.get("theta1", 1.0) < 1e-3:  # a sleeping top: released next to the vertical
+        if a.get("sleeping_top"):  # a sleeping top: started next to the vertical
             stable = bool(a.get("sleeping_stable"))
             return (f"ω3 = {fmt(a['omega3'], 4)} rad/s, {'above' if stable else 'below'} the "
                     f"sleeping threshold {fmt(a['sleeping_threshold_omega3'], 4)} rad/s: "
@@ -127,33 +127,58 @@ class HeavyTopReport(FamilySections, WeierstrassSection, Report):
             names.remove("effective_potential")  # V'(θ) is flat-infinite at θ = 0 with b = a
         return names
 
-    #: a start tilted less than this [rad] is a sleeping top (the simulation's SLEEPING_TILT)
-    SLEEPING_TILT = 1e-3
+    #: the nutation cases in words
+    CASE_ADJECTIVES = {"loops": "looping", "waves": "wavy", "cusps": "cusped"}
+
+    @staticmethod
+    def _all_runs(data) -> list[str]:
+        """The runs of a ``[band] case = "all"`` archive, in the order of Fig. 4.3 (empty
+        for any other archive)."""
+        band = data.analysis.get("band")
+        if band is None or band["case"] != "all":
+            return []
+        return [name for name in BAND_CASES if name in band["runs"]]
+
+    @classmethod
+    def _of_run(cls, data) -> str:
+        """`` (the loops run)`` where the sections after Fig. 4.3 speak of one of three runs."""
+        return f" (the {BAND_CASES[0]} run)" if cls._all_runs(data) else ""
 
     @classmethod
     def prose_case(cls, data):
-        """The nutation case (loops, waves, cusps, steady), whether the top sleeps (started
-        within :attr:`SLEEPING_TILT` of the vertical) and on which side of its threshold,
-        which steady root it precesses at, and the band's angles, as printed."""
+        """The stored facts the words follow: the nutation case (from b/a against u1, u2 with
+        their tolerances), whether the top sleeps (started within the stored sleeping tilt of
+        the vertical) and what the stored thresholds say of it, which steady root it
+        precesses at, whether it is released at rest, and the band's angles, as printed."""
         a = data.analysis
         if data.sweep is not None:
             return {}
         w3, threshold = float(a["omega3"]), float(a["sleeping_threshold_omega3"])
         case = {"case": str(a["case"]), "band": a.get("band") is not None,
-                "sleeping": float(a.get("theta0", math.inf)) < cls.SLEEPING_TILT,
+                "all": bool(cls._all_runs(data)), "of_run": cls._of_run(data),
+                "sleeping": bool(a.get("sleeping_top", False)),
+                "upright": str(a["case"]) == "sleeping",
                 "stable": bool(a.get("sleeping_stable", True)),
-                "omega3": fmt(abs(w3), 4), "threshold": fmt(threshold, 4),
+                "stays_upright": bool(a.get("stays_upright", False)),
+                "of_the_order": bool(a.get("tilt_of_the_order", False)),
+                "tilted_away": bool(a.get("tilted_away", False)),
+                "at_rest": bool(a.get("released_at_rest", False)),
+                "periods": int(a.get("periods_in_run", 0)),
+                "tilt_reached": fmt(float(a.get("tilt_reached", math.nan)), 3),
+                "omega3": fmt(w3, 4), "abs_omega3": fmt(abs(w3), 4),
+                "threshold": fmt(threshold, 4),
                 "ratio": fmt(abs(w3) / threshold, 3) if threshold > 0 else "—",
                 "growth": fmt(float(a.get("sleeping_growth_rate", math.nan)), 3),
                 "theta0": fmt(float(a["theta0"]), 3), "theta1": fmt(float(a["theta1"]), 3),
                 "theta2": fmt(float(a["theta2"]), 3),
                 "theta1_deg": _deg(a["theta1"], 3), "theta2_deg": _deg(a["theta2"], 3),
-                "phi_dot0": fmt(float(a["phi_dot0"]), 4), "root": "", "other": ""}
-        if case["case"] == "steady" and "steady_rate_fast" in a:
-            fast, slow = float(a["steady_rate_fast"]), float(a["steady_rate_slow"])
-            phi = float(a["phi_dot0"])
-            root = "fast" if abs(phi - fast) < abs(phi - slow) else "slow"
-            case.update(root=root, other=fmt(slow if root == "fast" else fast, 4))
+                "half_period": fmt(0.5 * float(a["nutation_period"]), 4),
+                "phi_dot0": fmt(float(a["phi_dot0"]), 4),
+                "theta_dot0": fmt(float(a["theta_dot0"]), 4),
+                "root": str(a.get("steady_root", "")), "other": ""}
+        if case["root"]:
+            other = a["steady_rate_slow"] if case["root"] == "fast" else a["steady_rate_fast"]
+            case["other"] = fmt(float(other), 4)
         return case
 
     @classmethod
@@ -163,19 +188,29 @@ class HeavyTopReport(FamilySections, WeierstrassSection, Report):
         if data.sweep is not None:
             return super().describe(data)
         c, a = cls.prose_case(data), data.analysis
-        if c["band"] and a["band"]["case"] == "all":
-            return (f"Three heavy tops released on the same band, θ from {c['theta1_deg']} to "
-                    f"{c['theta2_deg']}: looping, wavy and cusped nutation (textbook Fig. 4.3)")
+        runs = cls._all_runs(data)
+        if runs:
+            band = a["band"]
+            words = [cls.CASE_ADJECTIVES.get(str(band["runs"][n]["case"]),
+                                             str(band["runs"][n]["case"])) for n in runs]
+            listed = ", ".join(words[:-1]) + f" and {words[-1]}" if len(words) > 1 else words[0]
+            count = {2: "Two", 3: "Three"}.get(len(runs), str(len(runs)))
+            return (f"{count} heavy tops released on the same band, θ from "
+                    f"{_deg(band['theta_min'], 3)} to {_deg(band['theta_max'], 3)}: {listed} "
+                    "nutation (textbook Fig. 4.3)")
         if c["sleeping"]:
             side = "above" if c["stable"] else "below"
+            where = ("standing exactly upright" if c["upright"] else
+                     f"released at rest {c['theta0']} rad from the vertical" if c["at_rest"]
+                     else f"started {c['theta0']} rad from the vertical with θ̇0 = "
+                          f"{c['theta_dot0']} rad/s, φ̇0 = {c['phi_dot0']} rad/s")
             return (f"A top spun at ω3 = {c['omega3']} rad/s, {side} its sleeping threshold "
-                    f"{c['threshold']} rad/s, released at rest {c['theta0']} rad from the "
-                    "vertical")
+                    f"{c['threshold']} rad/s, {where}")
         if c["case"] == "steady":
             return (f"A heavy top spun at ω3 = {c['omega3']} rad/s in steady precession at "
                     f"θ0 = {c['theta1_deg']}, φ̇ = {c['phi_dot0']} rad/s"
                     + (f" (the {c['root']} root of notes (10.45))" if c["root"] else ""))
-        words = {"loops": "looping", "waves": "wavy", "cusps": "cusped"}.get(c["case"], "")
+        words = cls.CASE_ADJECTIVES.get(c["case"], "")
         period = float(a["nutation_period"])
         return (f"A heavy top spun at ω3 = {c['omega3']} rad/s, its axis in {words} nutation "
                 f"between θ1 = {c['theta1_deg']} and θ2 = {c['theta2_deg']}"
@@ -186,6 +221,7 @@ class HeavyTopReport(FamilySections, WeierstrassSection, Report):
         p = data.config.params
         a = data.analysis
         band = a.get("band")
+        runs = cls._all_runs(data)
         facts = [("parameters", f"I1 = {fmt(p.I1)} kg m², I3 = {fmt(p.I3)} kg m², "
                                 f"M g l = {fmt(p.Mgl)} J")]
         if band is not None:
@@ -198,17 +234,48 @@ class HeavyTopReport(FamilySections, WeierstrassSection, Report):
                                      f"{fmt(run['omega3'])} rad/s → {run['case']}, θ1 − θmin = "
                               f"{fmt_err(run['theta1'] - band['theta_min'])} rad, θ2 − θmax = "
                               f"{fmt_err(run['theta2'] - band['theta_max'])} rad"))
-            if band["case"] == "all":
-                facts.append(("sections below textbook Fig. 4.3", "the loops run (/runs/main is "
-                                                         "/runs/loops)"))
         else:
             facts.append(("initial state", f"θ0 = {_deg_rad(a['theta0'])}, θ̇0 = "
                           f"{fmt(a['theta_dot0'])} rad/s, φ̇0 = {fmt(a['phi_dot0'])} rad/s, "
                           f"ω3 = {fmt(a['omega3'])} rad/s"))
-        facts.append(("case", f"{a['case']} (a = {fmt(a['a'])}, b = {fmt(a['b'])}, "
-                              f"b/a = {fmt(a['b_over_a'])}; u1 = {fmt(a['u1'])}, "
-                              f"u2 = {fmt(a['u2'])})"))
-        if band is None and math.isfinite(a["theta1"]) and math.isfinite(a["theta2"]):
+        if runs:
+            facts += cls._all_runs_headline(data, runs)
+        else:
+            facts += cls._one_run_headline(data)
+        facts.append(("sleeping-top threshold", f"ω3 = 2√(I1 M g l)/I3 = "
+                      f"{fmt(a['sleeping_threshold_omega3'])} rad/s (notes (10.50))"))
+        formulation = data.runs["main"].attrs.get("formulation")
+        if formulation in FORMULATION_TEXT:  # archives before it was stored: spin-free
+            facts.append(("integrated" + cls._of_run(data),
+                          f"{FORMULATION_TEXT[formulation]} "
+                          f"({data.runs['main'].attrs.get('formulation_reason')})"))
+        return facts
+
+    @classmethod
+    def _all_runs_headline(cls, data, runs) -> list[tuple[str, str]]:
+        """The three runs of a band, each by its own case, nutation period and precession
+        (from the archived band summary of each run)."""
+        band = data.analysis["band"]
+        out = []
+        for name in runs:
+            r = band["runs"][name]
+            out.append((f"{name} run", f"{r['case']}, nutation period "
+                                       f"{fmt(r['nutation_period'])} s, precession per period "
+                                       f"{fmt(r['precession_per_period'])} rad"))
+        worst = max(float(band["runs"][n]["weierstrass_max_difference"]) for n in runs)
+        if math.isfinite(worst):
+            out.append(("℘ form against sn² form", f"max |Δu| = {fmt_err(worst)} over the "
+                                                   f"{len(runs)} runs' output grids"))
+        out.append(("sections below textbook Fig. 4.3", f"the {BAND_CASES[0]} run"))
+        return out
+
+    @classmethod
+    def _one_run_headline(cls, data) -> list[tuple[str, str]]:
+        a = data.analysis
+        facts = [("case", f"{a['case']} (a = {fmt(a['a'])}, b = {fmt(a['b'])}, "
+                          f"b/a = {fmt(a['b_over_a'])}; u1 = {fmt(a['u1'])}, "
+                          f"u2 = {fmt(a['u2'])})")]
+        if a.get("band") is None and math.isfinite(a["theta1"]) and math.isfinite(a["theta2"]):
             facts.append(("nutation band", _band_words(a["theta1"], a["theta2"])))
         if math.isfinite(a["nutation_period"]):
             extra = " (small-oscillation limit, k² = 0)" if a["case"] in ("steady",
@@ -220,12 +287,6 @@ class HeavyTopReport(FamilySections, WeierstrassSection, Report):
         if "weierstrass_max_difference" in a:
             facts.append(("℘ form against sn² form", "max |Δu| = "
                           f"{fmt_err(a['weierstrass_max_difference'])} on the output grid"))
-        facts.append(("sleeping-top threshold", f"ω3 = 2√(I1 M g l)/I3 = "
-                      f"{fmt(a['sleeping_threshold_omega3'])} rad/s (notes (10.50))"))
-        formulation = data.runs["main"].attrs.get("formulation")
-        if formulation in FORMULATION_TEXT:  # archives before it was stored: spin-free
-            facts.append(("integrated", f"{FORMULATION_TEXT[formulation]} "
-                                        f"({data.runs['main'].attrs.get('formulation_reason')})"))
         return facts
 
     @classmethod
@@ -271,6 +332,11 @@ class HeavyTopReport(FamilySections, WeierstrassSection, Report):
         turns = ", ".join(fmt(abs(band["runs"][n]["locus_periods"]
                                   * band["runs"][n]["precession_per_period"]), 4)
                           for n in BAND_CASES)
+        short = [n for n in BAND_CASES if not band["runs"][n].get("locus_full_turn", True)]
+        extent = ("the whole number that takes it once round the band" if not short else
+                  "the fewest whole number that takes it once round the band, or as many as "
+                  "the run holds, short of a turn for "
+                  + (f"{', '.join(short[:-1])} and {short[-1]}" if len(short) > 1 else short[0]))
         return SectionContent(
             figures=[cls.figure("fig4_3", fig,
                                 f"The symmetry axis on the unit sphere, as in textbook "
@@ -280,8 +346,8 @@ class HeavyTopReport(FamilySections, WeierstrassSection, Report):
                                 f"{FIG43_ELEVATION_DEG:g}° above the horizon; dashed: "
                                 f"behind the sphere. Each locus starts on the upper circle "
                                 f"(dot) and runs {periods} "
-                                f"nutation periods (loops, waves, cusps), the whole number "
-                                f"that takes it once round the band: Δφ = {turns} rad.")],
+                                f"nutation periods (loops, waves, cusps), {extent}: "
+                                f"Δφ = {turns} rad.")],
             tables=[table])
 
     @classmethod
@@ -345,7 +411,7 @@ class HeavyTopReport(FamilySections, WeierstrassSection, Report):
             ["u3", fmt(a["u3"]), ""],
             ["k² = (u2 − u1)/(u3 − u1)", fmt(a["k2"]), ""],
         ]
-        table = Table(caption="Constants of the motion and the roots of f(u)",
+        table = Table(caption="Constants of the motion and the roots of f(u)" + cls._of_run(data),
                       header=["quantity", "value", "unit"], rows=rows)
         per = []
         compared = (("nutation period T", "nutation_period", "nutation_period_quadrature",
@@ -361,8 +427,8 @@ class HeavyTopReport(FamilySections, WeierstrassSection, Report):
             if measured:
                 row += [fmt(a[meas]), fmt_err(abs(a[meas] / ref - 1)) if ref else "—"]
             per.append(row)
-        table2 = Table(caption="Closed form (Carlson's symmetric integrals of the first and "
-                               "third kind) against quadrature of "
+        table2 = Table(caption=f"Closed form{cls._of_run(data)} (Carlson's symmetric integrals "
+                               "of the first and third kind) against quadrature of "
                                "∮du/√f(u)" + (" and against the integrated trajectory" if measured
                                               else "; nothing measured: no nutation")
                                + (" (—: not defined or not measured)"
@@ -390,8 +456,8 @@ class HeavyTopReport(FamilySections, WeierstrassSection, Report):
                   fmt_err(sens))] if math.isfinite(sens) else []
         return SectionContent(
             facts=facts,
-            figures=[cls.figure("f_of_u", fig, "f(u) = (1 − u²)(α − βu) − (b − au)², notes "
-                                "(10.31): "
+            figures=[cls.figure("f_of_u", fig, f"f(u){cls._of_run(data)} = (1 − u²)(α − βu) − "
+                                "(b − au)², notes (10.31): "
                                 "the motion is confined to u1 ≤ u ≤ u2 where f ≥ 0; "
                                 "u3 ≥ 1 lies outside it. Dashed: b/a, where φ̇ = 0.")],
             tables=[table, table2], notes=notes)
@@ -414,7 +480,7 @@ class HeavyTopReport(FamilySections, WeierstrassSection, Report):
             "effective_potential", fig,
             "V'(θ) = Mgl cos θ + I1 (b − a cos θ)²/(2 sin²θ), notes (10.28), and the energy "
             "E' = "
-            "E − I3ω3²/2: "
+            "E − I₃ω₃²/2: "
             + ("E' sits at the minimum of V', so θ stays at θ0: steady precession, no "
                "nutation." if a["case"] == "steady" else
                "θ oscillates between the turning angles θ1 and θ2 where E' = V'."))])
@@ -448,14 +514,14 @@ class HeavyTopReport(FamilySections, WeierstrassSection, Report):
                                  rate_config=a["phi_dot0"], rate_measured=a["mean_phi_dot"])
         table = Table(caption=f"Steady precession at θ0 = {_deg(a['theta0'])}, notes (10.45)",
                       header=["root", "φ̇ [rad/s]"],
-                      rows=[["slow  2Mgl/(I3ω3 + √D)", fmt(a["steady_rate_slow"])],
-                            ["fast  (I3ω3 + √D)/(2 I1 cos θ0)", fmt(a["steady_rate_fast"])],
+                      rows=[["slow  2Mgl/(I₃ω₃ + √D)", fmt(a["steady_rate_slow"])],
+                            ["fast  (I₃ω₃ + √D)/(2 I1 cos θ0)", fmt(a["steady_rate_fast"])],
                             ["mean φ̇ of the integration", fmt(a["mean_phi_dot"])]])
         return SectionContent(
             figures=[cls.figure("steady_rates", fig,
-                                "The two steady precession rates φ̇ = [I3ω3 ± √(I3²ω3² − "
-                                "4I1Mgl cos θ0)]/(2I1 cos θ0), notes (10.45), against the "
-                                "spin; they exist only for I3²ω3² ≥ 4I1Mgl cos θ0, notes "
+                                "The two steady precession rates φ̇ = [I₃ω₃ ± √(I3²ω3² − "
+                                "4I₁Mgl cos θ0)]/(2I1 cos θ0), notes (10.45), against the "
+                                "spin; they exist only for I3²ω3² ≥ 4I₁Mgl cos θ0, notes "
                                 "(10.46).")],
             tables=[table])
 
@@ -479,7 +545,7 @@ class HeavyTopReport(FamilySections, WeierstrassSection, Report):
                       rows=rows)
         return SectionContent(
             figures=[cls.figure("sleeping_sweep", fig,
-                                "Below ω3² = 4I1Mgl/I3², notes (10.50), a small tilt grows "
+                                "Below ω3² = 4I₁Mgl/I3², notes (10.50), a small tilt grows "
                                 "exponentially to order one; above it the tilt stays of the "
                                 "order of its initial value.")],
             tables=[table])
@@ -488,7 +554,8 @@ class HeavyTopReport(FamilySections, WeierstrassSection, Report):
     def section_invariants(cls, data):
         return cls.invariants_section(
             data, labels={"energy": "energy E", "p_phi": "p_φ = L·ẑ", "p_psi": "p_ψ = I3 ω3"},
-            caption="Drift of E, p_φ and p_ψ relative to their natural sizes." + (
+            caption=f"Drift of E, p_φ and p_ψ{cls._of_run(data)} relative to their natural "
+                    "sizes." + (
                 " The reduced equations hold p_φ and p_ψ constant by construction (only "
                 "round-off shows): here the energy's drift measures the integration error."
                 if data.runs["main"].attrs.get("formulation") == "reduced" else ""))

@@ -16,9 +16,10 @@ plots = lazy_module("reportgen.kinds.heavy_top.plots")
 _RUN_ORDER = {name: i for i, name in enumerate(BAND_CASES)}
 
 
-def scaling_note(beta: float) -> str:
+def scaling_note(beta: float, agrees: bool | None = None) -> str:
     """Why ℘ is multiplied by 4/β, not by β as textbook ex. 4.10 writes, for this top's
-    β = 2Mgl/I1 [1/s²]."""
+    β = 2Mgl/I1 [1/s²]; ``agrees``: the stored fact that β and 4/β coincide in number (β²
+    = 4 to 1e-6), which decides the last sentence (by default, whether they print alike)."""
     text = ("Scale of ℘: textbook ex. 4.10 writes u = β℘ + c. The factor is fixed by the "
             "leading coefficients: with u = λ℘(t) + μ, u̇² = f(u) = βu³ + … becomes "
             "λ²℘′² = βλ³℘³ + …, i.e. ℘′² = βλ℘³ + …, and ℘′² = 4℘³ − g2℘ − g3 needs βλ = 4: "
@@ -26,7 +27,7 @@ def scaling_note(beta: float) -> str:
             "leading coefficient would be β², Weierstrass's equation only when β² = 4 "
             "(or with ℘ taken at βt/2 instead of t); nor is β℘ a number: ℘(t) ≈ 1/t² near "
             "its pole carries 1/s², so β℘ carries 1/s⁴, while (4/β)℘ is dimensionless.")
-    if fmt(beta) == fmt(4.0 / beta):
+    if agrees if agrees is not None else fmt(beta) == fmt(4.0 / beta):
         text += (f" For this top β = {fmt(beta)} 1/s², so β and 4/β share the number "
                  f"{fmt(beta)} and the textbook's form happens to give the same u(t): only "
                  "the units tell the two apart; another I1 or Mgl separates them.")
@@ -57,7 +58,8 @@ class WeierstrassSection:
             ["x0: z(0) = x0 + ω′", fmt(wp["x0"]), "s"],
             ["nome q = exp(iπω′/ω)", fmt(wp["nome"], 6), ""],
         ]
-        table = Table(caption="Invariants, roots and half-periods of ℘ for this top",
+        table = Table(caption="Invariants, roots and half-periods of ℘ for this top"
+                              + cls._of_run(data),
                       header=["quantity", "value", "unit"], rows=rows)
         facts = [("max |Δu(t)|, ℘ form against sn² form, on the output grid",
                   fmt_err(wp["max_difference"])),
@@ -66,7 +68,8 @@ class WeierstrassSection:
         if "ode_residual" in wp:
             facts.append(("max |λ²℘′² − f(u)| / max f(u) on the output grid, λ = 4/β",
                           fmt_err(wp["ode_residual"])))
-        tables, notes = [table], [scaling_note(float(a["beta"]))]
+        tables, notes = [table], [scaling_note(float(a["beta"]),
+                                               wp.get("textbook_scale_agrees"))]
         if "period_loop" in wp:
             tables += cls._period_tables(a, wp)
             if math.isfinite(wp["period_loop_imag"]):
@@ -86,7 +89,7 @@ class WeierstrassSection:
                 "℘ at the corners); ℘ is real on its edges and middle lines. The motion is the "
                 "line z = x0 + t + ω′, along which ℘ runs between e3 (u = u1, lower circle) and "
                 "e2 (u = u2, upper circle), one nutation period per 2ω. u℘(t) is stored on the "
-                "output grid as /runs/main/reference/cos_theta_weierstrass.")],
+                "output grid beside the run" + cls._of_run(data) + ".")],
             tables=tables, notes=notes)
 
     @staticmethod

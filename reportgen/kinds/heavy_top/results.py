@@ -55,6 +55,9 @@ def _band_run(run: str) -> tuple[Q, ...]:
         Q(g + "locus_periods", "", "1", "nutation periods of the locus textbook Fig. 4.3 draws",
           kind="int", optional=True),
         Q(g + "view_azimuth", "", "rad", "azimuth the locus is seen from", optional=True),
+        Q(g + "locus_full_turn", "", "", "whether the locus drawn goes once round the band "
+          "(locus_periods times the precession per period at least 2 pi)", kind="bool",
+          optional=True),
     )
 
 
@@ -106,6 +109,38 @@ SCHEMA = ResultsSchema(
         Q("k2", "k^2", "1", "elliptic parameter (u2 - u1)/(u3 - u1)"),
         Q("case", "", "", "case of textbook Fig. 4.3: loops, waves, cusps, steady or sleeping",
           kind="str"),
+        Q("phi_dot_upper", r"\mathrm{d}\varphi/\mathrm{d}t\,(\theta_1)", "rad/s",
+          "precession rate on the upper circle (b - a u2)/(1 - u2^2), notes (10.26)"),
+        Q("phi_dot_lower", r"\mathrm{d}\varphi/\mathrm{d}t\,(\theta_2)", "rad/s",
+          "precession rate on the lower circle (b - a u1)/(1 - u1^2), notes (10.26)"),
+        Q("case_cusp_tolerance", "", "1", "cusps when |phi_dot| on the upper circle is below "
+          "this times |phi_dot| on the lower one"),
+        Q("case_steady_tolerance", "", "1", "steady when u2 - u1 is below this times 1 - u1"),
+        Q("released_at_rest", "", "", "whether the top starts with theta_dot = phi_dot = 0",
+          kind="bool"),
+        Q("periods_in_run", "", "1", "whole nutation periods the run spans", kind="int"),
+        Q("steady_root", "", "", "for steady precession, the root of notes (10.45) nearer "
+          "the start's phi_dot: slow or fast (else empty)", kind="str"),
+        Q("sleeping_top", "", "", "whether the start is within sleeping_tilt_below of the "
+          "vertical", kind="bool", optional=True),
+        Q("sleeping_tilt_below", "", "rad", "a start tilted less than this is a sleeping top",
+          optional=True),
+        Q("tilt_growth", r"\theta_2/\theta_1", "1", "lower over upper turning angle of a "
+          "sleeping top", optional=True),
+        Q("tilt_of_the_order_below", "", "1", "tilt_growth below this: the tilt stays of the "
+          "order of the initial one", optional=True),
+        Q("tilt_of_the_order", "", "", "stable, tilted, and tilt_growth below "
+          "tilt_of_the_order_below", kind="bool", optional=True),
+        Q("stays_upright", "", "", "stable and theta2 below stays_upright_below", kind="bool",
+          optional=True),
+        Q("stays_upright_below", "", "rad", "theta2 below this: the sleeping top stays "
+          "upright", optional=True),
+        Q("tilt_reached", r"\theta_\mathrm{max}", "rad", "largest tilt of the run's samples",
+          optional=True),
+        Q("tilts_away_factor", "", "1", "largest tilt at least this many initial ones: the "
+          "run shows the top tilting away", optional=True),
+        Q("tilted_away", "", "", "whether the run's largest tilt is at least tilts_away_factor "
+          "initial ones", kind="bool", optional=True),
         Q("nutation_period", "T", "s", "nutation period in closed form"),
         Q("nutation_period_quadrature", r"T_\mathrm{quad}", "s",
           "nutation period by quadrature of du/sqrt(f)"),
@@ -197,6 +232,9 @@ SCHEMA = ResultsSchema(
         Q("weierstrass/nome", "q", "1", "nome exp(i pi omega'/omega)", optional=True),
         Q("weierstrass/max_difference", r"\max|u_\wp - u_{sn^2}|", "1",
           "largest difference of the wp form from the sn^2 form", optional=True),
+        Q("weierstrass/textbook_scale_agrees", "", "", "whether beta^2 = 4 (to 1e-6): the "
+          "textbook's u = beta wp + c gives the same numbers as u = (4/beta) wp + mu",
+          kind="bool", optional=True),
         Q("weierstrass/ode_residual", r"\max|\lambda^2\wp'^2 - f(u)|/\max f", "1",
           "(du/dt)^2 = f(u) for u = lambda wp + mu, lambda = 4/beta, on the output grid",
           optional=True),

@@ -11,7 +11,7 @@ import numpy as np
 
 from ...lazy import lazy_module
 from ...scene.config import ConfigError
-from ...scene.content import fmt, fmt_err
+from ...scene.content import fmt_err
 from ...scene.integration import IntegratingSimulation
 from ...scene.results import AuditCase, Check, Results, RunRecord
 from .config import (
@@ -25,6 +25,7 @@ from .config import (
 )
 from .locus import locus_stretch
 from .results import SCHEMA
+from .sleeping import SleepingTop
 
 model_core = lazy_module("reportgen.core.models.heavy_top")
 theory = lazy_module("reportgen.core.heavy_top_theory")
@@ -32,7 +33,11 @@ kinematics = lazy_module("reportgen.core.heavy_top_kinematics")
 integrators = lazy_module("reportgen.core.integrators")
 
 
-class HeavyTopSimulation(IntegratingSimulation):
+#: β² = 4 within this (relative): β℘ and (4/β)℘ are the same numbers
+TEXTBOOK_SCALE_RTOL = 1e-6
+
+
+class HeavyTopSimulation(SleepingTop, IntegratingSimulation):
     """The heavy symmetric top integrated and checked against its closed forms."""
 
     schema = SCHEMA
@@ -134,14 +139,14 @@ class HeavyTopSimulation(IntegratingSimulation):
         r = theory.roots(self._constants(start) if c is None else c)
         lowest = min(math.sin(theory.theta_of_w(r.w1)), math.sin(theory.theta_of_w(r.w2)))
         if run.formulation == "spin_free":
-            return "spin_free", '[run] formulation = "spin_free"'
+            return "spin_free", "as the configuration asks"
         if run.formulation == "reduced":
             if lowest <= 0.0:
                 raise ConfigError([
                     f"{self.source.label}: key 'run.formulation': the reduced equations are "
                     f"singular on the vertical, which this top reaches (sin θ = {lowest:.3g} "
                     f'at a turning circle): expected "spin_free" or "auto", got "reduced"'])
-            return "reduced", '[run] formulation = "reduced"'
+            return "reduced", "as the configuration asks"
         if lowest >= REDUCED_MIN_SIN:
             return "reduced", f"auto: sin θ ≥ {lowest:.3g} over the motion"
         return "spin_free", (f"auto: the axis comes within sin θ = {lowest:.3g} of the "
@@ -183,6 +188,7 @@ class HeavyTopSimulation(IntegratingSimulation):
         if "main" not in results.runs:
             results.runs["main"] = results.runs[BAND_CASES[0]]  # one HDF5 object, two names
         if results.analysis.get("theta0", math.inf) < self.SLEEPING_TILT:
+            results.analysis.update(self._sleeping_facts(results))
             results.analysis["behaviour"] = self._sleeping_behaviour(results)
         if self.config.sleeping is not None:
             # computed whenever [sleeping] is given: [report] edits re-stamp the archive
@@ -196,9 +202,6 @@ class HeavyTopSimulation(IntegratingSimulation):
                    progress=progress)
         return results
 
-    #: a start tilted less than this [rad] is a sleeping top: its behaviour is its stability
-    SLEEPING_TILT = 1e-3
-
     def accuracy_horizon(self, results: Results) -> float:
         """An unstable sleeping top is compared with its closed form over one nutation
         period only: at its return to the vertical (θ ≈ θ0) it passes the unstable
@@ -210,22 +213,6 @@ class HeavyTopSimulation(IntegratingSimulation):
                 and math.isfinite(period) and period > 0):
             return period
         return super().accuracy_horizon(results)
-
-    def _sleeping_behaviour(self, results: Results) -> str:
-        """Stable or unstable, in words: ω3 against the threshold 2√(I1 Mgl)/I3 notes (10.50) and
-        the growth rate γ = √(Mgl/I1 − (I3 ω3/(2 I1))²) of a small tilt notes (10.47-10.48)."""
-        a = results.analysis
-        theta = results.runs["main"]["theta"]
-        w3, threshold, gamma = a["omega3"], a["sleeping_threshold_omega3"], \
-            a["sleeping_growth_rate"]
-        reached = f"θ goes from {fmt(a['theta0'], 2)} to at most {fmt(float(np.max(theta)), 3)} rad"
-        if a["sleeping_stable"]:
-            return (f"stable: the sleeping top stays upright (|ω3| = {fmt(abs(w3), 3)} rad/s is "
-                    f"above the threshold 2√(I1 Mgl)/I3 = {fmt(threshold, 3)} rad/s; {reached})")
-        return (f"unstable: the sleeping top tilts away (|ω3| = {fmt(abs(w3), 3)} rad/s is "
-                f"below the threshold 2√(I1 Mgl)/I3 = {fmt(threshold, 3)} rad/s); a small tilt "
-                f"grows as exp(γt), γ = √(Mgl/I1 − (I3 ω3/(2 I1))²) = {fmt(gamma, 3)} 1/s; "
-                f"{reached}")
 
     def _simulate_start(self, start: Start, progress=None):
         """Integrate one initial state: (run, analysis, checks) for the archive."""
@@ -282,11 +269,41 @@ class HeavyTopSimulation(IntegratingSimulation):
             "mean_phi_dot": float((main["phi"][-1] - main["phi"][0]) / (t[-1] - t[0])),
         }
         a["period_sensitivity"] = self._period_sensitivity(start, c, main, period, scales)
+        a.update(self._case_facts(start, c, r, a))
         self._store_closed_form(a, main, start, c, r)
         if self.computes("weierstrass"):
             self._store_weierstrass(a, main, c, r, w_cf)
         checks = self._checks(a, main, start, c, r, scales)
         return main, a, checks
+
+    def _case_facts(self, start: Start, c: theory.TopConstants, r: theory.Roots,
+                    a: dict) -> dict:
+        """The facts the words follow, with their thresholds: φ̇ on the two turning circles
+        (whose signs make the case: loops, waves, cusps), the classification's tolerances,
+        whether the top is released at rest, which steady root it precesses at, and how
+        many whole nutation periods the run spans."""
+        period = a["nutation_period"]
+        out = {"phi_dot_upper": self._phi_dot_at(r.w1, c), "phi_dot_lower": self._phi_dot_at(r.w2, c),
+               "case_cusp_tolerance": theory.CUSP_RTOL,
+               "case_steady_tolerance": theory.STEADY_RTOL,
+               "released_at_rest": bool(start.theta_dot == 0.0 and start.phi_dot == 0.0),
+               "periods_in_run": int(self.config.run.t_end // period)
+               if math.isfinite(period) and period > 0 else 0,
+               "steady_root": ""}
+        if a["case"] == "steady" and math.isfinite(a["steady_rate_slow"]):
+            slow, fast = a["steady_rate_slow"], a["steady_rate_fast"]
+            near_fast = math.isfinite(fast) and abs(start.phi_dot - fast) < abs(
+                start.phi_dot - slow)
+            out["steady_root"] = "fast" if near_fast else "slow"
+        return out
+
+    @staticmethod
+    def _phi_dot_at(w: float, c: theory.TopConstants) -> float:
+        """φ̇ = (b − a u)/(1 − u²), notes (10.26), at u = 1 − w, in w: (B + a w)/(w (2 − w)),
+        B = b − a (no cancellation near the vertical); NaN on the vertical itself."""
+        if w <= 0.0 or w >= 2.0:
+            return math.nan
+        return (c.B + c.a * w) / (w * (2.0 - w))
 
     def _derived_run(self, raw: RunRecord) -> tuple[RunRecord, dict]:
         """The archived run: Euler angles, axis, rates and the integrated state."""
@@ -310,7 +327,8 @@ class HeavyTopSimulation(IntegratingSimulation):
         main.reference = {"theta": theory.theta_of_w(w_cf)}
         main.attrs["reference_label"] = (
             "closed form cos θ = u1 + (u2 − u1) sn²(λt + τ0 | k²), λ = ½√(β(u3 − u1)): the "
-            "Jacobi form of the quadrature t = ∫du/√f(u) (Goldstein 5.72; DLMF §22.15)")
+            "Jacobi form of the quadrature t = ∫du/√f(u), notes (10.31) (Goldstein §5.7; "
+            "DLMF §22.15)")
         q = np.column_stack([main["q_w"], main["q_x"], main["q_y"], main["q_z"]])
         w = kinematics.one_minus_cos_theta(q)
         width = a["one_minus_u1"] - a["one_minus_u2"]
@@ -374,6 +392,10 @@ class HeavyTopSimulation(IntegratingSimulation):
             "nome": math.exp(-math.pi * form.omega_prime / form.omega),
             "max_difference": difference,
             "ode_residual": theory.weierstrass_ode_residual(main.t, form, r, c),
+            # the textbook's u = β℘ + c gives the same numbers as u = (4/β)℘ + μ only when
+            # β² = 4 (to TEXTBOOK_SCALE_RTOL): then the report says so
+            "textbook_scale_agrees": bool(abs(0.25 * c.beta * c.beta - 1.0)
+                                          <= TEXTBOOK_SCALE_RTOL),
         }
         loops = theory.period_loops(r, c)  # the period round the cut (textbook ex. 4.10)
 
@@ -411,7 +433,8 @@ class HeavyTopSimulation(IntegratingSimulation):
     def _checks(self, a: dict, main: RunRecord, start: Start, c: theory.TopConstants,
                 r: theory.Roots, scales: dict[str, float]) -> list[Check]:
         checks = []
-        src_T = "4K(k²)/√(β(u3−u1)) (notes §10.1; Goldstein 5.72), vs ∮du/√f(u) by quadrature"
+        src_T = ("4K(k²)/√(β(u3−u1)), the period of t = ∫du/√f(u), notes (10.31) (Goldstein "
+                 "§5.7), vs ∮du/√f(u) by quadrature")
         band = self.config.band
         if band is not None:
             solved = "the configured band; the release solved for on the upper circle"
@@ -457,8 +480,9 @@ class HeavyTopSimulation(IntegratingSimulation):
                 main["q_w"] ** 2 + main["q_x"] ** 2 + main["q_y"] ** 2 + main["q_z"] ** 2)
             w_cf, _ = theory.u_closed_form(main.t[-1:], r, c)
             checks.append(Check("cos θ(t_end)", 1.0 - float(w[-1]), 1.0 - float(w_cf[0]),
-                                "", "u1 + (u2−u1) sn²(λt + τ0 | k²) (Jacobi form of "
-                                "Goldstein 5.72; FIELD-NOTES)", scale=r.w2 - r.w1))
+                                "", "u1 + (u2−u1) sn²(λt + τ0 | k²), the Jacobi form of "
+                                "t = ∫du/√f(u), notes (10.31) (Goldstein §5.7; DLMF §22.15)",
+                                scale=r.w2 - r.w1))
         if a["case"] == "steady":
             checks.append(Check("mean φ̇ (steady precession)", a["mean_phi_dot"], start.phi_dot,
                                 "rad/s", f"{self.config.initial.steady} root of notes (10.45)"))
@@ -492,6 +516,10 @@ class HeavyTopSimulation(IntegratingSimulation):
         out["phi_dot_lower"] = (a["b"] - a["a"] * a["u1"]) / (1.0 - a["u1"] ** 2)
         out["locus_stop"], out["locus_periods"], out["view_azimuth"] = locus_stretch(
             record, a["nutation_period"], a["precession_per_period"])
+        # whether the stretch drawn goes once round the band (Δφ ≥ 2π), or is cut short by
+        # the run or by FIG43_MAX_PERIODS
+        out["locus_full_turn"] = bool(abs(out["locus_periods"] * a["precession_per_period"])
+                                      >= 2.0 * math.pi)
         return out
 
 
@@ -502,26 +530,3 @@ class HeavyTopSimulation(IntegratingSimulation):
             return (f"; ill-conditioned: the run's own energy drift alone moves T by "
                     f"{fmt_err(sens)} (relative)")
         return ""
-
-    def _sleeping_sweep(self) -> dict:
-        """Tops tilted by ``tilt`` at several spins across the threshold notes (10.50)."""
-        p, sl, run = self.config.params, self.config.sleeping, self.config.run
-        t_end = sl.t_end or run.t_end
-        t = np.linspace(0.0, t_end, 1001)
-        ratios = np.array(sorted(sl.omega3_over_threshold), dtype=float)
-        thetas, status = [], []
-        y0 = model_core.spin_free_initial_state(sl.tilt, 0.0, 0.0)
-        for ratio in ratios:
-            model = model_core.spin_free_model(p.I1, p.I3, p.Mgl, ratio * self.threshold)
-            sol = integrators.integrate(model, y0, t, method="dop853", rtol=run.rtol, atol=run.atol)
-            thetas.append(kinematics.tilt_angle(sol.y[:, :4]))  # F' and the body share θ
-            status.append(sol.status)
-        thetas = np.array(thetas)
-        return {
-            "t": t, "omega3_over_threshold": ratios, "omega3": ratios * self.threshold,
-            "theta": thetas, "theta_max": thetas.max(axis=1), "tilt": sl.tilt,
-            "growth_rate": np.array([theory.sleeping_growth_rate(p.I1, p.I3, p.Mgl,
-                                                                 x * self.threshold)
-                                     for x in ratios]),
-            "status": [str(s) for s in status],
-        }

@@ -259,10 +259,15 @@ class Points(_ShapeBase):
                 raise ValueError(f"shape.positions[{i}]: expected [x, y, z] (got {p})")
         r = np.asarray(self.positions, dtype=float)
         d = r - core.centre_of_mass(self.masses, r)
-        if len(self.masses) < 2 or np.linalg.matrix_rank(d, tol=1e-12 * max(1e-300, np.abs(
-                d).max())) < 1:
+        rank = 0 if len(self.masses) < 2 else np.linalg.matrix_rank(
+            d, tol=1e-12 * max(1e-300, np.abs(d).max()))
+        if rank < 1:
             raise ValueError("shape.positions: the points must not all coincide (a single "
                              "point has no rotational inertia)")
+        if rank < 2:
+            raise ValueError("shape.positions: the points lie on one line, so their moment "
+                             "about it is 0; a body needs three positive principal moments "
+                             "(its inertia ellipsoid and Euler's equations divide by each)")
         return self
 
     @property
@@ -295,6 +300,26 @@ class Points(_ShapeBase):
 
 Shape = Annotated[Cone | Box | Cylinder | Ellipsoid | Octahedron | Points,
                   Field(discriminator="type")]
+
+
+#: principal moments closer than this share of the largest are equal: the body is a
+#: symmetric top (two equal) or a spherical one (three); the one threshold of the words of
+#: both ``inertia`` and ``rigid_body`` (imports no numerics: titles use it too)
+EQUAL_MOMENTS_RTOL = 1e-12
+
+
+def body_symmetry(moments, rtol: float = EQUAL_MOMENTS_RTOL) -> tuple[str, int | None]:
+    """Which kind of top the principal moments make: ("spherical", None) for three equal
+    moments, ("symmetric", s) for two, s the index of the odd (figure) axis, else
+    ("asymmetric", None); equal within ``rtol`` of the largest moment."""
+    I = [float(x) for x in moments]
+    tol = rtol * max(abs(x) for x in I)
+    if max(I) - min(I) <= tol:
+        return "spherical", None
+    for s in range(3):
+        if abs(I[(s + 1) % 3] - I[(s + 2) % 3]) <= tol:
+            return "symmetric", s
+    return "asymmetric", None
 
 
 def shape_moments(shape) -> tuple[np.ndarray, np.ndarray]:

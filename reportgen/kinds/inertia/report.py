@@ -4,8 +4,6 @@ parallel-axis shift and the stability table (:func:`stability_table_section`, sh
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from ...lazy import lazy_module
@@ -57,12 +55,14 @@ class InertiaReport(Report):
         a = data.analysis
         m = a["principal_moments"]
         st = [a["axis_stability"][f"axis_{k + 1}"] for k in range(3)]
+        stability = ("every axis marginal (three equal moments)"
+                     if top_of(a) == "spherical" else ", ".join(
+                         f"I{k + 1}" + (f" (about {s['shape_axis'].split(',')[0]})"
+                                        if "shape_axis" in s else "") + f": {s['verdict']}"
+                         for k, s in enumerate(st)))
         facts = [("body", a["shape"]),
                  ("principal moments", ", ".join(f"{fmt(x)}" for x in m) + " kg m²"),
-                 ("spin stability", ", ".join(
-                     f"I{k + 1}" + (f" (about {s['shape_axis'].split(',')[0]})"
-                                    if "shape_axis" in s else "") + f": {s['verdict']}"
-                     for k, s in enumerate(st)))]
+                 ("spin stability", stability)]
         q = a.get("quadrature")
         if q is not None and "apex_distance" in q:
             facts.insert(1, ("centre of mass below the apex",
@@ -72,23 +72,27 @@ class InertiaReport(Report):
 
     @classmethod
     def prose_case(cls, data):
-        """Spherical (three equal moments), symmetric (two) or asymmetric, by the stability
-        verdicts the archive holds."""
+        """Spherical (three equal moments), symmetric (two) or asymmetric, by the stored
+        classification of the moments (:func:`top_of`)."""
         verdicts = [data.analysis["axis_stability"][f"axis_{k + 1}"]["verdict"]
                     for k in range(3)]
-        marginal = verdicts.count("marginal")
+        top = top_of(data.analysis)
         stability = data.analysis["axis_stability"]
         words = [stability[f"axis_{k + 1}"].get("shape_axis") for k in range(3)]
         q = data.analysis.get("quadrature")
         shape = data.config.get("shape") or {}
-        return {"spherical": marginal == 3, "symmetric": marginal == 2,
-                "asymmetric": "unstable" in verdicts,
+        return {"spherical": top == "spherical", "symmetric": top == "symmetric",
+                "asymmetric": top == "asymmetric",
                 "intermediate": verdicts.index("unstable") + 1 if "unstable" in verdicts
                 else None,
+                "gap": close_gap(data.analysis["principal_moments"]),
+                "equal_rtol": fmt_err(float(data.analysis.get("equal_moments_rtol", 1e-12))),
                 "axis_words": words if all(words) else None,
                 "quadrature": q is not None,
                 "nodes": int(q["nodes"]) if q is not None else 0,
                 "cone": q is not None and "apex_distance" in q,
+                "tilted": shape.get("euler_angles") is not None,
+                "revolution": shape.get("type") in ("cone", "cylinder", "ellipsoid"),
                 "rectangle": shape.get("type") == "octahedron"
                 and shape.get("equator") == "rectangle"}
 
@@ -172,6 +176,26 @@ class InertiaReport(Report):
         return stability_table_section(data.analysis)
 
 
+def close_gap(moments) -> str | None:
+    """The relative gap of the two closest of three distinct moments in words, when it is
+    too small for the printed six figures to show (below 10⁻⁴ of the largest); else None."""
+    m = np.sort(np.asarray(moments, dtype=float))
+    gap = float(np.min(np.diff(m))) / float(m[-1])
+    return fmt_err(gap) if 0 < gap < 1e-4 else None
+
+
+def top_of(analysis: dict) -> str:
+    """The stored classification of the principal moments, "spherical", "symmetric" or
+    "asymmetric" (``top`` of an inertia archive, ``body`` of a rigid-body one); an archive
+    written before them: by its stability verdicts (marginal about 3, 2 or no axes)."""
+    top = analysis.get("top") or analysis.get("body")
+    if top:
+        return str(top)
+    marginal = [analysis["axis_stability"][f"axis_{k + 1}"]["verdict"]
+                for k in range(3)].count("marginal")
+    return {3: "spherical", 2: "symmetric"}.get(marginal, "asymmetric")
+
+
 def stability_table_section(analysis: dict) -> SectionContent:
     """Table of the linear stability of free rotation about each principal axis, from an
     archive's ``analysis`` alone (shared by ``inertia`` and ``rigid_body``).
@@ -183,6 +207,7 @@ def stability_table_section(analysis: dict) -> SectionContent:
     stability = analysis["axis_stability"]
     moments = analysis["principal_moments"]
     spin = analysis.get("spin")
+    top = top_of(analysis)
     rows = []
     unit = "1/s" if spin is not None else "× Ω"
     for k in range(3):
@@ -190,10 +215,7 @@ def stability_table_section(analysis: dict) -> SectionContent:
         rate = s["growth_rate"] if s["verdict"] == "unstable" else s["oscillation_frequency"]
         what = "growth rate" if s["verdict"] == "unstable" else "wobble frequency"
         if s["verdict"] == "marginal":  # equal moments: neither a wobble nor a growth
-            equal = [m for m in moments if math.isclose(float(m), float(moments[k]),
-                                                        rel_tol=1e-9)]
-            cell = ("— (marginal: spherical body)" if len(equal) == 3 else
-                    "— (marginal: symmetric body)")
+            cell = f"— (marginal: {top} body)"
         else:
             cell = f"{what}: {fmt(float(rate))} {unit}"
         row = [f"{k + 1}", fmt(float(moments[k]))]
@@ -214,9 +236,9 @@ def stability_table_section(analysis: dict) -> SectionContent:
         where = (f" (the shape's {stability[f'axis_{k + 1}']['shape_axis']})" if named else "")
         case = (f": unstable about the intermediate axis {k + 1}{where} with "
                 "growth Ω√((I2−I1)(I3−I2)/(I1 I3)), stable about the other two")
-    elif verdicts.count("marginal") == 3:
+    elif top == "spherical":
         case = ": all three moments equal, so no axis is unstable (every axis marginal)"
-    elif "marginal" in verdicts:
+    elif top == "symmetric":
         case = (": two equal moments (a symmetric body), so no axis is unstable: marginal "
                 "about the transverse axes, stable about the figure axis")
     else:

@@ -45,6 +45,11 @@ SCHEMA = ResultsSchema(
         Q("centre_of_mass", r"r_\mathrm{cm}", "m", "centre of mass, lab frame", ("xyz",)),
         Q("mass", "M", "kg", "total mass"),
         Q("shape", "", "", "the body, described", kind="str"),
+        Q("top", "", "", "spherical (three equal principal moments), symmetric (two) or "
+          "asymmetric, equal within equal_moments_rtol of the largest", kind="str",
+          optional=True),
+        Q("equal_moments_rtol", "", "1", "share of the largest moment within which two "
+          "principal moments are equal", optional=True),
         *axis_stability_results("1"),
         *(Q(f"axis_stability/axis_{k}/shape_axis", "", "",
             f"the shape's own axis that principal axis {k} lies along, in words", kind="str",

@@ -11,7 +11,7 @@ import numpy as np
 from ...lazy import lazy_module
 from ...scene.results import Check, Results
 from ...scene.simulation import Simulation
-from .config import InertiaConfig
+from .config import EQUAL_MOMENTS_RTOL, InertiaConfig, body_symmetry
 from .results import SCHEMA
 
 core = lazy_module("reportgen.core.inertia")
@@ -28,7 +28,7 @@ class InertiaSimulation(Simulation):
         tensor = shape.lab_tensor()
         moments, axes = core.principal_axes(tensor)
         results = Results()
-        stab = core.axis_stability(moments)
+        stab = core.axis_stability(moments, rtol=EQUAL_MOMENTS_RTOL)
         results.analysis.update({
             "tensor": tensor,
             "principal_moments": moments,
@@ -37,6 +37,8 @@ class InertiaSimulation(Simulation):
             "mass": float(shape.mass),
             "shape": shape.describe(),
             "axis_stability": {f"axis_{k + 1}": s for k, s in enumerate(stab)},
+            "top": body_symmetry(moments)[0],
+            "equal_moments_rtol": EQUAL_MOMENTS_RTOL,
             "inertia_ellipsoid": core.inertia_ellipsoid(moments, axes),
         })
         if shape.type == "points":
@@ -107,10 +109,11 @@ def cite(source: str) -> str:
     return f"closed form, {found.group(1)}" if found else source
 
 
-def principal_axis_words(shape, moments, axes, rtol: float = 1e-9) -> list[str]:
+def principal_axis_words(shape, moments, axes, rtol: float | None = None) -> list[str]:
     """Each principal axis as the shape's own axis it lies along ("x, along the side a"),
     from the lab-frame axes turned back into the shape's frame; an axis of a degenerate
     pair is "any axis ⊥ z" (z the odd axis), of a spherical body "any axis"."""
+    rtol = EQUAL_MOMENTS_RTOL if rtol is None else rtol
     words = shape.axis_words()
     own = shape.rotation().T @ np.asarray(axes, dtype=float)
     scale = float(np.max(moments))

@@ -13,6 +13,7 @@ import numpy as np
 
 from ...rendering.plots.motion import Motion
 from ...rendering.plots.style import ATOM_COLOURS, CONTEXT, HIGHLIGHT, OTHER_ATOM, new_figure_grid
+from ...scene.content import fmt
 from .plots import _atom_sizes, _scaled
 
 
@@ -52,7 +53,7 @@ def motion(data, frames: int) -> Motion:
             ax.set_aspect("equal")
             ax.axis("off")
             side = " (side view)" if v[1] == 2 else ""
-            ax.set_title(f"ω{z + j + 1} = {omega[j]:.4g}{side}", fontsize=10)
+            ax.set_title(f"ω{z + j + 1} = {fmt(float(omega[j]), 4)}{side}", fontsize=10)
             bond_lines = [ax.plot([], [], color=CONTEXT, lw=3, zorder=1)[0] for _ in bonds]
             atoms = ax.scatter(pos[:, 0], pos[:, v[1]], s=sizes, zorder=2, edgecolor="black",
                                color=[ATOM_COLOURS.get(e, OTHER_ATOM) for e in elements])
@@ -78,7 +79,8 @@ def motion(data, frames: int) -> Motion:
         ax.axhline(0, color=CONTEXT, lw=0.8)
         ax.set_ylim(-1.3, 1.3)
         ax.set_xlim(0, n + 1)
-        ax.set_ylabel(f"ω{z + j + 1}\n{omega[j]:.3g}", rotation=0, ha="right", va="center")
+        ax.set_ylabel(f"ω{z + j + 1}\n{fmt(float(omega[j]), 3)}", rotation=0, ha="right",
+                      va="center")
         lines.append((modes[:, j] / np.max(np.abs(modes[:, j])),
                       ax.plot([], [], "-o", color=HIGHLIGHT, ms=6)[0]))
     axes[-1, 0].set_xlabel("coordinate index")

@@ -13,58 +13,49 @@ from ...rendering.plots.style import (
     CONTEXT,
     GREEN,
     HIGHLIGHT,
+    INDIGO,
+    OLIVE,
+    ORANGE,
     OTHER_ATOM,
     PURPLE,
     REFERENCE,
+    SKY,
     VERMILLION,
+    WINE,
     new_figure,
     new_figure_grid,
     place_legend,
 )
 
-#: colour per mode type, the most specific first ("antisymmetric stretch" holds
-#: "symmetric stretch", and a linear molecule's stretches are "longitudinal, ..."): each
-#: type its own colour, so CO₂'s two stretches differ
-TYPE_COLOURS = {
-    "antisymmetric stretch": GREEN,
-    "symmetric stretch": BLUE,
-    "bend": VERMILLION,
-    "transverse": VERMILLION,
-    "longitudinal": PURPLE,
-}
+#: colours of the named mode types, in the order the types first appear
+TYPE_COLOURS = (BLUE, VERMILLION, GREEN, PURPLE, ORANGE, SKY, WINE, INDIGO, OLIVE)
 #: atoms dark enough for a white element symbol
 DARK_ATOMS = frozenset({"C", "O", "N", "Cl"})
 
 
-def _type_colour(kind: str) -> str:
-    for key, colour in TYPE_COLOURS.items():
-        if key in kind:
-            return colour
-    return HIGHLIGHT
-
-
 def spectrum(omega, types, groups, *, exact=None, unit="rad/s",
-             quantity="angular frequency ω", ax=None):
+             quantity="angular frequency ω", named=True, ax=None):
     """Stick spectrum of the vibrational frequencies, degenerate sets marked ×g.
 
     omega : (k,) ascending, types : k labels, groups : (k,) degenerate-set ids;
     exact : (k,) closed-form frequencies drawn as hollow markers, or None;
     ``quantity`` and ``unit`` name the x axis ("wavenumber ν̃", "cm⁻¹"; a unit
-    "dimensionless" or "" is printed as "(dimensionless)").
+    "dimensionless" or "" is printed as "(dimensionless)"); ``named``: the types name the
+    modes (a molecule's "C–O stretch": one colour and legend entry each, the
+    "(in-plane)"-like qualifier dropped), else every stick is a "normal mode".
     """
     fig, ax = new_figure(ax, figsize=(6.8, 3.2))
     omega = np.asarray(omega, dtype=float)
-    seen = set()
+    colours: dict[str, str] = {}
     for gid in dict.fromkeys(np.asarray(groups).tolist()):
         idx = [i for i, g in enumerate(groups) if g == gid]
         w = omega[idx[0]]
-        kind = types[idx[0]]
-        typed = any(key in kind for key in TYPE_COLOURS)
-        base = kind.split(" (")[0] if typed else "normal mode"
-        label = base if base not in seen else None
-        seen.add(base)
-        ax.vlines(w, 0, len(idx), color=_type_colour(kind) if typed else HIGHLIGHT, lw=3,
-                  label=label)
+        base = types[idx[0]].split(" (")[0] if named else "normal mode"
+        label = base if base not in colours else None
+        if base not in colours:
+            colours[base] = (TYPE_COLOURS[len(colours) % len(TYPE_COLOURS)] if named
+                             else HIGHLIGHT)
+        ax.vlines(w, 0, len(idx), color=colours[base], lw=3, label=label)
         if len(idx) > 1:
             ax.annotate(f"×{len(idx)}", (w, len(idx)), textcoords="offset points",
                         xytext=(0, 3), ha="center", fontsize=9)

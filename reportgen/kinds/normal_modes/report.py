@@ -3,6 +3,8 @@ the time evolution, drawn from the archive alone."""
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 
 from ...lazy import lazy_module
@@ -11,7 +13,7 @@ from ...scene.content import SectionContent, Table, fmt, fmt_err
 from ...scene.report import Report
 from ...scene.schema import ResultsSchema, unit_text
 from .config import SHAPES_SHOWN, STIFF_RATIO, system_of
-from .results import SCHEMA, schema_for, units
+from .results import MOLECULAR_OMEGA, SCHEMA, schema_for, units
 
 plots = lazy_module("reportgen.kinds.normal_modes.plots")
 common_plots = lazy_module("reportgen.rendering.plots.common")
@@ -86,7 +88,8 @@ class NormalModesReport(Report):
                                                                          strict=True))
             facts.append(("max relative difference to the closed form", fmt_err(worst)))
         return SectionContent(figures=[cls.figure(
-            "frequencies_family", fig, f"Eigenfrequencies ωⱼ of every member against {path}"
+            "frequencies_family", fig, "Eigenfrequencies ωⱼ of every member against "
+            f"{cls.config_words(data, path)}"
             + ("; dashed: the closed form." if exact else "."))], facts=facts)
 
     @classmethod
@@ -104,12 +107,37 @@ class NormalModesReport(Report):
         analysis = getattr(data, "analysis", None) or {}
         return schema_for(system_of(data.config), system=analysis.get("unit_system"))
 
+    @staticmethod
+    def _in_tau(data) -> bool:
+        """Whether this archive's times are in the molecular unit τ = √(u/(mdyn/Å))."""
+        return (getattr(data, "analysis", None) or {}).get("unit_system") == "molecular"
+
     @classmethod
     def time_unit_words(cls, data) -> str:
-        """The time unit of this archive's unit system ("s" for pendula; "" when
-        dimensionless), not the kind's generic one."""
+        """The time unit of this archive's unit system: "τ" in molecular units (the page
+        says τ = 4.075 fs where it gives the units), "s" for pendula, "" when
+        dimensionless; not the kind's generic one."""
+        if cls._in_tau(data):
+            return "τ"
         unit = unit_text(cls._schema(data).time.unit)
         return "" if unit == "dimensionless" else unit
+
+    @classmethod
+    def run_end_words(cls, data) -> str:
+        """The end of the evolution, "t = 203.7 fs" in molecular units (t_end is kept in
+        τ, one number times a unit), else the shared wording."""
+        if cls._in_tau(data):
+            return f"t = {fmt(float(data.config.run.t_end) * FS_PER_TAU, 4)} fs"
+        return super().run_end_words(data)
+
+    @classmethod
+    def check_words(cls, data, text: str) -> str:
+        """A check's archived name in words, its ``t_end`` in femtoseconds in molecular
+        units."""
+        if cls._in_tau(data) and data.config.run is not None:
+            text = re.sub(r"(?<![\w.])t_end(?!\w)",
+                          cls.run_end_words(data).replace(" ", "\u00a0"), str(text))
+        return super().check_words(data, text)
 
     @staticmethod
     def _units(data) -> dict[str, str]:
@@ -216,18 +244,22 @@ class NormalModesReport(Report):
         u = cls._units(data)
         nu = np.asarray(a["wavenumbers"])[z:] if "wavenumbers" in a else None
         if nu is not None:  # a molecule: the spectroscopist's axis
-            fig = plots.spectrum(nu, types, groups, unit="cm⁻¹", quantity="wavenumber")
+            fig = plots.spectrum(nu, types, groups, unit="cm⁻¹", quantity="wavenumber",
+                                 named=a["source"] == "molecule")
         else:
             fig = plots.spectrum(w, types, groups, exact=None if exact is None else
-                                 np.asarray(exact)[z:], unit=u["omega"])
+                                 np.asarray(exact)[z:], unit=u["omega"],
+                                 named=a["source"] == "molecule")
         rows = []
         w2 = np.asarray(a["omega_squared"])[z:]
         parity = list(a["mode_parity"])[z:] if "mode_parity" in a else None
+        shares = cls._named_shares(data)
         for i, (wi, t) in enumerate(zip(w, types, strict=True)):
             g = int(np.sum(groups == groups[i]))
             row = [str(z + i + 1), fmt(wi), fmt(w2[i])]
             row += [fmt(float(nu[i]), 5)] if nu is not None else []
             row += [t, str(g)]
+            row += [shares[i]] if shares else []
             row += [PARITY_WORDS.get(str(parity[i]), "—")] if parity is not None else []
             if exact is not None:
                 ex = float(np.asarray(exact)[z + i])
@@ -236,10 +268,12 @@ class NormalModesReport(Report):
         header = ["mode", cls._with_unit("ω", u["omega"]), cls._with_unit("ω²", u["omega2"])]
         header += ["ν̃ [cm⁻¹]"] if nu is not None else []
         header += ["type", "degeneracy"]
+        header += ["share of V"] if shares else []
         header += ["inversion"] if parity is not None else []
         if exact is not None:
             header += ["closed form", "relative error"]
-        facts = [("eigenproblem", "A η = ω² M η (scipy.linalg.eigh on the pair), ηᵀ M η = 1"),
+        facts = [("eigenproblem", "A η = ω² M η (scipy's symmetric-definite eigensolver on "
+                                  "the pair), ηᵀ M η = 1"),
                  ("textbook three steps (diagonalize M, unit mass, diagonalize A′): "
                   "max |Δω²|/ω²ₘₐₓ", fmt_err(a["three_step_max_difference"])),
                  ("max |ηᵀ M η − 1|", fmt_err(a["orthonormality_error"]))]
@@ -247,6 +281,8 @@ class NormalModesReport(Report):
             facts.append(("ωₘₐₓ/ωₘᵢₙ", fmt(a["stiffness_ratio"])))
         if exact is not None:
             facts.append(("closed form", str(a["closed_form_source"])))
+        if shares:
+            facts.append(("type", cls._naming_words(data)))
         if parity is not None:
             facts.append(("inversion", "the molecule and its force field have a centre of "
                                        "symmetry: each mode is even (g) or odd (u) when every "
@@ -259,6 +295,38 @@ class NormalModesReport(Report):
                    else "."))],
             tables=[Table("Vibrational modes (zero modes omitted), ascending ω", header, rows)],
             facts=facts)
+
+    @staticmethod
+    def _named_shares(data) -> list[str]:
+        """Per vibration, the share of its potential energy in the class of internal
+        coordinates that names it ("81 %"; a mixed one: its two largest, "48 %, 45 %");
+        [] without the potential-energy distribution."""
+        a = data.analysis
+        if "coordinate_shares" not in a:
+            return []
+        rows = np.atleast_2d(np.asarray(a["coordinate_shares"], dtype=float))
+        threshold = float(a["dominant_share"])
+        out = []
+        for row in rows:
+            top = np.sort(row)[::-1]
+            shown = top[:1] if top[0] >= threshold or top.size == 1 else top[:2]
+            out.append(", ".join(f"{fmt(round(100 * float(x)), 3)} %" for x in shown))
+        return out
+
+    @staticmethod
+    def _naming_words(data) -> str:
+        """How the vibrations are named, with this molecule's symmetry and the threshold."""
+        a = data.analysis
+        share = fmt(round(100 * float(a["dominant_share"])), 3)
+        rule = ("named by the class of like internal coordinates (the stretches of like "
+                f"bonds, the bends of like angles) holding at least {share} % of the "
+                "vibration's potential energy, mixed when none does; ")
+        if a.get("centre_of_inversion"):
+            return rule + ("this molecule has a centre of inversion, so a stretch or bend "
+                           "is symmetric when even (g) under it, antisymmetric when odd (u)")
+        return rule + ("this molecule has no centre of inversion: a stretch or bend of like "
+                       "coordinates is symmetric when they change by equal amounts, "
+                       "antisymmetric when their changes sum to zero")
 
     @classmethod
     def _omega_unit(cls, data) -> str:
@@ -400,8 +468,8 @@ class NormalModesReport(Report):
         a = data.analysis
         if a.get("stiff"):  # what the diagram shows only a stiff scene needs said
             content.notes.insert(0, (
-                f"This scene is stiff (ωₘₐₓ/ωₘᵢₙ = {a['stiffness_ratio']:.3g} ≥ "
-                f"{STIFF_RATIO:g}): explicit methods cannot step past the stability bound "
+                f"This scene is stiff (ωₘₐₓ/ωₘᵢₙ = {fmt(a['stiffness_ratio'], 3)} ≥ "
+                f"{fmt(STIFF_RATIO)}): explicit methods cannot step past the stability bound "
                 "set by the fastest mode, however loose the tolerance; implicit methods "
                 "(Gauss–Legendre, Radau) stay stable at any step, and at large steps their "
                 "error is the small amplitude of the unresolved fast mode."))
@@ -419,8 +487,11 @@ class NormalModesReport(Report):
         schema = cls._schema(data)
         unit = cls._units(data)["q"]
         names = [cls._with_unit(run.columns[i].replace("phi", "φ"), unit) for i in show]
-        fig = plots.evolution(run.t, run.y[:, show], q_ref[:, show], names,
-                              time_unit=unit_text(schema.time.unit), unit=unit)
+        t, t_unit = run.t, unit_text(schema.time.unit)
+        if cls._in_tau(data):  # the time axis in femtoseconds, not in units of 4.075 fs
+            t, t_unit = run.t * FS_PER_TAU, "fs"
+        fig = plots.evolution(t, run.y[:, show], q_ref[:, show], names,
+                              time_unit=t_unit, unit=unit)
         facts = [("method", f"{run.attrs.get('method')} ({run.attrs.get('method_reason', '')})"),
                  ("max |q − q(modal)|, q integrated", fmt_err(a["evolution_max_error"])
                   + ("" if unit == "dimensionless" else f" {unit}")),
@@ -434,6 +505,9 @@ class NormalModesReport(Report):
             facts=facts)
 
 
+#: the molecular unit of time τ = √(u/(mdyn/Å)) in femtoseconds (4.075)
+FS_PER_TAU = 1e15 / MOLECULAR_OMEGA
+
 #: a mode's parity under the inversion, as the spectrum table states it
 PARITY_WORDS = {"g": "even (g)", "u": "odd (u)"}
 
@@ -441,7 +515,8 @@ PARITY_WORDS = {"g": "even (g)", "u": "odd (u)"}
 UNIT_WORDS = {
     "SI": "SI: kg, m, N/m and s (ω in rad/s)",
     "molecular": "molecular: masses in u, lengths in Å, force constants in mdyn/Å; ω in rad/s "
-                 "(one unit of the eigenproblem is √((mdyn/Å)/u) = 2.454·10¹⁴ rad/s)",
+                 f"(one unit of the eigenproblem is √((mdyn/Å)/u) = {fmt(MOLECULAR_OMEGA, 4)} rad/s); "
+                 f"times in τ = √(u/(mdyn/Å)) = {fmt(FS_PER_TAU, 4)} fs",
     "dimensionless": "dimensionless: masses and spring constants in units of a reference m₀ "
                      "and k₀, time in units of √(m₀/k₀), ω in units of √(k₀/m₀)",
 }

@@ -121,6 +121,20 @@ def schema_for(source: str, coordinates: tuple[str, ...] = (),
             Q("mode_parity", "", "", "g or u: each mode even or odd under the inversion "
               "through the centre of mass (a molecule with a centre of symmetry)", ("mode",),
               kind="str", optional=True),
+            Q("centre_of_inversion", "", "", "whether the molecule, its masses and its force "
+              "field have a centre of inversion (each atom has an atom of equal mass opposite "
+              "it through the centre of mass, within 1e-9 of the size, and A is unchanged by "
+              "the inversion): it names the stretches symmetric (g) or antisymmetric (u)",
+              kind="bool", optional=True),
+            Q("coordinate_classes", "", "", "the classes of like internal coordinates "
+              "(stretches of like bonds, bends of like angles) that name the vibrations",
+              ("coordinate_class",), kind="str", optional=True),
+            Q("coordinate_shares", "", "1", "each vibration's share of potential energy in "
+              "each class of internal coordinates (the potential-energy distribution; rows "
+              "sum to 1)", ("vibration", "coordinate_class"), optional=True),
+            Q("dominant_share", "", "1", "the share of a vibration's potential energy a class "
+              "of internal coordinates must hold to name it (below it: mixed)",
+              optional=True),
             Q("stiffness_ratio", r"\omega_\mathrm{max}/\omega_\mathrm{min}", "1",
               "ratio of the highest to the lowest non-zero frequency"),
             # a molecule

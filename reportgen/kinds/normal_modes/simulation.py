@@ -10,9 +10,11 @@ import math
 import numpy as np
 
 from ...lazy import lazy_module
+from ...scene.content import fmt
 from ...scene.integration import IntegratingSimulation
 from ...scene.results import AuditCase, Check, Results
 from ...scene.schema import ResultsSchema, unit_text
+from . import naming
 from .config import (
     SHAPES_SHOWN,
     STIFF_RATIO,
@@ -62,6 +64,10 @@ class NormalModesSimulation(IntegratingSimulation):
         return core.Molecule(masses=masses, positions=positions,
                              bonds=tuple((b.atoms[0], b.atoms[1], b.k) for b in c.bonds),
                              angles=tuple((*a.atoms, a.k) for a in c.angles))
+
+    def elements(self) -> list[str | None]:
+        """Each atom's chemical symbol, None for an atom given by its mass alone."""
+        return [a.element for a in self.config.atoms]
 
     def system(self) -> str:
         """Which way the config gives the system: molecule, chain, pendula or matrices."""
@@ -158,12 +164,21 @@ class NormalModesSimulation(IntegratingSimulation):
         a["three_step_max_difference"] = float(np.max(np.abs(w_gen - w_3)) / scale)
         a["orthonormality_error"] = float(np.max(np.abs(modes.modes.T @ M @ modes.modes
                                                         - np.eye(n))))
-        a["mode_type"] = core.classify_modes(modes, M, system, mol, rigid_labels)
+        named = None
+        if mol is not None:  # named by the coordinates that hold their energy
+            inversion = mol.inversion(A)
+            parity = core.mode_parity(modes.modes, M, inversion)
+            a["centre_of_inversion"] = inversion is not None
+            if inversion is not None:  # a centre of symmetry: each mode even (g) or odd (u)
+                a["mode_parity"] = parity
+            named = naming.mode_names(modes, mol, self.elements(), parity)
+        a["mode_type"] = core.classify_modes(modes, M, system, mol, rigid_labels,
+                                             named[0] if named else None)
         a["stiffness_ratio"] = self._stiffness_ratio(modes)
         if mol is not None:
             if unit_system(c) != "dimensionless":
                 a["wavenumbers"] = a["frequencies"] / (2 * math.pi * LIGHT_CM_PER_S)
-            self._molecule_analysis(results, mol, modes, M, ops)
+            self._molecule_analysis(results, mol, modes, M, ops, named)
         exact = self.exact_frequencies()
         if exact is not None:
             w_ex, src = exact
@@ -186,7 +201,7 @@ class NormalModesSimulation(IntegratingSimulation):
             self._evolve(results, M, A, modes, progress)
         return results
 
-    def _molecule_analysis(self, results, mol, modes, M, ops):
+    def _molecule_analysis(self, results, mol, modes, M, ops, named):
         a = results.analysis
         axis = mol.axis()
         n_atoms = mol.n_atoms
@@ -225,9 +240,11 @@ class NormalModesSimulation(IntegratingSimulation):
             # a linear molecule: n − 1 longitudinal, 2(n − 2) transverse vibrations
             a["expected_longitudinal"] = n_atoms - 1
             a["expected_transverse"] = 2 * (n_atoms - 2)
-        inversion = mol.inversion(a["hessian"])
-        if inversion is not None:  # a centre of symmetry: each mode even (g) or odd (u)
-            a["mode_parity"] = core.mode_parity(modes.modes, M, inversion)
+        _names, classes, shares = named
+        if classes:  # the potential-energy distribution that names each vibration
+            a["coordinate_classes"] = [c.label for c in classes]
+            a["coordinate_shares"] = shares
+            a["dominant_share"] = naming.DOMINANT_SHARE
         self._triatomic_checks(results, mol, modes)
         self._four_atom_checks(results, mol, modes)
 
@@ -372,11 +389,11 @@ class NormalModesSimulation(IntegratingSimulation):
         a["evolution_amplitude"] = float(np.max(np.abs(ref[:, :n])))
         a["stiff"] = stiff
         a["stiff_reason"] = (
-            f"ωₘₐₓ/ωₘᵢₙ = {ratio:.3g} ≥ {STIFF_RATIO:g}: an explicit method's step is bounded by "
+            f"ωₘₐₓ/ωₘᵢₙ = {fmt(ratio, 3)} ≥ {fmt(STIFF_RATIO)}: an explicit method's step is bounded by "
             "the fastest mode (h ≲ 3/ωₘₐₓ) while the motion lasts many slow periods; the modal "
             "superposition is exact at any t, and auto chooses an implicit method (Gauss–Legendre "
             "6, A-stable and symplectic)"
-            if stiff else f"ωₘₐₓ/ωₘᵢₙ = {ratio:.3g} < {STIFF_RATIO:g}: not stiff")
+            if stiff else f"ωₘₐₓ/ωₘᵢₙ = {fmt(ratio, 3)} < {fmt(STIFF_RATIO)}: not stiff")
         c_idx = int(np.argmax(np.max(np.abs(ref[:, :n]), axis=0)))
         name = self.coordinate_names()[c_idx].replace("phi", "φ")
         results.checks.append(Check(f"{name}(t_end), direct integration",
@@ -384,7 +401,7 @@ class NormalModesSimulation(IntegratingSimulation):
                                     "modal superposition q = Σ ηₖ aₖ cos ωₖt (textbook §5.1)"))
         if stiff:
             results.message = "; ".join(x for x in (results.message, (
-                f"stiff: ωₘₐₓ/ωₘᵢₙ = {ratio:.3g}; direct integration by "
+                f"stiff: ωₘₐₓ/ωₘᵢₙ = {fmt(ratio, 3)}; direct integration by "
                 f"{main.attrs.get('method')}")) if x)
         t_study = np.linspace(0.0, run.t_end, 201)
         self.study(results, model, y0, t_study, reference=reference, progress=progress)

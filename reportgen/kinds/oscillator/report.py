@@ -41,6 +41,17 @@ class OscillatorReport(Report):
     )
 
     @classmethod
+    def prose_case(cls, data):
+        """The stored facts the prose follows: whether the swap is canonical
+        (``swap_canonical``, within ``canonical_threshold``) and what the study measured
+        against (its ``reference_kind``)."""
+        if data.sweep is not None:
+            return {}
+        return {"canonical": data.analysis["swap_canonical"] == "yes",
+                "canonical_threshold": fmt(float(data.analysis["canonical_threshold"])),
+                "study_reference": str(data.study_attrs.get("reference_kind", ""))}
+
+    @classmethod
     def describe(cls, data):
         """``An oscillator with ω = 1.5 rad/s (period 4.189 s) at E = 2.312 J: amplitude
         1.434 m``, from the archived analysis."""
@@ -92,13 +103,16 @@ class OscillatorReport(Report):
         a = data.analysis
         return SectionContent(
             figures=[cls.figure("swap", fig, "Left: the orbit in (q, p). Right: K(Q, P) = "
-                                "Q²/2m + mω²P²/2 integrated from (Q0, P0) = (p0, −q0), over the "
+                                "Q²/2m + mω²P²/2 integrated from (Q₀, P₀) = (p₀, −q₀), over the "
                                 "image Q = p, P = −q of the left orbit.")],
             facts=[("generating function",
                     "F1(q, Q) = q Q  ⇒  p = ∂F1/∂q = Q,  P = −∂F1/∂Q = −q"),
                    ("new Hamiltonian", "K(Q, P) = H(−P, Q) = Q²/2m + m ω² P²/2"),
                    ("Poisson bracket {Q, P} from F1 by SymPy",
-                    f"{fmt(a['poisson_bracket_QP'])} (canonical)"),
+                    f"{fmt(a['poisson_bracket_QP'])} ("
+                    + ("canonical" if a["swap_canonical"] == "yes" else "not canonical")
+                    + f": |{{Q, P}} − 1| {'<' if a['swap_canonical'] == 'yes' else '≥'} "
+                      f"{fmt(float(a['canonical_threshold']))} along the orbit too)"),
                    ("max |{Q, P} − 1| along the orbit, by central differences",
                     fmt_err(a["poisson_bracket_QP_defect"])),
                    ("max distance of the integrated (Q, P) from (p, −q)",
@@ -115,13 +129,25 @@ class OscillatorReport(Report):
             figures=[cls.figure("hj", fig, "Top: q(t) = √(2E/mω²) sin ω(t + β) from the "
                                 "complete integral S = W(q, E) − E t against the integration. "
                                 "Bottom: the new canonical pair (E, β) evaluated along the "
-                                "integrated trajectory stays constant.")],
+                                "integrated trajectory " + cls.constancy_words(a))],
             facts=[("E", f"{fmt(a['hj_energy'])} J"),
                    ("β = ∂S/∂E", f"{fmt(a['hj_beta'])} s"),
                    ("max |β(t) − β(0)| along the integration",
                     fmt_err(a["hj_beta_drift"]) + " s"),
                    ("max difference of q, Hamilton–Jacobi against the integration",
                     fmt_err(a["hj_q_max_difference"]) + " m")])
+
+    @staticmethod
+    def constancy_words(a) -> str:
+        """Whether (E, β) stayed constant along the run, by the stored ``hj_pair_constant``
+        and its threshold, with the drifts measured."""
+        drifts = (f"E by {fmt_err(a['hj_energy_drift'])} of itself, β by "
+                  f"{fmt_err(a['hj_beta_drift'] / a['period'])} of the period")
+        if a["hj_pair_constant"] == "yes":
+            return (f"stays constant: it drifts by less than "
+                    f"{fmt(float(a['hj_constant_threshold']))} ({drifts}).")
+        return (f"drifts by more than {fmt(float(a['hj_constant_threshold']))} ({drifts}): "
+                "the integration's error, as the true motion keeps both constant.")
 
     @staticmethod
     def residual_table(a) -> Table:

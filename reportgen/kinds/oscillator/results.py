@@ -39,6 +39,15 @@ SCHEMA = ResultsSchema(
         Q("poisson_bracket_QP_defect", r"\max|\{Q, P\} - 1|", "1",
           "largest |{Q, P} - 1| along the run, the map's partial derivatives by central "
           "differences"),
+        Q("canonical_threshold", "", "1", "|{Q, P} - 1| below which the map is canonical"),
+        Q("swap_canonical", "", "", "whether the swap is canonical (yes or no): {Q, P} by "
+          "SymPy and along the run within the threshold of 1", kind="str"),
+        Q("hj_energy_drift", r"\max|E(t) - E(0)|/E", "1",
+          "largest drift of E along the integrated trajectory, relative to E"),
+        Q("hj_constant_threshold", "", "1", "drift of E (relative to E) and of beta "
+          "(relative to the period) below which the pair stays constant"),
+        Q("hj_pair_constant", "", "", "whether (E, beta) stay constant along the "
+          "integrated trajectory (yes or no), within the threshold", kind="str"),
         # the Hamilton-Jacobi equations along the run, relative to E (notes (7.16), (7.34))
         Q("hj_residual", r"\max|\partial_t S + H(q, \partial_q S)|/E", "1",
           "largest residual of the Hamilton-Jacobi equation along the run, dW/dq from the "

@@ -22,6 +22,13 @@ hamilton_jacobi = lazy_module("reportgen.core.hamilton_jacobi")
 #: run's length (S is linear in t: rounding ~ ε t/step alone, however many periods)
 BRACKET_STEP = 1e-3
 TIME_STEP = 1e-3
+#: the words' thresholds (stored with the facts they decide): |{Q, P} − 1| below
+#: CANONICAL_DEFECT is a canonical map; the drifts of E (relative to E) and of β (relative
+#: to the period) along the run below CONSTANT_DRIFT: the pair "stays constant"
+CANONICAL_DEFECT = 1e-9
+CONSTANT_DRIFT = 1e-6
+#: what the study measures its errors against (the closed form, every run)
+STUDY_REFERENCE = "the closed form q₀ cos ωt + p₀/(mω) sin ωt, p₀ cos ωt − mωq₀ sin ωt"
 
 
 class OscillatorSimulation(IntegratingSimulation):
@@ -111,7 +118,7 @@ class OscillatorSimulation(IntegratingSimulation):
         results.checks.append(Check("q(t_end)", float(main["q"][-1]), float(q_ex[-1]), "m",
                                     "closed form q0 cos ωt + p0/(mω) sin ωt", scale=q_amp))
         results.checks.append(Check("p(t_end)", float(main["p"][-1]), float(p_ex[-1]), "kg·m/s",
-                                    "closed form p0 cos ωt − mωq0 sin ωt", scale=p_amp))
+                                    "closed form p₀ cos ωt − mωq₀ sin ωt", scale=p_amp))
         results.checks.append(Check("Q(t_end) from integrating K", float(swapped["Q"][-1]),
                                     float(Q[-1]), "kg·m/s", "Q = p, notes (6.9), of the integrated H",
                                     scale=p_amp))
@@ -121,9 +128,22 @@ class OscillatorSimulation(IntegratingSimulation):
                                     scale=q_amp))
         self._swap_bracket(results, main)
         self._hamilton_jacobi_residuals(results, main, e0)
+        self._constancy(results, e, beta)
         self.study(results, model, y0, np.linspace(0.0, run.t_end, 201),
-                   reference=lambda ts: np.column_stack(self.closed_form(ts)))
+                   reference=lambda ts: np.column_stack(self.closed_form(ts)),
+                   reference_kind=STUDY_REFERENCE)
         return results
+
+    def _constancy(self, results: Results, energy, beta) -> None:
+        """Whether the new pair (E, β) stays constant along the integrated trajectory: its
+        drifts relative to E and to the period against :data:`CONSTANT_DRIFT` (stored with
+        the threshold, for the words)."""
+        a = results.analysis
+        e_drift = float(np.max(np.abs(energy - energy[0]))) / abs(float(energy[0]))
+        b_drift = a["hj_beta_drift"] / a["period"]
+        a["hj_energy_drift"] = e_drift
+        a["hj_constant_threshold"] = CONSTANT_DRIFT
+        a["hj_pair_constant"] = "yes" if max(e_drift, b_drift) < CONSTANT_DRIFT else "no"
 
     def _swap_bracket(self, results: Results, main) -> None:
         """{Q, P} of the swap: by SymPy from F1 = q Q, and by central differences of the map
@@ -137,6 +157,10 @@ class OscillatorSimulation(IntegratingSimulation):
         worst = int(np.argmax(np.abs(along - symbolic)))
         results.analysis["poisson_bracket_QP"] = symbolic
         results.analysis["poisson_bracket_QP_defect"] = float(abs(along[worst] - symbolic))
+        results.analysis["canonical_threshold"] = CANONICAL_DEFECT
+        results.analysis["swap_canonical"] = (
+            "yes" if abs(symbolic - 1.0) < CANONICAL_DEFECT
+            and abs(along[worst] - 1.0) < CANONICAL_DEFECT else "no")
         results.checks.append(Check("{Q, P} by central differences, worst sample",
                                     float(along[worst]), symbolic, "",
                                     "SymPy from F1 = q Q, notes (6.6–6.11)", scale=1.0))

@@ -1,7 +1,7 @@
 r"""``pendulum``: the nonlinear plane pendulum and its small-angle limit (lecture notes §1–2).
 
 m l^2 θ'' + m g l sin θ = 0.  Exact solution in Jacobi elliptic functions, exact
-period 4 K(k) sqrt(l/g) with k = sin(θ0/2), the phase portrait with its
+period 4 K(k) sqrt(l/g) with k = sin(θmax/2), the phase portrait with its
 separatrix, and the boundary-value problem θ(0) = θ0, θ(T) = θ1 of the
 linearised equation, notes (1.21), with its action, notes (2.4).
 """
@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 
 from ...scene.content import fmt as _fmt
-from .config import PRESETS, PendulumConfig
+from .config import PRESETS, PendulumConfig, theory
 from .report import PendulumReport
 from .simulation import PendulumSimulation
 
@@ -31,15 +31,21 @@ class PendulumScene(PendulumSimulation, PendulumReport):
 
     @classmethod
     def default_title(cls, config):
-        """``Plane pendulum librating from θ0 = 2.5 rad`` (or rotating over the top), by
-        the sign of E − m g l at the start."""
+        """``Plane pendulum librating from θ0 = 2.5 rad`` (or rotating over the top, or on or
+        near the separatrix), by :func:`~reportgen.core.pendulum_theory.motion_case`: the sign
+        of 1 − k² and its size against the separatrix thresholds."""
         p, ini = config.params, config.initial
-        energy = 0.5 * ini.theta_dot ** 2 - p.g / p.l * math.cos(ini.theta)  # per m l²
+        m1 = theory.complementary_parameter(ini.theta, ini.theta_dot, math.sqrt(p.g / p.l))
         start = f"θ0 = {fmt(ini.theta, 6)} rad" + (
             f", θ̇0 = {fmt(ini.theta_dot, 4)} rad/s" if ini.theta_dot else "")
-        if energy > p.g / p.l:
-            return f"Plane pendulum rotating over the top ({start})"
-        if energy == p.g / p.l:
+        case = theory.motion_case(m1)
+        if case == "separatrix":
             return f"Plane pendulum on the separatrix ({start})"
+        if case == "rotation":
+            return f"Plane pendulum rotating over the top ({start})"
+        if case == "rotation near the separatrix":
+            return f"Plane pendulum rotating just above the separatrix ({start})"
+        if case == "libration near the separatrix":
+            return f"Plane pendulum librating just inside the separatrix ({start})"
         return f"Plane pendulum librating from {start}" if not ini.theta_dot else (
             f"Plane pendulum librating ({start})")

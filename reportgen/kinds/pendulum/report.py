@@ -34,7 +34,9 @@ class PendulumReport(Report):
         if not math.isfinite(rel):
             return super().gallery_headline(data)
         exact = "4K(k)√(l/g)" if a["motion"] == "libration" else "2K(1/k²)/(k ω0)"
-        return (f"{a['motion']}, period {fmt(a['period'], 5)} s: measured "
+        motion = {"on": "on the separatrix", "near": f"{a['motion']} near the separatrix"}.get(
+            str(a.get("separatrix_proximity", "far")), str(a["motion"]))
+        return (f"{motion}, period {fmt(a['period'], 5)} s: measured "
                 f"{gallery.from_reference(rel, 'the exact ' + exact)}")
 
     config_symbols = {"initial.theta": r"\theta_0", "initial.theta_dot": r"\dot{\theta}_0",
@@ -60,63 +62,110 @@ class PendulumReport(Report):
             names.remove("boundary_value")
         return names
 
-    #: 1 − k below this is "near the separatrix" in the prose
-    SEPARATRIX_GAP = 1e-3
-
     @classmethod
     def prose_case(cls, data):
-        """Libration or rotation, near the separatrix (1 − k < :attr:`SEPARATRIX_GAP`) or
-        not, and how far the exact period is from the small-angle one."""
+        """The stored facts the words follow: the motion (libration or rotation, by the sign
+        of 1 − k²), how close to the separatrix (|1 − k²| against the stored thresholds),
+        how much longer the exact period is than the small-angle one (against its stored
+        threshold), the reference, and the boundary-value problem's conjugate points."""
         if data.sweep is not None:
             return {}
         a = data.analysis
-        period, small = float(a["period"]), float(a["period_small_angle"])
-        k = float(a["k"])
-        excess = period / small - 1.0
+        m1 = float(a["complementary_parameter"])
+        proximity = str(a.get("separatrix_proximity", "far"))
+        motion = str(a["motion"])
         case = {}
-        if data.config.boundary is not None:
+        bvp = a.get("boundary_value")
+        if bvp is not None and "conjugate_points" in bvp:
             # the Lagrangian action's k = 1 second variation changes sign at ω0 T = π
-            x = float(a["omega0"]) * data.config.boundary.T
-            case = {"omega_T": fmt(x), "conjugate": x > math.pi,
-                    "conjugate_points": int(x // math.pi)}
-        return case | {"motion": str(a["motion"]), "k": fmt(k, 6),
-                "near_separatrix": abs(1.0 - k) < cls.SEPARATRIX_GAP,
-                "gap": fmt_err(abs(1.0 - k)), "amplitude": fmt(float(a.get("amplitude", math.nan)), 6),
-                "period": fmt(period, 5), "period_small": fmt(small, 5),
-                "excess": f"{excess * 100:.2g} %" if excess < 1 else f"{excess + 1:.3g} times",
-                "small": excess < 0.01}
+            points = int(bvp["conjugate_points"])
+            case = {"omega_T": fmt(float(a["omega0"]) * data.config.boundary.T),
+                    "conjugate": points > 0, "conjugate_points": points}
+        excess = a.get("period_excess")
+        excess = None if excess is None else float(excess)
+        centre = float(a.get("libration_centre", 0.0))
+        amplitude = fmt(float(a.get("amplitude", math.nan)), 6)
+        return case | {
+            "motion": motion, "proximity": proximity,
+            "separatrix": proximity == "on",
+            "near_separatrix": proximity == "near",
+            "on_below": fmt(float(a.get("separatrix_on_below", math.nan))),
+            "near_below": fmt(float(a.get("separatrix_near_below", math.nan))),
+            "k": fmt(float(a["k"]), 6),
+            # near the separatrix k prints as 1: its distance says which side
+            "gap": fmt_err(abs(m1)),
+            "amplitude": amplitude,
+            "swing": (f"{fmt(centre / math.pi)}π ± {amplitude} rad" if centre
+                      else f"±{amplitude} rad"),
+            "period": fmt(float(a["period"]), 5),
+            "period_small": fmt(float(a["period_small_angle"]), 5),
+            "has_small_angle": "small_angle_solution" in a,
+            "excess": "" if excess is None else (
+                f"{fmt(excess * 100, 2)} %" if excess < 1 else f"{fmt(excess + 1, 3)} times"),
+            "small": excess is not None and excess < float(a["small_angle_close_below"]),
+            "exact_reference": bool(a.get("reference_is_exact", True)),
+            "sense": str(a.get("rotation_sense", "")),
+        }
+
+    @classmethod
+    def _longer(cls, c) -> str:
+        """``0.25 % longer than the small-angle 2π√(l/g)`` or ``5.72 times the small-angle
+        period``."""
+        if c["excess"].endswith("times"):
+            return f"{c['excess']} the small-angle period"
+        return f"{c['excess']} longer than the small-angle 2π√(l/g)"
 
     @classmethod
     def describe(cls, data):
         """``A pendulum librating with amplitude 0.2 rad (k = 0.0998), period 2.0116 s:
-        0.25 % longer than the small-angle 2π√(l/g)``."""
+        0.25 % longer than the small-angle 2π√(l/g)``; a rotation, or a motion on or near
+        the separatrix, in its own words."""
         if data.sweep is not None:
             return super().describe(data)
         c = cls.prose_case(data)
+        if c["separatrix"]:
+            return (f"A pendulum on its separatrix: its energy is the upright's to within "
+                    f"|1 − k²| = {c['gap']} (below {c['on_below']}), so it lingers at the "
+                    "upright θ = ±π")
         if c["motion"] == "rotation":
+            if c["near_separatrix"]:
+                return (f"A pendulum rotating just above the separatrix (k² − 1 = {c['gap']}): "
+                        f"one turn takes {c['period']} s, most of it near the upright")
             return (f"A pendulum rotating over the top (k = {c['k']}): one turn takes "
                     f"{c['period']} s")
-        where = " just inside the separatrix" if c["near_separatrix"] else ""
-        longer = (f"{c['excess']} the small-angle period" if c["excess"].endswith("times")
-                  else f"{c['excess']} longer than the small-angle 2π√(l/g)")
-        k = f"1 − k = {c['gap']}" if c["near_separatrix"] else f"k = {c['k']}"
-        return (f"A pendulum librating{where} with amplitude {c['amplitude']} rad "
-                f"({k}), period {c['period']} s: {longer}")
+        if c["near_separatrix"]:
+            return (f"A pendulum librating just inside the separatrix with amplitude "
+                    f"{c['swing']} (1 − k² = {c['gap']}), period {c['period']} s: "
+                    f"{cls._longer(c)}")
+        return (f"A pendulum librating with amplitude {c['swing']} (k = {c['k']}), period "
+                f"{c['period']} s: {cls._longer(c)}")
+
+    @classmethod
+    def _motion_words(cls, c) -> str:
+        """The motion row of the summary, from :meth:`prose_case`."""
+        if c["separatrix"]:
+            return f"on the separatrix, |1 − k²| = {c['gap']} (below {c['on_below']})"
+        if c["near_separatrix"]:
+            side = "1 − k²" if c["motion"] == "libration" else "k² − 1"
+            where = "inside" if c["motion"] == "libration" else "above"
+            return f"{c['motion']} just {where} the separatrix, {side} = {c['gap']}"
+        return f"{c['motion']}, k = {c['k']}"
 
     @classmethod
     def headline(cls, data):
         p, ini = data.config.params, data.config.initial
         a = data.analysis
+        c = cls.prose_case(data)
+        reference = "exact" if c["exact_reference"] else "reference run"
+        per = "per turn, exact" if c["motion"] == "rotation" else "exact"
         return [
             ("parameters", f"g = {fmt(p.g)} m/s², l = {fmt(p.l)} m, m = {fmt(p.m)} kg"),
             ("initial state", f"θ0 = {fmt(ini.theta)} rad, θ̇0 = {fmt(ini.theta_dot)} rad/s"),
-            # near the separatrix k prints as 1: its distance from 1 says which side
-            ("motion", f"{a['motion']}, " + (f"1 − k = {fmt_err(abs(1.0 - float(a['k'])))}"
-                                            if abs(1.0 - float(a["k"])) < cls.SEPARATRIX_GAP
-                                            else f"k = {fmt(a['k'])}")),
-            ("period", f"{fmt(a['period'])} s exact; small-angle 2π/ω0 = "
+            ("motion", cls._motion_words(c)),
+            ("period", f"{fmt(a['period'])} s {per}; small-angle 2π/ω0 = "
                        f"{fmt(a['period_small_angle'])} s"),
-            ("max |θ − θ_exact|", f"{fmt_err(a['theta_max_error'])} rad over the run"),
+            (f"max |θ − θ_{'exact' if c['exact_reference'] else 'ref'}|",
+             f"{fmt_err(a['theta_max_error'])} rad over the run ({reference})"),
         ]
 
     @classmethod
@@ -132,14 +181,20 @@ class PendulumReport(Report):
             extra={"theta": small["theta"], "theta_dot": small["theta_dot"]}
             if small is not None else None,
         )
+        c = cls.prose_case(data)
+        ref = "exact" if c["exact_reference"] else "ref"
         err = common_plots.error_against_time(
-            run.t, {"|θ − θ_exact| [rad]": run["theta"] - th_ex,
-                    "|dθ/dt − (dθ/dt)_exact| [rad/s]": run["theta_dot"] - thd_ex},
+            run.t, {f"|θ − θ_{ref}| [rad]": run["theta"] - th_ex,
+                    f"|dθ/dt − (dθ/dt)_{ref}| [rad/s]": run["theta_dot"] - thd_ex},
             ylabel="absolute error")
+        reference = ("the exact elliptic-function solution" if c["exact_reference"] else
+                     "a reference run of scipy's DOP853 at rtol 1e-14")
+        small = (" and the small-angle solution, notes (1.19)" if c["has_small_angle"]
+                 else "")
         return SectionContent(figures=[
-            cls.figure("timeseries", fig, "θ(t) and θ̇(t) integrated, against the exact "
-                       "elliptic-function solution and the small-angle solution, notes (1.19)."),
-            cls.figure("error", err, "Error of the integration against the exact solution."),
+            cls.figure("timeseries", fig, f"θ(t) and θ̇(t) integrated, against {reference}"
+                                          f"{small}."),
+            cls.figure("error", err, f"Error of the integration against {reference}."),
         ])
 
     @classmethod
@@ -167,19 +222,21 @@ class PendulumReport(Report):
                  ("measured from θ(t)", f"{fmt(a['period_measured'])} s"),
                  ("relative difference", fmt_err(abs(a['period_measured'] / a['period'] - 1)))]
         notes = [] if libration else [
-            "This scene rotates; its period is the time of one full turn, 2K(1/k²)/(k ω0)."]
+            f"This scene rotates: its period is the time of one full turn, 2K(1/k²)/(k ω0) = "
+            f"{fmt(a['period'])} s."]
         if not math.isfinite(a["period_measured"]):
             notes.append("No measured period: " + cls._no_period_reason(data) + ".")
         return SectionContent(figures=[cls.figure(
-            "period", fig, "Period against amplitude: exact 4K(k)√(l/g), k = sin(θ0/2), "
-            "against the small-angle period 2π√(l/g).")], facts=facts, notes=notes)
+            "period", fig, "Period against amplitude: exact 4K(k)√(l/g), k = sin(θmax/2) for "
+            "the amplitude θmax, against the small-angle period 2π√(l/g).")], facts=facts,
+            notes=notes)
 
     @classmethod
     def _no_period_reason(cls, data) -> str:
         """Which reason for a missing measured period applies."""
         period = float(data.analysis["period"])
         if not math.isfinite(period):
-            return "the exact period is infinite (the pendulum is on the separatrix)"
+            return "the exact period is infinite"
         return no_period_reason(data, period, noun="periods",
                                 min_samples=MIN_SAMPLES_PER_PERIOD,
                                 fallback="θ(t) crosses its centre upward fewer than twice")
@@ -221,15 +278,17 @@ class PendulumReport(Report):
         b = data.config.boundary
         exact = bvp["action_exact"]
         rows = [["linear, closed form, notes (2.4)", fmt(exact), "—"],
-                ["linear, solve_bvp + Simpson quadrature", fmt(bvp["action_numeric"]),
-                 fmt_err(abs(bvp["action_numeric"] / exact - 1))]]
+                ["linear, scipy's collocation solver + Simpson quadrature",
+                 fmt(bvp["action_numeric"]),
+                 _relative(bvp["action_numeric"], exact)]]
         phase = data.analysis.get("phase_space_action")
         if phase is not None:
             rows += [[f"linear, closed form, Simpson quadrature of {what}",
-                      fmt(phase[key]), fmt_err(abs(phase[key] / exact - 1))]
+                      fmt(phase[key]), _relative(phase[key], exact)]
                      for what, key in (("L", "action_lagrangian"),
                                        ("p θ̇ − H, notes §5", "action_hamiltonian"))]
-        rows.append(["nonlinear pendulum, solve_bvp", fmt(bvp["action_nonlinear"]),
+        rows.append(["nonlinear pendulum, scipy's collocation solver",
+                     fmt(bvp["action_nonlinear"]),
                      "(different problem)"])
         tables = [Table(caption="Action S = ∫ L dt, notes (2.4), along the boundary-value "
                         "solution; on the solution p = m l² θ̇, so ∫ (p θ̇ − H) dt is the same "
@@ -266,7 +325,7 @@ class PendulumReport(Report):
                          fmt_err(abs(e[key] - reference) / scale) if scale else "—"])
         return Table(
             caption=f"δS = p δq − H δt, notes (7.1–7.15): the action of the first table "
-                    f"(solve_bvp + Simpson) differentiated by central differences of "
+                    f"(collocation + Simpson) differentiated by central differences of "
                     f"neighbouring boundary-value solutions, Richardson-extrapolated from "
                     f"steps h and 2h (h = {fmt(e['step_theta'], 2)} rad in θ0 and θ1, "
                     f"{fmt(e['step_T'], 2)} s in T), against the momentum and energy of the "
@@ -331,3 +390,8 @@ class PendulumReport(Report):
     def section_energy(cls, data):
         return cls.invariants_section(data, labels={"energy": "energy E"},
                                       caption="Energy drift relative to m g l.")
+
+
+def _relative(value: float, exact: float) -> str:
+    """|value/exact − 1| as an error, or "—" where the closed form is 0 (θ0 = θ1 = 0)."""
+    return fmt_err(abs(value / exact - 1)) if exact else "—"

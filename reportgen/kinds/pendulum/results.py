@@ -26,6 +26,20 @@ SCHEMA = ResultsSchema(
         Q("behaviour", "", "", "physical behaviour: libration, rotation or separatrix",
           kind="str", optional=True),
         Q("complementary_parameter", "1 - k^2", "1", "complementary elliptic parameter"),
+        Q("separatrix_proximity", "", "", "on, near or far from the separatrix: |1 - k^2| "
+          "against separatrix_on_below and separatrix_near_below", kind="str"),
+        Q("separatrix_on_below", "", "1", "|1 - k^2| below this: on the separatrix"),
+        Q("separatrix_near_below", "", "1", "|1 - k^2| below this: near the separatrix"),
+        Q("reference_is_exact", "", "", "whether the reference is the exact Jacobi-sn "
+          "solution (else a reference run)", kind="bool"),
+        Q("libration_centre", r"\theta_c", "rad", "the bottom a libration swings about "
+          "(the multiple of 2 pi nearest theta0)", optional=True),
+        Q("period_excess", r"T/T_0 - 1", "1", "how much longer the exact period is than the "
+          "small-angle one", optional=True),
+        Q("small_angle_close_below", "", "1", "period_excess below this: the exact and "
+          "small-angle periods nearly agree", optional=True),
+        Q("rotation_sense", "", "", "increasing or decreasing theta of a rotation",
+          kind="str", optional=True),
         Q("reference", "", "", "what the reference solution is", kind="str"),
         Q("theta_max_error", r"\max|\theta - \theta_\mathrm{exact}|", "rad",
           "largest angle error over the run"),
@@ -54,7 +68,7 @@ SCHEMA = ResultsSchema(
         Q("boundary_value/theta_exact", r"\theta", "rad",
           "linearised boundary-value solution, notes (1.21), closed form", ("bvp_t",), optional=True),
         Q("boundary_value/theta_numeric", r"\theta", "rad",
-          "linearised boundary-value solution by solve_bvp", ("bvp_t",), optional=True),
+          "linearised boundary-value solution by scipy's collocation solver", ("bvp_t",), optional=True),
         Q("boundary_value/theta_nonlinear", r"\theta", "rad",
           "nonlinear pendulum's boundary-value solution", ("bvp_t",), optional=True),
         Q("boundary_value/action_exact", "S", "J s", "action, notes (2.4), in closed form",
@@ -65,13 +79,15 @@ SCHEMA = ResultsSchema(
           "action of the nonlinear boundary-value solution", optional=True),
         Q("boundary_value/nonlinear_converged", "", "", "whether the nonlinear solve "
           "converged", kind="bool", optional=True),
+        Q("boundary_value/conjugate_points", "", "1", "conjugate points omega0 T = pi, "
+          "2 pi, ... before T: floor(omega0 T/pi)", kind="int", optional=True),
         # δS = p δq − H δt, notes (7.1–7.15): differences of the computed action
         Q("end_variation/dS_dtheta0", r"\partial S/\partial\theta_0", "J s",
-          "dS/dtheta0 by central differences of the solve_bvp action", optional=True),
+          "dS/dtheta0 by central differences of the collocation action", optional=True),
         Q("end_variation/dS_dtheta1", r"\partial S/\partial\theta_1", "J s",
-          "dS/dtheta1 by central differences of the solve_bvp action", optional=True),
+          "dS/dtheta1 by central differences of the collocation action", optional=True),
         Q("end_variation/dS_dT", r"\partial S/\partial T", "J",
-          "dS/dT by central differences of the solve_bvp action", optional=True),
+          "dS/dT by central differences of the collocation action", optional=True),
         Q("end_variation/momentum_start", r"p(0)", "J s",
           "m l^2 theta_dot(0) of the closed-form solution", optional=True),
         Q("end_variation/momentum_end", r"p(T)", "J s",

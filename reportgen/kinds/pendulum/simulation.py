@@ -9,7 +9,7 @@ import math
 import numpy as np
 
 from ...lazy import lazy_module
-from ...scene.content import member_text
+from ...scene.content import fmt, fmt_err, member_text
 from ...scene.integration import IntegratingSimulation
 from ...scene.results import AuditCase, Check, Results
 from .config import MIN_SAMPLES_PER_PERIOD, PendulumConfig
@@ -80,18 +80,50 @@ class PendulumSimulation(IntegratingSimulation):
     def regime(self) -> str:
         return "libration" if self.m1 > 0.0 else "rotation"
 
-    #: |1 − k²| below this: on the separatrix (the motion creeps towards the upright)
-    SEPARATRIX_M1 = 1e-6
+    @property
+    def proximity(self) -> str:
+        """"on", "near" or "far" from the separatrix (:func:`theory.separatrix_proximity`)."""
+        return theory.separatrix_proximity(self.m1)
+
+    #: |T/T0 − 1| below this: the exact and the small-angle periods "nearly agree"
+    SMALL_ANGLE_CLOSE = 0.01
+
+    @property
+    def centre(self) -> float:
+        """The bottom a libration swings about: the multiple of 2π nearest θ0 [rad]."""
+        return 2.0 * math.pi * round(self.config.initial.theta / (2.0 * math.pi))
 
     def _behaviour(self, a: dict) -> str:
-        """Libration, rotation, or (|1 − k²| < SEPARATRIX_M1) the separatrix, in words."""
-        if abs(self.m1) < self.SEPARATRIX_M1:
-            return (f"separatrix: 1 − k² = {self.m1:.2g}, the pendulum creeps towards the "
-                    "upright position, the period growing without bound")
-        if self.m1 > 0:
-            return (f"libration: swings between ±{a.get('amplitude', math.nan):.4g} rad, "
-                    "never over the top")
-        return "rotation: goes over the top, θ grows without bound"
+        """The motion in words, chosen by :func:`theory.motion_case` (|1 − k²| against
+        SEPARATRIX_ON and SEPARATRIX_NEAR, and the sign of 1 − k²)."""
+        case = theory.motion_case(self.m1)
+        period = fmt(a["period"], 5)
+        if case == "separatrix":
+            return (f"on the separatrix: the energy is the upright's, 2 m g l above the bottom, "
+                    f"to within |1 − k²| = {fmt_err(abs(self.m1))} of it (below "
+                    f"{fmt(theory.SEPARATRIX_ON)}); the pendulum lingers at the upright "
+                    f"θ = ±π, which it approaches or leaves only asymptotically, and its exact "
+                    f"period, {period} s, is set by that residue alone")
+        if case == "rotation":
+            sense = "increasing" if self.config.initial.theta_dot > 0 else "decreasing"
+            return f"rotation: goes over the top, θ {sense} by 2π every {period} s"
+        if case == "rotation near the separatrix":
+            return (f"rotation just above the separatrix (k² − 1 = {fmt_err(-self.m1)}, below "
+                    f"{fmt(theory.SEPARATRIX_NEAR)}): goes over the top once every {period} s, "
+                    "spending most of each turn beyond ±135°, slow near the upright")
+        amplitude = self._swing(a)
+        if case == "libration near the separatrix":
+            return (f"libration just inside the separatrix (1 − k² = {fmt_err(self.m1)}, below "
+                    f"{fmt(theory.SEPARATRIX_NEAR)}): swings between {amplitude} with the "
+                    f"finite period {period} s, spending most of each period beyond ±135°, "
+                    "near the upright")
+        return f"libration: swings between {amplitude}, never over the top"
+
+    @staticmethod
+    def _swing(a: dict) -> str:
+        """``±2.5 rad``, or ``2π ± 2.28 rad`` when the bottom swung about is not θ = 0."""
+        centre, amplitude = float(a.get("libration_centre", 0.0)), fmt(a["amplitude"], 6)
+        return f"{fmt(centre / math.pi)}π ± {amplitude} rad" if centre else f"±{amplitude} rad"
 
     @property
     def has_exact_solution(self) -> bool:
@@ -99,8 +131,8 @@ class PendulumSimulation(IntegratingSimulation):
 
     @property
     def reference_label(self) -> str:
-        if self.has_exact_solution:
-            return "exact (Jacobi sn)"
+        if self.has_exact_solution:  # sn for a libration, am for a rotation
+            return "exact (Jacobi sn)" if self.m1 > 0 else "exact (Jacobi am)"
         return "reference run (DOP853, rtol 1e-14)"
 
     def reference_solution(self, t):
@@ -108,7 +140,12 @@ class PendulumSimulation(IntegratingSimulation):
         double precision resolves it — the reference run at rtol 1e-14 (said so in the report)."""
         p, ini = self.config.params, self.config.initial
         if self.has_exact_solution:
-            return core.exact_solution(t, ini.theta, ini.theta_dot, p.g, p.l)
+            # taken about the bottom the libration swings about: core's phase of a start near
+            # ±2π is off by a half-period (sin(θ0/2) changes sign with each turn)
+            centre = self.centre if self.m1 > 0 else 0.0
+            theta, theta_dot = core.exact_solution(t, ini.theta - centre, ini.theta_dot, p.g,
+                                                   p.l)
+            return theta + centre, theta_dot
         y = self.reference_run(core.model(p.g, p.l), np.array([ini.theta, ini.theta_dot]),
                                np.asarray(t, dtype=np.float64))
         return y[:, 0], y[:, 1]
@@ -156,16 +193,30 @@ class PendulumSimulation(IntegratingSimulation):
             "k": math.sqrt(self.k2),
             "motion": self.regime,
             "complementary_parameter": self.m1,
+            "separatrix_proximity": self.proximity,
+            "separatrix_on_below": theory.SEPARATRIX_ON,
+            "separatrix_near_below": theory.SEPARATRIX_NEAR,
             "reference": self.reference_label,
+            "reference_is_exact": self.has_exact_solution,
             "theta_max_error": float(np.max(err)),
             "theta_dot_max_error": float(np.max(np.abs(theta_dot - exact_theta_dot))),
         })
         if self.m1 > 0:
-            # the linearised solution (1.19), drawn against the run; meaningless for rotation
-            th_lin, thd_lin = core.small_angle_solution(t, ini.theta, ini.theta_dot, p.g, p.l)
-            results.analysis["small_angle_solution"] = {"theta": th_lin, "theta_dot": thd_lin}
             results.analysis["amplitude"] = core.libration_amplitude(ini.theta, ini.theta_dot,
                                                                      self.omega0)
+            results.analysis["libration_centre"] = self.centre
+        if self.m1 > 0 and self.proximity != "on":
+            # the linearised solution (1.19) about the bottom the pendulum swings about, drawn
+            # against the run; meaningless for a rotation or on the separatrix
+            th_lin, thd_lin = core.small_angle_solution(t, ini.theta - self.centre,
+                                                        ini.theta_dot, p.g, p.l)
+            results.analysis["small_angle_solution"] = {"theta": th_lin + self.centre,
+                                                        "theta_dot": thd_lin}
+            results.analysis["period_excess"] = period * self.omega0 / (2 * math.pi) - 1.0
+            results.analysis["small_angle_close_below"] = self.SMALL_ANGLE_CLOSE
+        elif self.m1 < 0:
+            results.analysis["rotation_sense"] = "increasing" if ini.theta_dot > 0 else (
+                "decreasing")
         results.analysis["phase_portrait"] = self._phase_portrait(theta_dot)
         if not self.family_member:  # physical behaviour, not a status (a sweep: per member)
             results.analysis["behaviour"] = self._behaviour(results.analysis)
@@ -176,8 +227,10 @@ class PendulumSimulation(IntegratingSimulation):
             results.checks.append(Check("period (measured from θ(t))", measured, period, "s",
                                         "4K(k)·√(l/g), DLMF 22.19.4" if self.m1 > 0
                                         else "2K(1/k²)/(k ω0), DLMF 22.19.7"))
+        exact_name = ("Jacobi sn solution, DLMF 22.19.2" if self.m1 > 0 else
+                      "Jacobi amplitude solution θ/2 = am(u | 1/k²), DLMF §22.19")
         results.checks.append(Check("θ(t_end)", float(theta[-1]), float(exact_theta[-1]), "rad",
-                                    "Jacobi sn solution, DLMF 22.19.2" if self.has_exact_solution
+                                    exact_name if self.has_exact_solution
                                     else self.reference_label, scale=math.pi))
         e = main.invariants["energy"]
         results.checks.append(Check("energy E(t_end)", float(e[-1]), float(e[0]), "J",
@@ -185,6 +238,9 @@ class PendulumSimulation(IntegratingSimulation):
         b = self.config.boundary
         if b is not None:
             bvp = core.boundary_value_problem(b.theta0, b.theta1, b.T, p.g, p.l, p.m)
+            # the Lagrangian action's second variation along sin(kπt/T) is negative for each
+            # k < ω0 T/π: the conjugate points ω0 T = π, 2π, … passed
+            bvp["conjugate_points"] = int(self.omega0 * b.T // math.pi)
             results.analysis["boundary_value"] = bvp
             results.checks.append(Check("action S of the linear BVP (numerical quadrature)",
                                         bvp["action_numeric"], bvp["action_exact"], "J·s",

@@ -24,9 +24,10 @@ from __future__ import annotations
 
 from ...scene.content import fmt as _fmt
 from ..inertia import shape_in_words
+from ..inertia.config import body_symmetry
 from .config import PRESETS, RigidBodyConfig
 from .report import RigidBodyReport
-from .simulation import RigidBodySimulation
+from .simulation import FLIP_ANGLE, RigidBodySimulation, nearest_axis
 
 
 def fmt(x, digits: int = 10) -> str:
@@ -45,8 +46,9 @@ class RigidBodyScene(RigidBodySimulation, RigidBodyReport):
     @classmethod
     def default_title(cls, config):
         """``Torque-free asymmetric body (I = 1, 2, 3 kg m²) spun near its intermediate
-        axis``: the case by the moments (spherical, symmetric, asymmetric), the spin by
-        the largest component of I ω."""
+        axis``: the case by the moments (spherical, symmetric, asymmetric, equal within
+        ``EQUAL_MOMENTS_RTOL``), "spun near" an axis only when ω0 is within ``FLIP_ANGLE``
+        of it (else ω0 itself)."""
         omega = [float(w) for w in config.initial.omega]
         spin = "(" + ", ".join(fmt(w, 4) for w in omega) + ") rad/s"
         if config.params is None:
@@ -58,11 +60,13 @@ class RigidBodyScene(RigidBodySimulation, RigidBodyReport):
                           else ", struck by an impulse")
             return title
         moments = [float(config.params.I1), float(config.params.I2), float(config.params.I3)]
-        body = {1: "spherical top", 2: "symmetric body", 3: "asymmetric body"}[
-            len({round(m / max(moments), 12) for m in moments})]
+        case, _axis = body_symmetry(moments)
+        body = {"spherical": "spherical top", "symmetric": "symmetric body",
+                "asymmetric": "asymmetric body"}[case]
         title = f"Torque-free {body} (I = {', '.join(fmt(m, 4) for m in moments)} kg m²)"
-        if body == "asymmetric body":
-            near = max(range(3), key=lambda k: abs(moments[k] * omega[k]))
+        near, angle = nearest_axis(omega)
+        if case == "asymmetric" and config.impulse is None and angle < FLIP_ANGLE:
+            # near an axis: within FLIP_ANGLE of it (the stored spin_axis fact)
             rank = sorted(moments).index(moments[near])
             which = ("smallest-moment", "intermediate", "largest-moment")[rank]
             title += f" spun near its {which} axis"

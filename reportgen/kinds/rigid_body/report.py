@@ -92,7 +92,7 @@ class RigidBodyReport(Report):
             return super().gallery_headline(data)
         exact = "the exact " + gallery.reference_words(omega.source)
         precession = gallery.worst_check(data, "body-frame precession rate Ω")
-        if precession is not None:  # the symmetric case in words (a light read: checks)
+        if precession is not None and precession.reference != 0:  # the symmetric case
             return (f"ω precesses about the figure axis at Ω = "
                     f"{fmt(precession.reference, 4)} rad/s; ω(t) "
                     f"{gallery.from_reference(omega.rel_error, 'the exact uniform precession')}")
@@ -153,25 +153,53 @@ class RigidBodyReport(Report):
 
     @classmethod
     def prose_case(cls, data):
-        """Spherical, symmetric (figure axis, prolate or oblate) or asymmetric (which
-        configured axis has the smallest, intermediate and largest moment, the elliptic
-        branch), and whether the scene shows the intermediate-axis flip."""
+        """Spherical, symmetric (figure axis, prolate or oblate, the sense of the
+        precession) or asymmetric (which configured axis has the smallest, intermediate and
+        largest moment, the elliptic branch), the axis the spin starts nearest, whether the
+        scene shows the intermediate-axis flip and how many flips the run holds, and what
+        the impulse struck: each from the archive's stored classification."""
         a = data.analysis
         moments = [float(x) for x in a["principal_moments"]]
         case = {"spherical": bool(a.get("spherical", False)), "symmetric": "symmetric" in a,
                 "asymmetric": "elliptic" in a, "flip": "flip" in a,
+                "splitting": data.study is not None and any(
+                    "splitting" in str(m) for m in data.study["method"]),
                 "unstable_axes": [int(k[-1]) for k, v in a["axis_stability"].items()
                                   if v["verdict"] == "unstable"]}
+        spin = a.get("spin_axis")
+        if spin is not None:
+            case.update(nearest=int(spin["nearest"]), angle=fmt(float(spin["angle"]), 3),
+                        near_angle=fmt(float(spin["near_angle"]), 3),
+                        closest=fmt(float(spin.get("intermediate_closest_angle", math.nan)),
+                                    3))
+        if case["flip"]:
+            case["flips"] = len(np.atleast_1d(a["flip"]["flip_times"]))
+        circled = (a.get("polhode_ellipsoid") or {}).get("circled_axis")
+        case["circled"] = int(circled) if circled is not None else None
         if case["symmetric"]:
-            axis = int(a["symmetric"]["axis"])
+            s = a["symmetric"]
+            axis = int(s["axis"])
             transverse = [k for k in (1, 2, 3) if k != axis]
-            case.update(axis=axis, transverse=transverse,
-                        shape="oblate" if moments[axis - 1] > moments[transverse[0] - 1]
-                        else "prolate")
+            shape = s.get("shape") or ("oblate" if moments[axis - 1] > moments[transverse[0] - 1]
+                                       else "prolate")
+            case.update(axis=axis, transverse=transverse, shape=str(shape),
+                        sense=str(s.get("sense", "prograde" if shape == "oblate"
+                                        else "retrograde")))
+            case["steady"] = case["sense"].startswith("steady")
         if case["asymmetric"]:
             smallest, intermediate, largest = axes_by_moment(a)
+            branch = str(a["elliptic"]["branch"])
             case.update(smallest=smallest, intermediate=intermediate, largest=largest,
-                        branch=str(a["elliptic"]["branch"]))
+                        branch=branch,
+                        circled_axis=largest if "largest" in branch else smallest,
+                        starts_near_intermediate=spin is not None
+                        and int(spin["nearest"]) == intermediate
+                        and float(spin["angle"]) < float(spin["near_angle"]))
+        imp = a.get("impulse")
+        if imp is not None:
+            case.update(impulse_mass="cm_velocity" in imp,
+                        apex=data.config.get("impulse", {}).get("at") == "apex",
+                        on_figure_axis=bool(imp.get("point_on_figure_axis", False)))
         return case
 
     @classmethod
@@ -270,9 +298,12 @@ class RigidBodyReport(Report):
                             f"{fmt(float(p['L_squared']))} (kg m²/s)²")]
         symmetric = data.analysis.get("symmetric")
         if symmetric is not None:  # no intermediate moment, no separatrix to be off
+            steady = str(symmetric.get("sense", "")).startswith("steady")
             facts.append(("polhode (symmetric body)",
-                          f"a circle about the figure axis {int(symmetric['axis'])}, "
-                          f"|ω⊥| = {fmt(float(symmetric['omega_perp']))} rad/s constant"))
+                          (f"a point (a steady rotation {str(symmetric['sense'])[7:]}), "
+                           if steady else
+                           f"a circle about the figure axis {int(symmetric['axis'])}, ")
+                          + f"|ω⊥| = {fmt(float(symmetric['omega_perp']))} rad/s constant"))
         else:
             facts.append((f"(L² − 2T·I{mid})/(2T·I{mid}), I{mid} the intermediate moment",
                           f"{fmt(float(p['separatrix_offset']), 4)}: "
@@ -333,10 +364,17 @@ class RigidBodyReport(Report):
             run = data.runs["main"]
             k = int(f["axis"]) - 1
             fig = plots.flips(run.t, run.y[:, :3], envelope=f["growth_envelope"])
+            count = len(np.atleast_1d(f["flip_times"]))
+            flipped = {0: "the run ends before the body's first flip",
+                       1: "the body flips over once within the run"}.get(
+                count, f"the body flips over {count} times within the run")
+            closest = (a.get("spin_axis") or {}).get("intermediate_closest_angle")
+            where = (f"the polhode passes within {fmt(float(closest), 3)} rad of the "
+                     f"intermediate axis {k + 1}" if closest is not None else
+                     f"spin started close to the intermediate axis {k + 1}")
             content.figures.append(cls.figure(
-                "flips", fig, f"Dzhanibekov effect: spin started close to the intermediate axis "
-                f"{k + 1}; the perturbation grows at γ = {fmt(f['growth_rate'])} 1/s and the "
-                "body flips over, again and again."))
+                "flips", fig, f"Dzhanibekov effect: {where}; the perturbation grows at "
+                f"γ = {fmt(f['growth_rate'])} 1/s and {flipped}."))
             content.facts += [
                 ("flips observed", str(len(f["flip_times"]))),
                 ("time between flips", f"{fmt(f['half_period_measured'])} s measured; "
@@ -347,12 +385,14 @@ class RigidBodyReport(Report):
     def section_symmetric_precession(cls, data):
         s = data.analysis["symmetric"]
         figures = []
-        if math.isfinite(float(s["Omega_measured"])):  # ω⊥ = 0: no phase to draw
+        steady = str(s.get("sense", "")).startswith("steady")
+        if math.isfinite(float(s["Omega_measured"])) and not steady:  # no turning to draw
             run = data.runs["main"]
             axis = int(s["axis"])
             b, c = axis % 3 + 1, (axis + 1) % 3 + 1
-            sense = ("with the spin (prograde)" if float(s["Omega"]) * float(
-                run.y[0, axis - 1]) < 0 else "against the spin (retrograde)")
+            sense = {"prograde": "with the spin (prograde)",
+                     "retrograde": "against the spin (retrograde)"}[
+                cls.prose_case(data)["sense"]]
             fig = plots.symmetric_precession(run.t, run.y[:, :3], axis, float(s["Omega"]))
             figures.append(cls.figure(
                 "symmetric_precession", fig,
@@ -367,8 +407,9 @@ class RigidBodyReport(Report):
             ("Ω measured (minus the slope of the phase of ω⊥)",
              f"{fmt(s['Omega_measured'], against=s['Omega'])} rad/s"),
             ("|ω⊥|", f"{fmt(s['omega_perp'])} rad/s (constant)"),
-            ("precession of the figure axis about L, |L|/I⊥", f"{fmt(s['space_precession_rate'])}"
-                                                                " rad/s")])
+            ("precession of the figure axis about L, |L|/I⊥",
+             "none: the figure axis lies along L" if s.get("sense") ==
+             "steady about the figure axis" else f"{fmt(s['space_precession_rate'])} rad/s")])
 
     @classmethod
     def section_geometric_integrator(cls, data):
@@ -403,7 +444,7 @@ class RigidBodyReport(Report):
                           header=["quantity", "splitting", f"main run "
                                   f"({method_name(data, data.runs['main'])})"], rows=rows)],
             facts=[("max |ω − exact ω| (splitting)", f"{fmt_err(a['splitting_omega_max_error'])}"
-                    f" rad/s in {float(split.attrs['wall_time_s']) * 1e3:.3g} ms, "
+                    f" rad/s in {fmt(float(split.attrs['wall_time_s']) * 1e3, 3)} ms, "
                     f"{int(split.attrs['nsteps'])} steps")])
 
     @classmethod

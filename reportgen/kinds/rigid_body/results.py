@@ -39,6 +39,21 @@ SCHEMA = ResultsSchema(
         *axis_stability_results("1/s", jacobian=True),
         Q("spin", r"\Omega", "rad/s", "initial |omega|"),
         Q("spherical", "", "", "whether all three moments are equal", kind="bool"),
+        Q("body", "", "", "spherical (three equal moments), symmetric (two) or asymmetric, "
+          "equal within equal_moments_rtol of the largest", kind="str", optional=True),
+        Q("equal_moments_rtol", "", "1", "share of the largest moment within which two "
+          "moments are equal", optional=True),
+        Q("spin_axis/nearest", "", "", "the principal axis (1, 2 or 3) nearest the initial "
+          "omega", kind="int", optional=True),
+        Q("spin_axis/angle", r"\alpha", "rad", "angle between the initial omega and that "
+          "axis (either sense)", optional=True),
+        Q("spin_axis/intermediate_closest_angle", r"\alpha_\mathrm{mid}", "rad",
+          "smallest angle between L and the intermediate axis over the polhode (an "
+          "asymmetric body); below near_angle the body flips", optional=True),
+        Q("spin_axis/near_angle", r"\alpha_\mathrm{near}", "rad", "the angle within which "
+          "the spin is said to be near an axis (and a polhode this near the intermediate "
+          "axis flips)",
+          optional=True),
         Q("omega_initial", r"\omega_0", "rad/s", "initial body-frame omega (after an impulse)",
           ("axis",)),
         Q("omega_max_error", r"\max|\omega - \omega_\mathrm{exact}|", "rad/s",
@@ -65,6 +80,12 @@ SCHEMA = ResultsSchema(
           "omega perpendicular to the symmetry axis", optional=True),
         Q("symmetric/space_precession_rate", r"|L|/I_\perp", "rad/s",
           "precession of the figure axis about L", optional=True),
+        Q("symmetric/shape", "", "", "oblate (figure-axis moment the largest) or prolate",
+          kind="str", optional=True),
+        Q("symmetric/sense", "", "", "how omega_perp turns in the body frame about the spin "
+          "omega_s: prograde (with it), retrograde (against it), or steady about the figure "
+          "(a transverse) axis when omega_perp (omega_s) is below 1e-9 of |omega|",
+          kind="str", optional=True),
         Q("polhodes/family", "L/|L|", "1", "polhodes of other energies on the L-sphere",
           ("sphere_curve", "sphere_point", "xyz")),
         Q("polhodes/separatrices", "L/|L|", "1", "separatrices on the L-sphere",
@@ -142,6 +163,9 @@ SCHEMA = ResultsSchema(
         Q("impulse/delta_omega", r"\Delta\omega", "rad/s",
           "jump of the body-frame omega, I^-1 (p x P)", ("axis",), optional=True),
         Q("impulse/mass", "M", "kg", "mass of the body", optional=True),
+        Q("impulse/point_on_figure_axis", "", "", "whether the struck point of a symmetric "
+          "body lies on its figure axis (off it by less than 1e-9 of its distance)",
+          kind="bool", optional=True),
         Q("impulse/cm_velocity", "V", "m/s", "centre-of-mass velocity P/M, space frame",
           ("xyz",), optional=True),
         Q("impulse/cm_path", r"r_\mathrm{cm}", "m", "centre of mass in space, V t",

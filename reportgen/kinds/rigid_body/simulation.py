@@ -9,8 +9,10 @@ import math
 import numpy as np
 
 from ...lazy import lazy_module
+from ...scene.content import fmt
 from ...scene.integration import IntegratingSimulation
 from ...scene.results import AuditCase, Check, Results, RunRecord
+from ..inertia.config import EQUAL_MOMENTS_RTOL, body_symmetry
 from .config import RigidBodyConfig, body_moments
 from .impulse import impulse_motion
 from .results import SCHEMA
@@ -21,8 +23,55 @@ study_core = lazy_module("reportgen.core.study")
 splitting = lazy_module("reportgen.core.models.rigid_body_splitting")
 poinsot = lazy_module("reportgen.core.models.rigid_body_poinsot")
 
-#: ω0 within this angle of the intermediate axis: the scene is a Dzhanibekov demonstration
+#: ω0 within this angle [rad] of a principal axis is "near" it; a polhode passing within it
+#: of the intermediate axis makes the scene a Dzhanibekov demonstration
 FLIP_ANGLE = 0.2
+#: |ω⊥| or |ω_s| below this share of |ω|: a symmetric body spins steadily (no precession)
+STEADY_RTOL = 1e-9
+
+
+def nearest_axis(omega) -> tuple[int, float]:
+    """The principal axis (0-based) nearest the direction of ``omega`` and the angle to it
+    [rad], either sense of the axis."""
+    w = np.asarray(omega, dtype=float)
+    norm = float(np.linalg.norm(w))
+    if norm == 0:
+        return 0, math.pi / 2
+    k = int(np.argmax(np.abs(w)))
+    return k, math.acos(min(1.0, abs(float(w[k])) / norm))
+
+
+def intermediate_closest_angle(moments, omega0) -> float:
+    """The smallest angle [rad] between the body-frame L and the intermediate axis (either
+    end) over the whole polhode of an asymmetric body: where the polhode crosses the plane
+    of the intermediate axis and the one it circles.  From Σ L_k² = L² and Σ L_k²/I_k = 2E:
+    circling the largest moment (L² > 2E·I_mid), L_mid² = (2E·I_max − L²) I_mid/(I_max − I_mid)
+    at L_min = 0; circling the smallest, L_mid² = (L² − 2E·I_min) I_mid/(I_mid − I_min)."""
+    I = np.asarray(moments, dtype=float)
+    w = np.asarray(omega0, dtype=float)
+    lo, mid, hi = np.argsort(I)
+    L2, E2 = float(np.sum((I * w) ** 2)), float(np.sum(I * w * w))
+    if L2 == 0:
+        return math.pi / 2
+    if L2 >= E2 * I[mid]:
+        top = (E2 * I[hi] - L2) * I[mid] / (I[hi] - I[mid])
+    else:
+        top = (L2 - E2 * I[lo]) * I[mid] / (I[mid] - I[lo])
+    return math.acos(min(1.0, math.sqrt(max(top, 0.0) / L2)))
+
+
+def precession_sense(moments, omega0, axis: int) -> str:
+    """How a symmetric body's ω⊥ turns in the body frame, seen along its spin ω_s:
+    "prograde" (with the spin: oblate, I_s > I⊥), "retrograde" (against it: prolate);
+    "steady about the figure axis" when ω⊥ vanishes, "steady about a transverse axis" when
+    ω_s does (within ``STEADY_RTOL`` of |ω|): no precession."""
+    I, w = np.asarray(moments, dtype=float), np.asarray(omega0, dtype=float)
+    norm = float(np.linalg.norm(w))
+    if float(np.linalg.norm(np.delete(w, axis))) <= STEADY_RTOL * norm:
+        return "steady about the figure axis"
+    if abs(float(w[axis])) <= STEADY_RTOL * norm:
+        return "steady about a transverse axis"
+    return "prograde" if I[axis] > I[(axis + 1) % 3] else "retrograde"
 
 
 class RigidBodySimulation(IntegratingSimulation):
@@ -62,29 +111,38 @@ class RigidBodySimulation(IntegratingSimulation):
         return core.omega_after_impulse(w, self.moments, r, imp.P)
 
     @property
-    def symmetric(self):
-        return core.symmetric_precession_rate(self.moments, self.omega0)
+    def body(self) -> tuple[str, int | None]:
+        """("spherical" | "symmetric" | "asymmetric", the figure axis of a symmetric body),
+        the moments equal within ``EQUAL_MOMENTS_RTOL`` of the largest."""
+        return body_symmetry(self.moments)
+
+    @property
+    def symmetric(self) -> tuple[int, float] | None:
+        """(figure axis s, 0-based, Ω = (I⊥ − I_s) ω_s / I⊥, notes (10.10)) of a symmetric
+        body, else None."""
+        kind, s = self.body
+        if kind != "symmetric":
+            return None
+        I, w = self.moments, self.omega0
+        perp = I[(s + 1) % 3]
+        return s, float((perp - I[s]) * w[s] / perp)
 
     @property
     def spherical(self) -> bool:
-        I = self.moments
-        return bool(np.ptp(I) <= 1e-13 * I.max())
+        return self.body[0] == "spherical"
 
     @property
     def intermediate_axis(self) -> int | None:
-        I = self.moments
-        order = np.argsort(I)
-        if len(set(np.round(I / I.max(), 13))) < 3:
+        if self.body[0] != "asymmetric":
             return None
-        return int(order[1])
+        return int(np.argsort(self.moments)[1])
 
     @property
     def is_flip_demo(self) -> bool:
-        k = self.intermediate_axis
-        if k is None:
-            return False
-        w = self.omega0
-        return math.acos(min(1.0, abs(w[k]) / np.linalg.norm(w))) < FLIP_ANGLE
+        """Whether the polhode passes within ``FLIP_ANGLE`` of the intermediate axis: the
+        body then lingers there and turns over (the Dzhanibekov flip)."""
+        return self.intermediate_axis is not None and (
+            intermediate_closest_angle(self.moments, self.omega0) < FLIP_ANGLE)
 
     def _invariants(self, t, y):
         return core.invariants(y, self.moments)
@@ -126,10 +184,10 @@ class RigidBodySimulation(IntegratingSimulation):
         # the archived attitude is renormalized; the raw deviation is reported
         main.y[:, 3:7] /= np.linalg.norm(main.y[:, 3:7], axis=1, keepdims=True)
         results.runs["main"] = main
-        exact = core.exact_omega(t, w0, I)
+        exact = core.exact_omega(t, w0, I, rtol=EQUAL_MOMENTS_RTOL)
         err = np.abs(main.y[:, :3] - exact)
 
-        stability = inertia_core.axis_stability(I, spin=spin)
+        stability = inertia_core.axis_stability(I, spin=spin, rtol=EQUAL_MOMENTS_RTOL)
         for k, s in enumerate(stability):
             s["growth_rate_jacobian"] = core.steady_rotation_growth_rate(I, k, spin)
         analysis = {
@@ -137,6 +195,10 @@ class RigidBodySimulation(IntegratingSimulation):
             "axis_stability": {f"axis_{k + 1}": s for k, s in enumerate(stability)},
             "spin": spin,
             "spherical": self.spherical,
+            "body": self.body[0],
+            "equal_moments_rtol": EQUAL_MOMENTS_RTOL,
+            "spin_axis": {"nearest": nearest_axis(w0)[0] + 1, "angle": nearest_axis(w0)[1],
+                          "near_angle": FLIP_ANGLE},
             "omega_initial": w0,
             "omega_max_error": float(np.max(err)),
             "quaternion_norm_max_deviation": q_dev,
@@ -153,6 +215,9 @@ class RigidBodySimulation(IntegratingSimulation):
             axis, Omega = self.symmetric
             analysis["symmetric"] = core.symmetric_precession_analysis(t, main.y[:, :3], I, axis,
                                                                        Omega)
+            analysis["symmetric"]["shape"] = (
+                "oblate" if I[axis] > I[(axis + 1) % 3] else "prolate")
+            analysis["symmetric"]["sense"] = precession_sense(I, w0, axis)
             ref_source = "symmetric-body solution notes (10.9)–(10.10)"
         analysis["reference"] = ref_source
         main.reference = {c: exact[:, k] for k, c in enumerate(core.COLUMNS[:3])}
@@ -167,7 +232,9 @@ class RigidBodySimulation(IntegratingSimulation):
         results.checks.append(Check("|q| at its farthest from 1 over the run (before renormalization)",
                                     1.0 + q_dev, 1.0, "", "unit quaternion"))
         k2 = self.intermediate_axis
-        if k2 is not None:
+        if k2 is not None:  # how close the polhode comes to the intermediate axis
+            analysis["spin_axis"]["intermediate_closest_angle"] = intermediate_closest_angle(
+                I, w0)
             s = stability[k2]
             results.checks.append(Check(
                 f"growth rate about the intermediate axis {k2 + 1} (Jacobian eigenvalue)",
@@ -183,15 +250,16 @@ class RigidBodySimulation(IntegratingSimulation):
                          if math.isfinite(v)), math.nan)
             analysis["behaviour"] = (
                 f"flip: rotation near the intermediate axis {k2 + 1} is unstable (growth rate "
-                f"{stability[k2]['growth_rate']:.3g} 1/s)"
-                + (f"; the body turns over every {half:.4g} s" if math.isfinite(half) else "") + ".")
+                f"{fmt(stability[k2]['growth_rate'], 3)} 1/s)"
+                + (f"; the body turns over every {fmt(half, 4)} s" if math.isfinite(half)
+                   else "") + ".")
             if math.isfinite(f["half_period_measured"]):
                 results.checks.append(Check(f"time between flips (zero crossings of ω{k2 + 1})",
                                             f["half_period_measured"], f["half_period_exact"],
                                             "s", "2K(m)/λ of the elliptic solution"))
         if "symmetric" in analysis:
             sym = analysis["symmetric"]
-            if math.isfinite(sym["Omega_measured"]):
+            if math.isfinite(sym["Omega_measured"]) and not sym["sense"].startswith("steady"):
                 results.checks.append(Check("body-frame precession rate Ω",
                                             sym["Omega_measured"], sym["Omega"], "rad/s",
                                             f"Ω = (I⊥ − I{sym['axis']}) ω{sym['axis']} / I⊥, "
@@ -230,6 +298,10 @@ class RigidBodySimulation(IntegratingSimulation):
         a = impulse_motion(main.t, main.y[:, :3], main.y[:, 3:7], self.moments, P=imp.P,
                            point=point, omega_before=self.config.initial.omega, mass=mass,
                            elements=elements, symmetric=self.symmetric)
+        if self.symmetric is not None:  # the struck point on the figure axis or off it
+            off = float(np.linalg.norm(np.delete(point, self.symmetric[0])))
+            a["point_on_figure_axis"] = bool(off <= 1e-9 * max(float(np.linalg.norm(point)),
+                                                                 1e-300))
         analysis["impulse"] = a
         where = "apex" if imp.at == "apex" else "struck point"
         if "cm_velocity_run_max_error" in a:

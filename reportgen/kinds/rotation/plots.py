@@ -95,10 +95,11 @@ def axis_angle(axis, angle, vector, turned, goldstein, arc, circle, centre, turn
     c = np.asarray(centre)
     for tip in (vector, turned):
         ax.plot(*np.stack([c, tip]).T, color=CONTEXT, linewidth=0.8)
+    # Rᵀ in mathtext: the figure font has no superscript T
+    goldstein_label = r"$A\,r = R^{\mathrm{T}} r$ (Goldstein (4.62))"
     for tip, colour, name, width in ((vector, REFERENCE, "r", 2.2),
                                      (turned, HIGHLIGHT, "R r (textbook ex. 4.5)", 2.2),
-                                     (goldstein, SEPARATRIX, "A r = Rᵀ r (Goldstein (4.62))",
-                                      1.2)):
+                                     (goldstein, SEPARATRIX, goldstein_label, 1.2)):
         ax.quiver(0, 0, 0, *tip, color=colour, arrow_length_ratio=0.1, linewidth=width,
                   label=name)
     ax.scatter(*c, color="black", s=12, depthshade=False)

@@ -16,6 +16,16 @@ from .results import IDENTITY_MATRICES, ORDER_RANGE, ORDER_SLACK, SCHEMA, SECTIO
 plots = lazy_module("reportgen.kinds.rotation.plots")
 
 
+def verdict(errors, what: str) -> str:
+    """``all 7 axis–angle checks hold`` or ``2 of 7 axis–angle checks fail``: the shown
+    errors against the kind's bound :data:`~.results.TOLERANCE`."""
+    failed = sum(1 for e in errors if not float(e) <= TOLERANCE)
+    n = len(errors)
+    if not failed:
+        return f"both {what} hold" if n == 2 else f"all {n} {what} hold"
+    return f"{failed} of {n} {what} fail"
+
+
 def _vec(v) -> str:
     return "(" + ", ".join(fmt_matrix(v)[0]) + ")"
 
@@ -37,6 +47,8 @@ def _degrees(angles) -> str:
 
 
 def _complex(pair) -> str:
+    """a + b i with the rounding of a unit-size number (below 1e-15) shown as 0."""
+    pair = [0.0 if abs(float(v)) < 1e-15 else float(v) for v in np.asarray(pair)]
     re_, im = fmt_matrix(pair)[0]
     return f"{re_} {'−' if im.startswith('-') else '+'} {im.lstrip('-')} i"
 
@@ -74,6 +86,28 @@ _MATRIX_NAMES = {"rotation": "R(n, Φ)", "generator": "Φ[n]×", "symmetric": "�
 _MATRIX_EIGEN = {"rotation": "1, cos Φ ± i sin Φ", "generator": "0, ± iΦ",
                  "symmetric": "1, cos Φ, cos Φ"}
 _CONVENTION = {"zxz": "z-x-z", "zyz": "z-y-z"}
+
+
+#: the stereographic section's checks, in the order of its table
+MOBIUS_CHECKS = ("mobius_vs_rotation", "mobius_vs_rotation_standard_orientation",
+                 "rotation_from_mobius", "rotation_trace_vs_quaternion",
+                 "double_cover_rotation", "double_cover_mobius", "unitarity", "round_trip",
+                 "scale_factor", "conformal_angle", "difference_quotient_chordal",
+                 "composition_mobius", "composition_rotation")
+
+
+def contrast_words(s) -> list[str]:
+    """What the contrasts show, each chosen by its stored fact (``transpose_differs``,
+    ``transpose_differs_standard``, ``reversed_differs``: a distance above ``CONTRAST``)."""
+    words = ["R(U)ᵀ is not the Möbius map" if s["transpose_differs"] else
+             "here R(U)ᵀ is the Möbius map too: R(U) is symmetric (a half turn)"]
+    words.append("nor is it with the usual orientation" if s["transpose_differs_standard"]
+                 else "with the usual orientation R(U)ᵀ is that Möbius map, R(Ū), here")
+    words.append("the difference quotient tends to the scale factor as δ² (relative "
+                 "distance)")
+    words.append("the reversed order is another rotation" if s["reversed_differs"] else
+                 "the reversed order gives the same rotation here (U and U₂ commute)")
+    return words
 
 
 class RotationReport(Report):
@@ -115,20 +149,27 @@ class RotationReport(Report):
         return [s.name for s in cls.sections if SECTION_DATA[s.name] in data.analysis]
 
     @classmethod
+    def prose_case(cls, data):
+        """What the template's sentences branch on: the stereographic contrasts."""
+        s = data.analysis.get("stereographic") or {}
+        return {"transpose_differs": bool(s.get("transpose_differs", True)),
+                "transpose_differs_standard": bool(s.get("transpose_differs_standard", True))}
+
+    @classmethod
     def describe(cls, data):
         """``A rotation by 120° about n = (0.5774, 0.5774, 0.5774); z-y-z Euler angles along
         a path; an SU(2) matrix of angle 73.74° as a Möbius map``: what this scene turns."""
         a, parts = data.analysis, []
         if "axis_angle" in a:
             n = ", ".join(fmt(float(x), 4) for x in np.asarray(a["axis_angle"]["axis"]))
-            parts.append(f"a rotation by {math.degrees(float(a['axis_angle']['angle'])):.4g}° "
+            parts.append(f"a rotation by {fmt(math.degrees(float(a['axis_angle']['angle'])), 4)}° "
                          f"about n = ({n})")
         if "euler" in a:
             c = str(a["euler"]["convention"])
             parts.append(f"{c[0]}-{c[1]}-{c[2]} Euler angles and ω along a path")
         if "stereographic" in a:
             parts.append(f"an SU(2) matrix turning by "
-                         f"{math.degrees(float(a['stereographic']['su2_angle'])):.4g}° as a "
+                         f"{fmt(math.degrees(float(a['stereographic']['su2_angle'])), 4)}° as a "
                          "Möbius map of the Riemann sphere")
         if not parts:
             return super().describe(data)
@@ -167,8 +208,11 @@ class RotationReport(Report):
             e = s["errors"]
             facts.append(("textbook ex. 4.11: Möbius map vs R(U)",
                           f"max error {fmt_err(e['mobius_vs_rotation'])} over "
-                          f"{len(s['points'])} points; R(U)ᵀ would be off by "
-                          f"{fmt(e['transpose_mismatch'], 3)}; scale factor 1/(1 − z) and "
+                          f"{len(s['points'])} points; "
+                          + (f"R(U)ᵀ would be off by {fmt(e['transpose_mismatch'], 3)}"
+                             if s.get("transpose_differs", True) else
+                             "R(U)ᵀ is the same map (R(U) is symmetric: a half turn)")
+                          + "; scale factor 1/(1 − z) and "
                           "composition to "
                           + fmt_err(max(e[k] for k in ("scale_factor", "conformal_angle",
                                                        "difference_quotient_chordal",
@@ -205,7 +249,11 @@ class RotationReport(Report):
                        header=["", "x", "y", "z"],
                        rows=[[c] + row for c, row in zip("xyz", _matrix_rows(a["matrix_textbook"]),
                                                           strict=True)])
-        checks = Table(caption=f"Each check's error (bound {TOLERANCE:g}). A small turn fixes "
+        shown = [e["textbook_vs_goldstein"], e["formula_vs_expm"], e["formula_vs_quaternion"],
+                 max(e["turned_vector_vs_matrix"], e["vector_formula_vs_matrix"]),
+                 e["orthogonality"], e["recovered_angle"], e["recovered_axis"]]
+        checks = Table(caption=f"Each check's error against the bound {fmt(TOLERANCE)}: "
+                               f"{verdict(shown, 'axis–angle checks')}. A small turn fixes "
                                "its axis only to ε/Φ, so the axis error is weighed by min(1, Φ); "
                                "near Φ = π the axis comes from the symmetric part.",
                        header=["check", "max error"],
@@ -247,7 +295,9 @@ class RotationReport(Report):
                        header=["", "x′", "y′", "z′"],
                        rows=[[c] + row for c, row in zip("xyz", _matrix_rows(a["matrix"]),
                                                           strict=True)])
-        checks = Table(caption=f"Each check's error (bound {TOLERANCE:g})",
+        shown = [e["matrix_product_vs_elements"], e["matrix_conventions"]]
+        checks = Table(caption=f"Each check's error against the bound {fmt(TOLERANCE)}: "
+                               f"{verdict(shown, 'Euler-matrix checks')}",
                        header=["check", "max error"],
                        rows=[["R by elementary rotations vs Goldstein (4.46) elements",
                               fmt_err(e["matrix_product_vs_elements"])],
@@ -280,6 +330,9 @@ class RotationReport(Report):
                 ["ω body: formula vs vee(Rᵀ Ṙ)", fmt_err(e["omega_body_derivative"])],
                 ["ω space vs R ω body", fmt_err(e["body_is_space_rotated"])],
                 ["Ṙ Rᵀ + (Ṙ Rᵀ)ᵀ, zero as R Rᵀ = 1", fmt_err(e["antisymmetry"])]]
+        shown = [e[k] for k in ("omega_space_conventions", "omega_body_conventions",
+                                "omega_space_derivative", "omega_body_derivative",
+                                "body_is_space_rotated", "antisymmetry")]
         facts = [("rates φ̇, θ̇, ψ̇", ", ".join(fmt(float(x)) for x in a["rates"])
                   + " rad/s"),
                  ("sample path", f"(φ, θ, ψ)(t) = (φ, θ, ψ)(0) + (φ̇, θ̇, ψ̇) t, {len(t)} "
@@ -287,8 +340,9 @@ class RotationReport(Report):
         return SectionContent(
             facts=facts,
             tables=[path, Table(caption=f"Each check's error relative to max |ω| = "
-                                        f"{fmt(a['omega_scale'])} rad/s over the path (bound "
-                                        f"{TOLERANCE:g})",
+                                        f"{fmt(a['omega_scale'])} rad/s over the path, against "
+                                        f"the bound {fmt(TOLERANCE)}: "
+                                        f"{verdict(shown, 'angular-velocity checks')}",
                                 header=["check", "max error"], rows=rows)])
 
     @classmethod
@@ -322,7 +376,12 @@ class RotationReport(Report):
                  fmt_err(e["rdot_is_omega"]), "rounding"],
                 ["Ȧ A⁻¹ = −[ω′]× for Goldstein's A = Rᵀ, ω′ in body axes",
                  fmt_err(e["adot_is_omega_body"]), "rounding"]]
-        caption = (f"Bound {TOLERANCE:g} where rounding limits; the rows with Ṙ "
+        shown = [e[k] for k in ("orthogonality", "determinant", "inverse_is_transpose",
+                                "similarity_closed_form", "symmetry_kept", "trace_invariant",
+                                "determinant_invariant", "eigenvalue_invariant",
+                                "rdot_antisymmetric", "rdot_is_omega", "adot_is_omega_body")]
+        caption = (f"Bound {fmt(TOLERANCE)} where rounding limits: "
+                   f"{verdict(shown, 'identities limited by rounding')}; the rows with Ṙ "
                    + (f"relative to max |ω| = {fmt(d['omega_scale'])} rad/s."
                       if d["omega_scale"] > 0 else "absolute [rad/s], as ω = 0 on this path."))
         cd = d.get("central_differences")
@@ -335,9 +394,12 @@ class RotationReport(Report):
             caption += (f" D(h): the central difference above on the stored path, "
                         f"h = {fmt(cd['step'])} s")
             if "order" in cd:
-                checked = (f"checked to 2 ± {fmt(ORDER_SLACK)}"
-                           if cd["step"] * d["omega_scale"] <= ORDER_RANGE
-                           else f"not checked, as h max |ω| is above {fmt(ORDER_RANGE)}")
+                if cd["step"] * d["omega_scale"] > ORDER_RANGE:
+                    checked = f"not checked, as h max |ω| is above {fmt(ORDER_RANGE)}"
+                elif abs(cd["order"] - 2.0) <= ORDER_SLACK:
+                    checked = f"checked: within 2 ± {fmt(ORDER_SLACK)}"
+                else:
+                    checked = f"checked: outside 2 ± {fmt(ORDER_SLACK)}, the check fails"
                 caption += f"; order log₂(e(2h)/e(h)) = {fmt(cd['order'], 4)} ({checked})"
             caption += "."
         checks = Table(caption=caption, header=["identity", "largest deviation", "limited by"],
@@ -362,7 +424,8 @@ class RotationReport(Report):
                   f"α = {_deg(alpha)} about m = {_vec(d['euler_axis'])}"
                   + ("; −U turns by 360° − α about −m" if alpha > math.pi else ""))]
         checks = Table(
-            caption=f"Each check's error (bound {TOLERANCE:g}); the Euler-angle rows over the "
+            caption=f"Each check's error against the bound {fmt(TOLERANCE)}: "
+                    f"{verdict(list(e.values()), 'SU(2) checks')}; the Euler-angle rows over the "
                     "whole path of the Euler-angle section",
             header=["check", "max error"],
             rows=[["cos(Φ/2) 1 − i sin(Φ/2) n·σ vs exp(−iΦ n·σ/2) by eigenvectors",
@@ -416,10 +479,11 @@ class RotationReport(Report):
                        rows=[[c] + row for c, row in zip("xyz", _matrix_rows(s["rotation"]),
                                                           strict=True)])
         checks = Table(
-            caption=f"Each check's error (bound {TOLERANCE:g}; distances on the unit sphere, "
-                    "which stay finite where ζ → ∞). Near the pole 1 − z keeps the points' "
-                    "rounding only to ε/(1 − z): the relative errors of the scale factor "
-                    "are weighed by min(1, 1 − z).",
+            caption=f"Each check's error against the bound {fmt(TOLERANCE)} (distances on the "
+                    "unit sphere, which stay finite where ζ → ∞): "
+                    f"{verdict([e[k] for k in MOBIUS_CHECKS], 'Möbius-map checks')}. "
+                    "Near the pole 1 − z keeps the points' rounding only to ε/(1 − z): the "
+                    "relative errors of the scale factor are weighed by min(1, 1 − z).",
             header=["check", "max error"],
             rows=[["Möbius map of U vs R(U), ζ = (x − iy)/(1 − z)",
                    fmt_err(e["mobius_vs_rotation"])],
@@ -446,10 +510,7 @@ class RotationReport(Report):
                      fmt(float(dev), 3)] for step, dev in zip(steps, c["quotient_vs_factor"],
                                                               strict=True)]
         contrast = Table(
-            caption="Not checks: the transpose is not the Möbius map (for a half turn, or an "
-                    "axis in the x–z plane with the usual orientation, it would be); the "
-                    "difference quotient tends to the scale factor as δ² (relative distance); "
-                    "the reversed order is another rotation",
+            caption="Not checks: " + "; ".join(contrast_words(s)),
             header=["candidate", "max distance"],
             rows=[["R(U)ᵀ, ζ = (x − iy)/(1 − z)", fmt(e["transpose_mismatch"], 4)],
                   ["R(U)ᵀ, ζ = (x + iy)/(1 − z)",

@@ -15,6 +15,9 @@ from ...scene.schema import ResultsSchema
 TOLERANCE = 1e-12
 #: archived distances that are contrasts, not checks (R(U)ᵀ is not the Möbius map)
 NOT_CHECKS = ("transpose_mismatch", "transpose_mismatch_standard_orientation")
+#: a contrast (R(U)ᵀ against the Möbius map, the reversed product) farther than this
+#: shows another map; nearer, the two are one (a half turn, commuting turns)
+CONTRAST = 1e-9
 #: the order a central difference of the stored Euler path must show, 2, within this
 ORDER_SLACK = 0.1
 #: ... when the path's step h turns it by at most this much, h max|ω| (the order is 1.99
@@ -288,6 +291,15 @@ STEREOGRAPHIC_MORE = _group(
     Q("contrasts/reversed_mobius", "", "1", "(not a check) Moebius map of U U2 against "
       "that of U2 after that of U"),
     Q("contrasts/reversed_rotation", "", "1", "(not a check) R(U U2) against R(U2) R(U)"),
+    Q("transpose_differs", "", "", "whether R(U)^T is another map than the Moebius map of U "
+      "(transpose_mismatch above CONTRAST; R symmetric, a half turn, makes them one)",
+      kind="bool"),
+    Q("transpose_differs_standard", "", "", "whether R(U)^T is another map than the Moebius "
+      "map with zeta = (x + iy)/(1 - z), R(conj U) (above CONTRAST)", kind="bool"),
+    Q("reversed_differs", "", "", "whether R(U2) R(U) is another rotation than R(U) R(U2) "
+      "(reversed_rotation above CONTRAST; U and U2 commute otherwise)", kind="bool"),
+    Q("contrast_threshold", "", "1", "CONTRAST: a contrast's distance above which two maps "
+      "differ"),
 )
 
 SCHEMA = ResultsSchema(analysis=AXIS_ANGLE + AXIS_ANGLE_ERRORS + EULER + EULER_ERRORS

@@ -12,7 +12,7 @@ from ...lazy import lazy_module
 from ...scene.results import Check, Results
 from ...scene.simulation import Simulation
 from .config import SECTION_TABLES, RotationConfig
-from .results import NOT_CHECKS, ORDER_RANGE, ORDER_SLACK, SCHEMA, TOLERANCE
+from .results import CONTRAST, NOT_CHECKS, ORDER_RANGE, ORDER_SLACK, SCHEMA, TOLERANCE
 
 rotations = lazy_module("reportgen.core.rotations")
 
@@ -531,6 +531,11 @@ class RotationSimulation(Simulation):
             "second_source": second, "second_a": _complex_pairs(U2[0, 0]),
             "second_b": _complex_pairs(U2[0, 1]), "second_rotation": R2,
             "errors": errors, "contrasts": contrasts,
+            "transpose_differs": bool(errors["transpose_mismatch"] > CONTRAST),
+            "transpose_differs_standard": bool(
+                errors["transpose_mismatch_standard_orientation"] > CONTRAST),
+            "reversed_differs": bool(contrasts["reversed_rotation"] > CONTRAST),
+            "contrast_threshold": CONTRAST,
         }
         results.checks += [
             Check(f"max |π⁻¹(M(π(x))) − R(U) x| over {c.points} points, M the Möbius map of U",

@@ -214,8 +214,3 @@ PRESETS = {
         "run": {"t_end": 70.0, "samples": 14001, "rtol": 1e-13, "atol": 1e-15},
     },
 }
-
-#: m3/m2 and m2/m1 below this make a hierarchical triple (planet + moon; Moon/Earth = 0.0123)
-HIERARCHY_RATIO = 0.05
-
-

@@ -117,6 +117,8 @@ class RestrictedReport(Report):
                 "between_L1_L2": C is not None and CL[1] < float(C) < CL[0],
                 "sweep": data.sweep is not None,
                 "chaotic": "lyapunov_time" in a,
+                "study_t_end": (fmt(float(a["study_t_end"]), 3) if "study_t_end" in a
+                                else ""),
                 "lyapunov_time": fmt(float(a.get("lyapunov_time", math.nan)), 3),
                 "regularized": str(a.get("formulation", "regularized")) == "regularized"}
 

@@ -39,8 +39,38 @@ SCHEMA = ResultsSchema(
             ("t",)) for c in _XYZ),
     ),
     analysis=(
-        Q("hierarchical", "", "", "whether the masses make a hierarchical triple (planet and "
-          "moon)", kind="bool"),
+        Q("hierarchical", "", "", "whether the run is a hierarchical triple: a pair bound "
+          "throughout whose largest separation is below hierarchy_threshold times the third "
+          "body's smallest distance from the pair's centre of mass", kind="bool"),
+        Q("hierarchy_ratio", "", "1", "the inner pair's largest separation over the third "
+          "body's smallest distance from its centre of mass (NaN: no pair stays bound)"),
+        Q("hierarchy_threshold", "", "1", "hierarchy_ratio below which the triple is "
+          "hierarchical"),
+        Q("inner_pair", "", "1", "the bodies (1 to 3) of the pair with the smallest "
+          "hierarchy_ratio", ("pair_member",), kind="int"),
+        Q("inner_separation", "s", "1", "the inner pair's separation over the run: min, "
+          "median, max", ("statistic",)),
+        Q("outer_distance", "D", "1", "the third body's distance from the inner pair's centre "
+          "of mass over the run: min, median, max", ("statistic",)),
+        Q("pair_closest", r"r_\mathrm{min}", "1", "closest approach of each pair (r12, r13, "
+          "r23) on the continuous solution (minima of the pair distance located between the "
+          "samples)", ("pair",)),
+        Q("pair_closest_time", r"t_\mathrm{min}", "1", "time of each pair's closest "
+          "approach", ("pair",)),
+        Q("encounter_threshold", "", "1", "each pair's distance below which an approach is a "
+          "close encounter: 0.05 of the initial size (of the inner pair's median separation "
+          "for the inner pair of a hierarchical triple)", ("pair",)),
+        Q("close_encounters", "", "", "whether some pair's closest approach is below its "
+          "encounter_threshold", kind="bool"),
+        Q("closest_approach", r"r_\mathrm{min}", "1", "the closest approach of any pair, on "
+          "the continuous solution"),
+        Q("closest_approach_time", r"t_\mathrm{min}", "1", "time of the closest approach"),
+        Q("closest_approach_pair", "", "1", "the two bodies (1 to 3) of the closest approach",
+          ("pair_member",), kind="int"),
+        Q("burrau", "", "", "whether the initial data are Burrau's configuration: at rest, "
+          "masses 3 : 4 : 5, each body opposite the side of its own length", kind="bool"),
+        Q("fate", "", "", "the physical fate at the end of the run: collision, escape, bound "
+          "or unbound (no body left yet)", kind="str"),
         Q("energy_error_max", r"\max|E(t) - E(0)|/|E(0)|", "1",
           "largest relative energy error over the run"),
         Q("energy_tolerance", "", "1", "relative energy error above which the run is "
@@ -48,32 +78,49 @@ SCHEMA = ResultsSchema(
         Q("pair_distances/r12", "r_{12}", "1", "distance between bodies 1 and 2", ("t",)),
         Q("pair_distances/r13", "r_{13}", "1", "distance between bodies 1 and 3", ("t",)),
         Q("pair_distances/r23", "r_{23}", "1", "distance between bodies 2 and 3", ("t",)),
-        Q("min_pair_distance", r"r_\mathrm{min}", "1", "smallest stored pair distance"),
-        Q("min_pair_distance_time", r"t_\mathrm{min}", "1",
-          "time of the smallest stored pair distance"),
+        Q("min_pair_distance", r"r_\mathrm{sampled}", "1", "smallest sampled pair distance"),
+        Q("min_pair_distance_time", r"t_\mathrm{sampled}", "1",
+          "time of the smallest sampled pair distance"),
         # a periodic orbit (config key ``period``)
         Q("period", "T", "1", "known period of the orbit (config)", optional=True),
         Q("return_position_error", r"\max|r_i(T) - r_i(0)|", "1",
           "largest position error after one period", optional=True),
         Q("return_velocity_error", r"\max|v_i(T) - v_i(0)|", "1",
           "largest velocity error after one period", optional=True),
+        Q("periodic", "", "", "whether the orbit is back after the period within "
+          "periodic_threshold", kind="bool", optional=True),
+        Q("periodic_threshold", "", "1", "return distance below which the orbit is periodic: "
+          "1e-3 of the initial size", optional=True),
+        Q("choreography", "", "", "whether the periodic orbit is a choreography: equal "
+          "masses, each body starting on body 1's track within 1e-3 of the initial size",
+          kind="bool", optional=True),
+        Q("figure_eight", "", "", "whether the choreography is a planar figure-eight: its "
+          "track turns its tangent by less than pi in one period (a simple loop: 2 pi)",
+          kind="bool", optional=True),
         # a hierarchical triple
         Q("mass_ratios/m2_m1", "m_2/m_1", "1", "mass ratio of body 2 to body 1 (notes (3.35))",
           optional=True),
         Q("mass_ratios/m3_m1", "m_3/m_1", "1", "mass ratio of body 3 to body 1 (notes (3.35))",
           optional=True),
-        Q("moon_relative_position", r"\mathbf{r}_3 - \mathbf{r}_2", "1",
-          "body 3 relative to body 2", ("t", "xyz"), optional=True),
-        Q("moon_inclination", "i", "rad", "inclination of body 3's osculating orbit about "
-          "body 2", optional=True),
-        Q("moon_semi_major_axis", "a", "1", "semi-major axis of body 3's osculating orbit "
-          "about body 2", optional=True),
+        Q("moon_pair", "", "1", "the inner pair's primary (the heavier, the first when "
+          "equal) and moon (bodies 1 to 3)", ("pair_member",), kind="int", optional=True),
+        Q("moon_relative_position", r"\mathbf{r}_\mathrm{moon} - \mathbf{r}_\mathrm{primary}",
+          "1", "the inner pair's moon relative to its primary", ("t", "xyz"), optional=True),
+        Q("moon_inclination", "i", "rad", "inclination of the moon's osculating orbit about "
+          "its primary", optional=True),
+        Q("moon_semi_major_axis", "a", "1", "semi-major axis of the moon's osculating orbit "
+          "about its primary at t = 0", optional=True),
+        Q("moon_semi_major_axis_spread", r"\Delta a/a", "1", "range of the moon's osculating "
+          "semi-major axis over the run, relative to its mean", optional=True),
+        Q("kepler_spread_threshold", "", "1", "moon_semi_major_axis_spread below which the "
+          "relative orbit is near-Keplerian", optional=True),
         Q("moon_kepler_period", r"T_\mathrm{Kepler}", "1",
-          "two-body Kepler period of body 3 about body 2", optional=True),
+          "two-body Kepler period of the moon about its primary", optional=True),
         Q("moon_period_measured", r"T_\mathrm{sid}", "1",
-          "sidereal period of body 3 about body 2, measured from the run", optional=True),
-        Q("moon_reference_error", r"|\Delta r|", "1", "body 3 about body 2 at t_end against "
-          "a DOP853 run at rtol 1e-14", optional=True),
+          "sidereal period of the moon about its primary, measured from the run",
+          optional=True),
+        Q("moon_reference_error", r"|\Delta r|", "1", "the moon about its primary at t_end "
+          "against a DOP853 run at rtol 1e-14", optional=True),
         # the lecture notes' coordinates, relative to body 1 (notes (3.32)-(3.34))
         Q("notes_coordinates/r12", r"\mathbf{r}_{12}", "1", "the notes' coordinate "
           "r12 = r2 - r1, body 2 relative to body 1 (notes (3.32)-(3.34))", ("t", "xyz"),

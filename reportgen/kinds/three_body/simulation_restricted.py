@@ -225,8 +225,11 @@ class RestrictedSimulation(IntegratingSimulation):
 
         allowed = np.asarray(grid["level"]) >= 0.0
         labels, _ = ndimage.label(allowed)
-        i = int(np.argmin(np.abs(grid["y"] - y0[1])))
-        j = int(np.argmin(np.abs(grid["x"] - y0[0])))
+        # the allowed cell nearest the start (a start next to its zero-velocity curve may
+        # fall in a cell whose centre the level forbids)
+        gx, gy = np.meshgrid(grid["x"], grid["y"])
+        gap = np.where(allowed, np.hypot(gx - y0[0], gy - y0[1]), np.inf)
+        i, j = np.unravel_index(int(np.argmin(gap)), gap.shape)
         own = labels[i, j]
         edge = np.concatenate([labels[0], labels[-1], labels[:, 0], labels[:, -1]])
         gates = {"closed": "", "everywhere": "; the level forbids no region"}.get(

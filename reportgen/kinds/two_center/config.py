@@ -13,12 +13,12 @@ from ...scene.config import Positive, Real, RunConfig, Strict
 
 #: ``formulation = "auto"`` regularizes a bound orbit whose region of motion (7.59) comes
 #: within CLOSE_APPROACH·a of a centre.  Measured at rtol 1e-12 (μ = a = 1, outputs
-#: every 0.01): the shipped planetary orbit (region reaching the centre, sampled closest
+#: every 0.01): the shipped satellite orbit (region reaching the centre, sampled closest
 #: approach 0.044) has a max state error of 1.1e-6 in Cartesian DOP853 (2142 steps,
 #: 1.7 ms) against 1.9e-8 regularized (776 steps, 2.4 ms); a fall from (2, 0) with
 #: vy = 0.01 is 0.6 off (energy error 1e-4, 3773 steps) in Cartesian, 4e-9 (4e-10,
 #: 321 steps, 0.9 ms) regularized; with vy ≤ 3e-3 the Cartesian step underflows.  Far
-#: from the centres (the shipped satellite orbit, ≥ 0.89 a away) both are as accurate and
+#: from the centres (the shipped planetary orbit, ≥ 0.89 a away) both are as accurate and
 #: the Cartesian run is ~3x faster (481 vs 201 steps, but the transformed right-hand side
 #: and the located outputs cost more per step and per output).
 CLOSE_APPROACH = 0.1

@@ -16,12 +16,49 @@ from .results import SCHEMA
 plots = lazy_module("reportgen.rendering.plots.gravitation")
 section_plots = lazy_module("reportgen.rendering.plots.sections")
 
-FAMILY_TEXT = {
-    "satellite": "satellite orbit: encircles both centres (β ≤ 0, η free in [−1, 1], "
-                 "ξ between two ellipses)",
-    "planetary": "planetary orbit: stays on one side, about one centre (β > 0, |η| ≥ η*)",
-    "unbound": "unbound (E ≥ 0)",
+#: the orbit class's name, by its motion (``/analysis`` ``motion``, classified at
+#: simulate time from E, β and q(1), notes (7.59)), as the literature names it (Charlier,
+#: Die Mechanik des Himmels (1902); Waalkens, Dullin & Richter, Physica D 196 (2004)):
+#: a satellite orbit about one centre, a planetary orbit round both (a planet round a
+#: binary), a lemniscate orbit through the segment between them
+FAMILY_NAME = {"one_centre": "satellite", "both_centres": "planetary",
+               "through_middle": "lemniscate", "escape": "unbound"}
+
+#: the orbit family as the headline names it, by its motion; {centre}: the centre a
+#: one-side orbit keeps to
+MOTION_TEXT = {
+    "one_centre": "satellite orbit: stays on one side, about the centre at {centre} (β > 0, "
+                  "|η| ≥ η*)",
+    "both_centres": "planetary orbit: encircles both centres (β ≤ 0, η free in [−1, 1], ξ "
+                    "between two ellipses)",
+    "through_middle": "lemniscate orbit: crosses the segment between the centres (β ≤ 0, η "
+                      "free in [−1, 1], ξ from 1 up to one ellipse)",
+    "escape": "unbound (E ≥ 0)",
 }
+
+
+#: the gallery card's words for the motion
+GALLERY_MOTION = {"one_centre": "satellite orbit about one centre",
+                  "both_centres": "planetary orbit round both centres",
+                  "through_middle": "lemniscate orbit through the segment between the centres",
+                  "escape": "unbound orbit"}
+
+
+def motion_of(a) -> str:
+    """The stored motion (``one_centre`` …); an archive from before it was stored: the
+    family's, as such archives named it (before the names followed the literature, the
+    one-side orbit was "planetary" and every orbit with β ≤ 0 "satellite")."""
+    motion = a.get("motion")
+    if motion:
+        return str(motion)
+    return {"planetary": "one_centre", "satellite": "both_centres"}.get(str(a["family"]),
+                                                                       "escape")
+
+
+def centre_words(a, p) -> str:
+    """The centre a one-side orbit keeps to, as a point: ``(1, 0)``."""
+    side = int(a.get("side", 0) or 0)
+    return f"({fmt(side * float(p.a))}, 0)" if side else "one centre"
 
 
 FORMULATION_TEXT = {
@@ -55,8 +92,8 @@ class TwoCenterReport(Report):
         energy = gallery.worst_check(data, "energy")
         if c is None or energy is None:
             return super().gallery_headline(data)
-        family = data.analysis.get("family")
-        return ((f"{family} orbit: " if isinstance(family, str) and family else "")
+        motion = GALLERY_MOTION.get(str(data.analysis.get("motion", "")), "")
+        return ((f"{motion}: " if motion else "")
                 + f"separation constant kept to {gallery.distance(c.rel_error)}, energy to "
                   f"{gallery.distance(energy.rel_error)}")
 
@@ -78,7 +115,8 @@ class TwoCenterReport(Report):
     #: self-checks of the members (shown in the family section instead) and the sampled
     #: ranges of ξ and |η| (the bounds from 7.59 up to sampling: noise against the swept
     #: value where a bound is 0 or 1)
-    SWEEP_HIDDEN_RESULTS = ("poincare_*_error", "xi_range_run_*", "eta_abs_range_run_*")
+    SWEEP_HIDDEN_RESULTS = ("poincare_*_error", "xi_range_run_*", "eta_abs_range_run_*",
+                            "segment_reach", "side")
     #: members of a sweep told apart by a legend; more get a colour bar
     LEGEND_MEMBERS = 7
     #: marker area of a crossing [pt²]: an integrable family's crossings lie on curves
@@ -149,34 +187,43 @@ class TwoCenterReport(Report):
 
     @classmethod
     def prose_case(cls, data):
-        """The orbit's family (planetary, satellite, unbound), its bounds from notes (7.59), how
-        close the run came to a centre, and whether it was regularized."""
+        """The orbit's family (satellite, planetary, lemniscate, unbound) and its motion (one
+        side, round both centres, through the segment between them, escaping), its bounds
+        from notes (7.59), how close the run came to a centre, and whether it was
+        regularized."""
         if data.sweep is not None:
             return {}
         a, p = data.analysis, data.config.params
         xi_b = [float(v) for v in np.asarray(a["xi_bounds"])]
         eta_b = [float(v) for v in np.asarray(a["eta_abs_bounds"])]
         closest = float(a.get("closest_approach_run", math.nan))
-        return {"family": str(a["family"]), "energy": fmt(float(a["energy"]), 4),
+        motion = motion_of(a)
+        return {"family": FAMILY_NAME[motion], "motion": motion,
+                "centre": centre_words(a, p), "energy": fmt(float(a["energy"]), 4),
                 "beta": fmt(float(a["beta"]), 4), "xi_min": fmt(xi_b[0], 4),
                 "xi_max": fmt(xi_b[1], 4), "eta_min": fmt(eta_b[0], 4),
+                "reach": fmt(float(a.get("segment_reach", math.nan)), 4),
                 "closest": fmt(closest, 3),
                 "near": closest < cls.NEAR_FRACTION * float(p.a),
                 "regularized": data.runs["main"].attrs.get("formulation") == "regularized"}
 
     @classmethod
     def describe(cls, data):
-        """``A planetary orbit about one centre at E = −1.331 (β = 0.4162 > 0): |η| ≥
-        0.3954, ξ ≤ 1.6``, and how close it comes to a centre."""
+        """``A satellite orbit about the centre at (1, 0) at E = −1.331 (β = 0.4162 > 0):
+        |η| ≥ 0.3954, ξ ≤ 1.6``, and how close it comes to a centre."""
         if data.sweep is not None:
             return super().describe(data)
         c = cls.prose_case(data)
-        if c["family"] == "planetary":
-            text = (f"A planetary orbit about one centre at E = {c['energy']} (β = {c['beta']} "
-                    f"> 0): |η| ≥ {c['eta_min']}, ξ ≤ {c['xi_max']}")
-        elif c["family"] == "satellite":
-            text = (f"A satellite orbit round both centres at E = {c['energy']} (β = "
+        if c["motion"] == "one_centre":
+            text = (f"A satellite orbit about the centre at {c['centre']} at E = {c['energy']} "
+                    f"(β = {c['beta']} > 0): |η| ≥ {c['eta_min']}, ξ ≤ {c['xi_max']}")
+        elif c["motion"] == "both_centres":
+            text = (f"A planetary orbit round both centres at E = {c['energy']} (β = "
                     f"{c['beta']} ≤ 0), between the ellipses ξ = {c['xi_min']} and "
+                    f"{c['xi_max']}")
+        elif c["motion"] == "through_middle":
+            text = (f"A lemniscate orbit through the segment between the centres at E = "
+                    f"{c['energy']} (β = {c['beta']} ≤ 0), inside the ellipse ξ = "
                     f"{c['xi_max']}")
         else:
             return f"An unbound orbit at E = {c['energy']} ≥ 0: it escapes from both centres"
@@ -192,7 +239,8 @@ class TwoCenterReport(Report):
         return [("centres", f"μ = {fmt(p.mu)} each at (±{fmt(p.a)}, 0)"),
                 ("constants", f"E = {fmt(a['energy'])}, C = "
                               f"{fmt(a['separation_constant'])}, β = {fmt(a['beta'])}"),
-                ("orbit family", FAMILY_TEXT[a["family"]]),
+                ("orbit family", MOTION_TEXT[motion_of(a)].format(
+                    centre=centre_words(a, p))),
                 ("formulation", FORMULATION_TEXT.get(str(run.attrs.get("formulation")),
                                                      "Cartesian")),
                 ("max relative drift", f"E {fmt_err(run.attrs.get('drift_energy', math.nan))}, "
@@ -224,12 +272,12 @@ class TwoCenterReport(Report):
             rows.append(["distance to the nearer centre [m]",
                          f"at least {fmt(float(a['closest_approach_bound']))}",
                          f"down to {fmt(float(a['closest_approach_run']))}"])
-        table = Table(caption=f"The region of motion of this {a['family']} orbit: the bounds "
-                              "from the separated equations, notes (7.59), and what the sampled run "
-                              "reaches.",
+        table = Table(caption=f"The region of motion of this {FAMILY_NAME[motion_of(a)]} "
+                              "orbit: the bounds from the separated equations, notes (7.59), "
+                              "and what the sampled run reaches.",
                       header=["coordinate", "bounds from notes (7.59)", "sampled run"], rows=rows)
         # the dashed bounds are drawn only where (7.59) has them: none for an unbound orbit,
-        # no hyperbola for a satellite orbit (η is free)
+        # no hyperbola for a planetary or lemniscate orbit (η is free)
         dashed = [w for w, key in (("ξ", "ellipses"), ("η", "hyperbolas")) if key in bound]
         caption = ("The orbit over the elliptic-coordinate grid: confocal ellipses "
                    "ξ = (r1 + r2)/2a = const and hyperbolas η = (r1 − r2)/2a = const with foci "
@@ -237,7 +285,7 @@ class TwoCenterReport(Report):
         if dashed:
             caption += (" Dashed: the coordinate lines where the momentum conjugate to "
                         + " or to ".join(dashed) + " vanishes, which bound the motion.")
-        elif a["family"] == "unbound":
+        elif motion_of(a) == "escape":
             caption += " No coordinate line bounds an unbound orbit: ξ grows without limit."
         return SectionContent(figures=[cls.figure("orbit", fig, caption)], tables=[table])
 

@@ -28,9 +28,21 @@ SCHEMA = ResultsSchema(
         Q("energy", "E", "m^2/s^2", "energy per unit mass at t = 0"),
         Q("separation_constant", "C", "m^4/s^2", "separation constant, notes (7.59), at t = 0"),
         Q("beta", r"\beta", "m^4/s^2", "separation constant beta = -C - 2 a^2 E of notes (7.59)"),
-        Q("family", "", "", "orbit family: satellite, planetary or unbound", kind="str"),
-        Q("behaviour", "", "", "physical behaviour: bound (satellite, planetary), escape or "
-          "collision", kind="str", optional=True),
+        Q("family", "", "", "orbit family, as the literature names it: satellite (beta > 0: "
+          "about one centre), planetary (beta <= 0 and q(1) < 0: round both), lemniscate "
+          "(beta <= 0 and q(1) >= 0: through the segment between them) or unbound",
+          kind="str"),
+        Q("behaviour", "", "", "physical behaviour: bound (satellite, planetary, lemniscate), "
+          "escape or collision", kind="str", optional=True),
+        Q("motion", "", "", "how the orbit moves in the plane, notes (7.59): one_centre "
+          "(beta > 0: one side of the mid-line), both_centres (beta <= 0 and q(1) < 0: a "
+          "ring between two ellipses), through_middle (beta <= 0 and q(1) >= 0: crosses "
+          "the segment between the centres) or escape (E >= 0)", kind="str"),
+        Q("segment_reach", "q(1)", "m^4/s^2", "q(1) = 2 a^2 E + 4 a mu + beta, the xi "
+          "equation of notes (7.59) at the segment between the centres (xi = 1): the orbit "
+          "reaches the segment where q(1) >= 0"),
+        Q("side", "", "1", "the side of the mid-line x = 0 a one-side orbit keeps (+1: the "
+          "centre at (a, 0), -1: at (-a, 0); 0: not a one-side orbit)", kind="int"),
         Q("xi_bounds", r"\xi_\mathrm{min}, \xi_\mathrm{max}", "1",
           "bounds of xi from notes (7.59)", ("bound",)),
         Q("eta_abs_bounds", r"|\eta|_\mathrm{min}, |\eta|_\mathrm{max}", "1",

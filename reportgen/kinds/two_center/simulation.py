@@ -22,6 +22,56 @@ regularized = lazy_module("reportgen.core.models.two_center_regularized")
 integrators = lazy_module("reportgen.core.integrators")
 
 
+#: the orbit's motion in the plane, notes (7.59), from E, β and the ξ quadratic at the
+#: segment between the centres (:func:`motion_class`), in words for the behaviour line;
+#: the classes are named as in the literature (Charlier 1902; Waalkens, Dullin & Richter,
+#: Physica D 196 (2004)): satellite about one centre, planetary round both, lemniscate
+#: through the segment between them
+BEHAVIOUR = {
+    "one_centre": "bound: a satellite orbit on one side of the mid-line, about the centre "
+                  "at {centre}",
+    "both_centres": "bound: a planetary orbit around both centres, between two confocal "
+                    "ellipses",
+    "through_middle": "bound: a lemniscate orbit through the segment between the centres, "
+                      "turning about them in alternating senses",
+    "escape": "escape: unbound (E ≥ 0), the particle leaves the centres",
+}
+
+
+def motion_class(E: float, beta: float, mu: float, a: float, x0: float) -> dict:
+    """How the orbit moves in the plane, from its constants (notes (7.59)).
+
+    (1 − η²) p_η² = −β − 2a²E η² and (ξ² − 1) p_ξ² = 2a²E ξ² + 4aμ ξ + β =: q(ξ):
+
+    * E ≥ 0: ``"escape"`` (q has no upper root; ξ grows without bound);
+    * β > 0: ``"one_centre"`` (a satellite orbit): |η| ≥ η* > 0 keeps η, and so x = a ξ η,
+      of one sign: the orbit stays on the side of its start, about the centre there
+      (``side`` = ±1);
+    * β ≤ 0, q(1) < 0: ``"both_centres"`` (a planetary orbit): η free, ξ between two roots
+      > 1: a ring between two confocal ellipses, round both centres, never on the segment
+      ξ = 1 between them;
+    * β ≤ 0, q(1) ≥ 0: ``"through_middle"`` (a lemniscate orbit): ξ reaches 1, the
+      segment between the centres, which the orbit crosses (each crossing reverses its
+      sense of turning).
+
+    The same cases as the ``family`` of
+    :func:`reportgen.core.models.two_center.coordinate_bounds`.
+
+    The thresholds are E = 0, β = 0 and q(1) = 2a²E + 4aμ + β = 0 (stored as
+    ``segment_reach``)."""
+    q1 = 2.0 * a * a * E + 4.0 * a * mu + beta
+    if E >= 0.0:
+        motion = "escape"
+    elif beta > 0.0:
+        motion = "one_centre"
+    elif q1 < 0.0:
+        motion = "both_centres"
+    else:
+        motion = "through_middle"
+    side = (1 if x0 > 0 else -1) if motion == "one_centre" else 0
+    return {"motion": motion, "segment_reach": float(q1), "side": side}
+
+
 class TwoCenterSimulation(IntegratingSimulation):
     """A test particle in the field of two fixed centres, checked against E and C (notes (7.59))."""
 
@@ -168,11 +218,10 @@ class TwoCenterSimulation(IntegratingSimulation):
         a.update(self._coordinate_lines(xi, eta, bounds))
         a["closest_approach_bound"] = core.closest_approach_bound(E, C, p.mu, p.a)
         a["closest_approach_run"] = float(np.min(p.a * (xi - np.abs(eta))))
+        a.update(motion_class(E, bounds["beta"], p.mu, p.a, float(y0[0])))
         if not self.family_member:  # physical behaviour, not a status
-            a["behaviour"] = {
-                "satellite": "bound: a satellite orbit about one centre",
-                "planetary": "bound: a planetary orbit around both centres",
-            }.get(bounds["family"], "escape: unbound, the body leaves the centres")
+            a["behaviour"] = BEHAVIOUR[a["motion"]].format(
+                centre=f"({fmt(a['side'] * p.a)}, 0)".replace("-", "−"))
             if a["closest_approach_bound"] <= 0.0:
                 a["behaviour"] += "; its region reaches a centre (collision orbit)"
         if crossings is not None:
@@ -324,7 +373,7 @@ class TwoCenterSimulation(IntegratingSimulation):
 
         ``elliptic_grid``: ellipses ξ = const out to a little beyond the orbit and
         hyperbolas η = const (both branches, y ≥ 0 then y ≤ 0) out to the largest
-        ellipse.  ``motion_bounds``: the ξ bounds > 1 and, for a planetary orbit, the
+        ellipse.  ``motion_bounds``: the ξ bounds > 1 and, for a satellite orbit, the
         hyperbola |η| = η* on the orbit's side; for E > 0 the |η| limit on both sides.
         """
         a = self.config.params.a

@@ -53,8 +53,9 @@ def time_label(unit: str = "s") -> str:
     return f"time t [{unit}]"
 
 
-#: the y label of a relative drift: a ratio of like quantities
-DRIFT_LABEL = "relative drift (I(t) − I(0))/|I| (dimensionless)"
+#: the y label of a relative drift: a ratio of like quantities (the scale is the one the
+#: scene declares for each quantity, else the quantity's own largest size)
+DRIFT_LABEL = "drift (I(t) − I(0)) / scale (dimensionless)"
 
 
 def invariant_drift(t, invariants: dict[str, np.ndarray], *, scales=None, time_unit="s",

@@ -37,8 +37,9 @@ def _equal_box(ax, length_unit):
 
 
 def relative_orbit(x, y, *, reference=None, pericentres=None, lrl=None, length_unit="m",
-                   ax=None):
-    """The relative orbit r(t) with the force centre, optional exact orbit, pericentres, LRL."""
+                   lrl_label="LRL direction", ax=None):
+    """The relative orbit r(t) with the force centre, optional exact orbit, pericentres, LRL
+    (its legend entry ``lrl_label``, the caller's words with its length)."""
     fig, ax = new_figure(ax, figsize=(6.4, 5.2))
     if reference is not None:
         ax.plot(reference[0], reference[1], color=REFERENCE, linestyle=(0, (4, 3)), lw=1.2,
@@ -57,8 +58,7 @@ def relative_orbit(x, y, *, reference=None, pericentres=None, lrl=None, length_u
         tip = np.asarray(lrl, dtype=float) / e * r_min
         ax.annotate("", xy=tip, xytext=(0.0, 0.0), annotation_clip=False,
                     arrowprops={"arrowstyle": "-|>", "color": SEPARATRIX, "lw": 2.0})
-        ax.plot([], [], color=SEPARATRIX, lw=2.0,
-                label=f"LRL direction (|A|/μk = e = {e:.4g})")
+        ax.plot([], [], color=SEPARATRIX, lw=2.0, label=lrl_label)
     _equal_box(ax, length_unit)
     place_legend(ax)
     return fig
@@ -141,10 +141,12 @@ def three_body_orbits(positions, *, labels, length_unit="", ax=None, plane=(0, 1
     return fig
 
 
-def encounter_zoom(t, positions, box, *, labels, length_unit="", time_unit="", cmap="viridis"):
+def encounter_zoom(t, positions, box, *, labels, length_unit="", time_unit="", cmap="viridis",
+                   close_encounters=True):
     """Left, the whole tracks with the zoomed box; right, the tracks inside the box with
     time as colour (one colour scale, the bodies told apart by line style), so the order
-    of the close encounters reads off the colours.
+    of the close encounters reads off the colours.  ``close_encounters``: whether the run
+    had any (the archive's classification), which the enlargement's title names.
 
     positions : (N, 3, 3) time, body, xyz; box : (x0, x1, y0, y1) the zoomed region."""
     from matplotlib.collections import LineCollection
@@ -180,7 +182,8 @@ def encounter_zoom(t, positions, box, *, labels, length_unit="", time_unit="", c
         ax.set_xlabel(length_label("x", length_unit))
         ax.set_ylabel(length_label("y", length_unit))
     full.set_title("whole tracks", fontsize=10)
-    zoom.set_title("close encounters, coloured by time", fontsize=10)
+    zoom.set_title("close encounters, coloured by time" if close_encounters
+                   else "enlarged, coloured by time", fontsize=10)
     place_legend(full, fontsize=9)
     # the bodies' line styles under the figure: inside or above the enlargement they
     # covered its tracks or its title
@@ -219,12 +222,19 @@ def relative_track(dx, dy, *, label, centre_label, length_unit="", ax=None):
 
 
 def closest_approach(t, distances: dict[str, np.ndarray], *, time_unit="", length_unit="",
-                     ax=None):
+                     minima=None, ax=None):
     """Pairwise distances against time on a log scale (close encounters); an empty unit
-    is a scaled (dimensionless) one."""
+    is a scaled (dimensionless) one.  ``minima``: (times, distances), one per pair in the
+    order of ``distances``, each pair's closest approach located between the samples,
+    drawn as a dot in the pair's colour."""
     fig, ax = new_figure(ax)
-    for name, d in distances.items():
-        ax.semilogy(t, d, lw=0.9, label=name)
+    dots = 0
+    for k, (name, d) in enumerate(distances.items()):
+        (line,) = ax.semilogy(t, d, lw=0.9, label=name)
+        if minima is not None and np.isfinite(minima[1][k]) and minima[1][k] > 0:
+            ax.plot([minima[0][k]], [minima[1][k]], "o", color=line.get_color(), ms=5,
+                    label="closest approach (continuous solution)" if not dots else None)
+            dots += 1
     ax.set_xlabel(f"time t [{time_unit}]" if time_unit else "time t (dimensionless)")
     ax.set_ylabel(length_label("pair distance r", length_unit))
     place_legend(ax)

@@ -22,6 +22,11 @@ RC = {
     "lines.linewidth": 1.5,
     "axes.spines.top": False,
     "axes.spines.right": False,
+    # one family with the mathematics (issue 41): STIX, which matplotlib ships, for the
+    # words, the numbers and the mathtext of every figure, as for the report's body text
+    # and its typeset equations (reportgen.rendering.equations)
+    "font.family": "STIXGeneral",
+    "mathtext.fontset": "stix",
     "svg.fonttype": "none",
     "pdf.fonttype": 42,
     "axes.prop_cycle": matplotlib.cycler(color=[]),  # set below: PALETTE
