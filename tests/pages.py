@@ -15,6 +15,8 @@ and PDF on, ``--jobs 2``), then per scene
 - every archive opens in xarray with named dimensions and ``units`` on every variable,
   in every group, and every dataset has CF ``units`` and ``long_name``;
 - every citation names its document, and the Sources list holds exactly those cited;
+  each citation of the notes or the textbook resolves to a place of their index and the
+  words around it are about that place;
 - the archive is the whole truth: the report rebuilt from the archive alone, in a process
   where ``reportgen.core`` cannot be imported, gives the same page and byte-identical
   figures.
@@ -244,6 +246,18 @@ def page_tests(scenes: list[Path], study_off=()) -> dict:
                       _LABEL.findall(section[1].split("</section>", 1)[0])]
         assert named <= set(listed), f"{config.stem}: cited but not listed: {named - set(listed)}"
         assert listed == cited(page) == [k for k in SOURCES if k in listed]
+
+    @pytest.mark.parametrize("config", scenes, ids=ids)
+    def test_every_citation_resolves_to_its_place(config, reports):
+        """Each citation of the notes or the textbook names a place of the documents' index
+        (reportgen/data/places_*.toml, checked against the documents by test_places.py)
+        and the words around it are about that place (one of its topics): "the reduced
+        mass, notes (3.22)", never "(3.20)" (reportgen.scene.citations)."""
+        from reportgen.scene.citations import problems
+
+        page = (reports / config.stem / "report.html").read_text(encoding="utf-8")
+        found = list(dict.fromkeys(problems(page)))
+        assert found == [], f"{config.stem}:\n  " + "\n  ".join(found)
 
     @pytest.mark.parametrize("config", per_kind, ids=[p.stem for p in per_kind])
     def test_the_report_is_a_function_of_the_archive_alone(config, reports, rebuilt):

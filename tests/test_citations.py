@@ -144,3 +144,61 @@ def test_sources_section_lists_cited_documents_in_order():
 # Every shipped report and variant is read by tests/test_shipped_pages.py (no bare
 # citation; the Sources list holds exactly the documents cited), on the one batch run
 # the page tests already make.
+
+
+# ------------------------------------------------ each citation resolved (issue 42)
+@pytest.mark.parametrize("text", [
+    "(Goldstein 5.72)", "period 4K(k)·√(l/g), DLMF 22.19.4", "DLMF 22.19(i) gives"])
+def test_goldstein_and_dlmf_numbers_are_places_of_their_books(text):
+    """"Goldstein 5.72" and "DLMF 22.19.4" cite a place, named by the book before it."""
+    block = visible_blocks(page(text))[0]
+    found = [citing_document(block, m) for m in PLACE.finditer(block)]
+    assert found and set(found) <= {"goldstein", "dlmf"}
+    assert bare_citations(page(text)) == []
+
+
+#: the sentences the shipped reports printed before issue 42, each citing the wrong place
+#: (the lecture notes, /work/shared/documents/lecture-notes.txt), with the place they meant
+SLIPS = [
+    ("The relative orbit r(t) = r₁ − r₂, notes (3.21).", "(3.21)", "(3.19)"),
+    ("reduced mass μ = m1 m2/(m1 + m2), notes (3.20)", "(3.20)", "(3.22)"),
+    ("r1 = (m2/M) r, r2 = −(m1/M) r, notes (3.19)", "(3.19)", "(3.20)–(3.21)"),
+    ("L(0), Noether charge of rotations, notes (3.27)", "(3.27)", "(3.23)–(3.25)"),
+    ("the effective potential V + L²/(2μr²), notes (3.28–3.30): the barrier",
+     "(3.28–3.30)", "(7.40)–(7.41)"),
+    ("Kepler's third law T = 2π√(a³/(k/μ)), notes (3.31)", "(3.31)", None),
+    ("W_r solves H(q, ∂W/∂q) = E, notes (7.34).", "(7.34)", "(7.32), (7.42)–(7.45)"),
+    ("the energy ellipsoid ω·Iω = 2T, notes (10.17)", "(10.17)", "(10.15)"),
+    ("Q = p, notes (6.9), of the integrated H", "(6.9)", "(6.7)"),
+]
+
+
+@pytest.mark.parametrize(("sentence", "wrong", "right"), SLIPS)
+def test_a_citation_of_the_wrong_equation_is_found_and_the_right_one_passes(sentence, wrong,
+                                                                            right):
+    """The topic rule of :func:`reportgen.scene.citations.problems` on the slips issue 42
+    listed: each sentence as printed is about none of the places it cites; with the place
+    the notes give it (the third law: cited from Goldstein, the notes have none) it
+    passes."""
+    from reportgen.scene.citations import problems
+
+    found = problems(page(sentence))
+    assert len(found) == 1 and found[0].startswith(f"notes {wrong}"), found
+    if right is not None:
+        assert problems(page(sentence.replace(wrong, right))) == []
+
+
+def test_a_table_row_reads_as_one_sentence_and_places_cited_together_share_words():
+    """A row's citation is about what its first cell names; "notes (7.32), (7.42)–(7.45)"
+    is one citation of a list of places; a place the index lacks is named."""
+    from reportgen.scene.citations import citations, problems
+
+    row = ("<html><body><table><tr><td>reduced mass μ</td><td>0.5 kg</td>"
+           "<td>notes (3.22)</td></tr></table></body></html>")
+    assert [c.words for c in citations(row)] == ["reduced mass μ | 0.5 kg | notes (3.22)"]
+    assert problems(row) == [] and problems(row.replace("(3.22)", "(3.21)")) != []
+    listed = page("W_r solves H(q, ∂W/∂q) = E, notes (7.32), (7.42)–(7.45).")
+    assert problems(listed) == []
+    assert problems(page("as in textbook ex. 4.12")) == [
+        "textbook ex. 4.12: textbook has no place 'ex. 4.12' in its index "
+        "(reportgen/data/places_textbook.toml)"]

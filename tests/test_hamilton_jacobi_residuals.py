@@ -48,7 +48,7 @@ def oscillator_W():
 def test_oscillator_characteristic_function_against_quadpack_and_arcsin():
     W = oscillator_W()
     q = np.linspace(-0.9 * A_OSC, 0.95 * A_OSC, 7)
-    # QUADPACK of the integrand √(2mE − m²ω²q²) from −A (notes (7.34))
+    # QUADPACK of the integrand √(2mE − m²ω²q²) from −A (notes (7.33)–(7.34))
     ref = [quad(lambda s: math.sqrt(max(2 * M * E_OSC - (M * OMEGA * s) ** 2, 0.0)),
                 -A_OSC, x) for x in q]
     assert np.max(np.abs(W(q) - ref)) < 1e-13 * E_OSC / OMEGA
@@ -68,7 +68,7 @@ def test_gradient_solves_the_time_independent_equation():
     q = np.concatenate([np.linspace(-A_OSC, A_OSC, 201), [A_OSC * (1 + 1e-14), -A_OSC * 1.5]])
     q_at, p = W.gradient(q)
     assert np.all(np.abs(q_at) <= A_OSC)
-    H = p**2 / (2 * M) + M * OMEGA**2 * q_at**2 / 2  # H(q, ∂W/∂q) = E, notes (7.34)
+    H = p**2 / (2 * M) + M * OMEGA**2 * q_at**2 / 2  # H(q, ∂W/∂q) = E, notes (7.32)–(7.33)
     assert np.max(np.abs(H / E_OSC - 1)) < 1e-10
     inside = slice(20, 181)  # away from the turning points: p itself to 1e-11
     closed = M * OMEGA * np.sqrt(A_OSC**2 - q[inside] ** 2)
@@ -158,9 +158,9 @@ def test_oscillator_stores_computed_bracket_and_residuals(oscillator):
     e0 = 0.5 * 0.5**2 / 2.0 + 0.5 * 2.0 * 1.5**2 * 1.0**2  # p0²/2m + mω²q0²/2
     assert a["poisson_bracket_QP"] == 1.0
     assert 0 <= a["poisson_bracket_QP_defect"] < 1e-12
-    assert a["hj_residual"] < 1e-14  # the integrand solves (7.34) to rounding
+    assert a["hj_residual"] < 1e-14  # the integrand solves (7.33) to rounding
     assert a["hj_residual_quadrature"] < 1e-10  # notes (7.16), all by differences
-    assert a["hj_characteristic_residual_quadrature"] < 1e-10  # notes (7.34)
+    assert a["hj_characteristic_residual_quadrature"] < 1e-10  # notes (7.32)–(7.33)
     assert a["hj_characteristic_quadrature_error"] < 1e-13
     assert a["hj_half_action"] == pytest.approx(math.pi * e0 / 1.5, rel=1e-13)
     # p² − (∂W/∂q)² = 2m(H(q, p) − E) on a branch, so |p − ∂W/∂q| ≤ √(2m|H − E|): the
@@ -185,7 +185,7 @@ def test_oscillator_report_shows_the_residuals(oscillator, tmp_path):
     content = type(scene).section_hamilton_jacobi(data)
     (table,) = content.tables
     cells = [cell for row in table.rows for cell in row]
-    assert any("notes (7.16)" in c for c in cells) and any("notes (7.34)" in c for c in cells)
+    assert any("notes (7.16)" in c for c in cells) and any("notes (7.32)–(7.33)" in c for c in cells)
     from reportgen.scene.content import fmt_err
     assert fmt_err(data.analysis["hj_residual_quadrature"]) in cells
     facts = dict(type(scene).section_canonical_swap(data).facts)

@@ -11,8 +11,8 @@ References (Goldstein, Poole & Safko, Classical Mechanics, 3rd ed.):
 * §9.4–§9.5: canonical iff MᵀJM = J, iff {Qᵢ, Pⱼ} = δᵢⱼ;
 * §9.6: the infinitesimal canonical transformation δq = ε ∂G/∂p, δp = −ε ∂G/∂q and
   δH = ε{H, G}; §2.7 / §8.2: Noether's theorem, the charge Σ ∂L/∂q̇ δq (− F).
-Lecture notes (6.12–6.15) (the four types), (6.16–6.18) (infinitesimal), (3.9–3.16)
-(Noether), (3.48–3.49) (L + dF/dt).
+Lecture notes (6.4)–(6.5) and (6.12)–(6.14) (types 1 and 3; all four: Goldstein Table
+9.1), (6.16–6.18) (infinitesimal), (3.9–3.16) (Noether), (3.48–3.49) (L + dF/dt).
 Hénon & Heiles, Astron. J. 69, 73 (1964): H = (p_x² + p_y²)/2 + (x² + y²)/2 + x²y − y³/3.
 Hairer, Nørsett & Wanner, Solving ODEs I, §II.6: event location on dense output.
 """

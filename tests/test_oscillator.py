@@ -93,7 +93,7 @@ def test_archive_holds_what_the_report_draws(data):
                        rtol=0, atol=1e-14)
     assert np.allclose(run.reference["p"], 0.5 * np.cos(1.5 * t) - 3.0 * np.sin(1.5 * t),
                        rtol=0, atol=1e-14)
-    # the swap image of the integrated orbit, Q = p, P = −q (6.9)
+    # the swap image of the integrated orbit, Q = p, P = −q (6.7)
     assert np.array_equal(swapped.reference["Q"], run["p"])
     assert np.array_equal(swapped.reference["P"], -run["q"])
     # Hamilton–Jacobi (7.38): q = √(2E/mω²) sin ω(t + β), with E, β from the initial state

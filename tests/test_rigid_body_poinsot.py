@@ -1,5 +1,5 @@
 """Poinsot's geometry of the free rigid body: polhodes on the inertia ellipsoid, the invariable
-plane, the herpolhode (Goldstein 3rd ed. §5.6; Landau & Lifshitz §33, §37; notes (10.17))."""
+plane, the herpolhode (Goldstein 3rd ed. §5.6; Landau & Lifshitz §33, §37; notes (10.15)–(10.17))."""
 
 from __future__ import annotations
 

@@ -5,7 +5,7 @@ recomputed here.
 
 References, independent of reportgen:
 - matrix exponentials by ``scipy.linalg.expm``: the active R(n, Φ) = exp(Φ[n]×) (textbook
-  ex. 4.5) and U(n, α) = exp(−iα n·σ/2) (notes (9.17)); elementary SU(2) factors
+  ex. 4.5) and U(n, α) = exp(−iα n·σ/2) (the SU(2) map of notes (9.4)–(9.8)); elementary SU(2) factors
   exp(−iα σ_k/2), multiplied in the order of the Euler angles (notes (9.18));
 - Euler matrices by ``scipy.spatial.transform.Rotation.from_euler`` ("ZXZ"/"ZYZ",
   intrinsic: R = R_z(φ) R_k(θ) R_z(ψ), Goldstein (4.46) transposed);

@@ -22,6 +22,9 @@ globals().update(page_tests(SHIPPED))
 # ------------------------------------------------------------------- coverage map
 COVERAGE = REPO / "docs" / "coverage.md"
 _COVERAGE_ROW = re.compile(r"^\| *(?:notes|textbook)[^|]*\|")
+#: the kinds of index entries the map must have a row for (every equation is not a row:
+#: the map groups them under their section)
+_MAPPED = ("section", "example", "figure", "exercise", "exercise-part")
 
 
 def _coverage_rows() -> list[list[str]]:
@@ -29,21 +32,44 @@ def _coverage_rows() -> list[list[str]]:
     for line in COVERAGE.read_text(encoding="utf-8").splitlines():
         if _COVERAGE_ROW.match(line):
             cells = [c.strip() for c in line.strip().strip("|").split("|")]
-            assert len(cells) == 5, line
+            assert len(cells) == 6, line
             rows.append(cells)
     return rows
 
 
-def test_the_coverage_map_is_true(reports):
-    """Every row of docs/coverage.md names a shipped config whose report has the section
-    and whose archive has each result (a group, dataset or attribute of /analysis); a
-    row shown by no config says why."""
+def test_the_coverage_map_has_a_row_for_every_place_of_the_index():
+    """One row per section, worked example, figure and exercise part of both documents
+    (an exercise without parts is its own row); every row names a place of the index."""
+    from reportgen.scene.places import places, resolve
+
     rows = _coverage_rows()
-    assert len(rows) >= 50 and {r[0].split()[0] for r in rows} == {"notes", "textbook"}
+    covered = set()
+    for place, _, shown, *_ in rows:
+        document, _, where = place.partition(" ")
+        assert shown in ("yes", "partly", "no"), place
+        covered |= {(document, p.place) for p in resolve(document, where)}
+    missing = []
+    for document in ("notes", "textbook"):
+        index = places(document)
+        with_parts = {p.place.split("(")[0] for p in index.values() if p.kind == "exercise-part"}
+        for key, p in index.items():
+            if p.kind not in _MAPPED or (p.kind == "exercise" and key in with_parts):
+                continue
+            if (document, key) not in covered:
+                missing.append(f"{document} {key} ({p.label})")
+    assert missing == [], "no row in docs/coverage.md for:\n  " + "\n  ".join(missing)
+
+
+def test_the_coverage_map_is_true(reports):
+    """Every row of docs/coverage.md shown (yes or partly) names a shipped config whose
+    report has the section and whose archive has each result (a group, dataset or
+    attribute of /analysis); a row not shown says why."""
+    rows = _coverage_rows()
+    assert len(rows) >= 100 and {r[0].split()[0] for r in rows} == {"notes", "textbook"}
     wrong = []
-    for place, _, config, section, result in rows:
-        if config == "—":
-            assert result.startswith("— not shown"), place
+    for place, _, shown, config, section, result in rows:
+        if shown == "no":
+            assert config == section == "—" and result.startswith("— not shown: "), place
             continue
         if not (REPO / "configs" / f"{config}.toml").exists():
             wrong.append(f"{place}: no config {config}")

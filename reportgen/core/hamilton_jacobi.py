@@ -587,7 +587,7 @@ class CharacteristicQuadrature:
     r"""Hamilton's characteristic function of one separated coordinate by quadrature.
 
     For a coordinate x librating between the simple roots a < b of F(x) = p_x² (F > 0
-    between them), the branch p_x ≥ 0 of W (notes (7.34); Goldstein §10.3)::
+    between them), the branch p_x ≥ 0 of W (notes (7.32)–(7.34); Goldstein §10.3)::
 
         W(x) = ∫_a^x √F(x') dx'.
 

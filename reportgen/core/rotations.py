@@ -456,7 +456,8 @@ def su2_from_axis_angle(axis, angle: float) -> np.ndarray:
 def su2_exp(axis, angle: float) -> np.ndarray:
     """``exp(−i α n·σ/2)`` by the eigenvectors of the Hermitian n·σ (eigenvalues ±1), shape
     (2, 2): a matrix exponential that knows nothing of the closed form
-    cos(α/2) 1 − i sin(α/2) n·σ (lecture notes (9.17)) it checks."""
+    cos(α/2) 1 − i sin(α/2) n·σ (the SU(2) map of lecture notes (9.4)–(9.8); Goldstein §4.5)
+    it checks."""
     n = np.asarray(axis, dtype=float)
     n = n / np.linalg.norm(n)
     lam, V = np.linalg.eigh(np.einsum("k,kab->ab", n, PAULI))
@@ -511,9 +512,9 @@ def su2_euler_cayley_klein(phi, theta, psi, convention: str = "zxz") -> tuple:
 
 
 def su2_axis_angle(U) -> tuple[np.ndarray, float]:
-    """(m, α) with ``U = cos(α/2) 1 − i sin(α/2) m·σ`` (Euler's theorem in SU(2), lecture
-    notes (9.17)), α in [0, 2π]: α > π when ½ tr U < 0, and −U is then the turn by 2π − α
-    about −m.  α = 0 has no axis: m = e_z."""
+    """(m, α) with ``U = cos(α/2) 1 − i sin(α/2) m·σ`` (Euler's theorem in SU(2); the
+    SU(2) map of lecture notes (9.4)–(9.8)), α in [0, 2π]: α > π when ½ tr U < 0, and −U
+    is then the turn by 2π − α about −m.  α = 0 has no axis: m = e_z."""
     q = su2_to_quat(U)
     v = float(np.linalg.norm(q[1:]))
     if v == 0.0:

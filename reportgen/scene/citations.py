@@ -40,6 +40,12 @@ _SENTENCE_END = re.compile(r"(?<!\bFig)(?<!\bFigs)(?<!\b[Ee]x)(?<!\b[Ee]q)(?<!\b
                            r"(?<!\b[Cc]h)(?<!\bcf)(?<!\bvs)(?<!\be\.g)(?<!\bi\.e)[.!?](?=\s|$)")
 #: a typeset equation's opening tag, with its TeX
 _EQUATION = re.compile(r'<span class="eq"[^>]*\baria-label="([^"]*)"[^>]*>')
+#: between two places cited together: a comma, a semicolon, "and", "or", and maybe the
+#: second one's document ("Landau & Lifshitz §32 Problem 2; textbook ex. 4.6")
+_TOGETHER = re.compile(r"\s*(?:[,;]|and|or|,\s*and)?\s*(?:(?:the\s+)?(?:notes|textbook|Goldstein|"
+                       r"Landau\s*&\s*Lifshitz|DLMF)\s*)?")
+#: between two cells of a table row, or a fact and its value
+_CELL_JOIN = re.compile(r"</t[dh]>\s*<t[dh]\b[^>]*>|</dt>\s*<dd\b[^>]*>", re.I)
 _FOLD = str.maketrans("₀₁₂₃₄₅₆₇₈₉⁰¹²³⁴⁵⁶⁷⁸⁹‐‑‒–—−’",
                       "01234567890123456789-----−'")
 
@@ -76,6 +82,9 @@ def citations(html_text: str) -> list[Citation]:
     V_eff = …, notes (7.41)" is read with its formula."""
     found = []
     html_text = _EQUATION.sub(lambda m: f"{m.group(0)} {m.group(1)} ", html_text)
+    # a table row, or a fact with its value, is read as one block: "reduced mass μ | 0.5 kg
+    # | notes (3.22)" is about what its first cell names
+    html_text = _CELL_JOIN.sub(" | ", html_text)
     for block in visible_blocks(html_text):
         spans = []  # (start, end, document, place) of each citation in the block
         for match in PLACE.finditer(block):
@@ -85,16 +94,24 @@ def citations(html_text: str) -> list[Citation]:
             whole = _WHOLE.match(block, match.start())
             end = whole.end() if whole else match.end()
             spans.append((match.start(), end, document, block[match.start():end]))
-        for i, (start, end, document, place) in enumerate(spans):
-            if document not in INDEXED:
-                continue
+        windows = []
+        for i, (start, end, _, _) in enumerate(spans):
             left = spans[i - 1][1] if i else 0
             right = spans[i + 1][0] if i + 1 < len(spans) else len(block)
             ends = [m.end() for m in _SENTENCE_END.finditer(block, left, start)]
             left = ends[-1] if ends else left
             after = _SENTENCE_END.search(block, end, right)
-            right = after.end() if after else right
-            found.append(Citation(document, _as_indexed(place), block[left:right].strip()))
+            windows.append([left, after.end() if after else right])
+        # a list of places cited together ("notes (7.32), (7.42)–(7.45)") shares its words
+        for i in range(1, len(spans)):
+            if _TOGETHER.fullmatch(block, spans[i - 1][1], spans[i][0]):
+                windows[i][0] = windows[i - 1][0]
+        for i in range(len(spans) - 2, -1, -1):
+            if _TOGETHER.fullmatch(block, spans[i][1], spans[i + 1][0]):
+                windows[i][1] = windows[i + 1][1]
+        for (_, _, document, place), (left, right) in zip(spans, windows, strict=True):
+            if document in INDEXED:
+                found.append(Citation(document, _as_indexed(place), block[left:right].strip()))
     return found
 
 
@@ -103,6 +120,7 @@ def _as_indexed(place: str) -> str:
     "eq. (3.37)" → "eq. 3.37"."""
     place = " ".join(place.split())
     place = re.sub(r"^[Cc]h(?:apters?|\.)\s*(\d+)$", r"ch. \1", place)
+    place = re.sub(r"^[Ee]x(?:ercises?|\.)\s*", "ex. ", place)
     return re.sub(r"^([Ee]qs?\.)\s*\((\d+\.\d+)\)$", r"\1 \2", place)
 
 

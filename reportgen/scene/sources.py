@@ -118,7 +118,11 @@ PLACE = re.compile(
     r"|\bFigs?\.\s*(?:\d|[IVX]+\.\d)|\bFigures?\s+\d+\.\d"
     r"|\b[Ee]x\.\s*(?:\d|[IVX]+\.\d)|\b[Ee]xercises?\s+\d|\b[Pp]roblems?\s+\d"
     r"|\b[Ee]qs?\.\s*\(?(?:\d|[IVX]+\.\d)|\b[Ee]quations?\s+\d"
-    r"|\b[Cc]h\.\s*\d|\b[Cc]hapters?\s+\d")
+    r"|\b[Cc]h\.\s*\d|\b[Cc]hapters?\s+\d"
+    # a bare equation number right after the book's name: "Goldstein 5.72", "DLMF 22.19.4",
+    # "DLMF 22.19(i)"
+    r"|(?<=\bGoldstein )\d+\.\d+\b"
+    r"|(?<=\bDLMF )\d+\.\d+(?:\.\d+)?(?:\([ivx]+\))?")
 
 #: a document's name, as a citation gives it
 _NAME = re.compile("|".join(f"(?P<{key}>{s.pattern})" for key, s in SOURCES.items()))

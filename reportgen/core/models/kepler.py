@@ -97,18 +97,18 @@ def potential_derivative(r, k, n=1.0, epsilon=0.0):
 
 
 def effective_potential(r, L, mu, k, n=1.0, epsilon=0.0):
-    """V_eff(r) = L²/(2 μ r²) + V(r) (3.28–3.30): the radial motion's potential."""
+    """V_eff(r) = L²/(2 μ r²) + V(r) (notes (7.40)–(7.41)): the radial motion's potential."""
     r = np.asarray(r, dtype=np.float64)
     return L**2 / (2.0 * mu * r**2) + potential(r, k, n, epsilon)
 
 
 def reduced_mass(m1, m2):
-    """μ = m1 m2 / (m1 + m2) (3.20)."""
+    """μ = m1 m2 / (m1 + m2) (3.22)."""
     return m1 * m2 / (m1 + m2)
 
 
 def body_positions(x, y, m1, m2):
-    """Tracks of both bodies in the centre-of-mass frame (3.19): r1 = m2 r/M, r2 = −m1 r/M."""
+    """Tracks of both bodies in the centre-of-mass frame (3.20)–(3.21): r1 = m2 r/M, r2 = −m1 r/M."""
     M = m1 + m2
     r = np.stack([np.asarray(x), np.asarray(y)], axis=-1)
     return m2 / M * r, -m1 / M * r
@@ -144,7 +144,7 @@ def orbital_elements(x, y, vx, vy, K):
     Returns a dict with eccentricity e, semi_major_axis a (negative for
     hyperbolae, inf for the parabola), specific energy, specific angular
     momentum h, argument of pericentre omega, mean motion and period (bound
-    orbits, Kepler's third law T = 2π √(a³/K), 3.31 / Goldstein eq. 3.71) and
+    orbits, Kepler's third law T = 2π √(a³/K), Goldstein eq. 3.71) and
     the mean anomaly at the initial state (bound orbits).
     """
     r = math.hypot(x, y)

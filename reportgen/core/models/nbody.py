@@ -264,7 +264,7 @@ def osculating_orbit(r, v, K):
 
     References
     ----------
-    Lecture notes §3, eq. (3.31); Goldstein, *Classical Mechanics*, 3rd ed., eq. (3.71).
+    Goldstein, *Classical Mechanics*, 3rd ed., eq. (3.71).
     """
     r = np.asarray(r, dtype=np.float64)
     v = np.asarray(v, dtype=np.float64)

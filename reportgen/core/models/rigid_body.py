@@ -332,8 +332,12 @@ def flip_analysis(t, omega, axis: int, growth_rate: float, half_period_exact: fl
         ``growth_envelope`` = |ω⊥(0)| e^{γt}, shape (N,).
     """
     wb = omega[:, axis]
-    idx = np.nonzero(np.sign(wb[1:]) != np.sign(wb[:-1]))[0]
-    times = t[idx] - wb[idx] * (t[idx + 1] - t[idx]) / (wb[idx + 1] - wb[idx])
+    # a sign change between samples that are not zero to rounding: a run started with
+    # ω_b = 0 exactly (on a principal plane) has not flipped at t = 0
+    kept = np.nonzero(np.abs(wb) > 1e-12 * float(np.max(np.abs(wb), initial=0.0)))[0]
+    change = np.nonzero(np.sign(wb[kept[1:]]) != np.sign(wb[kept[:-1]]))[0]
+    i, j = kept[change], kept[change + 1]
+    times = t[i] - wb[i] * (t[j] - t[i]) / (wb[j] - wb[i])
     measured = float(np.mean(np.diff(times))) if times.size >= 2 else math.nan
     others = [i for i in range(3) if i != axis]
     perp0 = float(np.linalg.norm(omega[0, others]))

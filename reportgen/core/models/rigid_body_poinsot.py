@@ -3,7 +3,7 @@ invariable plane and the herpolhode.
 
 Body frame = principal frame, moments I = diag(I1, I2, I3).  Both
 
-    2T = ω·Iω          (the energy ellipsoid; lecture notes (10.17))
+    2T = ω·Iω          (the energy ellipsoid; lecture notes (10.15))
     L² = ω·I²ω         (|L| conserved)
 
 are constant, so the body-frame ω moves on the intersection of two quadrics: the
@@ -41,7 +41,7 @@ References
 .. [1] Goldstein, Poole & Safko, *Classical Mechanics*, 3rd ed., §5.6 (Poinsot's
        construction, polhode, herpolhode, invariable plane).
 .. [2] Landau & Lifshitz, *Mechanics*, 3rd ed., §33 (free symmetric top), §37 (polhodes).
-.. [3] Lecture notes §10, eq. (10.17).
+.. [3] Lecture notes §10, eqs. (10.15)–(10.17).
 """
 
 from __future__ import annotations

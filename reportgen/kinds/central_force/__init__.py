@@ -3,11 +3,11 @@ r"""``central_force``: two bodies in a central potential and the Kepler problem 
 The relative coordinate r = r1 − r2 moves like one body of reduced mass
 μ = m1 m2/(m1 + m2) in V(r) (notes (3.18–3.22)); the angular momentum L = μ r × ṙ is the
 Noether charge of rotations (notes (3.23–3.27)); the radial motion sees the effective
-potential V + L²/(2μr²) (notes (3.28–3.31)).  For V = −k/r the integration is checked
+potential V + L²/(2μr²) (notes (7.40)–(7.41)).  For V = −k/r the integration is checked
 against Kepler's equation at every stored time, the third law and the
 Laplace–Runge–Lenz vector; for other potentials the apsidal angle against the
 exact quadrature and its near-circular limit π/√(2 − n).  A bound orbit's
-Hamilton–Jacobi equations, notes (7.16) and (7.34), are evaluated along the run with
+Hamilton–Jacobi equations, notes (7.16), (7.32) and (7.42)–(7.45), are evaluated along the run with
 W = W_r(r) + α_θ θ (:mod:`.hamilton_jacobi`).
 """
 

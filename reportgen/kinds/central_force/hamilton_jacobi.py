@@ -1,4 +1,5 @@
-r"""``central_force``: the Hamilton–Jacobi equations along a bound run (notes (7.16), (7.34)).
+r"""``central_force``: the Hamilton–Jacobi equations along a bound run (notes (7.16),
+(7.32), (7.42)–(7.45)).
 
 In plane polar coordinates the relative motion has H = p_r²/2μ + p_θ²/(2μr²) + V(r); θ is
 cyclic, and the complete integral is S = W − E t with Hamilton's characteristic function
@@ -129,7 +130,7 @@ def residuals(t, state, *, mu, k, n, epsilon, energy, angular_momentum,
     }
     worst = int(np.argmax(np.abs(by_quadrature - E)))
     checks = [Check("H(r, ∂W/∂r, ∂W/∂θ), W by quadrature, worst sample",
-                    float(by_quadrature[worst]), E, "J", "E, notes (7.34)", scale=scale)]
+                    float(by_quadrature[worst]), E, "J", "E, notes (7.32)", scale=scale)]
     if closed:
         # half the radial action, π(k√(μ/(−2E)) − √C): relative to its first term, the
         # size of the two whose difference it is (small for a nearly circular orbit)

@@ -262,7 +262,7 @@ class CentralForceReport(Report):
         e = math.hypot(*lrl) if lrl is not None else math.nan
         fig = plots.relative_orbit(run["x"], run["y"], reference=ref, pericentres=peri, lrl=lrl,
                                    lrl_label=f"LRL direction (|A|/μk = e = {fmt(e, 4)})")
-        caption = "The relative orbit r(t) = r1 − r2, notes (3.21)."
+        caption = "The relative orbit r(t) = r1 − r2, notes (3.19)."
         if ref is not None and circle:
             caption += (" Dashed: the exact circle from Kepler's equation (the Laplace–Runge–"
                         "Lenz vector vanishes: a circle has no pericentre).")
@@ -281,8 +281,8 @@ class CentralForceReport(Report):
         p, a = data.config.params, data.analysis
         tracks = a["body_tracks"]
         fig = plots.two_body_tracks(tracks["r1"], tracks["r2"], m1=p.m1, m2=p.m2)
-        facts = [("reduced mass μ = m1 m2/(m1 + m2), notes (3.20)", f"{fmt(a['reduced_mass'])} kg"),
-                 ("r1 = (m2/M) r, r2 = −(m1/M) r, notes (3.19)",
+        facts = [("reduced mass μ = m1 m2/(m1 + m2), notes (3.22)", f"{fmt(a['reduced_mass'])} kg"),
+                 ("r1 = (m2/M) r, r2 = −(m1/M) r, notes (3.20)–(3.21)",
                   f"m2/M = {fmt(a['mass_fraction_m2'])}, m1/M = {fmt(a['mass_fraction_m1'])}")]
         caption = ("Both bodies' tracks in the centre-of-mass frame (R = 0): similar curves, "
                    "scaled by m2/M and m1/M about the centre of mass and on opposite sides of it"
@@ -309,7 +309,7 @@ class CentralForceReport(Report):
         facts = turning + [("radius of the circular orbit at this L", f"{fmt(rc)} m")]
         return SectionContent(figures=[cls.figure(
             "effective_potential", fig, "The radial motion in the effective potential "
-            "V(r) + L²/(2μr²), notes (3.28–3.30): "
+            "V(r) + L²/(2μr²), notes (7.40)–(7.41): "
             + ("a circular orbit sits at its minimum, where E equals it."
                if a["orbit_shape"] == "circle" else "the orbit stays where E is above it, "
                + ("between the turning points." if a["bound"] == "yes" else
@@ -396,7 +396,7 @@ class CentralForceReport(Report):
         rows = [
             ["∂S/∂t + H(q, ∂S/∂q) = 0, notes (7.16)", fmt_err(a["hj_residual"]),
              fmt_err(a["hj_residual_quadrature"])],
-            ["H(q, ∂W/∂q) = E, notes (7.34)", fmt_err(a["hj_residual"]),
+            ["H(q, ∂W/∂q) = E, notes (7.32)", fmt_err(a["hj_residual"]),
              fmt_err(a["hj_characteristic_residual_quadrature"])],
         ]
         if "hj_half_action_closed_form" in a:

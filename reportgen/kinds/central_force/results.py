@@ -123,7 +123,7 @@ SCHEMA = ResultsSchema(
         Q("pericentre_positions/y", "y", "m", "pericentre passages, y", ("pericentre",),
           optional=True),
         # the Hamilton-Jacobi equations along a bound run, W = W_r(r) + alpha_theta theta,
-        # relative to |E| (notes (7.16), (7.34))
+        # relative to |E| (notes (7.16), (7.32))
         Q("hj_residual", r"\max|\partial_t S + H(q, \partial_q S)|/|E|", "1",
           "largest residual of the Hamilton-Jacobi equation along the run, dW/dr from the "
           "integrand (dS/dt = -E: also that of H(q, dW/dq) = E)", optional=True),

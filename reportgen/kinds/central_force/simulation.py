@@ -204,7 +204,8 @@ class CentralForceSimulation(IntegratingSimulation):
                                     "E(0), conserved", scale=self._invariant_scales()["energy"]))
         L_inv = main.invariants["angular_momentum"]
         results.checks.append(Check("angular momentum L(t_end)", float(L_inv[-1]),
-                                    float(L_inv[0]), "kg·m²/s", "L(0), Noether charge, notes (3.27)"))
+                                    float(L_inv[0]), "kg·m²/s",
+                                    "L(0), Noether charge of rotations, notes (3.23)–(3.25)"))
         ref, ref_kind = None, "exact"
         if self.is_kepler and self.bound:
             el = self.elements
@@ -218,7 +219,7 @@ class CentralForceSimulation(IntegratingSimulation):
 
     def _hamilton_jacobi(self, results: Results, main) -> None:
         """The Hamilton–Jacobi equations along the run, W = W_r(r) + α_θ θ (notes (7.16),
-        (7.34)): :mod:`reportgen.kinds.central_force.hamilton_jacobi`."""
+        (7.32), (7.42)–(7.45)): :mod:`reportgen.kinds.central_force.hamilton_jacobi`."""
         k, n, eps = self.pot
         analysis, checks = hamilton_jacobi.residuals(
             main.t, (main["x"], main["y"], main["vx"], main["vy"]), mu=self.mu, k=k, n=n,
@@ -300,7 +301,7 @@ class CentralForceSimulation(IntegratingSimulation):
                 t_meas = (tp[-1] - tp[0]) / (tp.size - 1)
                 a["period_measured"] = t_meas
                 results.checks.append(Check("period from pericentre passages", t_meas, period,
-                                            "s", "third law T = 2π√(a³/(k/μ)), notes (3.31)"))
+                                            "s", "third law T = 2π√(a³/(k/μ)), Goldstein (3.71)"))
                 a_meas = 0.5 * (float(np.mean(rp)) + float(np.mean(ra)))
                 a["semi_major_axis_measured"] = a_meas
                 results.checks.append(Check("semi-major axis (rₘᵢₙ + rₘₐₓ)/2 measured", a_meas,

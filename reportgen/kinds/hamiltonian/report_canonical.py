@@ -136,10 +136,11 @@ class CanonicalSections:
                   f"{fmt(a['total_derivative_H_scale'], 4)})")]
         return SectionContent(equations=eqs, facts=facts)
 
-    #: where the notes define each kind of transformation
-    TRANSFORM_NOTES = {"F1": "notes (6.12–6.15)", "F2": "notes (6.12–6.15)",
-                       "F3": "notes (6.12–6.15)", "F4": "notes (6.12–6.15)",
-                       "G": "notes (6.16–6.18)"}
+    #: where each kind of transformation is defined: the notes treat F(q, Q) at (6.4)–(6.5)
+    #: and F(p, Q) at (6.12)–(6.14); F(q, P) and F(p, P) only Goldstein's Table 9.1 has
+    TRANSFORM_NOTES = {"F1": "notes (6.4)–(6.5)", "F2": "Goldstein §9.1, Table 9.1",
+                       "F3": "notes (6.12)–(6.14)", "F4": "Goldstein §9.1, Table 9.1",
+                       "G": "notes (6.16)–(6.18)"}
 
     @classmethod
     def section_transform(cls, data):

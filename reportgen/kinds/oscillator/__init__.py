@@ -5,7 +5,7 @@ canonical transformation F1 = q Q, notes (6.6–6.11), applied to the trajectory
 checked against integrating the transformed Hamiltonian, its Poisson bracket {Q, P}
 derived by SymPy and evaluated along the orbit by central differences; the
 Hamilton–Jacobi solution, notes (7.33–7.38), compared with the integration, and the
-residuals of the Hamilton–Jacobi equations, notes (7.16) and (7.34), along the run with
+residuals of the Hamilton–Jacobi equations, notes (7.16) and (7.32)–(7.33), along the run with
 ∂W/∂q from the integrand and from W by quadrature.
 """
 

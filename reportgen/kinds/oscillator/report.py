@@ -157,7 +157,7 @@ class OscillatorReport(Report):
         rows = [
             ["∂S/∂t + H(q, ∂S/∂q) = 0, notes (7.16)", fmt_err(a["hj_residual"]),
              fmt_err(a["hj_residual_quadrature"])],
-            ["H(q, ∂W/∂q) = E, notes (7.34)", fmt_err(a["hj_residual"]),
+            ["H(q, ∂W/∂q) = E, notes (7.32)–(7.33)", fmt_err(a["hj_residual"]),
              fmt_err(a["hj_characteristic_residual_quadrature"])],
             ["W by quadrature against its closed form, relative to πE/ω", "—",
              fmt_err(a["hj_characteristic_quadrature_error"])],

@@ -9,7 +9,7 @@ SCHEMA = ResultsSchema(
     columns=(
         Q("q", "q", "m", "coordinate", ("t",)),
         Q("p", "p", "kg m/s", "momentum", ("t",)),
-        # the swapped run integrates K(Q, P) = H(-P, Q): Q = p, P = -q (6.9)
+        # the swapped run integrates K(Q, P) = H(-P, Q): Q = p, P = -q (6.7)
         Q("Q", "Q", "kg m/s", "new coordinate of the swap F1 = q Q (Q = p)", ("t",)),
         Q("P", "P", "m", "new momentum of the swap F1 = q Q (P = -q)", ("t",)),
     ),
@@ -48,7 +48,7 @@ SCHEMA = ResultsSchema(
           "(relative to the period) below which the pair stays constant"),
         Q("hj_pair_constant", "", "", "whether (E, beta) stay constant along the "
           "integrated trajectory (yes or no), within the threshold", kind="str"),
-        # the Hamilton-Jacobi equations along the run, relative to E (notes (7.16), (7.34))
+        # the Hamilton-Jacobi equations along the run, relative to E (notes (7.16), (7.32)–(7.33))
         Q("hj_residual", r"\max|\partial_t S + H(q, \partial_q S)|/E", "1",
           "largest residual of the Hamilton-Jacobi equation along the run, dW/dq from the "
           "integrand (dS/dt = -E: also that of H(q, dW/dq) = E)"),

@@ -120,7 +120,7 @@ class OscillatorSimulation(IntegratingSimulation):
         results.checks.append(Check("p(t_end)", float(main["p"][-1]), float(p_ex[-1]), "kg·m/s",
                                     "closed form p₀ cos ωt − mωq₀ sin ωt", scale=p_amp))
         results.checks.append(Check("Q(t_end) from integrating K", float(swapped["Q"][-1]),
-                                    float(Q[-1]), "kg·m/s", "Q = p, notes (6.9), of the integrated H",
+                                    float(Q[-1]), "kg·m/s", "Q = p, notes (6.7), of the integrated H",
                                     scale=p_amp))
         results.checks.append(Check("q(t_end) Hamilton–Jacobi", float(q_hj[-1]),
                                     float(main["q"][-1]), "m",
@@ -172,7 +172,7 @@ class OscillatorSimulation(IntegratingSimulation):
         ∂W/∂q once from the integrand's closed form and once by central differences of W
         computed by quadrature (:class:`~reportgen.core.hamilton_jacobi.CharacteristicQuadrature`),
         ∂S/∂t then by a central difference in t: the residuals of ∂S/∂t + H(q, ∂S/∂q) = 0
-        (notes (7.16)) and H(q, ∂W/∂q) = E (notes (7.34)) relative to E, the quadrature's W
+        (notes (7.16)) and H(q, ∂W/∂q) = E (notes (7.32)–(7.33)) relative to E, the quadrature's W
         against its closed form, and the integrated p against ±∂W/∂q (the branch of p's
         sign).  Points of the run a rounding past a turning point are taken at it."""
         prm, a = self.config.params, results.analysis
@@ -205,7 +205,7 @@ class OscillatorSimulation(IntegratingSimulation):
         worst = int(np.argmax(np.abs(H_quadrature - e0)))
         results.checks.append(Check("H(q, ∂W/∂q), W by quadrature, worst sample",
                                     float(H_quadrature[worst]), e0, "J",
-                                    "E, notes (7.34)"))
+                                    "E, notes (7.32)–(7.33)"))
         results.checks.append(Check("∫ p dq between the turning points, by quadrature",
                                     W.half_action, half_action, "J·s",
                                     "πE/ω, Goldstein §10.6"))

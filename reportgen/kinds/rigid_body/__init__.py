@@ -3,7 +3,7 @@ r"""``rigid_body``: the torque-free rigid body (lecture notes §8–10; textbook
 Euler's equations notes (10.5) with the attitude quaternion, checked against the exact
 solution in Jacobi elliptic functions (both branches L² ≷ 2E·I2) or, for a symmetric
 body, the precession notes (10.9)–(10.10); polhodes on the angular-momentum sphere and on
-the inertia ellipsoid notes (10.17) with the separatrices, Poinsot's construction (the
+the inertia ellipsoid notes (10.15)–(10.16) with the separatrices, Poinsot's construction (the
 ellipsoid rolling on the invariable plane, the herpolhode), the stability of rotation
 about each principal axis notes (10.12)–(10.14) with the Dzhanibekov flip, and a geometric
 splitting integrator next to the general-purpose ones.

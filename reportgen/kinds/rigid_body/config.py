@@ -128,7 +128,7 @@ PRESETS = {
     "octahedron_spin": {"title": "Octahedron spinning near its smallest-moment axis "
                                  "(textbook ex. 4.9)",
                         "shape": {"type": "octahedron", "equator": "rectangle",
-                                  "mass": 1.0, "a": 1.2, "b": 0.8, "h": 0.4},
-                        "initial": {"omega": [4.0, 0.5, 0.5]},
+                                  "mass": 1.0, "a": 0.4, "b": 0.8, "h": 1.2},
+                        "initial": {"omega": [0.5, 0.5, 4.0]},
                         "run": {"t_end": 20.0, "samples": 4001}},
 }

@@ -403,7 +403,8 @@ class RigidBodyReport(Report):
                 f"−Ω = {fmt(-float(s['Omega']))} rad/s (dashed: notes (10.10))."))
         return SectionContent(figures=figures, facts=[
             ("symmetry axis", str(s["axis"])),
-            ("Ω, notes (10.10)", f"{fmt(s['Omega'], against=s['Omega_measured'])} rad/s"),
+            ("precession rate Ω of the transverse ω, notes (10.10)",
+             f"{fmt(s['Omega'], against=s['Omega_measured'])} rad/s"),
             ("Ω measured (minus the slope of the phase of ω⊥)",
              f"{fmt(s['Omega_measured'], against=s['Omega'])} rad/s"),
             ("|ω⊥|", f"{fmt(s['omega_perp'])} rad/s (constant)"),

@@ -414,7 +414,7 @@ class RotationReport(Report):
         other = "zxz" if given == "zyz" else "zyz"
         shift = ("(φ + π/2, θ, ψ − π/2)" if given == "zyz" else "(φ − π/2, θ, ψ + π/2)")
         alpha = float(d["euler_angle"])
-        facts = [("U(n, Φ) (textbook ex. 4.5)",
+        facts = [("U(n, Φ) of the turn R(n, Φ), textbook ex. 4.5",
                   f"a = {_complex(d['a'])}, b = {_complex(d['b'])} (Φ = {_deg(d['angle'])} "
                   f"about {_vec(d['axis'])})"),
                  (f"{_CONVENTION[given]} angles at t = 0", _degrees(d["euler_angles"])),
@@ -444,7 +444,41 @@ class RotationReport(Report):
                   ["U(φ + 2π, θ, ψ) + U(φ, θ, ψ): the sign flips", fmt_err(e["two_pi_flip"])],
                   ["R(U(φ + 2π, θ, ψ)) vs R(U(φ, θ, ψ)): R does not",
                    fmt_err(e["double_cover"])]])
-        return SectionContent(facts=facts, tables=[checks])
+        tables = [checks]
+        if "notes" in d:
+            tables.append(cls._notes_su2_table(d["notes"], e))
+        return SectionContent(facts=facts, tables=tables)
+
+    @staticmethod
+    def _notes_su2_table(n, e) -> Table:
+        """The notes' own form of SU(2) → SO(3), notes (9.4)–(9.16), at the scene's U."""
+        alpha, beta, gamma = (float(n[k]) for k in ("alpha", "beta", "gamma"))
+        trace = float(n["case_9_12_trace"])
+        half_turn = abs(trace + 1.0) < 1e-9
+        what = (f"a half-turn (tr R = {fmt(trace, 3)}) about {_vec(n['case_9_12_axis'])}"
+                if half_turn else f"a turn with tr R = {fmt(trace, 6)}")
+        errors = [e[k] for k in e if str(k).startswith("notes_")]
+        return Table(
+            caption="The notes' own parametrization at the scene's U: u(α, β, γ) of notes "
+                    f"(9.4) with α = {_deg(alpha)}, β = {_deg(beta)}, γ = {_deg(gamma)}, and "
+                    "M = 1 + xσ₁ + yσ₂ + zσ₃ of notes (9.5) at 12 points of lengths 0.25 to "
+                    f"1.75; {verdict(errors, 'checks')}. The special cases turn by twice the "
+                    "angle in u.",
+            header=["check", "max error"],
+            rows=[["u(α, β, γ), notes (9.4), vs U", fmt_err(e["notes_parametrization"])],
+                  ["det M vs 1 − r², notes (9.6)", fmt_err(e["notes_determinant"])],
+                  ["det uMu† vs det M, notes (9.7)", fmt_err(e["notes_determinant_kept"])],
+                  ["r′ read off uMu† vs R(U) r, notes (9.8)",
+                   fmt_err(e["notes_map_vs_rotation"])],
+                  ["β = γ = 0: R(u) vs R₂(2α), notes (9.10)", fmt_err(e["notes_second_axis"])],
+                  ["α = 0: R(u) vs R₃(2β), notes (9.11)", fmt_err(e["notes_third_axis"])],
+                  ["β = 0, γ = π/2: R(u) vs R₁(2α), notes (9.16)",
+                   fmt_err(e["notes_first_axis"])],
+                  ["notes (9.10) as printed ends in sin 2α; the map gives cos 2α: they differ by",
+                   fmt(float(n["printed_9_10_entry"]), 3)],
+                  [f"α = π/2, β = 0, notes (9.12), at γ = {_deg(gamma)}: R(u) is {what}; "
+                   "its distance from the R₃(2γ) the notes state",
+                   fmt(float(n["case_9_12_vs_third_axis"]), 3)]])
 
     @staticmethod
     def _second_text(data, s) -> str:

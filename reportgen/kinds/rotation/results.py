@@ -252,6 +252,31 @@ SU2_FORM_ERRORS = _errors(
     euler_theorem="R(m, alpha) of the single turn read off U against the Euler matrix",
     two_pi_flip="U(phi + 2 pi, theta, psi) + U(phi, theta, psi)",
     double_cover="R(U(phi + 2 pi, theta, psi)) against R(U(phi, theta, psi))",
+    notes_parametrization="u(alpha, beta, gamma) of notes (9.4), its angles read off U, "
+                          "against U",
+    notes_determinant="det M against 1 - r^2 (notes (9.5)-(9.6)) at the sample points",
+    notes_determinant_kept="det u M u^+ against det M (notes (9.7))",
+    notes_map_vs_rotation="r' read off u M u^+ against R(U) r (notes (9.8))",
+    notes_second_axis="R(u(alpha, 0, 0)) against R2(2 alpha) of notes (9.10), its last "
+                      "entry cos 2 alpha",
+    notes_third_axis="R(u(0, beta, 0)) against R3(2 beta) of notes (9.11)",
+    notes_first_axis="R(u(alpha, 0, pi/2)) against R1(2 alpha) of notes (9.15)-(9.16)",
+)
+
+SU2_NOTES = _group(
+    "su2_form/notes",
+    Q("alpha", r"\alpha", "rad", "alpha of notes (9.4) read off U: |u11| = cos alpha"),
+    Q("beta", r"\beta", "rad", "beta of notes (9.4): the phase of u11"),
+    Q("gamma", r"\gamma", "rad", "gamma of notes (9.4): the phase of u12"),
+    Q("points", "r", "1", "sample points r = (x, y, z) of M(r), notes (9.5)", ("sample", "xyz")),
+    Q("printed_9_10_entry", "", "1", "|sin 2 alpha - cos 2 alpha|: how far the last entry of "
+      "notes (9.10) as printed (sin 2 alpha) is from the map's (cos 2 alpha), at the scene's "
+      "alpha"),
+    Q("case_9_12_trace", r"\mathrm{tr}\,R", "1", "trace of R(u(pi/2, 0, gamma)), the case "
+      "alpha = pi/2, beta = 0 of notes (9.12), at the scene's gamma"),
+    Q("case_9_12_axis", r"\hat{m}", "1", "axis of that rotation", ("xyz",)),
+    Q("case_9_12_vs_third_axis", "", "1", "max |R(u(pi/2, 0, gamma)) - R3(2 gamma)|: how far "
+      "it is from the R3(2 gamma) the notes state"),
 )
 
 STEREOGRAPHIC_ERRORS = _errors(
@@ -303,5 +328,5 @@ STEREOGRAPHIC_MORE = _group(
 )
 
 SCHEMA = ResultsSchema(analysis=AXIS_ANGLE + AXIS_ANGLE_ERRORS + EULER + EULER_ERRORS
-                       + IDENTITIES + IDENTITIES_ERRORS + SU2_FORM + SU2_FORM_ERRORS
+                       + IDENTITIES + IDENTITIES_ERRORS + SU2_FORM + SU2_FORM_ERRORS + SU2_NOTES
                        + STEREOGRAPHIC + STEREOGRAPHIC_ERRORS + STEREOGRAPHIC_MORE)

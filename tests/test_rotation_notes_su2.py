@@ -1,0 +1,51 @@
+"""SU(2) → SO(3) in the lecture notes' own terms, notes §9 (9.4)–(9.16) (issue 42): the
+parametrization u(α, β, γ), M(r) with det M = 1 − r², M → uMu†, and the special cases in
+which u turns by twice its angle, each against an independent computation; and the two
+places where the notes as printed differ from the map ((9.10)'s last entry, the case
+(9.12))."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from reportgen.core import rotations
+from reportgen.kinds.rotation.simulation import notes_su2, notes_u
+
+
+@pytest.mark.parametrize("angles", [(0.3, 0.7, 1.1), (1.2, -2.0, 0.4), (0.0, 0.5, 0.0),
+                                    (math.pi / 2, 0.0, -2.3)])
+def test_the_angles_read_off_u_and_every_check_at_rounding(angles):
+    values, errors = notes_su2(notes_u(*angles))
+    alpha, beta, gamma = angles
+    assert values["alpha"] == pytest.approx(alpha, abs=1e-12)
+    if 0 < alpha:
+        assert values["gamma"] == pytest.approx(gamma, abs=1e-12)
+    if alpha < math.pi / 2:
+        assert values["beta"] == pytest.approx(beta, abs=1e-12)
+    assert max(errors.values()) < 1e-14, errors
+
+
+def test_u_is_unitary_and_r_of_u_is_the_axis_angle_turn_it_encodes():
+    """An independent route: u of (9.4) is U(n, Φ) = cos(Φ/2) − i sin(Φ/2) n·σ for the
+    n, Φ of its quaternion, and R(u) is Rodrigues' R(n, Φ)."""
+    u = notes_u(0.8, 0.3, -1.4)
+    assert np.allclose(u @ u.conj().T, np.eye(2), atol=1e-15)
+    assert abs(np.linalg.det(u) - 1) < 1e-15
+    n, Phi = rotations.su2_axis_angle(u)
+    c, s = math.cos(Phi), math.sin(Phi)
+    rodrigues = c * np.eye(3) + (1 - c) * np.outer(n, n) + s * rotations.skew(n)
+    assert np.max(np.abs(rotations.so3_from_su2(u) - rodrigues)) < 1e-14
+
+
+def test_the_notes_as_printed():
+    """(9.10) ends in sin 2α where the map gives cos 2α; α = π/2, β = 0 of (9.12) is a
+    half-turn about an axis in the x-y plane for every γ, not R₃(2γ)."""
+    for gamma in (-2.0, 0.3, 1.0):
+        values, _ = notes_su2(notes_u(0.6, 0.2, gamma))
+        assert values["printed_9_10_entry"] == pytest.approx(abs(math.sin(1.2) - math.cos(1.2)))
+        assert values["case_9_12_trace"] == pytest.approx(-1.0, abs=1e-14)
+        assert abs(values["case_9_12_axis"][2]) < 1e-14
+        assert values["case_9_12_vs_third_axis"] > 1.0  # z goes to −z, R₃ keeps it
