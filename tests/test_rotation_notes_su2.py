@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from reportgen.core import rotations
-from reportgen.kinds.rotation.simulation import notes_su2, notes_u
+from reportgen.kinds.rotation.notes_su2 import notes_su2, notes_u
 
 
 @pytest.mark.parametrize("angles", [(0.3, 0.7, 1.1), (1.2, -2.0, 0.4), (0.0, 0.5, 0.0),
