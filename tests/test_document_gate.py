@@ -298,6 +298,8 @@ def test_legitimate_prose_passes():
     ("A symmetric body, I1 = I2, spins.", "type"),
     ("The angle θ1 of the first rod.", "type"),
     ("The masses m1 and m2 in kg.", "type"),
+    ("The spin I3ω3 of the top.", "type"),  # a product of subscripted symbols
+    ("Below ω3² = 4I1Mgl/I3² it tilts.", "type"),
     ("The trajectory is in /runs/main of the archive.", "provenance"),
     ("Integrated at rtol=0.5 with DOP853.", "provenance"),
     ("The peers call <code>solve_ivp</code> here.", "config"),

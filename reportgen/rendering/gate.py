@@ -551,7 +551,11 @@ _SUBSCRIPTED = re.compile(r"[A-Za-z]\d?_[A-Za-z0-9]{1,7}")
 _HYPHEN_MINUS = re.compile(r"(?<![^\s(\[{=,;:/±<>≤≥≈~×·])-(?=\.?\d)")
 _E_NOTATION = re.compile(r"(?<![\w.])\d+(?:\.\d+)?[eE][+\-−]?\d+(?!\w|\.\d)")
 _DIGIT_SUBSCRIPT = re.compile(r"(?<![\w.\\'’])[A-Za-zα-ωΑ-Ωϑϕϵℓ][\u0300-\u036f]*\d{1,2}"
-                              r"(?!(?![⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺])[\w\u0300-\u036f]|\.\d)")
+                              r"(?!(?![⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺])[\w\u0300-\u036f]|\.\d)"
+                              # a product of subscripted symbols: "I3ω3", "4I1Mgl"
+                              r"|[A-Za-zα-ω][\u0300-\u036f]*\d{1,2}(?=[A-Za-zα-ωΑ-Ω][\u0300-\u036f]*\d)"
+                              r"|(?<=[A-Za-zα-ω]\d)[A-Za-zα-ωΑ-Ω][\u0300-\u036f]*\d{1,2}(?!\w)"
+                              r"|(?<=\d)[A-Z]\d(?=[A-Z][a-z])")
 #: provenance that belongs to the colophon: an archive path, a tolerance as code
 _ARCHIVE_PATH = re.compile(r"(?<![\w/.])/(?:study|runs|analysis|sweep|config|provenance|checks)"
                            r"(?![\w])")
