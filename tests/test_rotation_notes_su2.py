@@ -49,3 +49,15 @@ def test_the_notes_as_printed():
         assert values["case_9_12_trace"] == pytest.approx(-1.0, abs=1e-14)
         assert abs(values["case_9_12_axis"][2]) < 1e-14
         assert values["case_9_12_vs_third_axis"] > 1.0  # z goes to −z, R₃ keeps it
+
+
+def test_a_mobius_map_keeps_the_spheres_distances_exactly_when_it_is_unitary():
+    """Textbook ex. 4.11(d): f keeps dℓ = 2|dζ|/(1 + |ζ|²) for U in SU(2); the boost
+    diag(2, ½) (det 1) maps ζ → 4ζ, whose ratio 4(1 + |ζ|²)/(1 + 16|ζ|²) is 4 at ζ = 0."""
+    rng = np.random.default_rng(7)
+    zeta = rng.normal(size=200) + 1j * rng.normal(size=200)
+    for angles in [(0.3, 0.7, 1.1), (1.2, -2.0, 0.4)]:
+        U = notes_u(*angles)
+        assert rotations.mobius_isometry_defect(U, zeta) < 1e-14
+        assert rotations.mobius_isometry_defect(U @ np.diag([2.0, 0.5]), zeta) > 0.5
+    assert rotations.mobius_isometry_defect(np.diag([2.0, 0.5]), np.array([0j])) == 3.0

@@ -562,6 +562,22 @@ def inverse_stereographic(zeta, *, orientation: int = -1) -> np.ndarray:
     return np.stack([plane.real, orientation * plane.imag, z], axis=-1)
 
 
+def mobius_isometry_defect(V, zeta) -> float:
+    """max | |f′(ζ)| (1 + |ζ|²)/(1 + |f(ζ)|²) − 1 | over the finite ζ, for f the Möbius map of
+    V (det V = 1, f′ = 1/(V21 ζ + V22)²): zero where f keeps the sphere's distances,
+    dℓ = 2|dζ|/(1 + |ζ|²) (textbook ex. 4.11(d)), as it does for V in SU(2); the pole of f
+    is left out."""
+    V = np.asarray(V, dtype=complex)
+    z = np.asarray(zeta, dtype=complex)
+    z = z[np.isfinite(z)]
+    den = V[1, 0] * z + V[1, 1]
+    keep = np.abs(den) > 1e-8 * (1.0 + np.abs(z))
+    z, den = z[keep], den[keep]
+    image = (V[0, 0] * z + V[0, 1]) / den
+    ratio = np.abs(np.linalg.det(V) / den**2) * (1.0 + np.abs(z) ** 2) / (1.0 + np.abs(image) ** 2)
+    return float(np.max(np.abs(ratio - 1.0)))
+
+
 def mobius(U, zeta) -> np.ndarray:
     """The Möbius map ``ζ -> (U11 ζ + U12)/(U21 ζ + U22)`` on the extended plane (∞ allowed):
     ∞ -> U11/U21, −U22/U21 -> ∞."""

@@ -531,6 +531,11 @@ class RotationReport(Report):
                   ["Möbius map of −U vs that of U", fmt_err(e["double_cover_mobius"])],
                   ["U U† − 1, det U − 1", fmt_err(e["unitarity"])],
                   ["π⁻¹(π(x)) − x", fmt_err(e["round_trip"])],
+                  *([["|f′(ζ)| (1 + |ζ|²)/(1 + |f(ζ)|²) − 1 for the Möbius map f of U: "
+                      "distances kept (textbook ex. 4.11(d))", fmt_err(e["isometry"])],
+                     ["the same for U diag(2, ½), det 1 but not unitary: distances change by "
+                      "up to (not a check)", fmt(float(s["isometry_non_unitary"]), 3)]]
+                    if "isometry" in e and "isometry_non_unitary" in s else []),
                   ["|dζ/ds| (1 − z) − 1 east and south, dζ/ds by the complex step",
                    fmt_err(e["scale_factor"])],
                   ["Re(dζ(east) dζ̄(south)) (1 − z)²: right angles stay right",

@@ -290,6 +290,8 @@ STEREOGRAPHIC_ERRORS = _errors(
     double_cover_mobius="Moebius map of -U against that of U",
     unitarity="U U^+ - 1 and det U - 1",
     round_trip="inverse projection of the projection against x",
+    isometry="| |f'(zeta)| (1 + |zeta|^2)/(1 + |f(zeta)|^2) - 1 | for the Moebius map f of U: "
+             "the sphere's distances kept (textbook ex. 4.11(d))",
     transpose_mismatch="(not a check) distance of R(U)^T from the Moebius map",
     transpose_mismatch_standard_orientation="(not a check) the same, zeta = (x + iy)/(1 - z)",
     scale_factor="|d zeta/ds| (1 - z) - 1 along two tangents, d zeta/ds by the complex "
@@ -303,6 +305,9 @@ STEREOGRAPHIC_ERRORS = _errors(
 
 STEREOGRAPHIC_MORE = _group(
     "stereographic",
+    Q("isometry_non_unitary", "", "1", "max | |f'| (1 + |zeta|^2)/(1 + |f|^2) - 1 | for the "
+      "Moebius map of U diag(2, 1/2): det 1 but not unitary, so not an isometry (textbook "
+      "ex. 4.11(d))"),
     Q("conformal_factor", "1/(1 - z)", "1", "the projection's scale factor at the points",
       ("point",)),
     Q("second_source", "", "", "where U2 comes from: axis_angle, euler or su2", kind="str"),

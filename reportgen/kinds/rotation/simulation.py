@@ -493,6 +493,7 @@ class RotationSimulation(Simulation):
             "unitarity": float(max(np.max(np.abs(U @ U.conj().T - np.eye(2))),
                                    abs(np.linalg.det(U) - 1.0))),
             "round_trip": float(np.max(chordal(zeta, x))),
+            "isometry": rotations.mobius_isometry_defect(U, zeta),
             # not checks: how far the other candidates are (R(U)ᵀ is not the Möbius map)
             "transpose_mismatch": float(np.max(np.linalg.norm(back - x @ R, axis=-1))),
             "transpose_mismatch_standard_orientation": float(np.max(np.linalg.norm(
@@ -520,6 +521,10 @@ class RotationSimulation(Simulation):
             return np.stack([np.real(z), np.imag(z)], axis=-1)
 
         results.analysis["stereographic"] = {
+            # textbook ex. 4.11(d): a Möbius map of det 1 that is not unitary does not keep
+            # distances (U followed by the boost diag(2, ½))
+            "isometry_non_unitary": rotations.mobius_isometry_defect(
+                U @ np.diag([2.0, 0.5]), zeta),
             "a": np.array([U[0, 0].real, U[0, 0].imag]),
             "b": np.array([U[0, 1].real, U[0, 1].imag]),
             "rotation": R, "rotation_minus_u": rotations.so3_from_su2(-U),
