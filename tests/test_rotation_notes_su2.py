@@ -61,3 +61,28 @@ def test_a_mobius_map_keeps_the_spheres_distances_exactly_when_it_is_unitary():
         assert rotations.mobius_isometry_defect(U, zeta) < 1e-14
         assert rotations.mobius_isometry_defect(U @ np.diag([2.0, 0.5]), zeta) > 0.5
     assert rotations.mobius_isometry_defect(np.diag([2.0, 0.5]), np.array([0j])) == 3.0
+
+
+def test_eulers_angles_in_the_notes_su2_need_half_angles():
+    """(9.18)'s product U₃(ψ)U₁(θ)U₃(φ) is u(θ/2, φ + ψ, ψ − φ + π/2); its rotation is
+    (9.17)'s R₃(ψ)R₁(θ)R₃(φ) only with ψ/2, φ/2 — with the full angles it turns by 2ψ and
+    2φ: against the Euler matrix of reportgen.core.rotations, independently built."""
+    phi, theta, psi = 0.5, 0.8, 0.3
+    values, errors = notes_su2(notes_u(0.2, 0.1, 0.4), (phi, theta, psi))
+    assert errors["notes_euler_identification"] < 1e-15
+    assert errors["notes_euler_half_angles"] < 1e-15
+    assert values["printed_9_18_full_angles"] > 0.1
+    # (9.17) as printed is the transpose of core's active z-x-z R(φ, θ, ψ) with φ and ψ
+    # exchanged: R₃(ψ)R₁(θ)R₃(φ) of the notes = R_z(φ)R_x(θ)R_z(ψ) transposed
+    def notes_R3(a):
+        return np.array([[math.cos(a), math.sin(a), 0], [-math.sin(a), math.cos(a), 0],
+                         [0, 0, 1]])
+
+    def notes_R1(a):
+        return np.array([[1, 0, 0], [0, math.cos(a), math.sin(a)],
+                         [0, -math.sin(a), math.cos(a)]])
+    printed = notes_R3(psi) @ notes_R1(theta) @ notes_R3(phi)
+    assert np.max(np.abs(printed - rotations.euler_matrix(phi, theta, psi).T)) < 1e-14
+    halved = (notes_u(0.0, psi / 2, 0.0) @ notes_u(theta / 2, 0.0, math.pi / 2)
+              @ notes_u(0.0, phi / 2, 0.0))
+    assert np.max(np.abs(rotations.so3_from_su2(halved) - printed)) < 1e-14

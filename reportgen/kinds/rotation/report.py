@@ -449,8 +449,8 @@ class RotationReport(Report):
             tables.append(cls._notes_su2_table(d["notes"], e))
         return SectionContent(facts=facts, tables=tables)
 
-    @staticmethod
-    def _notes_su2_table(n, e) -> Table:
+    @classmethod
+    def _notes_su2_table(cls, n, e) -> Table:
         """The notes' own form of SU(2) → SO(3), notes (9.4)–(9.16), at the scene's U."""
         alpha, beta, gamma = (float(n[k]) for k in ("alpha", "beta", "gamma"))
         trace = float(n["case_9_12_trace"])
@@ -478,7 +478,24 @@ class RotationReport(Report):
                    fmt(float(n["printed_9_10_entry"]), 3)],
                   [f"α = π/2, β = 0, notes (9.12), at γ = {_deg(gamma)}: R(u) is {what}; "
                    "its distance from the R₃(2γ) the notes state",
-                   fmt(float(n["case_9_12_vs_third_axis"]), 3)]])
+                   fmt(float(n["case_9_12_vs_third_axis"]), 3)],
+                  *cls._notes_euler_rows(n, e)])
+
+    @staticmethod
+    def _notes_euler_rows(n, e) -> list[list[str]]:
+        """Euler's angles in the notes' SU(2), notes (9.17)–(9.18) (archives written before
+        these were stored have none)."""
+        if "notes_euler_half_angles" not in e or "euler_angles" not in n:
+            return []
+        angles = ", ".join(_deg(float(a)) for a in n["euler_angles"])
+        return [[f"(φ, θ, ψ) = ({angles}): U₃(ψ)U₁(θ)U₃(φ) of notes (9.18) vs "
+                 "u(θ/2, φ + ψ, ψ − φ + π/2) of notes (9.4)",
+                 fmt_err(e["notes_euler_identification"])],
+                ["with ψ/2 and φ/2: its R vs R₃(ψ)R₁(θ)R₃(φ) of notes (9.17)",
+                 fmt_err(e["notes_euler_half_angles"])],
+                ["with the full angles as notes (9.18) prints them, its R is R₃(2ψ)R₁(θ)R₃(2φ): "
+                 "its distance from (9.17)'s R (not a check)",
+                 fmt(float(n["printed_9_18_full_angles"]), 3)]]
 
     @staticmethod
     def _second_text(data, s) -> str:

@@ -261,6 +261,10 @@ SU2_FORM_ERRORS = _errors(
                       "entry cos 2 alpha",
     notes_third_axis="R(u(0, beta, 0)) against R3(2 beta) of notes (9.11)",
     notes_first_axis="R(u(alpha, 0, pi/2)) against R1(2 alpha) of notes (9.15)-(9.16)",
+    notes_euler_identification="U3(psi) U1(theta) U3(phi) of notes (9.18) against "
+                               "u(theta/2, phi + psi, psi - phi + pi/2) of notes (9.4)",
+    notes_euler_half_angles="R(U3(psi/2) U1(theta) U3(phi/2)) against R3(psi) R1(theta) "
+                            "R3(phi) of notes (9.17)",
 )
 
 SU2_NOTES = _group(
@@ -277,6 +281,10 @@ SU2_NOTES = _group(
     Q("case_9_12_axis", r"\hat{m}", "1", "axis of that rotation", ("xyz",)),
     Q("case_9_12_vs_third_axis", "", "1", "max |R(u(pi/2, 0, gamma)) - R3(2 gamma)|: how far "
       "it is from the R3(2 gamma) the notes state"),
+    Q("euler_angles", r"(\phi, \theta, \psi)", "rad", "the angles of notes (9.17)-(9.18) "
+      "checked: the scene's Euler angles at t = 0", ("angle",)),
+    Q("printed_9_18_full_angles", "", "1", "max |R(U3(psi) U1(theta) U3(phi)) - R3(psi) "
+      "R1(theta) R3(phi)|: (9.18) as printed, with full angles, against (9.17)"),
 )
 
 STEREOGRAPHIC_ERRORS = _errors(

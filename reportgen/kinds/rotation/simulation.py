@@ -404,7 +404,7 @@ class RotationSimulation(Simulation):
             "double_cover": float(np.max(np.abs(rotations.so3_from_su2_many(flipped)
                                                 - R_path))),
         }
-        notes, notes_errors = notes_su2(U)
+        notes, notes_errors = notes_su2(U, path[0])
         errors.update(notes_errors)
         results.analysis["su2_form"] = {
             "notes": notes,
