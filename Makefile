@@ -40,7 +40,7 @@ lint: setup-test
 	$(BIN)/ruff check reportgen tests benchmarks
 
 test: setup-test lint
-	$(BIN)/python -m pytest -q
+	$(BIN)/python -m pytest -q --durations=25
 
 clean:
 	rm -rf $(VENV) output/*/ output/index.html

@@ -58,6 +58,35 @@ class HamiltonianAnalysis:
                                   "bracket": [r[2] for r in rows],
                                   "latex": [r[3] for r in rows]}
         self._jacobi(a, system, vals)
+        self._facts_of_life(a, system)
+
+    @staticmethod
+    def _facts_of_life(a: dict, system) -> None:
+        """The other brackets' properties of notes (4.38), in SymPy on this system: the
+        canonical brackets {qᵢ, pⱼ} = δᵢⱼ, {qᵢ, qⱼ} = {pᵢ, pⱼ} = 0; antisymmetry, {C f, g} =
+        C {f, g} and Leibniz's rule {fg, h} = f{g, h} + {f, h}g for f, g, h cubics in the
+        system's (q, p) (H itself can make SymPy's expansion slow: the double pendulum's),
+        each difference expanded to 0 (True) or not (False)."""
+        import sympy as sp
+
+        space = system.space
+        bracket = mechanics.poisson_bracket
+        q, p = space.q, space.p
+        canonical = all(
+            sp.expand(bracket(space, q[i], p[j]) - (1 if i == j else 0)) == 0
+            and sp.expand(bracket(space, q[i], q[j])) == 0
+            and sp.expand(bracket(space, p[i], p[j])) == 0
+            for i in range(len(q)) for j in range(len(q)))
+        f, g = q[0] ** 2 * p[-1] + p[0], p[0] ** 2 * q[-1] + q[0] * p[-1]
+        h = q[-1] * p[0] ** 2 + q[0] ** 3
+        C = sp.Symbol("C")
+        a["brackets_canonical"] = bool(canonical)
+        a["brackets_antisymmetric"] = bool(sp.expand(bracket(space, f, g)
+                                                     + bracket(space, g, f)) == 0)
+        a["brackets_homogeneous"] = bool(sp.expand(bracket(space, C * f, h)
+                                                   - C * bracket(space, f, h)) == 0)
+        a["brackets_leibniz"] = bool(sp.expand(
+            bracket(space, f * g, h) - f * bracket(space, g, h) - bracket(space, f, h) * g) == 0)
 
     def _jacobi(self, a: dict, system, vals) -> None:
         """The Jacobi identity {f,{g,h}} + {g,{h,f}} + {h,{f,g}} = 0 (Goldstein §9.5) with

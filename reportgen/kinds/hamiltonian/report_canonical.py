@@ -45,6 +45,15 @@ class CanonicalSections:
                    "none: H depends on every coordinate"),
                   ("Jacobi identity {f,{g,h}} + {g,{h,f}} + {h,{f,g}}",
                    cls.jacobi_words(a))]
+        if "brackets_leibniz" in a:
+            said = {True: "holds", False: "not shown by SymPy's expansion"}
+            facts.append(("the brackets' other properties, notes (4.38), expanded by SymPy "
+                          "for cubics f, g, h in (q, p)",
+                          "; ".join(f"{rule} {said[bool(a[key])]}" for rule, key in (
+                              ("{qᵢ, pⱼ} = δᵢⱼ", "brackets_canonical"),
+                              ("{f, g} = −{g, f}", "brackets_antisymmetric"),
+                              ("{Cf, h} = C{f, h}", "brackets_homogeneous"),
+                              ("{fg, h} = f{g, h} + {f, h}g", "brackets_leibniz")))))
         triple = a.get("jacobi_triple_latex")
         equations = [] if triple is None else [
             ("the Jacobi identity is checked for", r",\quad ".join(

@@ -190,6 +190,14 @@ SCHEMA = ResultsSchema(
           "in absolute value): the scale of its rounding", ("term",)),
         _flag("jacobi_tested", "whether some Jacobi-identity term is above rounding (false: "
               "every term vanishes, and the identity is not tested)"),
+        _flag("brackets_canonical", "{q_i, p_j} = delta_ij, {q_i, q_j} = {p_i, p_j} = 0 "
+              "expanded by SymPy (notes (4.38))", optional=True),
+        _flag("brackets_antisymmetric", "{f, g} + {g, f} expands to 0 for the cubics f, g "
+              "(notes (4.38))", optional=True),
+        _flag("brackets_homogeneous", "{C f, h} - C {f, h} expands to 0 for the cubic h "
+              "(notes (4.38))", optional=True),
+        _flag("brackets_leibniz", "{f g, h} - f {g, h} - {f, h} g expands to 0 (notes (4.38))",
+              optional=True),
         Q("jacobi_relative", "", "1", "largest Jacobi-identity sum relative to jacobi_scale "
           "(NaN when not tested)"),
         _text("jacobi_triple", "the f, g, h of the Jacobi identity checked", ("triple",)),
