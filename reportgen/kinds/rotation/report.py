@@ -494,7 +494,7 @@ class RotationReport(Report):
                 ["with ψ/2 and φ/2: its R vs R₃(ψ)R₁(θ)R₃(φ) of notes (9.17)",
                  fmt_err(e["notes_euler_half_angles"])],
                 ["with the full angles as notes (9.18) prints them, its R is R₃(2ψ)R₁(θ)R₃(2φ): "
-                 "its distance from (9.17)'s R (not a check)",
+                 "its distance from R₃(ψ)R₁(θ)R₃(φ) of notes (9.17) (not a check)",
                  fmt(float(n["printed_9_18_full_angles"]), 3)]]
 
     @staticmethod
