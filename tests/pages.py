@@ -38,8 +38,8 @@ from pathlib import Path
 import h5py
 import pytest
 
+from conftest import study_off_text
 from reportgen.rendering.gate import GATE_FILE
-from reportgen.scene.config import to_toml
 
 WORD = re.compile(r'<word xMin="[\d.]+" yMin="[\d.]+" xMax="([\d.]+)" yMax="[\d.]+">(.*?)</word>')
 PAGE = re.compile(r'<page width="([\d.]+)" height="[\d.]+">(.*?)</page>', re.S)
@@ -75,30 +75,13 @@ assert not core, f"core was imported: {core}"
 """
 
 
-def without_study(config: Path) -> str:
-    """The text of ``config`` with its study off: ``[run] study = false``, added to a
-    preset's run too; a scene whose kind has no run (inertia, rotation, a molecule's
-    modes) has no study and is left as it is."""
-    from reportgen.kinds import load_scene
-    from reportgen.scene.config import parse_config_text
-
-    text = config.read_text(encoding="utf-8")
-    data = tomllib.loads(text)
-    data.setdefault("run", {})["study"] = False
-    try:
-        load_scene(parse_config_text(to_toml(data), config))
-    except Exception:  # no run to turn the study off in
-        return text
-    return to_toml(data)
-
-
 def run_batch(scenes: list[Path], source: Path, out: Path, study_off=()) -> Path:
     """One ``reportgen run`` of ``scenes`` (copied into ``source``; those in ``study_off``
     without their study) into ``out``, as a lecturer runs it."""
     for config in scenes:
         assert not (source / config.name).exists(), f"two scenes named {config.stem}"
         if config in study_off:
-            (source / config.name).write_text(without_study(config), encoding="utf-8")
+            (source / config.name).write_text(study_off_text(config), encoding="utf-8")
         else:
             shutil.copy(config, source / config.name)
     proc = subprocess.run([sys.executable, "-m", "reportgen", "run", str(source), "--out",

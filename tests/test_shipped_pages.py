@@ -12,7 +12,8 @@ from pathlib import Path
 
 import h5py
 
-from pages import page_tests, without_study
+from conftest import study_off_text
+from pages import page_tests
 
 REPO = Path(__file__).resolve().parent.parent
 SHIPPED = sorted((REPO / "configs").glob("*.toml"))
@@ -25,7 +26,7 @@ def _study_off(configs: list[Path]) -> list[Path]:
     first: dict[str, Path] = {}
     for path in configs:
         data = tomllib.loads(path.read_text(encoding="utf-8"))
-        if without_study(path) != path.read_text(encoding="utf-8"):  # it has a study
+        if study_off_text(path) != path.read_text(encoding="utf-8"):  # it has a study
             first.setdefault(data["kind"], path)
     return [p for p in configs if p not in first.values()]
 
