@@ -15,9 +15,17 @@ from reportgen.commands.cli import main
 
 REPO = Path(__file__).resolve().parent.parent
 
-# The peer-measurement cache of the test session lives in a temporary folder, never in
-# the user's ~/.cache (subprocesses started by tests inherit it).
-os.environ["XDG_CACHE_HOME"] = tempfile.mkdtemp(prefix="reportgen-test-cache-")
+# The user caches of the test session (peer measurements, generated and compiled code,
+# equations, templates) live in a temporary folder, never in the user's ~/.cache.  One
+# folder for the whole session: made by the first process that imports this file (pytest's
+# controller), inherited by the xdist workers it starts and by every subprocess a test
+# starts, so each model's code is compiled once per session, not once per worker and
+# again in every batch's pool (~40 CPU-s for the lecture pack each time).  Its entries
+# are written atomically, so processes sharing it is safe.
+_SESSION_CACHE = "REPORTGEN_TEST_SESSION_CACHE"
+if not os.path.isdir(os.environ.get(_SESSION_CACHE, "")):
+    os.environ[_SESSION_CACHE] = tempfile.mkdtemp(prefix="reportgen-test-cache-")
+os.environ["XDG_CACHE_HOME"] = os.environ[_SESSION_CACHE]
 os.environ.pop("REPORTGEN_NO_CACHE", None)
 
 
@@ -131,3 +139,18 @@ def pendulum_text(theta=1.0, t_end=10.0, samples=1001, study="false", title="tes
                   extra=""):
     return PENDULUM.format(theta=theta, t_end=t_end, samples=samples, study=study,
                            title=title) + textwrap.dedent(extra)
+
+
+#: the test modules whose fixtures run a whole batch of scenes (minutes, in a pool of their
+#: own): collected first, so that xdist (``--dist loadfile`` hands out modules in
+#: collection order) starts them at once and the short tests fill the other worker around
+#: them, rather than two long batches starting last and running alone at the end
+_LONG_MODULES = ("test_shipped_pages.py", "test_unseen_pages.py")
+
+
+def pytest_collection_modifyitems(config, items):
+    def rank(item):
+        name = item.path.name
+        return _LONG_MODULES.index(name) if name in _LONG_MODULES else len(_LONG_MODULES)
+
+    items.sort(key=rank)  # stable: every other module keeps its order
