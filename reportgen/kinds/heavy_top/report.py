@@ -14,6 +14,7 @@ from ...scene.content import SectionContent, Table, fmt, fmt_err
 from ...scene.report import Report, no_period_reason
 from .config import BAND_CASES, MIN_SAMPLES_PER_PERIOD
 from .locus import FIG43_ELEVATION_DEG
+from .report_contours import ContourSection
 from .report_family import FamilySections
 from .report_weierstrass import WeierstrassSection
 from .results import SCHEMA
@@ -49,7 +50,7 @@ FORMULATION_TEXT = {
 }
 
 
-class HeavyTopReport(FamilySections, WeierstrassSection, Report):
+class HeavyTopReport(FamilySections, WeierstrassSection, ContourSection, Report):
     """The heavy top's sections, drawn from the archive alone."""
 
     schema = SCHEMA
@@ -98,6 +99,7 @@ class HeavyTopReport(FamilySections, WeierstrassSection, Report):
         Section("nutation_locus", "Nutation locus of the symmetry axis", integrates=True),
         Section("cubic", "The cubic f(u), its roots, nutation period and precession"),
         Section("weierstrass", "u(t) through Weierstrass's ℘ (textbook exercise 4.10)"),
+        Section("contour_map", "t(u) on its Riemann surface (textbook exercise 4.10(a)–(e))"),
         Section("effective_potential", "Effective potential"),
         Section("time_series", "θ(t) and φ̇(t) against the closed form", integrates=True),
         Section("steady_precession", "Steady precession"),
@@ -118,6 +120,8 @@ class HeavyTopReport(FamilySections, WeierstrassSection, Report):
                 names.remove(name)
         if "weierstrass" not in a or "sleeping_sweep" in a:
             names.remove("weierstrass")  # no nutation, or a scene about the threshold
+        if "contours" not in a:  # computed only when a scene's [report] sections name it
+            names.remove("contour_map")
         initial = data.config.get("initial") or {}
         if a["case"] != "steady" and initial.get("steady") is None:
             names.remove("steady_precession")

@@ -15,6 +15,65 @@ from ...scene.schema import ResultsSchema
 BAND_RUNS = ("main", "loops", "waves", "cusps")
 
 
+def _contours() -> tuple[Q, ...]:
+    """``/analysis/contours``: textbook ex. 4.10(a)–(e), t(u) = ∫du/√f(u) by contour
+    integration on the cut plane (the textbook's names u_X = u1, u_N = u2, u_U = u3)."""
+    g = "contours/"
+    grid = ("contour_line", "contour_point")
+    out = [
+        Q(g + "u_X", "u_X", "1", "smallest root of f(u) (u1), the bottom of a wobble"),
+        Q(g + "u_N", "u_N", "1", "middle root of f(u) (u2)"),
+        Q(g + "u_U", "u_U", "1", "root of f(u) past u = 1 (u3)"),
+        Q(g + "period", "T", "s", "nutation period 4K(k^2)/sqrt(beta (u3 - u1))"),
+        Q(g + "imaginary_period", r"\tau", "s",
+          "imaginary period 4K(1 - k^2)/sqrt(beta (u3 - u1))"),
+        Q(g + "grid_re", r"\mathrm{Re}\,u", "1", "grid of horizontal lines in the upper "
+          "half u plane", grid),
+        Q(g + "grid_im", r"\mathrm{Im}\,u", "1", "their heights", grid),
+    ]
+    for name, words in (("u_N", "t(u_N), the rectangle's corner T/2"),
+                        ("u_U", "t(u_U), the corner T/2 + i tau/2"),
+                        ("infinity", "t(infinity) along the real axis past u_U: i tau/2"),
+                        ("infinity_left", "t(-infinity) along the real axis below u_X: "
+                         "i tau/2"),
+                        ("loop", "the loop integral clockwise round [u_N, u_U]: i tau"),
+                        ("loop_real", "the loop integral round [u_X, u_N], through both "
+                         "cuts: T")):
+        out += [Q(f"{g}t_{name}_re", r"\mathrm{Re}\,t", "s", f"real part of {words}"),
+                Q(f"{g}t_{name}_im", r"\mathrm{Im}\,t", "s", f"imaginary part of {words}")]
+    for name, words in (("upper", "the grid on the first sheet"),
+                        ("lower", "the grid's mirror image below the axis, through "
+                         "(u_X, u_N)"),
+                        ("left", "the mirror grid on the second sheet, through (-inf, u_X)"),
+                        ("right", "the mirror grid on the second sheet, through "
+                         "(u_N, u_U)")):
+        out += [Q(f"{g}{name}_re", r"\mathrm{Re}\,t", "s", f"t of {words}", grid),
+                Q(f"{g}{name}_im", r"\mathrm{Im}\,t", "s", f"t of {words}", grid)]
+    for name, words in (
+            ("corner_u_N", "|t(u_N) - T/2|"), ("corner_u_U", "|t(u_U) - (T + i tau)/2|"),
+            ("corner_infinity", "|t(infinity) - i tau/2|"),
+            ("infinity_both_ways", "|t(+infinity) - t(-infinity)|"),
+            ("sides", "largest distance of a real point's image from its side"),
+            ("upper_in_rectangle", "farthest first-sheet image outside (0, T/2) x (0, tau/2)"),
+            ("lower_reflection", "max |t(conj u) - conj t(u)|"),
+            ("lower_in_rectangle", "farthest image below the axis outside (0, T/2) x "
+             "(-tau/2, 0)"),
+            ("second_sheet_left", "max |t1 + t0| through (-inf, u_X]"),
+            ("second_sheet_right", "max |t2 - (T - t0)| through [u_N, u_U]"),
+            ("loop", "|loop integral - i tau|"),
+            ("loop_real", "|loop integral round [u_X, u_N] - T|")):
+        out.append(Q(f"{g}defects/{name}", r"\delta", "s", f"defect: {words}"))
+    for name, side in (("bottom", "Im t = 0 on (u_X, u_N)"), ("right", "Re t = T/2 on "
+                       "(u_N, u_U)"), ("top", "Im t = tau/2 on (u_U, inf)"),
+                       ("left", "Re t = 0 on (-inf, u_X)")):
+        out.append(Q(f"{g}sides/{name}", r"\delta", "s", f"largest defect of {side}"))
+    return tuple(Q(q.name, q.symbol, q.unit, q.description, q.dims, q.kind, optional=True)
+                 for q in out)
+
+
+_CONTOURS = _contours()
+
+
 def _band_run(run: str) -> tuple[Q, ...]:
     """``/analysis/band/runs/<run>``: one band run in a few numbers."""
     g = f"band/runs/{run}/"
@@ -262,6 +321,7 @@ SCHEMA = ResultsSchema(
           "round [e3, e2]", optional=True),
         Q("weierstrass/omega_loop_nodes", "N", "1", "nodes of the converged loop rule in "
           "the wp plane (or needed)", kind="int", optional=True),
+        *_CONTOURS,
         Q("band/theta_min", r"\theta_\mathrm{min}", "rad", "upper circle of the band asked for",
           optional=True),
         Q("band/theta_max", r"\theta_\mathrm{max}", "rad", "lower circle of the band asked for",

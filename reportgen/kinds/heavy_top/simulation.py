@@ -29,6 +29,7 @@ from .sleeping import SleepingTop
 
 model_core = lazy_module("reportgen.core.models.heavy_top")
 theory = lazy_module("reportgen.core.heavy_top_theory")
+top_contours = lazy_module("reportgen.core.top_contours")
 kinematics = lazy_module("reportgen.core.heavy_top_kinematics")
 integrators = lazy_module("reportgen.core.integrators")
 
@@ -75,9 +76,12 @@ class HeavyTopSimulation(SleepingTop, IntegratingSimulation):
     #: nutating top (3 ms), the tilted sleeping tops included; a sleeping-top scene (one
     #: with a [sleeping] sweep, which is about its threshold) shows its section only when
     #: its [report] sections name it
-    computed_on_request = ("error_vs_runtime",)
+    computed_on_request = ("error_vs_runtime", "contour_map")
 
     def computes(self, name: str) -> bool:
+        if name == "contour_map":  # ex. 4.10(a)–(e): only a scene that names the section
+            asked = self.config.report.sections
+            return asked is not None and name in asked
         return name == "weierstrass" or super().computes(name)
 
     #: f(u) is drawn around [u1, u2] alone when u2 − u1 is less than this fraction of the
@@ -273,6 +277,8 @@ class HeavyTopSimulation(SleepingTop, IntegratingSimulation):
         self._store_closed_form(a, main, start, c, r)
         if self.computes("weierstrass"):
             self._store_weierstrass(a, main, c, r, w_cf)
+        if self.computes("contour_map") and "weierstrass" in a:  # a nutating top
+            a["contours"] = self._contours(c, r)
         checks = self._checks(a, main, start, c, r, scales)
         return main, a, checks
 
@@ -413,6 +419,22 @@ class HeavyTopSimulation(SleepingTop, IntegratingSimulation):
             "omega_loop_nodes": loops.wp_loop.nodes,
         })
 
+    @staticmethod
+    def _contours(c: theory.TopConstants, r: theory.Roots) -> dict:
+        """Textbook ex. 4.10(a)–(e): t(u) = ∫du/√f(u) continued over the cut plane and onto
+        the second sheet by contour integration (:mod:`reportgen.core.top_contours`)."""
+        m = top_contours.contour_map(top_contours.TopCubic(c.beta, r.u1, r.w2 - r.w1,
+                                                           r.w2 - r.w3))
+        out = {"u_X": r.u1, "u_N": r.u2, "u_U": r.u3, "period": m.cubic.period,
+               "imaginary_period": m.cubic.imaginary_period,
+               "grid_re": m.grid_v.real + r.u1, "grid_im": m.grid_v.imag,
+               "defects": dict(m.defects), "sides": dict(m.sides)}
+        for name, t in (*m.corners.items(), ("loop", m.loop)):
+            out[f"t_{name}_re"], out[f"t_{name}_im"] = t.real, t.imag
+        for name, t in m.images.items():
+            out[f"{name}_re"], out[f"{name}_im"] = t.real, t.imag
+        return out
+
     def _period_sensitivity(self, start: Start, c, main: RunRecord, period: float,
                             scales: dict[str, float]) -> float:
         """|ΔT/T| if E' were off by the run's own energy drift (conditioning of T).
@@ -466,6 +488,8 @@ class HeavyTopSimulation(SleepingTop, IntegratingSimulation):
                                 a["weierstrass_max_difference"], 0.0, "",
                                 "℘ by theta series (textbook exercise 4.10) against Jacobi sn² by AGM; "
                                 "absolute difference in u = cos θ", scale=1.0))
+        if "contours" in a:
+            checks += self._contour_checks(a["contours"])
         if math.isfinite(a["nutation_period_measured"]):
             checks.append(Check("nutation period measured from θ(t)",
                                 a["nutation_period_measured"], a["nutation_period"],
@@ -489,6 +513,37 @@ class HeavyTopSimulation(SleepingTop, IntegratingSimulation):
         e = main.invariants["energy"]
         checks.append(Check("energy E(t_end)", float(e[-1]), float(e[0]), "J",
                             "E(0), conserved", scale=scales["energy"]))
+        return checks
+
+    @staticmethod
+    def _contour_checks(k: dict) -> list[Check]:
+        """Ex. 4.10(a)–(e) by contour integration against the closed forms T = 2K(k²)/λ and
+        τ = 2K(1 − k²)/λ, λ = ½√(β(u3 − u1)) (each error relative to T)."""
+        T, tau = k["period"], k["imaginary_period"]
+        src = ("the periods of t = ∫du/√f(u) for the cubic f(u), notes (10.31): "
+               "T = 4K(k²)/√(β(u3 − u1)), τ = 4K(1 − k²)/√(β(u3 − u1))")
+        rows = (("Re t(u_N) = T/2, a corner of the rectangle (textbook ex. 4.10(a))",
+                 k["t_u_N_re"], 0.5 * T),
+                ("Im t(u_U) = τ/2, a corner of the rectangle (textbook ex. 4.10(a))",
+                 k["t_u_U_im"], 0.5 * tau),
+                ("Im t(∞) = τ/2, a corner of the rectangle (textbook ex. 4.10(a))",
+                 k["t_infinity_im"], 0.5 * tau),
+                ("the loop clockwise round the cut [u_N, u_U]: Im ∮ = τ (textbook ex. "
+                 "4.10(e))", k["t_loop_im"], tau),
+                ("the loop round [u_X, u_N] through both cuts: Re ∮ = T", k["t_loop_real_re"],
+                 T))
+        checks = [Check(name, value, ref, "s", src, scale=T) for name, value, ref in rows]
+        for name, words in (
+                ("sides", "the real axis onto the rectangle's sides (textbook ex. 4.10(a))"),
+                ("lower_reflection", "t(ū) = conj t(u) in the lower half-plane (textbook ex. "
+                 "4.10(b))"),
+                ("second_sheet_left", "t₁ = −t₀ on the second sheet through (−∞, u_X] "
+                 "(textbook ex. 4.10(c))"),
+                ("second_sheet_right", "t₂ = t₁ + T on the second sheet through [u_N, u_U] "
+                 "(textbook ex. 4.10(d))")):
+            checks.append(Check(f"largest defect of {words}", k["defects"][name], 0.0, "s",
+                                "contour integration on the cut plane, against the same "
+                                "closed forms", scale=T))
         return checks
 
     def _band_info(self) -> dict:
