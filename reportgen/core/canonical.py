@@ -485,13 +485,16 @@ _symplectic_unit = symplectic_unit
 
 
 # ---------------------------------------------------------------- the new Hamiltonian
-def new_hamiltonian(ct: CanonicalTransform, H: sympy.Expr) -> sympy.Expr | None:
-    """K(Q, P, t) = H + ∂F/∂t in closed form, or None.
+def new_hamiltonian(ct: CanonicalTransform, H: sympy.Expr, sign: int = 1) -> sympy.Expr | None:
+    """K(Q, P, t) = H + ∂F/∂t in closed form, or None (``sign`` −1: H − ∂F/∂t, the sign
+    notes (6.14) prints for F3, for the comparison that shows it a misprint).
 
     The old variables are needed as functions of the new ones: x from the explicit relation
     v = s ∂F/∂u(x, u, t), then y = σ ∂F/∂x.  Only a relation linear in x (a unique solution)
     is solved; anything else returns None and K is available along a trajectory through
-    :func:`hamiltonian_along`.
+    :func:`hamiltonian_along`.  The solved x are simplified before they are substituted (a
+    frame turning with t solves to cos and sin over cos² + sin², which SymPy does not
+    cancel once inside H).
     """
     _check_hamiltonian(ct.space, H)
     system = _linear_system([e - v for e, v in zip(ct.explicit, ct.others, strict=True)],
@@ -503,9 +506,9 @@ def new_hamiltonian(ct: CanonicalTransform, H: sympy.Expr) -> sympy.Expr | None:
         x_new = A.as_mutable().LUsolve(b.as_mutable())
     except (ValueError, ZeroDivisionError):
         return None
-    to_x = dict(zip(ct.x, x_new, strict=True))
-    to_y = {yi: m.xreplace(to_x) for yi, m in zip(ct.y, ct.implicit, strict=True)}
-    return sympy.simplify(H.xreplace({**to_x, **to_y}) + ct.dF_dt.xreplace(to_x))
+    to_x = dict(zip(ct.x, (sympy.trigsimp(sympy.simplify(e)) for e in x_new), strict=True))
+    to_y = {yi: sympy.trigsimp(m.xreplace(to_x)) for yi, m in zip(ct.y, ct.implicit, strict=True)}
+    return sympy.simplify(H.xreplace({**to_x, **to_y}) + sign * ct.dF_dt.xreplace(to_x))
 
 
 def hamiltonian_along(ct: CanonicalTransform, H: sympy.Expr, q, p, Q, P, t) -> np.ndarray:

@@ -637,6 +637,27 @@ def _up_to_date(scene: Scene, out_root: str, formats) -> Outcome | None:
                    reports=[str(folder / f"report.{f}") for f in wanted])
 
 
+def _refused(scheduler: str) -> None:
+    """A UsageError at once when nothing listens at a tcp:// scheduler's address (a port
+    that refuses the connection), rather than after the client's 10 s of retrying."""
+    import socket
+    from urllib.parse import urlsplit
+
+    try:
+        where = urlsplit(scheduler)
+        host, port = where.hostname, where.port
+    except ValueError:
+        return
+    if where.scheme != "tcp" or not host or port is None:
+        return  # another protocol, or no port: the client's own checks
+    try:
+        socket.create_connection((host, port), timeout=10.0).close()
+    except ConnectionRefusedError as exc:
+        raise UsageError(f"--scheduler {scheduler}: cannot connect ({exc.strerror})") from None
+    except OSError:
+        return  # unreachable or slow: the client retries and says so
+
+
 def _run_on_dask(scenes, out_root, force, formats, scheduler, progress,
                  time_limit: float | None = None) -> list[Outcome]:
     try:
@@ -648,6 +669,7 @@ def _run_on_dask(scenes, out_root, force, formats, scheduler, progress,
     outcomes, todo = _split_current(scenes, out_root, force, formats, progress)
     if not todo:
         return outcomes
+    _refused(scheduler)
     try:
         client = Client(scheduler, timeout="10s")
     except OSError as exc:

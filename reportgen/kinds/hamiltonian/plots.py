@@ -150,3 +150,19 @@ def change_of_energy(t, change, first_order, second_order):
     bottom.set_xlabel(time_label(UNITS))
     place_legend(bottom)
     return fig
+
+
+def new_orbit(first, second, names: tuple[str, str], integrated=None):
+    """The orbit in the two new coordinates, the second against the first (a frame turning
+    with the transformation shows another curve than the old one); K's own integration
+    dashed, when given."""
+    fig, ax = new_figure()
+    ax.plot(first, second, color=PALETTE[0], label="image of the H orbit")
+    if integrated is not None:
+        ax.plot(*integrated, color="black", linestyle=(0, (3, 3)), linewidth=1.0,
+                label="integrating K")
+    ax.plot([first[0]], [second[0]], "o", color="black", markersize=4, label="start")
+    ax.set_xlabel(f"{_math(names[0])} [{UNITS}]")
+    ax.set_ylabel(f"{_math(names[1])} [{UNITS}]")
+    place_legend(ax)
+    return fig

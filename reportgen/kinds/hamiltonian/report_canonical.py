@@ -177,9 +177,22 @@ class CanonicalSections:
         if "transform_bracket_relative" in a:
             facts.append(("the same, relative to the size of each bracket's terms",
                           fmt_err(a["transform_bracket_relative"])))
+        notes = []
+        if float(a.get("transform_identity_defect", 1.0)) <= cls.IDENTITY_RTOL:
+            defect = float(a["transform_identity_defect"])
+            notes.append("(Q, P) = (q, p) along the whole run, " + (
+                "exactly" if defect == 0.0 else f"to {fmt_err(defect)} of their size") +
+                         ": this F is the identity transformation" + (
+                             ", the generating function F = −Σ pᵢQᵢ of notes (6.15)."
+                             if kind == "F3" else "."))
         if run is not None:
             facts.append(("max |(Q, P) from integrating K − (Q, P) of the H orbit|",
                           fmt_err(a["transform_run_difference"])))
+            if "transform_K_other_sign_difference" in a:
+                facts.append(("the same for H − ∂F/∂t, the other sign",
+                              fmt_err(a["transform_K_other_sign_difference"])))
+                notes.append(cls.sign_note(kind, float(a["transform_run_difference"]),
+                                           float(a["transform_K_other_sign_difference"])))
         elif not a["transform_K_latex"]:
             facts.append(("K as a formula in (Q, P)", "not found: SymPy solves only relations "
                           "linear in the old variables; K = H + ∂F/∂t is evaluated along the "
@@ -190,8 +203,41 @@ class CanonicalSections:
         caption = ("The new variables along the integrated orbit" +
                    (f"; dashed: {symbol_text(new[0])} from integrating K's own Hamilton "
                     "equations from (Q₀, P₀)." if run is not None else "."))
-        return SectionContent(figures=[cls.figure("new_variables", fig, caption)],
-                              equations=eqs, facts=facts)
+        figures = [cls.figure("new_variables", fig, caption)]
+        if n == 2 and float(a.get("transform_identity_defect", 1.0)) > cls.IDENTITY_RTOL:
+            names = (new[0], new[1])
+            figures.append(cls.figure("new_orbit", plots.new_orbit(
+                tr["Q"][:, 0], tr["Q"][:, 1], names,
+                (run[new[0]], run[new[1]]) if run is not None else None),
+                f"The orbit in the new coordinates, {symbol_text(new[1])} against "
+                f"{symbol_text(new[0])}" + ("; dashed: from integrating K's own Hamilton "
+                                            "equations." if run is not None else ".")))
+        return SectionContent(figures=figures, equations=eqs, facts=facts, notes=notes)
+
+    #: (Q, P) this close to (q, p), relative to their size, is the identity transformation
+    IDENTITY_RTOL = 1e-12
+    #: a sign of ∂F/∂t is shown wrong when integrating K with it leaves the H orbit's image
+    #: by more than this many times the distance K = H + ∂F/∂t keeps from it
+    SIGN_CONTRAST = 1e3
+
+    @classmethod
+    def sign_note(cls, kind: str, plus: float, minus: float) -> str:
+        """Which sign of ∂F/∂t in K the two integrations show, in words chosen by their
+        distances from the image of the H orbit (``plus``: K = H + ∂F/∂t)."""
+        measured = (f"integrated from the same (Q₀, P₀), K = H + ∂F/∂t stays within "
+                    f"{fmt_err(plus)} of the image of the H orbit and K = H − ∂F/∂t within "
+                    f"{fmt_err(minus)}")
+        if not minus > cls.SIGN_CONTRAST * plus:
+            return (f"F depends on t, yet the sign of ∂F/∂t in K is not told apart here: "
+                    f"{measured}.")
+        text = f"F depends on t, and the sign of ∂F/∂t in K matters: {measured}."
+        if kind == "F3":
+            text += (" For a generating function F(p, Q) of type 3, notes (6.14) prints "
+                     "K = H − ∂F/∂t: a misprint. The differential of the generating function "
+                     "in notes (6.12) leaves out its term ∂F/∂t dt; kept, the coefficients of "
+                     "dt give K = H + ∂F/∂t, as for a generating function of type 1 in notes "
+                     "(6.5).")
+        return text
 
     @classmethod
     def infinitesimal_content(cls, data):

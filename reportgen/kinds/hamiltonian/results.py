@@ -41,6 +41,13 @@ _TRANSFORM = (
     _text("transform_K_latex", "K in the new variables (TeX), empty if no closed form"),
     Q("transform_run_difference", r"\max|(Q, P)_K - (Q, P)_H|", "1",
       "largest difference between integrating K and the image of the H orbit"),
+    Q("transform_identity_defect", r"\max|(Q, P) - (q, p)|", "1",
+      "largest distance of the new variables from the old, relative to their size (0: the "
+      "identity transformation)", optional=True),
+    Q("transform_K_other_sign_difference", r"\max|(Q, P)_{K_-} - (Q, P)_H|", "1",
+      "largest difference between integrating K = H - dF/dt (the other sign, as notes (6.14) "
+      "prints it for F3) and the image of the H orbit; a time-dependent F only",
+      optional=True),
     _text("transform_kind", "the transformation's type: F1, F2, F3, F4 (generating "
           "function) or G (infinitesimal)"),
     Q("transform_bracket_relative", r"\max|\{z_a, z_b\} - J_{ab}|/s_{ab}", "1",
