@@ -130,21 +130,34 @@ class SU2(Strict):
 SECTION_TABLES = {"axis_angle": ("axis_angle",), "euler_angles": ("euler",),
                   "angular_velocity": ("euler",),
                   "matrix_identities": ("axis_angle", "euler"),
-                  "su2_euler": ("axis_angle", "euler"), "stereographic": ("su2",)}
+                  "su2_euler": ("axis_angle", "euler"), "stereographic": ("su2",),
+                  "matrix_proofs": ("proofs",)}
+
+
+class Proofs(Strict):
+    """``[proofs]``: textbook ex. 4.1–4.4 proved for all n × n matrices by SymPy, and checked
+    on random ones."""
+
+    sizes: list[Literal[2, 3]] = Field([2, 3], min_length=1, max_length=2,
+                                       description="the matrix sizes n to prove for (2, 3)")
+    seed: int = Field(4, ge=0, le=2**32 - 1, description="seed of the random matrices of "
+                      "the numerical checks")
 
 
 class RotationConfig(SceneConfig):
     axis_angle: AxisAngle | None = None
     euler: Euler | None = None
     su2: SU2 | None = None
+    proofs: Proofs | None = None
 
     @model_validator(mode="after")
     def _rules(self):
         if self.run is not None:
             raise ValueError("run: the rotation kind integrates nothing; remove the [run] table")
-        if self.axis_angle is None and self.euler is None and self.su2 is None:
-            raise ValueError("axis_angle / euler / su2: give at least one of the tables "
-                             "[axis_angle], [euler], [su2] (or a preset)")
+        if (self.axis_angle is None and self.euler is None and self.su2 is None
+                and self.proofs is None):
+            raise ValueError("axis_angle / euler / su2 / proofs: give at least one of the "
+                             "tables [axis_angle], [euler], [su2], [proofs] (or a preset)")
         for name in self.report.sections or ():
             missing = [t for t in SECTION_TABLES.get(name, ()) if getattr(self, t) is None]
             if missing:

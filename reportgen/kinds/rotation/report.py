@@ -11,6 +11,7 @@ from ...lazy import lazy_module
 from ...scene.base import Section
 from ...scene.content import SectionContent, Table, fmt, fmt_err, fmt_matrix
 from ...scene.report import Report
+from .report_proofs import ProofsSection
 from .results import IDENTITY_MATRICES, ORDER_RANGE, ORDER_SLACK, SCHEMA, SECTION_DATA, TOLERANCE
 
 plots = lazy_module("reportgen.kinds.rotation.plots")
@@ -110,7 +111,7 @@ def contrast_words(s) -> list[str]:
     return words
 
 
-class RotationReport(Report):
+class RotationReport(ProofsSection, Report):
     """The rotation kind's sections, drawn from the archive alone."""
 
     schema = SCHEMA
@@ -139,6 +140,7 @@ class RotationReport(Report):
         Section("angular_velocity", "Angular velocity from Euler-angle rates "
                                     "(textbook exercises 4.7, 4.8)"),
         Section("matrix_identities", "Matrix identities (textbook ex. 4.1–4.4)"),
+        Section("matrix_proofs", "Textbook ex. 4.1–4.4 for every matrix: SymPy's proofs"),
         Section("su2_euler", "Euler's theorem and Euler angles in SU(2) (notes (9.17)–(9.18))"),
         Section("stereographic", "Stereographic projection, Möbius maps and SU(2) → SO(3) "
                                  "(textbook exercise 4.11)"),

@@ -26,7 +26,8 @@ ORDER_RANGE = 0.5
 #: the /analysis group each section reads
 SECTION_DATA = {"axis_angle": "axis_angle", "euler_angles": "euler",
                 "angular_velocity": "euler", "matrix_identities": "identities",
-                "su2_euler": "su2_form", "stereographic": "stereographic"}
+                "su2_euler": "su2_form", "stereographic": "stereographic",
+                "matrix_proofs": "proofs"}
 #: the matrices A the similarity S A S⁻¹ turns (textbook ex. 4.1–4.4), in the order of
 #: the /analysis/identities arrays: R(n, Φ) of ex. 4.5, its generator Φ[n]×, ½(R + Rᵀ)
 IDENTITY_MATRICES = ("rotation", "generator", "symmetric")
@@ -340,6 +341,22 @@ STEREOGRAPHIC_MORE = _group(
       "differ"),
 )
 
+#: /analysis/proofs: textbook ex. 4.1–4.4 for all n × n matrices (kinds/rotation/proofs.py)
+PROOF_KEYS = ("associative", "transpose", "determinant_product", "inverse", "hermitian",
+              "basis_change", "trace", "symmetric", "antisymmetric", "derivative_of_inverse")
+PROOFS = _group(
+    "proofs",
+    Q("sizes", "n", "1", "the matrix sizes proved for", ("proof_size",), "int"),
+    Q("seed", "", "1", "seed of the random matrices of the numerical checks", (), "int"),
+    *(q for key in PROOF_KEYS for n in (2, 3) for q in (
+        Q(f"proved/{key}_{n}", "", "", f"whether SymPy expanded the two sides' difference of "
+          f"'{key}' for {n} x {n} matrices of symbols to 0", (), "bool"),
+        Q(f"terms/{key}_{n}", "N", "1", f"terms of the left side of '{key}' expanded, "
+          f"{n} x {n}", (), "int"),
+        Q(f"errors/{key}_{n}", "", "1", f"max error: '{key}' on random {n} x {n} matrices, "
+          "relative to the largest entry"))),
+)
+
 SCHEMA = ResultsSchema(analysis=AXIS_ANGLE + AXIS_ANGLE_ERRORS + EULER + EULER_ERRORS
                        + IDENTITIES + IDENTITIES_ERRORS + SU2_FORM + SU2_FORM_ERRORS + SU2_NOTES
-                       + STEREOGRAPHIC + STEREOGRAPHIC_ERRORS + STEREOGRAPHIC_MORE)
+                       + STEREOGRAPHIC + STEREOGRAPHIC_ERRORS + STEREOGRAPHIC_MORE + PROOFS)

@@ -91,7 +91,8 @@ class RotationSimulation(Simulation):
     schema = SCHEMA
     config: RotationConfig
     computed_on_request = ("axis_angle", "euler_angles", "angular_velocity",
-                           "matrix_identities", "su2_euler", "stereographic")
+                           "matrix_identities", "su2_euler", "stereographic",
+                           "matrix_proofs")
 
     def computes(self, name: str) -> bool:
         tables = SECTION_TABLES.get(name)
@@ -112,6 +113,11 @@ class RotationSimulation(Simulation):
             self._su2_form(results)
         if self.computes("stereographic"):
             self._stereographic(results)
+        if self.computes("matrix_proofs"):
+            from .proofs import prove
+
+            results.analysis["proofs"] = prove(self.config.proofs.sizes, self.config.proofs.seed)
+            unproved = [k for k, ok in results.analysis["proofs"]["proved"].items() if not ok]
         bad = [f"{group}/{name}" for group, a in results.analysis.items()
                for name, error in a["errors"].items()
                if name not in NOT_CHECKS and not error <= TOLERANCE]
@@ -123,6 +129,8 @@ class RotationSimulation(Simulation):
             bad.append(f"identities/central_differences/order = {differences['order']:.4g}, "
                        f"not 2 ± {ORDER_SLACK:g}")
         bad += [c.quantity for c in results.checks if not c.rel_error <= TOLERANCE]
+        if self.computes("matrix_proofs"):
+            bad += [f"proofs/proved/{k}: not expanded to 0" for k in unproved]
         if bad:
             results.flag("failed", f"errors above {TOLERANCE:g}: " + "; ".join(bad))
         return results
