@@ -290,7 +290,7 @@ def test_bad_input_names_the_key(write_config, cli, text, key):
 
 def test_shipped_presets_validate(cli):
     paths = sorted(REPO.glob("configs/rigid_body_*.toml")) + [REPO / "configs/inertia_cone.toml"]
-    assert len(paths) == 5
+    assert len(paths) >= 5  # every shipped rigid-body config, and the cone of the inertia kind
     code, out, err = cli("validate", *paths)
     assert code == 0, out + err
 

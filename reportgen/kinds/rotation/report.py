@@ -362,7 +362,8 @@ class RotationReport(ProofsSection, Report):
                                    "A gives the same to the deviations below",
                            header=["A", "tr A′", "det A′", "eigenvalues of A′", "closed form"],
                            rows=rows)
-        rows = [["RᵀR = 1, det R = 1: R(n, Φ), S R(n, Φ), R(t), R(t) R(n, Φ); S⁻¹ = Sᵀ",
+        rows = [["RᵀR = 1 (orthogonality, notes (9.19)), det R = 1: R(n, Φ), S R(n, Φ), R(t), "
+                 "R(t) R(n, Φ); S⁻¹ = Sᵀ",
                  fmt_err(max(e["orthogonality"], e["determinant"],
                              e["inverse_is_transpose"])), "rounding"],
                 ["S A S⁻¹ = A built on S n; antisymmetry, symmetry kept",
