@@ -11,7 +11,7 @@ from ...lazy import lazy_module
 from ...scene.base import Section
 from ...scene.content import SectionContent, Table, fmt, fmt_err, fmt_matrix
 from ...scene.report import Report
-from .report_proofs import ProofsSection
+from .report_proofs import ProofsSection, time_ordered_notes, time_ordered_tables
 from .results import IDENTITY_MATRICES, ORDER_RANGE, ORDER_SLACK, SCHEMA, SECTION_DATA, TOLERANCE
 
 plots = lazy_module("reportgen.kinds.rotation.plots")
@@ -345,7 +345,8 @@ class RotationReport(ProofsSection, Report):
                                         f"{fmt(a['omega_scale'])} rad/s over the path, against "
                                         f"the bound {fmt(TOLERANCE)}: "
                                         f"{verdict(shown, 'angular-velocity checks')}",
-                                header=["check", "max error"], rows=rows)])
+                                header=["check", "max error"], rows=rows),
+                    *time_ordered_tables(a)], notes=time_ordered_notes(a))
 
     @classmethod
     def section_matrix_identities(cls, data):

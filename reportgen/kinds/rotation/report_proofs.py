@@ -1,11 +1,11 @@
 """``rotation`` report, the proofs section: textbook ex. 4.1–4.4 for all 2 × 2 and 3 × 3
-matrices (SymPy expanded each difference to 0) and on random ones; from ``/analysis/proofs``
-alone (the statements are :data:`reportgen.kinds.rotation.proofs.IDENTITIES`, repeated here
-so that the report imports no SymPy)."""
+matrices (SymPy expanded each difference to 0) and on random ones, from ``/analysis/proofs``
+alone; and R(t) rebuilt from ω(t) by the time-ordered exponential of notes (8.36)–(8.37),
+from ``/analysis/euler/time_ordered`` (the angular-velocity section's tables)."""
 
 from __future__ import annotations
 
-from ...scene.content import SectionContent, Table, fmt_err
+from ...scene.content import SectionContent, Table, fmt, fmt_err
 
 #: (key, exercise, statement) as proofs.IDENTITIES
 STATEMENTS = (
@@ -69,3 +69,51 @@ class ProofsSection:
                          "det(λ − ABA⁻¹) = det(A(λ − B)A⁻¹) = det(λ − B): similar matrices have "
                          "the same characteristic polynomial.")
         return SectionContent(facts=facts, tables=[table], notes=notes)
+
+
+def time_ordered_tables(a) -> list[Table]:
+    """R(t_end) rebuilt from ω(t) by the series (8.37) and by Magnus's method, each against
+    the Euler matrix (an empty list for an archive without them)."""
+    k = a.get("time_ordered")
+    if k is None:
+        return []
+    orders, err, term, bound = (k[n] for n in ("orders", "series_error", "series_term",
+                                                "series_bound"))
+    shown = [i for i in range(len(orders)) if int(orders[i]) in (1, 2, 4) or
+             int(orders[i]) % 8 == 0]
+    series = Table(
+        caption="R(t) rebuilt from ω(t) alone, notes (8.36)–(8.37): the partial sums S_K of "
+                "the time-ordered exponential's series at the end of the path, against the "
+                "Euler matrix there (largest entry of the difference), with the largest entry "
+                "of the K-th term and the bound (|ω|t)ᴷ⁺¹/(K + 1)! of the terms left out",
+        header=["order K", "max |S_K R(0) − R(t)|", "largest entry of term K",
+                "(|ω|t)ᴷ⁺¹/(K + 1)!"],
+        rows=[[str(int(orders[i])), fmt_err(float(err[i])), fmt(float(term[i]), 3),
+               fmt_err(float(bound[i]))] for i in shown])
+    steps, magnus = k["magnus_steps"], k["magnus_error"]
+    stepping = Table(
+        caption="The same by Magnus's fourth-order method, an exact rotation per step: the "
+                "error at the end against the number of steps",
+        header=["steps", "max |R − R(t)|"],
+        rows=[[str(int(n)), fmt_err(float(e))] for n, e in zip(steps, magnus, strict=True)])
+    return [series, stepping]
+
+
+def time_ordered_notes(a) -> list[str]:
+    """What the two rebuilds show, in words chosen by their stored numbers."""
+    k = a.get("time_ordered")
+    if k is None:
+        return []
+    best, largest = float(k["series_best"]), float(k["series_largest_term"])
+    text = (f"Summed to order {int(k['orders'][-1])}, the series of the time-ordered "
+            f"exponential, notes (8.37), reaches "
+            f"R(t) to {fmt_err(best)} here (|ω|t = {fmt(float(k['omega_t']), 3)}); ")
+    text += (f"its terms first grow to {fmt(largest, 3)}, and the digits lost in their "
+             "cancellation set that floor." if largest > 10.0 else
+             "its terms never grow past order one, so nothing is lost to cancellation.")
+    order = float(k["magnus_order"])
+    if order == order:  # not NaN
+        fourth = abs(order - 4.0) <= 0.2
+        text += (f" Magnus's method converges at order {fmt(order, 3)} ("
+                 + ("fourth, as it should" if fourth else "not the fourth it should") + ").")
+    return [text]

@@ -104,6 +104,24 @@ def _construction(convention: str) -> tuple[Q, ...]:
 
 EULER = _group(
     "euler",
+    Q("time_ordered/orders", "K", "1", "orders of the partial sums of notes (8.37)",
+      ("series_order",), "int"),
+    Q("time_ordered/series_error", r"\max|S_K R(0) - R(t)|", "1", "largest entry of the "
+      "partial sum's difference from the Euler matrix at the end of the path",
+      ("series_order",)),
+    Q("time_ordered/series_term", r"\max|I_K|", "1", "largest entry of the K-th term on the "
+      "path", ("series_order",)),
+    Q("time_ordered/series_bound", r"(|\omega|t)^{K+1}/(K+1)!", "1", "the bound of the "
+      "terms left out", ("series_order",)),
+    Q("time_ordered/omega_t", r"|\omega| t", "1", "largest |omega| on the path times its "
+      "length"),
+    Q("time_ordered/series_best", "", "1", "the smallest error of the partial sums"),
+    Q("time_ordered/series_largest_term", "", "1", "the largest entry of any term"),
+    Q("time_ordered/magnus_steps", "n", "1", "steps of Magnus's method", ("magnus_run",), "int"),
+    Q("time_ordered/magnus_error", r"\max|R - R(t)|", "1", "error of Magnus's method at the "
+      "end of the path", ("magnus_run",)),
+    Q("time_ordered/magnus_order", "p", "1", "convergence order of Magnus's method "
+      "(median of log2 of successive error ratios)"),
     Q("convention", "", "", "convention the angles are given in", kind="str"),
     Q("other_convention", "", "", "the other convention", kind="str"),
     Q("t", "t", "s", "time along the sample path", ("path",)),

@@ -14,6 +14,7 @@ from ...scene.simulation import Simulation
 from .config import SECTION_TABLES, RotationConfig
 from .notes_su2 import notes_su2
 from .results import CONTRAST, NOT_CHECKS, ORDER_RANGE, ORDER_SLACK, SCHEMA, TOLERANCE
+from .time_ordered import rebuild
 
 rotations = lazy_module("reportgen.core.rotations")
 
@@ -256,6 +257,8 @@ class RotationSimulation(Simulation):
         results.analysis["euler"] = {
             "convention": given, "other_convention": other, "t": t, "rates": rates,
             "path": path, "path_other": path_other,
+            # R(t) from ω(t) alone by the time-ordered exponential, notes (8.36)–(8.37)
+            "time_ordered": rebuild(path[0], rates, given, float(t[-1])),
             "matrix": R[0], "matrix_other": R_other[0],
             "elements": elements[given], "elements_other": elements[other],
             "omega_space": omega["space"], "omega_body": omega["body"],
