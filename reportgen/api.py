@@ -34,6 +34,7 @@ reportgen.errors.ConfigError: ...
 
 from __future__ import annotations
 
+import contextlib
 import html
 import json
 import re
@@ -81,6 +82,32 @@ def _write_source(config: Mapping, out: Path, name: str | None) -> Path:
     return path
 
 
+@contextlib.contextmanager
+def _callers_matplotlib():
+    """Draw in the report's style and leave the caller's matplotlib as it was: every
+    rcParam (the style is set for the run, issue 43) and pyplot's backend, which the
+    style's import sets to Agg (a notebook's inline backend would stop showing figures)."""
+    import sys
+
+    import matplotlib
+
+    saved = dict(matplotlib.rcParams)
+    backend = saved.pop("backend")
+    try:
+        from .rendering.plots.style import RC
+
+        matplotlib.rcParams.update(RC)  # again on every run: an earlier one restored
+        yield
+    finally:
+        dict.update(matplotlib.rcParams, saved)  # as they were, unvalidated, no switching
+        if dict.__getitem__(matplotlib.rcParams, "backend") != backend:
+            pyplot = sys.modules.get("matplotlib.pyplot")
+            if pyplot is not None:
+                pyplot.switch_backend(backend)
+            else:
+                dict.__setitem__(matplotlib.rcParams, "backend", backend)
+
+
 def run(source: str | Path | Mapping, out: str | Path = "output", *, force: bool = False,
         formats: tuple[str, ...] | None = None, name: str | None = None):
     """Run scenes as ``reportgen run`` does, each stage only when its inputs changed.
@@ -108,11 +135,12 @@ def run(source: str | Path | Mapping, out: str | Path = "output", *, force: bool
             raise ConfigError([str(exc)]) from None
     validate_all(paths)
     outcomes = []
-    for path in paths:
-        outcome = run_scene(str(path), str(out), force, tuple(formats) if formats else None)
-        if outcome.config_error:
-            raise ConfigError([outcome.message])
-        outcomes.append(outcome)
+    with _callers_matplotlib():
+        for path in paths:
+            outcome = run_scene(str(path), str(out), force, tuple(formats) if formats else None)
+            if outcome.config_error:
+                raise ConfigError([outcome.message])
+            outcomes.append(outcome)
     single = isinstance(source, Mapping) or Path(source).is_file()
     return outcomes[0] if single else outcomes
 

@@ -400,13 +400,18 @@ def format_validation_error(label: str, exc: ValidationError,
 
 
 def to_toml(data: dict[str, Any]) -> str:
-    """A config dict as TOML text (tables last), for configs made in code (presets, audit cases)."""
+    """A config dict as TOML text (tables last), for configs made in code (presets, audit
+    cases, the API's dicts); numpy numbers and arrays are written as plain numbers."""
 
     def value(v) -> str:
+        if hasattr(v, "dtype") and hasattr(v, "tolist"):  # a numpy number or array (a
+            v = v.tolist()  # notebook's np.float64(0.5), np.int64(401)): as plain Python
         if isinstance(v, bool):
             return "true" if v else "false"
-        if isinstance(v, (int, float)):
-            return repr(v) if not (isinstance(v, float) and not math.isfinite(v)) else (
+        if isinstance(v, int):
+            return repr(int(v))
+        if isinstance(v, float):
+            return repr(float(v)) if math.isfinite(v) else (
                 "nan" if math.isnan(v) else ("inf" if v > 0 else "-inf"))
         if isinstance(v, str):
             return json.dumps(v, ensure_ascii=False)

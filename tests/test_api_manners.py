@@ -1,0 +1,69 @@
+"""The Python API as a good citizen in a notebook (issue 43): ``reportgen.run`` leaves the
+caller's matplotlib alone (every rcParam, and pyplot's backend), draws every run in the
+report's own style, and takes numpy numbers in a dict config as plain numbers.  In a fresh
+interpreter, where the caller's pyplot already runs a backend other than Agg."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import textwrap
+import tomllib
+
+import numpy as np
+
+from reportgen.scene.config import to_toml
+
+CALLER = textwrap.dedent('''
+    import sys
+    from pathlib import Path
+    import matplotlib
+    matplotlib.use("svg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+    matplotlib.rcParams["font.size"] = 17.0
+    matplotlib.rcParams["axes.grid"] = False
+    matplotlib.rcParams["axes.prop_cycle"] = matplotlib.cycler(color=["k", "r"])
+    before = {k: v for k, v in matplotlib.rcParams.items() if k != "backend"}
+    import reportgen
+    out = Path(sys.argv[1])
+    config = {"kind": "pendulum", "title": "numpy numbers",
+              "params": {"g": np.float64(9.81), "l": np.float32(1.0)},
+              "initial": {"theta": np.float64(0.5)},
+              "run": {"t_end": np.float64(2.0), "samples": np.int64(201),
+                      "study": np.bool_(False)},
+              "report": {"formats": ["html"]}}
+    first = reportgen.run(config, out / "a")
+    assert first.status == "ok", first.message
+    after = {k: v for k, v in matplotlib.rcParams.items() if k != "backend"}
+    changed = sorted(k for k in before if before[k] != after[k])
+    assert not changed, changed
+    assert plt.get_backend() == "svg", plt.get_backend()
+    fig = plt.figure()
+    plt.plot([0, 1], [0, 1])
+    fig.savefig(out / "mine.svg")  # the caller's own figure, with its own backend
+    second = reportgen.run(config, out / "b")  # drawn in the report's style again
+    assert second.status == "ok"
+    a = sorted((out / "a" / "numpy_numbers" / "figures").glob("*.svg"))
+    b = sorted((out / "b" / "numpy_numbers" / "figures").glob("*.svg"))
+    assert a and [p.name for p in a] == [p.name for p in b]
+    assert all(x.read_bytes() == y.read_bytes() for x, y in zip(a, b))
+    print("ok")
+''')
+
+
+def test_run_leaves_the_callers_matplotlib_alone_and_takes_numpy_numbers(tmp_path):
+    proc = subprocess.run([sys.executable, "-c", CALLER, str(tmp_path)], capture_output=True,
+                          text=True, timeout=600)
+    assert proc.returncode == 0 and proc.stdout.strip() == "ok", proc.stderr[-3000:]
+    assert (tmp_path / "mine.svg").read_text().rstrip().endswith("</svg>")
+
+
+def test_numpy_numbers_and_arrays_are_written_as_plain_toml():
+    text = to_toml({"kind": "normal_modes", "x": np.float64(0.5), "n": np.int64(401),
+                    "flag": np.bool_(True), "v": np.array([1.0, 2.5]),
+                    "t": {"m": np.array([[1, 2], [3, 4]])}})
+    assert "np." not in text and "float64" not in text
+    data = tomllib.loads(text)
+    assert data["x"] == 0.5 and data["n"] == 401 and data["flag"] is True
+    assert data["v"] == [1.0, 2.5] and data["t"]["m"] == [[1, 2], [3, 4]]
