@@ -67,3 +67,28 @@ def test_numpy_numbers_and_arrays_are_written_as_plain_toml():
     data = tomllib.loads(text)
     assert data["x"] == 0.5 and data["n"] == 401 and data["flag"] is True
     assert data["v"] == [1.0, 2.5] and data["t"]["m"] == [[1, 2], [3, 4]]
+
+
+def test_a_misspelt_word_for_a_symbol_key_gets_a_guess(tmp_path, capsys):
+    """"lenght" is no near spelling of the key ``l``, but of a word of its description
+    ("length of the pendulum"): the guess names ``l`` (issue 43, item 9)."""
+    from reportgen.commands.cli import main
+
+    config = tmp_path / "typo.toml"
+    config.write_text('kind = "pendulum"\n[params]\ng = 9.81\nlenght = 1.0\nmas = 2.0\n'
+                      '[initial]\ntheta = 0.5\n[run]\nt_end = 2.0\n', encoding="utf-8")
+    assert main(["validate", str(config)]) == 2
+    err = capsys.readouterr().err
+    assert "key 'params.lenght': unknown key; did you mean 'l'?" in err
+    assert "key 'params.mas': unknown key; did you mean 'm'?" in err
+    assert "params.l': required key is missing" not in err  # said once, as the guess
+
+
+def test_inspect_on_a_config_says_what_it_is(tmp_path, capsys):
+    from reportgen.commands.cli import main
+
+    config = tmp_path / "scene.toml"
+    config.write_text('kind = "pendulum"\n', encoding="utf-8")
+    assert main(["inspect", str(config)]) == 2
+    err = capsys.readouterr().err
+    assert "a scene config (TOML), not an archive" in err and "HDF5" not in err

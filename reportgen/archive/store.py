@@ -551,6 +551,9 @@ def read_archive(path: Path) -> ArchiveData:
     except FileNotFoundError:
         raise ArchiveError(f"{path}: no such file") from None
     except OSError as exc:
+        if _looks_like_a_config(path):
+            raise ArchiveError(f"{path}: a scene config (TOML), not an archive: `reportgen run "
+                               f"{path}` makes its run.h5") from None
         raise ArchiveError(f"{path}: unreadable or corrupted HDF5 file ({exc})") from None
     except KeyError as exc:
         raise ArchiveError(f"{path}: incomplete archive, missing {exc}") from None
@@ -771,3 +774,15 @@ def summarize(path: Path, checksum_problems: list[str] | None = None) -> str:
     # titles, names and messages come from the file: shown, never acted on by the terminal
     return "\n".join(printable(line, newlines=False) for line in lines)
 
+
+
+def _looks_like_a_config(path) -> bool:
+    """Whether ``path`` (not an HDF5 file) reads as a scene config: TOML with a ``kind``."""
+    import tomllib
+
+    try:
+        with open(path, "rb") as fh:
+            head = fh.read(1 << 20)
+        return "kind" in tomllib.loads(head.decode("utf-8"))
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+        return False

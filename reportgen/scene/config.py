@@ -294,6 +294,22 @@ def _known_keys(loc: tuple, model: type[BaseModel] | None) -> list[str]:
     return list(annotation.model_fields) if _is_model(annotation) else []
 
 
+def _meant_by_words(name: str, loc: tuple, model: type[BaseModel] | None,
+                    keys: list[str]) -> str | None:
+    """The key among ``keys`` whose description has a word close to ``name``: a misspelt
+    word for a key named by a symbol ("lenght" for ``l``, "length of the pendulum")."""
+    annotation = _unwrap(_follow(loc, model)[1]) if model is not None else None
+    if not _is_model(annotation):
+        return None
+    words: dict[str, str] = {}
+    for key in keys:
+        field = annotation.model_fields.get(key)
+        for word in re.findall(r"[a-z]{4,}", (field.description or "").lower() if field else ""):
+            words.setdefault(word, key)
+    close = difflib.get_close_matches(name.lower(), list(words), n=1, cutoff=0.75)
+    return words[close[0]] if close else None
+
+
 #: "initial.theta / initial.theta_dot: ..." — a scene's cross-key rule naming its own keys
 _NAMED_KEYS = re.compile(r"[A-Za-z_][\w.\[\]]*((?: / |, )[A-Za-z_][\w.\[\]]*)*: ")
 
@@ -343,6 +359,10 @@ def _did_you_mean(errors: list[dict], model: type[BaseModel] | None
         close = (difflib.get_close_matches(name, missing.get(table, []), n=1, cutoff=0.6)
                  or difflib.get_close_matches(name, _known_keys(table, model), n=1,
                                               cutoff=0.6))
+        if not close:  # a word of a key's description: missing keys first
+            by_words = (_meant_by_words(name, table, model, missing.get(table, []))
+                        or _meant_by_words(name, table, model, _known_keys(table, model)))
+            close = [by_words] if by_words else []
         if close:
             hints[loc] = f"; did you mean '{close[0]}'?"
             if close[0] in missing.get(table, []):
