@@ -320,3 +320,19 @@ def test_ellipsoid_view_takes_the_camera_off_the_lab_axes():
     elev, azim = ellipsoid_view(np.eye(3), semi)
     off_axis = min(azim % 90.0, 90.0 - azim % 90.0)
     assert 0.0 <= elev <= 60.0 and off_axis >= 10.0
+
+
+def test_a_spherical_top_draws_no_empty_error_plot(tmp_path):
+    """Three equal moments (notes (10.6)): ω is exact to the last bit, so the error figure
+    would be an empty log axis; it is left out and the fact says why."""
+    from reportgen.commands.cli import main
+
+    config = tmp_path / "sphere.toml"
+    config.write_text('kind = "rigid_body"\n[params]\nI1 = 2.0\nI2 = 2.0\nI3 = 2.0\n'
+                      '[initial]\nomega = [0.4, -0.3, 1.2]\n[run]\nt_end = 5.0\n'
+                      'samples = 501\nstudy = false\n[report]\nformats = ["html"]\n',
+                      encoding="utf-8")
+    assert main(["run", str(config), "--out", str(tmp_path / "out")]) == 0
+    folder = tmp_path / "out" / "sphere"
+    assert not (folder / "figures" / "omega-omega_error.svg").exists()
+    assert "equal at every sample" in (folder / "report.html").read_text(encoding="utf-8")
