@@ -437,9 +437,13 @@ def so3_from_su2(U) -> np.ndarray:
 
 
 def skew(v) -> np.ndarray:
-    """Cross-product matrix [v]×: skew(v) @ u = v × u."""
-    x, y, z = v
-    return np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
+    """Cross-product matrix [v]×: skew(v) @ u = v × u; ``v`` of shape (..., 3) gives the
+    matrices of shape (..., 3, 3)."""
+    v = np.asarray(v, dtype=float)
+    x, y, z = v[..., 0], v[..., 1], v[..., 2]
+    zero = np.zeros_like(x)
+    return np.stack([np.stack([zero, -z, y], -1), np.stack([z, zero, -x], -1),
+                     np.stack([-y, x, zero], -1)], -2)
 
 
 def su2_from_cayley_klein(a: complex, b: complex) -> np.ndarray:

@@ -33,20 +33,12 @@ MAX_ORDER = 80
 MAGNUS_STEPS = (8, 16, 32, 64, 128)
 
 
-def _skew(w):
-    return np.stack([np.stack([np.zeros_like(w[..., 0]), -w[..., 2], w[..., 1]], -1),
-                     np.stack([w[..., 2], np.zeros_like(w[..., 0]), -w[..., 0]], -1),
-                     np.stack([-w[..., 1], w[..., 0], np.zeros_like(w[..., 0])], -1)], -2)
-
-
 def _expm_skew(W) -> np.ndarray:
-    """exp of an antisymmetric 3 × 3 matrix by Rodrigues' formula."""
+    """exp of an antisymmetric 3 × 3 matrix [w]×: the rotation by |w| about w/|w|
+    (Rodrigues' formula, core's passive A(n, Φ) transposed)."""
     w = rotations.vee(W)
     a = float(np.linalg.norm(w))
-    if a == 0.0:
-        return np.eye(3)
-    K = W / a
-    return np.eye(3) + math.sin(a) * K + (1.0 - math.cos(a)) * (K @ K)
+    return np.eye(3) if a == 0.0 else rotations.rotation_formula_matrix(w / a, a).T
 
 
 def rebuild(angles0, rates, convention: str, duration: float) -> dict:
@@ -64,7 +56,8 @@ def rebuild(angles0, rates, convention: str, duration: float) -> dict:
     # the series (8.37) on Chebyshev points x ∈ [−1, 1], t = (x + 1) T/2
     x = np.cos(np.pi * np.arange(NODES) / (NODES - 1))[::-1]
     t = 0.5 * (x + 1.0) * duration
-    W = _skew(omega(t))  # (NODES, 3, 3)
+    omega_nodes = omega(t)
+    W = rotations.skew(omega_nodes)  # (NODES, 3, 3)
     term = np.broadcast_to(np.eye(3), (NODES, 3, 3)).copy()
     total = term[-1].copy()  # S at t = T (x = 1 is the last node)
     errors, sizes = [], []
@@ -76,7 +69,7 @@ def rebuild(angles0, rates, convention: str, duration: float) -> dict:
         total = total + term[-1]
         sizes.append(float(np.max(np.abs(term))))
         errors.append(float(np.max(np.abs(total @ R0 - R_end))))
-    omega_max = float(np.max(np.linalg.norm(omega(t), axis=-1)))
+    omega_max = float(np.max(np.linalg.norm(omega_nodes, axis=-1)))
     orders = np.arange(1, MAX_ORDER + 1)
     bound = np.array([math.exp(k * math.log(omega_max * duration) - math.lgamma(k + 1.0))
                       if omega_max * duration > 0 else 0.0 for k in orders + 1])
@@ -87,7 +80,7 @@ def rebuild(angles0, rates, convention: str, duration: float) -> dict:
         h = duration / n
         R = R0.copy()
         for i in range(n):
-            A1, A2 = _skew(omega(i * h + c1 * h)), _skew(omega(i * h + c2 * h))
+            A1, A2 = rotations.skew(omega(i * h + c1 * h)), rotations.skew(omega(i * h + c2 * h))
             Om = 0.5 * h * (A1 + A2) + (math.sqrt(3.0) / 12.0) * h * h * (A2 @ A1 - A1 @ A2)
             R = _expm_skew(Om) @ R
         magnus.append(float(np.max(np.abs(R - R_end))))
