@@ -18,7 +18,7 @@ def _complex(k, name: str) -> complex:
 def _t_text(t: complex) -> str:
     """t = x + iy as the page prints it."""
     x, y = t.real, t.imag
-    if y == 0.0 or abs(y) < 1e-300:
+    if abs(y) < 1e-300:
         return fmt(x)
     sign = "−" if y < 0 else "+"
     return f"{fmt(x)} {sign} {fmt(abs(y))} i"

@@ -6,22 +6,7 @@ from ``/analysis/euler/time_ordered`` (the angular-velocity section's tables).""
 from __future__ import annotations
 
 from ...scene.content import SectionContent, Table, fmt, fmt_err
-
-#: (key, exercise, statement) as proofs.IDENTITIES
-STATEMENTS = (
-    ("associative", "4.1(a)", "associative: A(BC) = (AB)C"),
-    ("transpose", "4.1(b)", "transpose of a product: (AB)ᵀ = BᵀAᵀ"),
-    ("determinant_product", "4.1(c)", "the inverse of AB exists with A⁻¹ and B⁻¹: "
-                                      "det(AB) = det A det B"),
-    ("inverse", "4.1(c)", "inverse of a product: (AB)⁻¹ = B⁻¹A⁻¹, as adj(AB) = adj(B) adj(A)"),
-    ("hermitian", "4.1(d)", "hermitian conjugate, complex entries: (AB)† = B†A†"),
-    ("basis_change", "4.2(d)", "change of basis: W = BV and V′ = AV give W′ = ABA⁻¹V′"),
-    ("trace", "4.3(a)", "trace: tr(ABA⁻¹) = tr B"),
-    ("symmetric", "4.3(d)", "symmetric B = Bᵀ stays symmetric: (ABAᵀ)ᵀ = ABAᵀ (Aᵀ = A⁻¹ for "
-                            "an orthogonal A)"),
-    ("antisymmetric", "4.3(d)", "antisymmetric B = −Bᵀ stays antisymmetric: (ABAᵀ)ᵀ = −ABAᵀ"),
-    ("derivative_of_inverse", "4.4", "derivative of the inverse: Ȧ A⁻¹ = −A dA⁻¹/dt"),
-)
+from .results import PROOF_STATEMENTS
 
 
 def _cell(group, key: str, n: int) -> str:
@@ -42,7 +27,7 @@ class ProofsSection:
         g = data.analysis["proofs"]
         sizes = [int(n) for n in g["sizes"]]
         rows = []
-        for key, exercise, statement in STATEMENTS:
+        for key, exercise, statement in PROOF_STATEMENTS:
             errors = [float(g["errors"][f"{key}_{n}"]) for n in sizes
                       if f"{key}_{n}" in g["errors"]]
             rows.append([f"{statement} (textbook ex. {exercise})", *(_cell(g, key, n) for n in sizes),

@@ -359,9 +359,23 @@ STEREOGRAPHIC_MORE = _group(
       "differ"),
 )
 
-#: /analysis/proofs: textbook ex. 4.1–4.4 for all n × n matrices (kinds/rotation/proofs.py)
-PROOF_KEYS = ("associative", "transpose", "determinant_product", "inverse", "hermitian",
-              "basis_change", "trace", "symmetric", "antisymmetric", "derivative_of_inverse")
+#: /analysis/proofs: textbook ex. 4.1–4.4 for all n × n matrices (kinds/rotation/proofs.py),
+#: each identity by (key, exercise, statement), in the order of the exercises
+PROOF_STATEMENTS = (
+    ("associative", "4.1(a)", "associative: A(BC) = (AB)C"),
+    ("transpose", "4.1(b)", "transpose of a product: (AB)ᵀ = BᵀAᵀ"),
+    ("determinant_product", "4.1(c)", "the inverse of AB exists with A⁻¹ and B⁻¹: "
+                                      "det(AB) = det A det B"),
+    ("inverse", "4.1(c)", "inverse of a product: (AB)⁻¹ = B⁻¹A⁻¹, as adj(AB) = adj(B) adj(A)"),
+    ("hermitian", "4.1(d)", "hermitian conjugate, complex entries: (AB)† = B†A†"),
+    ("basis_change", "4.2(d)", "change of basis: W = BV and V′ = AV give W′ = ABA⁻¹V′"),
+    ("trace", "4.3(a)", "trace: tr(ABA⁻¹) = tr B"),
+    ("symmetric", "4.3(d)", "symmetric B = Bᵀ stays symmetric: (ABAᵀ)ᵀ = ABAᵀ (Aᵀ = A⁻¹ for "
+                            "an orthogonal A)"),
+    ("antisymmetric", "4.3(d)", "antisymmetric B = −Bᵀ stays antisymmetric: (ABAᵀ)ᵀ = −ABAᵀ"),
+    ("derivative_of_inverse", "4.4", "derivative of the inverse: Ȧ A⁻¹ = −A dA⁻¹/dt"),
+)
+PROOF_KEYS = tuple(key for key, _, _ in PROOF_STATEMENTS)
 PROOFS = _group(
     "proofs",
     Q("sizes", "n", "1", "the matrix sizes proved for", ("proof_size",), "int"),
