@@ -165,6 +165,36 @@ def test_children_die_with_their_parent(tmp_path, sig, how):
         proc.stderr.close()
 
 
+def test_a_signal_inside_an_extension_import_stops_the_run(tmp_path, monkeypatch):
+    """A stop signal handled while an extension module initialises reaches Python as
+    pybind11's ``ImportError: initialization failed`` with the signal as its cause (and the
+    module's types left registered, so a forked worker's later import fails with "type ...
+    is already registered": the flake this test pins).  The run stops as for the signal;
+    it neither fails just the scene and carries on, nor takes it for a missing library."""
+    from reportgen.pipeline import stages
+    from reportgen.support.forked import Terminated, interrupt_behind
+
+    def interrupted_import(*_):
+        try:
+            raise Terminated(signal.SIGTERM)
+        except Terminated as stop:
+            raise ImportError("initialization failed") from stop
+
+    cfg = tmp_path / "tiny.toml"
+    cfg.write_text(TINY)
+    monkeypatch.setattr(stages, "load_scene", interrupted_import)
+    with pytest.raises(Terminated):
+        stages.run_scene(str(cfg), str(tmp_path / "out"))
+    assert interrupt_behind(ImportError("no module named heyoka")) is None
+    import importlib
+
+    real_import = importlib.import_module
+    monkeypatch.setattr("importlib.import_module", lambda name, *a: (
+        interrupted_import() if name == "scipy.optimize" else real_import(name, *a)))
+    with pytest.raises(Terminated):
+        stages._preload([], ("html",))
+
+
 # ----------------------------------------------------------------- 3. scene names
 @pytest.mark.parametrize("stem, rule", [
     ("..", "'..'"), ("index.html", "reserved"), ("audit", "reserved"),

@@ -37,7 +37,7 @@ from ..scene.base import Scene
 from ..scene.config import ConfigError, read_config
 from ..scene.gallery import check_headline, chosen_figure
 from ..scene.results import STATUSES, worst_status
-from ..support.forked import JobProcess, kill_children, run_child, serve
+from ..support.forked import JobProcess, interrupt_behind, kill_children, run_child, serve
 from ..support.fsutil import (
     atomic_write,
     install,
@@ -203,6 +203,10 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
         outcome.status, outcome.message = "failed", str(exc)
         outcome.config_error = True
     except Exception as exc:  # noqa: BLE001 - one scene's crash must not stop the batch
+        stop = interrupt_behind(exc)
+        if stop is not None:  # a signal inside an extension's import: it stops the batch
+            kill_children()
+            raise stop from None
         outcome.status = "failed"
         log = folder / "error.log"
         where = ""
@@ -473,8 +477,11 @@ def _preload(scenes, formats) -> None:
     for name in modules:
         try:
             importlib.import_module(name)
-        except ImportError:  # a missing optional library fails in the scene, with its message
-            pass
+        except ImportError as exc:  # a missing optional library fails in the scene, with its
+            stop = interrupt_behind(exc)  # message; a signal inside the import stops here
+            if stop is not None:
+                kill_children()
+                raise stop from None
     for helper in helpers:
         helper.join()
     for group in groups:

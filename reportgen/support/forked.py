@@ -36,6 +36,24 @@ class Terminated(KeyboardInterrupt):
         self.signum = signum
 
 
+def interrupt_behind(exc: BaseException | None) -> KeyboardInterrupt | None:
+    """The Ctrl-C or stop signal (:class:`Terminated`) behind ``exc``, if any.
+
+    A signal handled while an extension module initialises raises inside its
+    initialisation, and pybind11 turns that into ``ImportError: initialization failed``
+    (the KeyboardInterrupt its cause), leaving the module's types registered: the module
+    can never be imported again in this process or its forks ("type ... is already
+    registered").  Such an ImportError must stop the command as the signal does, not fail a
+    scene or be taken for a missing optional library."""
+    seen: set[int] = set()
+    while exc is not None and id(exc) not in seen:
+        if isinstance(exc, KeyboardInterrupt):
+            return exc
+        seen.add(id(exc))
+        exc = exc.__cause__ or exc.__context__
+    return None
+
+
 def die_with_parent(parent: int) -> None:
     """In a process just forked from ``parent``: be killed when ``parent`` ends.
 
