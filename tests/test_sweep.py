@@ -376,3 +376,42 @@ def test_every_broken_key_of_a_shipped_sweep_is_named(name, tmp_path, cli):
         code, out, err = cli("validate", target)
         assert code == 2, (key, out, err)
         assert f"{target}: key '{key}'" in err, (key, err)
+
+
+def test_swept_values_take_units_as_the_key_itself_does(write_config, cli):
+    """Issue 43: ``start = "5 deg"`` is 5° in the swept key's declared unit (rad), as
+    ``theta = "5 deg"`` is; a list may mix text and plain numbers (the declared unit);
+    a unit of the wrong dimension, and unit text on a key that declares no unit, exit 2
+    naming the key and the rule."""
+    def sweep_of(table: str):
+        return load_scene(parse_config_text(pendulum_text() + f"\n[sweep]\n{table}\n")).sweep
+
+    spec = sweep_of('initial.theta = { start = "5 deg", stop = "90 deg", num = 4 }')
+    assert np.allclose(spec.values()["initial.theta"], np.radians([5.0, 33.3333333, 61.6666667,
+                                                                   90.0]), rtol=1e-8)
+    spec = sweep_of('initial.theta = ["30 deg", 0.5, "1000 mrad"]')
+    assert spec.values()["initial.theta"].tolist() == pytest.approx([math.pi / 6, 0.5, 1.0])
+    log = sweep_of('params.l = { start = "50 cm", stop = "2 m", num = 3, spacing = "log" }')
+    assert log.values()["params.l"].tolist() == pytest.approx([0.5, 1.0, 2.0])
+
+    wrong = write_config("wrong", pendulum_text() + '\n[sweep]\ninitial.theta = '
+                                                    '{ start = "5 deg", stop = "2 kg", num = 3 }\n')
+    code, _, err = cli("validate", wrong)
+    assert code == 2 and "sweep.initial.theta.stop" in err and "mass" in err, err
+    free = write_config("free", """
+        kind = "hamiltonian"
+        [params]
+        k = 1.0
+        [system]
+        coordinates = ["x"]
+        H = "p_x**2/2 + k*x**2/2"
+        [initial]
+        x = 1.0
+        p_x = 0.0
+        [run]
+        t_end = 5.0
+        [sweep]
+        params.k = ["2 N/m", 3.0]
+        """)
+    code, _, err = cli("validate", free)
+    assert code == 2 and "sweep.params.k.0" in err and "declares no unit" in err, err

@@ -15,6 +15,7 @@ kind's reports and simulates nothing.
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import json
 import math
@@ -41,6 +42,7 @@ from .config import (
     format_validation_error,
 )
 from .schema import ResultsSchema
+from .units import convert_at
 
 #: config tables that never change the numbers: not part of the simulate key
 PRESENTATION_KEYS = ("title", "report", "preset")
@@ -178,7 +180,8 @@ class Scene:
             config = config.model_copy(update={"title": ""})
         spec = None
         if sweep_table is not None:
-            spec, sweep_problems = _sweep.parse_sweep(sweep_table, source.label)
+            spec, sweep_problems = _sweep.parse_sweep(
+                sweep_table, source.label, convert=functools.partial(convert_at, cls.Config))
             problems += sweep_problems
             if spec is not None:
                 problems += cls._check_members(spec, data, source.label)

@@ -46,6 +46,7 @@ import itertools
 import json
 import math
 import os
+import re
 import shutil
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
@@ -171,18 +172,44 @@ def _flatten(table: dict, prefix: str = "") -> list[tuple[str, Any]]:
     return out
 
 
+#: text that reads as a number with a unit ("5 deg")
+_UNIT_TEXT = re.compile(r"\s*[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?\s*\S.*")
+
+
 def _number(x: Any) -> bool:
     return isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x)
 
 
-def parse_sweep(table: Any, label: str) -> tuple[SweepSpec | None, list[str]]:
+def parse_sweep(table: Any, label: str,
+                convert: Callable[[str, Any], Any] | None = None,
+                ) -> tuple[SweepSpec | None, list[str]]:
     """The validated ``[sweep]`` table, or None and every problem found (each naming the
-    file, the key, the rule and the value)."""
+    file, the key, the rule and the value).
+
+    ``convert(path, value)``: a value given as text with a unit ("5 deg") as the number in
+    the unit the swept key declares (ValueError naming the rule), as the key itself would
+    be converted; the sweep then holds numbers in the declared units."""
     problems: list[str] = []
 
     def bad(key: str, rule: str, value: Any) -> None:
         problems.append(f"{label}: key 'sweep{'.' + key if key else ''}': {rule} "
                         f"(got {_short(value)})")
+
+    def number(path: str, key: str, value: Any) -> float | None:
+        """The swept ``value`` at ``key`` as a finite number, else None (problem noted)."""
+        if isinstance(value, str) and convert is not None:
+            try:
+                value = convert(path, value)
+            except ValueError as exc:
+                bad(key, str(exc), value)
+                return None
+        if _number(value):
+            return float(value)
+        rule = "must be a finite number"
+        if isinstance(value, str) and _UNIT_TEXT.fullmatch(value):
+            rule += " (this key declares no unit, so text with a unit is not converted)"
+        bad(key, rule, value)
+        return None
 
     if not isinstance(table, dict):
         bad("", "must be a table of swept keys", table)
@@ -204,13 +231,17 @@ def parse_sweep(table: Any, label: str) -> tuple[SweepSpec | None, list[str]]:
     axes = []
     for path, value in _flatten(table):
         if isinstance(value, list):
-            wrong = [i for i, v in enumerate(value) if not _number(v)]
             if not value:
                 bad(path, "a list of values must hold at least one", value)
-            elif wrong:
-                bad(f"{path}.{wrong[0]}", "a value must be a finite number", value[wrong[0]])
+                continue
+            numbers = []
+            for i, v in enumerate(value):
+                v = number(path, f"{path}.{i}", v)
+                if v is None:
+                    break
+                numbers.append(v)
             else:
-                axes.append(Axis(path, values=tuple(float(v) for v in value)))
+                axes.append(Axis(path, values=tuple(numbers)))
         elif isinstance(value, dict):
             unknown = sorted(set(value) - RANGE_KEYS)
             start, stop, num = value.get("start"), value.get("stop"), value.get("num")
@@ -220,10 +251,10 @@ def parse_sweep(table: Any, label: str) -> tuple[SweepSpec | None, list[str]]:
                                             "spacing)", value[unknown[0]])
             elif start is None or stop is None or num is None:
                 bad(path, "a range is { start, stop, num } with optional spacing", value)
-            elif not _number(start):
-                bad(path + ".start", "must be a finite number", start)
-            elif not _number(stop):
-                bad(path + ".stop", "must be a finite number", stop)
+            elif (start := number(path, path + ".start", start)) is None:
+                pass
+            elif (stop := number(path, path + ".stop", stop)) is None:
+                pass
             elif not isinstance(num, int) or isinstance(num, bool) or not 1 <= num <= MAX_MEMBERS:
                 bad(path + ".num", f"must be a whole number from 1 to {MAX_MEMBERS}", num)
             elif spacing not in ("linear", "log"):

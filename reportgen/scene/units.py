@@ -176,6 +176,25 @@ def convert_paths(data: Any, units: dict[tuple[str, ...], str]) -> Any:
     return out
 
 
+def convert_at(model: type, path: str, value: Any) -> Any:
+    """``value`` given for the dotted config key ``path`` ("initial.theta") of ``model``
+    (a swept value, say) as the number in that key's declared unit, as
+    :func:`convert_field` converts the key itself; unchanged where the key declares no
+    unit (a table of free keys).  ValueError names the rule."""
+    *tables, name = path.split(".")
+    for part in tables:
+        field = (getattr(model, "model_fields", None) or {}).get(part)
+        if field is None:
+            return value
+        model = field.annotation
+        for arg in typing.get_args(model):  # X | None
+            if hasattr(arg, "model_fields"):
+                model = arg
+    if not hasattr(model, "model_fields"):
+        return value
+    return convert_field(model, name, value)
+
+
 def _error(name: str | tuple, value: Any, message: str):
     from pydantic_core import InitErrorDetails, PydanticCustomError
 
