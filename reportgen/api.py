@@ -61,25 +61,67 @@ def _slug(text: str) -> str:
 
 
 def _write_source(config: Mapping, out: Path, name: str | None) -> Path:
-    """The dict ``config`` as ``out/<name>/<name>.toml`` (inside ``out``, never outside)."""
-    from .scene.config import to_toml
+    """The dict ``config`` as ``out/<name>/<name>.toml`` (inside ``out``, never outside),
+    validated first: a rejected dict writes nothing.
+
+    Without ``name``, the scene is named by the dict's title, else by its kind; an untitled
+    dict whose folder holds a run of other physics is refused (naming that run and
+    ``name=``) rather than replacing it.  A title names one scene: a titled dict with
+    edited physics replaces its earlier run, as an edited config file does."""
+    from .kinds import load_scene
+    from .scene.config import parse_config_text, to_toml
+    from .support.fsutil import atomic_write, links_out
     from .support.layout import printable, scene_name_problem
 
-    stem = name or _slug(str(config.get("title") or "")) or _slug(str(config.get("kind", "")))
+    title = str(config.get("title") or "")
+    stem = name or _slug(title) or _slug(str(config.get("kind", "")))
     if not stem:
         raise ConfigError(["the config dict has no title or kind to name the scene by "
                            "(pass name=...)"])
     problem = scene_name_problem(stem)
     if problem is not None:  # a name leading out of ``out``: nothing written
         raise ConfigError([f"scene name {printable(repr(stem))} {problem}"])
-    path = out / stem / f"{stem}.toml"
+    folder = out / stem
+    path = folder / f"{stem}.toml"
     try:
         text = to_toml(dict(config))
     except (TypeError, ValueError) as exc:
         raise ConfigError([f"config dict {stem!r}: {exc}"]) from None
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(text, encoding="utf-8")
+    scene = load_scene(parse_config_text(text, path))  # ConfigError: nothing written
+    escaping = links_out(folder, out)
+    if escaping:
+        raise ConfigError([f"{printable(str(escaping[0]))} is a symbolic link leading outside "
+                           f"{printable(str(out))}: not followed (remove the link)"])
+    if name is None and not title:
+        other = _other_physics(folder / "run.h5", scene.physics_key())
+        if other is not None:
+            raise ConfigError([
+                f"{printable(str(folder))} holds another {scene.kind} run ({other}) with other "
+                f"physics than this untitled dict: pass name=... (or a title) to run it beside "
+                f"that one, or name={stem!r} to replace it"])
+    if not path.is_file() or path.read_bytes() != text.encode("utf-8"):
+        folder.mkdir(parents=True, exist_ok=True)
+        atomic_write(path, text.encode("utf-8"))
     return path
+
+
+def _other_physics(archive: Path, key: str) -> str | None:
+    """The title of the run in ``archive`` if its physics key is not ``key`` (None when
+    the same, or no readable archive is there: nothing of another scene to lose)."""
+    from .archive.store import stored_identity
+
+    identity = stored_identity(archive) if archive.exists() else None
+    if identity is None or identity.physics_key in ("", key):
+        return None
+    import h5py
+
+    try:
+        with h5py.File(archive, "r") as f:
+            title = f.attrs.get("title", "")
+        title = title.decode("utf-8") if isinstance(title, bytes) else str(title)
+    except (OSError, ValueError):
+        title = ""
+    return f"'{title}'" if title else "untitled"
 
 
 @contextlib.contextmanager
@@ -113,8 +155,9 @@ def run(source: str | Path | Mapping, out: str | Path = "output", *, force: bool
     """Run scenes as ``reportgen run`` does, each stage only when its inputs changed.
 
     ``source``: a TOML config, a folder (every ``*.toml`` below it) or a dict with the
-    keys of a config, written as TOML to ``out/<name>/<name>.toml`` (``name``: the
-    argument, else the dict's title as a slug).  Returns the scene's
+    keys of a config, validated, then written as TOML to ``out/<name>/<name>.toml``
+    (``name``: the argument, else the dict's title as a slug, else its kind; an untitled
+    dict is refused rather than replace a run of other physics there).  Returns the scene's
     :class:`~reportgen.pipeline.stages.Outcome` (a list of them for a folder); a bad
     config raises :class:`~reportgen.errors.ConfigError` before anything runs, a failed
     simulation comes back as the outcome's ``status`` and ``message``.  ``formats``

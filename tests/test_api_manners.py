@@ -9,6 +9,7 @@ import subprocess
 import sys
 import textwrap
 import tomllib
+from pathlib import Path
 
 import numpy as np
 
@@ -92,3 +93,51 @@ def test_inspect_on_a_config_says_what_it_is(tmp_path, capsys):
     assert main(["inspect", str(config)]) == 2
     err = capsys.readouterr().err
     assert "a scene config (TOML), not an archive" in err and "HDF5" not in err
+
+
+def _pendulum(theta, **top):
+    return {"kind": "pendulum", **top, "params": {"g": 9.81, "l": 1.0},
+            "initial": {"theta": theta},
+            "run": {"t_end": 1.0, "samples": 101, "study": False},
+            "report": {"formats": ["html"]}}
+
+
+def test_a_rejected_dict_writes_nothing_and_untitled_runs_do_not_collide(tmp_path):
+    """Issue 43 item 3: a dict that fails validation leaves the earlier config and its
+    archive as they were (``validate`` on the folder still passes); a second untitled dict
+    of the same kind with other physics is refused, naming the run it would replace and
+    ``name=``, and runs beside it when named; the same untitled dict again, or a titled
+    dict's edit, is the edit loop and runs in place."""
+    import pytest
+
+    import reportgen
+    from reportgen.commands.cli import main
+    from reportgen.errors import ConfigError
+
+    out = tmp_path / "out"
+    first = reportgen.run(_pendulum(0.5), out)
+    assert first.status == "ok", first.message
+    folder = out / "pendulum"
+    config, archive = folder / "pendulum.toml", (folder / "run.h5").read_bytes()
+    written = config.read_bytes()
+
+    with pytest.raises(ConfigError):
+        reportgen.run(_pendulum(99.0), out, name="pendulum")  # outside the kind's range
+    assert config.read_bytes() == written and (folder / "run.h5").read_bytes() == archive
+    assert main(["validate", str(config)]) == 0
+
+    with pytest.raises(ConfigError) as refused:
+        reportgen.run(_pendulum(1.0), out)
+    message = str(refused.value)
+    assert "name=" in message and "pendulum" in message and "other physics" in message
+    assert config.read_bytes() == written and (folder / "run.h5").read_bytes() == archive
+
+    again = reportgen.run(_pendulum(0.5), out)  # the same physics: its own folder, current
+    assert again.skipped and Path(again.reports[0]).parent == folder
+    beside = reportgen.run(_pendulum(1.0), out, name="pendulum_1rad")
+    assert beside.status == "ok" and (out / "pendulum_1rad" / "run.h5").exists()
+    assert (folder / "run.h5").read_bytes() == archive
+
+    titled = reportgen.run(_pendulum(0.5, title="my pendulum"), out)
+    edited = reportgen.run(_pendulum(0.7, title="my pendulum"), out)
+    assert titled.status == edited.status == "ok" and not edited.skipped
