@@ -189,6 +189,34 @@ def run(source: str | Path | Mapping, out: str | Path = "output", *, force: bool
 
 
 # ---------------------------------------------------------------------- open
+#: the largest figure file the notebook view inlines
+MAX_INLINE_SVG_BYTES = 8 * 2**20
+
+
+def _inlinable_svg(path: Path) -> str | None:
+    """The SVG drawing of the figure file ``path`` (an output folder is untrusted: a
+    regular file, not a link or a FIFO, of at most :data:`MAX_INLINE_SVG_BYTES`, that
+    passes :func:`~reportgen.support.layout.svg_safe`), from its ``<svg``; else None."""
+    import os
+    import stat
+
+    from .support.layout import svg_safe
+
+    try:
+        fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK)
+    except OSError:
+        return None
+    with os.fdopen(fd, "rb") as f:
+        info = os.fstat(f.fileno())
+        if not stat.S_ISREG(info.st_mode) or info.st_size > MAX_INLINE_SVG_BYTES:
+            return None
+        text = f.read(MAX_INLINE_SVG_BYTES + 1).decode("utf-8", errors="replace")
+    start = text.find("<svg")
+    if start < 0 or len(text) > MAX_INLINE_SVG_BYTES or not svg_safe(text):
+        return None
+    return text[start:]
+
+
 def _ident(name: str, taken: set[str]) -> str:
     """``name`` as a Python identifier (``initial.theta`` -> ``initial_theta``), unique in
     ``taken`` (which it joins)."""
@@ -389,6 +417,26 @@ class Run:
         """The report's SVG figures beside the archive (``figures/*.svg``), if drawn."""
         return sorted((self.h5.parent / "figures").glob("*.svg"))
 
+    def signature_figures(self) -> list[Path]:
+        """The kind's signature figures this scene drew (its report's ``gallery_figures``,
+        in that order: the gallery card's thumbnail first), else the report's first figure;
+        from the figures' validated manifest, so [] when none was drawn."""
+        from .kinds import KINDS
+        from .support.layout import figure_manifest
+
+        folder = self.h5.parent
+        stored = figure_manifest(folder)
+        drawn = [fig for section in (stored["sections"] if stored is not None else ())
+                 for fig in section["figures"] if "svg" in fig["files"]]
+        ids = [str(fig.get("id", "")) for fig in drawn]
+        picked: list[int] = []
+        for want in getattr(KINDS.get(self.kind), "gallery_figures", ()):
+            picked += [i for i, fid in enumerate(ids)
+                       if (fid == want or fid.partition("-")[2] == want) and i not in picked]
+        if not picked and drawn:
+            picked = [0]
+        return [folder / drawn[i]["files"]["svg"] for i in picked]
+
     def _repr_html_(self) -> str:
         e = html.escape
         parts = [f"<h3>{e(self.title or self.kind)}</h3>",
@@ -403,12 +451,11 @@ class Run:
             parts.append("<table>" + "".join(f"<tr><th style='text-align:left'>{e(a)}</th>"
                                              f"<td>{e(b)}</td></tr>" for a, b in facts)
                          + "</table>")
-        for svg in self.figures()[:REPR_FIGURES]:
-            text = svg.read_text(encoding="utf-8", errors="replace")
-            start = text.find("<svg")
-            if start >= 0:
+        for svg in self.signature_figures()[:REPR_FIGURES]:
+            text = _inlinable_svg(svg)
+            if text is not None:
                 parts.append(f"<div style='max-width:40em' title='{e(svg.name)}'>"
-                             f"{text[start:]}</div>")
+                             f"{text}</div>")
         from .scene.typeset import typeset_html
 
         return typeset_html("\n".join(parts))  # as the report's pages are typeset

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import doctest
 import math
+import re
 import subprocess
 import sys
 import warnings
@@ -154,6 +155,10 @@ def test_repr_html_shows_title_status_headline_and_figures(out):
     assert "Pendulum — API test (θ<sub>0</sub> = 0.3)" in page and "ok" in page  # typeset
     assert "libration" in page and "period" in page  # the headline facts
     assert 1 <= page.count("<svg") <= api.REPR_FIGURES
+    # the kind's signature figures, as the gallery card's (issue 43): the phase portrait
+    # first, then the period, not the first files alphabetically (energy, the study)
+    shown = re.findall(r"<div style='max-width:40em' title='([^']+)'>", page)
+    assert shown == ["phase_portrait-phase.svg", "period-period.svg"], shown
 
 
 def test_repr_html_without_figures(out, tmp_path):

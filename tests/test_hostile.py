@@ -253,13 +253,32 @@ def _poison(folder: Path, how: str, tmp_path: Path) -> None:
     elif how == "script":
         (folder / fig["files"]["svg"]).write_text(
             f"<svg><script>alert('{SECRET}')</script></svg>")
+    elif how in _SCRIPTED:
+        (folder / fig["files"]["svg"]).write_text(_SCRIPTED[how])
+    elif how in ("fifo", "zero"):
+        target = folder / fig["files"]["svg"]
+        target.unlink()
+        if how == "fifo":
+            os.mkfifo(target)
+        else:
+            target.symlink_to("/dev/zero")
     elif how == "shape":
         stored["sections"][0]["figures"] = [{"id": 1, "files": [SECRET]}]
         stored["sections"].append("not a section")
     index.write_text(json.dumps(stored))
 
 
-@pytest.mark.parametrize("how", ["traversal", "absolute", "symlink", "script", "shape"])
+#: figure files with script HTML runs though no space precedes the handler (HTML takes
+#: "/" as a separator) and a style sheet reading a local file
+_SCRIPTED = {
+    "slash-onload": f"<svg/onload=alert('{SECRET}') width='1'></svg>",
+    "img-onerror": f"<svg><img src=\"x\"/onerror=alert('{SECRET}')></svg>",
+    "style-import": f'<svg><style>@import "file:///{SECRET}";</style></svg>',
+}
+
+
+@pytest.mark.parametrize("how", ["traversal", "absolute", "symlink", "script", "shape",
+                                 *_SCRIPTED])
 def test_poisoned_figure_manifest_is_not_trusted(base, tmp_path, how):
     archive = _scene_copy(base, tmp_path / "scene")
     _poison(archive.parent, how, tmp_path)
@@ -269,6 +288,33 @@ def test_poisoned_figure_manifest_is_not_trusted(base, tmp_path, how):
     assert SECRET not in html
     manifest = json.loads((archive.parent / "figures" / "sections.json").read_text())
     assert SECRET not in json.dumps(manifest)  # drawn again over it
+
+
+@pytest.mark.parametrize("how", ["script", *_SCRIPTED, "symlink", "fifo", "zero"])
+def test_the_notebook_view_inlines_no_poisoned_figure(base, tmp_path, how):
+    """``Run._repr_html_`` (the notebook's view of a received output folder) inlines only
+    a regular, bounded, safe SVG: no script, no link read through, no FIFO waited on, no
+    /dev/zero read until memory runs out; the view still shows the title and status."""
+    import reportgen
+
+    archive = _scene_copy(base, tmp_path / "scene")
+    figures = archive.parent / "figures"
+    for svg in figures.glob("*.svg"):  # every figure, whichever the view picks
+        svg.unlink()
+        if how in _SCRIPTED:
+            svg.write_text(_SCRIPTED[how])
+        elif how == "script":
+            svg.write_text(f"<svg><script>alert('{SECRET}')</script></svg>")
+        elif how == "fifo":
+            os.mkfifo(svg)
+        else:
+            svg.symlink_to("/dev/zero" if how == "zero" else tmp_path / "secret.svg")
+    (tmp_path / "secret.svg").write_text(f"<svg>{SECRET}</svg>")
+    start = time.monotonic()
+    page = reportgen.open(archive)._repr_html_()
+    assert time.monotonic() - start < 30
+    assert SECRET not in page and "onload" not in page and "@import" not in page
+    assert "status" in page
 
 
 def test_poisoned_gallery_cache_and_stamp(base, tmp_path):

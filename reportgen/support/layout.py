@@ -218,9 +218,10 @@ def figure_file_ok(out_dir: Path, root: str, fmt, rel) -> bool:
 
 
 #: what no figure of ours holds, and an inlined SVG must not: script, embedded HTML, event
-#: handlers, links to anything but its own elements or an embedded image
+#: handlers (after a space, a slash or a quote: HTML takes ``<svg/onload=…>``), links to
+#: anything but its own elements or an embedded image, a style sheet's ``@import``
 _SVG_UNSAFE = re.compile(
-    r"<\s*script|<\s*foreignObject|javascript:|\son[a-z]+\s*=|<!ENTITY"
+    r"<\s*script|<\s*foreignObject|javascript:|[\s/\"']on[a-z]+\s*=|<!ENTITY|@import"
     r"|href\s*=\s*[\"'](?!#|data:image/(?:png|jpeg);base64,)|url\(\s*['\"]?(?!#)",
     re.IGNORECASE)
 
