@@ -31,13 +31,13 @@ if _os.environ["NUMBA_LOOP_VECTORIZE"] != "0" and not _os.environ.get("NUMBA_CAC
         cache_root() / ("numba-loop-vectorize-" + _os.environ["NUMBA_LOOP_VECTORIZE"]))
 
 
-#: the Python API (reportgen/api.py: run, open, kinds, Run), imported on first use so that
+#: the Python API (reportgen/api.py: run, open, kinds, Run, verify), imported on first use so that
 #: ``import reportgen`` loads no numerics, h5py or xarray.  Imported by a computed name:
 #: every module below may import this package's ``__version__`` and the API imports them,
 #: and no stage runs the API, so neither the import graph (tests/test_imports.py) nor the
 #: stages' code stamps (reportgen.support.codestamp, which follows literal names only)
 #: count it.  (``reportgen.kinds`` is also the package of scene kinds, made callable there.)
-_API = ("run", "open", "kinds", "Run")
+_API = ("run", "open", "kinds", "Run", "verify")
 
 
 def __getattr__(name: str):

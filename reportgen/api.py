@@ -45,7 +45,7 @@ from typing import Any
 
 from .errors import ConfigError
 
-__all__ = ["Run", "kinds", "open", "run"]
+__all__ = ["Run", "kinds", "open", "run", "verify"]
 
 #: how many of the report's figures :meth:`Run._repr_html_` shows inline
 REPR_FIGURES = 3
@@ -186,6 +186,23 @@ def run(source: str | Path | Mapping, out: str | Path = "output", *, force: bool
             outcomes.append(outcome)
     single = isinstance(source, Mapping) or Path(source).is_file()
     return outcomes[0] if single else outcomes
+
+
+# ---------------------------------------------------------------------- verify
+def verify(path: str | Path):
+    """Re-simulate an archive (``run.h5``, or each one below a folder) from its own stored
+    config with the installed reportgen and compare every stored number, as
+    ``reportgen verify`` does; nothing is written beside the archive.  Returns a
+    :class:`~reportgen.pipeline.verify.Verification` (a list of them for a folder): its
+    ``verdict`` ("identical", "different", "unreadable"), ``differences`` (path, largest
+    absolute and relative difference, the rtol that would pass), ``code_changed`` and the
+    ``libraries`` whose versions differ."""
+    from .pipeline.verify import archives_in, verify_archive
+
+    path = Path(path)
+    if not path.is_dir():
+        return verify_archive(path)
+    return [verify_archive(archive) for archive in archives_in([path])]
 
 
 # ---------------------------------------------------------------------- open

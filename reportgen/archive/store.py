@@ -771,6 +771,11 @@ def summarize(path: Path, checksum_problems: list[str] | None = None) -> str:
     if checksum_problems is not None:
         checksum_problems.extend(problems)
     lines.append("  checksums ok" if not problems else "  CHECKSUM PROBLEMS: " + "; ".join(problems))
+    if data.provenance:
+        lines.append("  provenance: " + ", ".join(f"{k} {v}" for k, v in
+                                                  sorted(data.provenance.items())))
+    lines.append("  config (as run; `reportgen verify` re-simulates it):")
+    lines += [f"    {line}" for line in data.config_text.splitlines()]
     # titles, names and messages come from the file: shown, never acted on by the terminal
     return "\n".join(printable(line, newlines=False) for line in lines)
 

@@ -165,6 +165,10 @@ def build_parser() -> argparse.ArgumentParser:
     ins = sub.add_parser("inspect", help="summary of an archive, checksums verified")
     ins.add_argument("archive", metavar="ARCHIVE.h5")
 
+    ver = sub.add_parser("verify", help="re-simulate archives from their own configs and "
+                                        "compare every stored number")
+    ver.add_argument("paths", nargs="+", metavar="ARCHIVE|FOLDER")
+
     kin = sub.add_parser("kinds", help="scene kinds, their keys, presets and sections")
     kin.add_argument("kind", nargs="?", default=None, metavar="KIND",
                      help="only this kind (its keys, sections and presets)")
@@ -531,6 +535,27 @@ def cmd_inspect(args) -> int:
     return EXIT_FAILED if problems else EXIT_OK
 
 
+def cmd_verify(args) -> int:
+    """Each archive (or every ``run.h5`` below a folder) re-simulated from its stored config
+    and compared: 0 when all are identical, 1 when one differs, 2 when one is unreadable."""
+    from ..pipeline.verify import archives_in, describe, verify_archive
+
+    archives = archives_in(args.paths)
+    if not archives:
+        return _usage(f"no archive (run.h5) in {', '.join(map(str, args.paths))}")
+    worst = EXIT_OK
+    for i, archive in enumerate(archives, 1):
+        result = verify_archive(archive)
+        lines = describe(result)
+        head = f"[{i}/{len(archives)}] {result.scene or archive}: {lines[0]}"
+        _say("\n".join([head, *lines[1:]]))
+        if result.verdict == "unreadable":
+            worst = EXIT_USAGE
+        elif not result.identical and worst == EXIT_OK:
+            worst = EXIT_FAILED
+    return worst
+
+
 def cmd_kinds(args) -> int:
     from ..scene.catalogue import describe_kind, describe_kinds, describe_presets
 
@@ -635,6 +660,7 @@ COMMANDS = {
     "figures": cmd_figures,
     "animate": cmd_animate,
     "inspect": cmd_inspect,
+    "verify": cmd_verify,
     "kinds": cmd_kinds,
     "validate": cmd_validate,
     "bench": cmd_bench,

@@ -1,0 +1,136 @@
+"""``reportgen verify`` and ``reportgen.verify`` (issue 43): an archive re-simulated from its
+own stored config with the installed code, every stored number compared bit for bit; run
+times are not compared, a changed trajectory or text is named with its largest
+difference, an unreadable archive exits 2, an earlier release's archive gets the table."""
+
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+import h5py
+import numpy as np
+import pytest
+
+import reportgen
+from conftest import pendulum_text
+from reportgen.commands.cli import main
+from reportgen.pipeline.verify import TIMINGS, Difference
+
+REPO = Path(__file__).resolve().parent.parent
+
+#: a sweep's family: its per-member runs and throughput
+FAMILY = pendulum_text(t_end=4.0, samples=201, title="a family") + """
+[sweep]
+initial.theta = { start = 0.2, stop = 2.0, num = 4 }
+store = 2
+"""
+
+
+@pytest.fixture(scope="module")
+def out(tmp_path_factory):
+    """A pendulum with its error-against-run-time study (run times in its table), a sweep,
+    and a molecule's modes (no integration), run into one output folder."""
+    root = tmp_path_factory.mktemp("verify")
+    configs = root / "configs"
+    configs.mkdir()
+    (configs / "studied.toml").write_text(
+        pendulum_text(t_end=6.0, samples=301, study="true", title="studied")
+        + '\n[report]\nformats = ["html"]\n')
+    (configs / "family.toml").write_text(FAMILY + '\n[report]\nformats = ["html"]\n')
+    (configs / "co2.toml").write_text('kind = "normal_modes"\npreset = "co2"\n'
+                                      '[report]\nformats = ["html"]\n')
+    assert main(["run", str(configs), "--out", str(root / "out"), "--jobs", "1"]) == 0
+    return root / "out"
+
+
+def test_a_fresh_run_verifies_identical_with_its_run_times_left_out(out, cli):
+    code, stdout, err = cli("verify", out)
+    assert code == 0, stdout + err
+    lines = [line for line in stdout.splitlines() if line.startswith("[")]
+    assert len(lines) == 3 and all(": identical (" in line for line in lines), stdout
+    assert "same reportgen version and simulation code" in stdout
+    # the study's table holds run times that differ between runs: they were left out
+    with h5py.File(out / "studied" / "run.h5") as f:
+        names = set(f["study/error_vs_runtime"].dtype.names)
+    assert {"wall_time_s", "compile_time_s"} <= names and {"error_final", "nfev"} <= names
+
+
+def test_every_timing_the_archives_hold_is_declared(out):
+    """A name that measures the machine (ends in time_s, _up_s or _per_s, or says when or
+    where) is in TIMINGS, or verifying would call every re-run different."""
+    found = set()
+
+    def visit(name, obj):
+        found.update(obj.attrs)
+        if isinstance(obj, h5py.Dataset) and obj.dtype.names:
+            found.update(obj.dtype.names)
+
+    for archive in out.rglob("run.h5"):
+        with h5py.File(archive) as f:
+            found.update(f.attrs)
+            f.visititems(visit)
+    timing = {n for n in found if n.endswith(("time_s", "_up_s", "_per_s"))
+              or n in ("created", "measured_at", "machine", "cached")}
+    assert timing and timing <= TIMINGS, timing - TIMINGS
+
+
+def test_an_altered_trajectory_is_named_with_its_difference(out, tmp_path, cli):
+    folder = tmp_path / "studied"
+    shutil.copytree(out / "studied", folder)
+    with h5py.File(folder / "run.h5", "r+") as f:
+        y = f["runs/main/y"]
+        values = y[()]
+        values[100, 0] *= 1 + 3e-9
+        y[...] = values
+        f["checks"].attrs["wall_time_s"] = 123.0  # a timing: not a difference
+        f["runs/main"].attrs["compile_time_s"] = 9.0
+    code, stdout, _ = cli("verify", folder / "run.h5")
+    assert code == 1, stdout
+    assert "different in 1 of" in stdout and "runs/main/y" in stdout, stdout
+    result = reportgen.verify(folder / "run.h5")
+    assert [d.path for d in result.differences] == ["runs/main/y"]
+    d = result.differences[0]
+    assert 2e-9 < d.max_rel < 4e-9 and d.passing_rtol == pytest.approx(1e-8)
+    assert not result.code_changed
+
+
+def test_altered_text_and_a_removed_result_are_differences(out, tmp_path):
+    folder = tmp_path / "co2"
+    shutil.copytree(out / "co2", folder)
+    with h5py.File(folder / "run.h5", "r+") as f:
+        f.attrs["title"] = "another title"
+        name = next(iter(k for k in f["analysis"].attrs if not k.startswith("__")))
+        del f["analysis"].attrs[name]
+    result = reportgen.verify(folder / "run.h5")
+    assert result.verdict == "different"
+    whats = {d.path: d.what for d in result.differences}
+    assert whats.get("@title") == "text differs", whats
+    assert whats.get(f"analysis@{name}") is None  # the re-run has it: only stored ones count
+    assert result.added == 1
+
+
+def test_an_unreadable_archive_exits_2_and_a_folder_is_searched(out, tmp_path, cli):
+    broken = tmp_path / "broken" / "run.h5"
+    broken.parent.mkdir()
+    broken.write_bytes((out / "co2" / "run.h5").read_bytes()[:4000])
+    code, stdout, _ = cli("verify", tmp_path / "broken", out / "co2")
+    assert code == 2, stdout
+    assert "[1/2]" in stdout and "[2/2] co2: identical" in stdout
+    code, stdout, _ = cli("verify", tmp_path / "nothing-here")
+    assert code == 2 and stdout.count("\n") == 1 and "nothing-here" in stdout, stdout
+
+
+def test_an_earlier_release_gets_the_comparison_table(cli):
+    """The 0.2.0 CO₂ archive: its stored numbers compared with today's (the modes' units
+    changed since: the table says by how much, and which columns' text differs)."""
+    code, stdout, _ = cli("verify", REPO / "tests" / "data" / "archive_0.2.0_normal_modes_co2.h5")
+    assert code == 1
+    assert "max |Δ|" in stdout and "passes at rtol" in stdout
+    assert "items more (not compared)" in stdout and "physics key differs" in stdout
+
+
+def test_difference_rtol_is_the_next_power_of_ten():
+    assert Difference("x", 1.0, 3e-9).passing_rtol == pytest.approx(1e-8)
+    assert Difference("x", 1.0, 1e-9).passing_rtol == pytest.approx(1e-9)
+    assert Difference("x", np.inf, np.inf).passing_rtol == np.inf
