@@ -658,6 +658,52 @@ def test_error_log_is_not_written_through_a_link(tmp_path):
     assert not (out / "broken" / "error.log").is_symlink()
 
 
+def test_a_sweep_does_not_write_its_key_through_a_link(tmp_path):
+    """``.sweep-<key>/key`` replaced by renaming (issue 48 B): a link planted there to a
+    file outside ``--out`` is replaced, the file is left as it was."""
+    from reportgen.kinds import load_scene
+    from reportgen.scene.config import read_config
+    from reportgen.scene.sweep import partial_folder
+
+    cfg = tmp_path / "family.toml"
+    cfg.write_text(TINY + "\n[sweep]\ninitial.theta = [0.2, 0.4]\n")
+    out = tmp_path / "out"
+    partial = partial_folder(out / "family", load_scene(read_config(cfg)).physics_key())
+    partial.mkdir(parents=True)
+    precious = tmp_path / "precious.txt"
+    precious.write_text("precious")
+    (partial / "key").symlink_to(precious)
+    code, _, err = _run_cli("run", cfg, "--out", out, "--jobs", "1")
+    assert code == 0, err
+    assert precious.read_text() == "precious"
+
+
+def test_figures_do_not_write_through_a_linked_export_folder(base, tmp_path):
+    """``figures-slide/`` linked outside the output folder (issue 48 B): refused, exit 2,
+    nothing written there."""
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    archive = _scene_copy(base, tmp_path / "out" / "tiny")
+    (archive.parent / "figures-slide").symlink_to(elsewhere)
+    code, _, err = _run_cli("figures", archive, "--size", "slide", "--format", "svg")
+    _clean(code, err, {2})
+    assert "symbolic link" in err and list(elsewhere.iterdir()) == []
+
+
+def test_an_archive_path_through_dotdot_writes_inside_the_output_root(base, tmp_path):
+    """``figures src/sub/../run.h5 --out R`` (issue 48 B): the scene is src, its files go
+    to R/src/, not to R/../ beside R."""
+    archive = _scene_copy(base, tmp_path / "scenes" / "tiny")
+    (archive.parent / "sub").mkdir()
+    root = tmp_path / "work" / "R"
+    dotted = archive.parent / "sub" / ".." / "run.h5"
+    code, _, err = _run_cli("figures", dotted, "--out", root, "--format", "svg",
+                            "--only", "phase*")
+    assert code == 0, err
+    assert list((root / "tiny").rglob("*.svg"))
+    assert sorted(p.name for p in (tmp_path / "work").iterdir()) == ["R"]
+
+
 def test_stale_temp_cleanup_does_not_follow_links(base, tmp_path):
     elsewhere = tmp_path / "elsewhere"
     elsewhere.mkdir()

@@ -419,7 +419,10 @@ def _files_folder(archive: Path, root: Path | None, folder: str | None, name: st
     archive."""
     if folder:
         return Path(folder)
-    return (archive.parent if root is None else root / archive.parent.name) / name
+    # the scene's name from the archive's folder as written out ("src/sub/../run.h5" is
+    # in src, whose name is the scene's: never "..", which would lead out of the root)
+    scene = Path(os.path.abspath(archive)).parent.name
+    return (archive.parent if root is None else root / scene) / name
 
 
 def cmd_figures(args) -> int:
@@ -435,6 +438,15 @@ def cmd_figures(args) -> int:
     if archive is None:
         return EXIT_FAILED
     out = _files_folder(archive, root, args.folder, f"figures-{size.label}")
+    if not args.folder:
+        from ..support.fsutil import links_out
+        from ..support.layout import printable
+
+        escaping = [p for p in links_out(out.parent, out.parent.parent) if p == out]
+        if escaping:
+            return _usage(f"{printable(str(out))} is a symbolic link leading outside "
+                          f"{printable(str(out.parent.parent))}: not followed (remove the "
+                          "link, or give --folder)")
 
     def report(path: Path) -> None:
         _err(f"wrote {path}")

@@ -685,7 +685,7 @@ def inline_svgs_as_images(html_text: str, slim: bool = True, decimals: int = 2,
         if folder is not None:
             path = Path(folder) / f"figure-{count}.svg"
             count += 1
-            path.write_text(svg, encoding="utf-8")
+            atomic_write(path, svg.encode("utf-8"))  # renamed over a link, never through
             src = path.resolve().as_uri()
         else:
             src = "data:image/svg+xml;base64," + base64.b64encode(svg.encode("utf-8")).decode("ascii")

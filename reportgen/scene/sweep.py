@@ -55,7 +55,7 @@ from typing import Any
 
 import numpy as np
 
-from ..support.fsutil import temp_name
+from ..support.fsutil import atomic_write, temp_name
 from .config import ConfigError, _short
 
 __all__ = ["SweepSpec", "SweepData", "PointSet", "parse_sweep", "run_sweep", "member_data",
@@ -575,7 +575,7 @@ def run_sweep(spec: SweepSpec, run_block: Callable[[int, int, dict[str, np.ndarr
     partial.mkdir(parents=True, exist_ok=True)
     for stale in partial.glob(".*.tmp"):  # a block half-written when a run was killed
         stale.unlink(missing_ok=True)
-    (partial / "key").write_text(key, encoding="utf-8")
+    atomic_write(partial / "key", key.encode("utf-8"))  # renamed over a link, never through
     starts = list(range(0, size, block))
     ends = [min(lo + block, size) for lo in starts]
     paths = [partial / f"block-{b:06d}.npz" for b in range(len(starts))]

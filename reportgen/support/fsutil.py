@@ -96,8 +96,9 @@ SCENE_SUBFOLDERS = ("figures", ".pdf-figures")
 def links_out(folder: Path, root: Path) -> list[Path]:
     """The symbolic links through which writing into the scene folder ``folder`` would
     leave ``root`` (``--out``): the folder itself, or a folder in it that reportgen writes
-    into (``figures/``, ``.pdf-figures/``, ``.sweep-*/``) linked outside.  A link to a
-    file is harmless: files are replaced by renaming, never written through."""
+    into (``figures/``, ``.pdf-figures/``, ``.sweep-*/``, the exports' ``figures-*/``)
+    linked outside.  A link to a file is harmless: files are replaced by renaming, never
+    written through."""
     folder, root = Path(folder), Path(root)
     bad = []
     if os.path.lexists(folder) and not inside(folder, root):
@@ -110,7 +111,7 @@ def links_out(folder: Path, root: Path) -> list[Path]:
         return bad
     for entry in entries:
         if (entry.is_symlink() and (entry.name in SCENE_SUBFOLDERS
-                                    or entry.name.startswith(".sweep-"))
+                                    or entry.name.startswith((".sweep-", "figures-")))
                 and not inside(entry.path, root)):
             bad.append(Path(entry.path))
     return bad
