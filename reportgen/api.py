@@ -166,6 +166,10 @@ def run(source: str | Path | Mapping, out: str | Path = "output", *, force: bool
     from .pipeline.stages import run_scene, validate_all
     from .support.layout import collect_configs
 
+    if formats is not None:
+        if isinstance(formats, str | bytes) or not all(f in ("html", "pdf") for f in formats):
+            raise ConfigError([f"formats must be a list of 'html' and 'pdf', e.g. ['html'] "
+                               f"(got {formats!r})"])
     out = Path(out)
     if isinstance(source, Mapping):
         paths = [_write_source(source, out, name)]

@@ -141,3 +141,17 @@ def test_a_rejected_dict_writes_nothing_and_untitled_runs_do_not_collide(tmp_pat
     titled = reportgen.run(_pendulum(0.5, title="my pendulum"), out)
     edited = reportgen.run(_pendulum(0.7, title="my pendulum"), out)
     assert titled.status == edited.status == "ok" and not edited.skipped
+
+
+def test_formats_must_be_a_list_of_formats(tmp_path):
+    """Issue 48 H: ``formats="html"`` became ('h', 't', 'm', 'l'), wrote nothing and
+    returned ok; now a ConfigError before anything is written."""
+    import pytest
+
+    import reportgen
+    from reportgen.errors import ConfigError
+
+    for bad in ("html", ["html", "docx"]):
+        with pytest.raises(ConfigError, match="formats must be a list"):
+            reportgen.run(_pendulum(0.5), tmp_path / "out", formats=bad)
+    assert not (tmp_path / "out").exists()

@@ -208,3 +208,23 @@ def test_hertz_is_refused_for_an_angular_rate():
     found = problems(pendulum_text().replace("theta = 1.0", 'theta = 1.0\ntheta_dot = "2 Hz"'))
     assert len(found) == 1 and "key 'initial.theta_dot'" in found[0]
     assert "ambiguous" in found[0] and "(got '2 Hz')" in found[0]
+
+
+@pytest.mark.parametrize("given, said", [
+    ("2 hertz", "ambiguous"), ("2 kHz", "ambiguous"), ("2 dB/s", "is not a unit of angle")])
+def test_hertz_spelled_out_is_refused_like_hz(given, said):
+    """Issue 48 I: "1 hertz" was taken as 1 rad/s while "Hz" was refused."""
+    found = problems(pendulum_text().replace("theta = 1.0", f'theta = 1.0\ntheta_dot = "{given}"'))
+    assert len(found) == 1 and "key 'initial.theta_dot'" in found[0] and said in found[0], found
+
+
+@pytest.mark.parametrize("given", ["1 dB", "1 neper", "1 byte", "1 percent", "1 grade"])
+def test_pure_numbers_that_are_no_angle_are_refused_for_an_angle(given):
+    """Issue 48 I: pint counts angles as pure numbers, so "1 dB" was 1.26 rad, "1 byte"
+    8 rad; only units of angle convert to one ("40 deg", "1 turn", "700 mrad")."""
+    found = problems(pendulum_text().replace("theta = 1.0", f'theta = "{given}"'))
+    assert len(found) == 1 and "key 'initial.theta'" in found[0], found
+    assert "is not a unit of angle" in found[0], found
+    for fine, rad in (("1 turn", 2 * math.pi), ("700 mrad", 0.7), ("30 arcmin", math.pi / 360)):
+        assert scene(pendulum_text().replace("theta = 1.0", f'theta = "{fine}"')
+                     ).config.initial.theta == pytest.approx(rad, rel=1e-14)

@@ -278,7 +278,8 @@ def to_declared(number: float, given: str, unit: str) -> float:
                          f"a number alone is in {unit}")
     if len(given) > MAX_UNIT_CHARS or not _UNIT_CHARS.fullmatch(given):
         raise ValueError(rule(unit) + f"; {given[:20]!r} is not a unit")
-    if "rad" in unit and re.search(r"(?<![A-Za-z])[kMG]?Hz\b", given):
+    if "rad" in unit and re.search(r"(?<![A-Za-z])(?:[kMG]?Hz|(?:kilo|mega|giga)?hertz)\b",
+                                   given):
         raise ValueError(rule(unit) + f"; {given} is ambiguous for an angle per time "
                          "(1 Hz is 2π rad/s as a frequency, 1 rad/s to pint): give rad/s or rpm")
     target = _pint_unit(unit)
@@ -288,6 +289,9 @@ def to_declared(number: float, given: str, unit: str) -> float:
         source = _pint_unit_strict(given)
     except Exception:  # pint raises many kinds (UndefinedUnitError, SyntaxError, ...)
         raise ValueError(rule(unit) + f"; {given!r} is not a known unit") from None
+    odd = _not_an_angle(source, angle=unit.strip() == "rad") if "rad" in unit else ""
+    if odd:
+        raise ValueError(rule(unit) + f"; {odd} is not a unit of angle")
     try:
         if isinstance(target, tuple):  # a unit with a factor: multiples of that quantity
             scale, base = target
@@ -299,6 +303,36 @@ def to_declared(number: float, given: str, unit: str) -> float:
     if not math.isfinite(out):
         raise ValueError(f"must be a finite number ({number:g} {given} is {out} {unit})")
     return out
+
+
+#: pint's units of angle (with their SI prefixes: milliradian); every other unit pint
+#: calls dimensionless (decibel, neper, byte, percent, grade) is not an angle
+_ANGLES = ("radian", "degree", "arcminute", "arcsecond", "turn", "revolutions_per_minute",
+           "gradian")
+
+
+def _not_an_angle(source, angle: bool) -> str:
+    """For a declared unit of angle (``angle``: rad) or of an angle per time: the
+    dimensionless part of ``source`` (a pint Unit) that is no unit of angle ("decibel",
+    "byte", "percent"), or a declared angle given without one; "" when fine.  pint counts
+    angles as pure numbers, so "1 dB" would otherwise be 1.26 rad."""
+    names = dict(source._units)
+    angles = [n for n in names if n.endswith(_ANGLES)]
+    dimensionless = [n for n in names if n not in angles and not _dimensions(n)]
+    if dimensionless:
+        return dimensionless[0]
+    if angle and not angles and not source.dimensionality:  # another dimension: said later
+        return str(source)
+    return ""
+
+
+def _dimensions(name: str) -> Any:
+    """pint's dimensionality of the unit ``name`` (empty for a pure number, and for a unit
+    pint cannot take apart, such as a logarithmic one's delta)."""
+    try:
+        return registry().get_dimensionality(name)
+    except Exception:  # pint's UndefinedUnitError and kin
+        return {}
 
 
 def angle_hint(*angles: float, valid=None) -> str:
