@@ -658,6 +658,40 @@ def test_error_log_is_not_written_through_a_link(tmp_path):
     assert not (out / "broken" / "error.log").is_symlink()
 
 
+def _reportgen(*args, timeout=60) -> subprocess.CompletedProcess:
+    """``reportgen args`` in a child process, killed if it runs past ``timeout``."""
+    return subprocess.run([sys.executable, "-m", "reportgen", *map(str, args)],
+                          capture_output=True, text=True, timeout=timeout)
+
+
+@pytest.mark.parametrize("fifo", ["run.h5", "other/run.h5", ".gallery.json",
+                                  "tiny/figures/sections.json", "tiny/.report-stamp.json"])
+def test_a_fifo_in_the_output_folder_hangs_no_command(base, tmp_path, fifo):
+    """Issue 48 D: a FIFO where a file is read back (an archive, another scene's archive
+    the gallery reads, the gallery cache, the figures' manifest, the report stamp) is no
+    file to read: every command ends, in seconds, with its status."""
+    out = tmp_path / "out"
+    _scene_copy(base, out / "tiny")
+    (out / "other").mkdir()
+    target = out / ("tiny/run.h5" if fifo == "run.h5" else fifo)
+    target.unlink(missing_ok=True)
+    os.mkfifo(target)
+    cfg = tmp_path / "tiny.toml"
+    cfg.write_text(TINY)
+    if fifo == "run.h5":  # the archive itself: refused by the readers, replaced by a run
+        for args in (("inspect", target), ("report", target), ("figures", target)):
+            proc = _reportgen(*args)
+            assert proc.returncode == 2 and "FIFO" in proc.stderr, (args, proc.stderr)
+        view = subprocess.run([sys.executable, "-c", "import sys, reportgen\n"
+                               "try:\n    reportgen.open(sys.argv[1])\n"
+                               "except Exception as e:\n    print(type(e).__name__, e)",
+                               str(target)], capture_output=True, text=True, timeout=60)
+        assert "ArchiveError" in view.stdout and "FIFO" in view.stdout, view
+    proc = _reportgen("run", cfg, "--out", out, "--jobs", "1", "--format", "html")
+    assert proc.returncode == 0, proc.stderr
+    assert (out / "tiny" / "run.h5").is_file()
+
+
 def test_a_sweep_does_not_write_its_key_through_a_link(tmp_path):
     """``.sweep-<key>/key`` replaced by renaming (issue 48 B): a link planted there to a
     file outside ``--out`` is replaced, the file is left as it was."""

@@ -55,7 +55,7 @@ import numpy as np
 from .. import __version__
 from ..scene.results import Check, Results, RunRecord
 from ..scene.schema import Quantity, ResultsSchema
-from ..support.fsutil import install, temp_name
+from ..support.fsutil import NotRegularFile, install, regular_file, temp_name
 from ..support.layout import printable
 from .check import STATUSES as _CHECKED_STATUSES
 from .check import check_archive, is_int, is_number
@@ -512,7 +512,7 @@ def read_archive(path: Path) -> ArchiveData:
     """Read a whole archive; ArchiveError names the file and the problem."""
     path = Path(path)
     try:
-        with h5py.File(path, "r") as f:
+        with h5py.File(regular_file(path), "r") as f:
             check_archive(f, path)  # types, shapes, sizes and links, before reading data
             data = ArchiveData(
                 path=path,
@@ -550,6 +550,8 @@ def read_archive(path: Path) -> ArchiveData:
         raise
     except FileNotFoundError:
         raise ArchiveError(f"{path}: no such file") from None
+    except NotRegularFile as exc:
+        raise ArchiveError(f"{path}: {exc.strerror}; not read") from None
     except OSError as exc:
         if _looks_like_a_config(path):
             raise ArchiveError(f"{path}: a scene config (TOML), not an archive: `reportgen run "
@@ -605,7 +607,7 @@ class Identity:
 def stored_identity(path: Path) -> Identity | None:
     """The identity of an existing archive, or None if it is missing or unreadable."""
     try:
-        with h5py.File(path, "r") as f:
+        with h5py.File(regular_file(path), "r") as f:
             a = f.attrs
             identity = Identity(config_sha256=decode(a["config_sha256"]),
                                 physics_key=decode(a.get("physics_key", "")),
@@ -634,7 +636,7 @@ def gallery_entry(path: Path, headline: Callable[[ArchiveData], str] | None = No
     ``headline`` (or when it fails), the check with the largest relative error.
     None if unreadable."""
     try:
-        with h5py.File(path, "r") as f:
+        with h5py.File(regular_file(path), "r") as f:
             if f.attrs.get("format") != FORMAT:
                 return None
             a = {k: decode(v) for k, v in f.attrs.items()}
@@ -724,7 +726,7 @@ def verify_checksums(path: Path) -> list[str]:
                 problems.append(f"{name}: {exc}")
 
     try:
-        with h5py.File(path, "r") as f:
+        with h5py.File(regular_file(path), "r") as f:
             f.visititems(visit)
     except OSError as exc:
         problems.append(f"cannot open: {exc}")

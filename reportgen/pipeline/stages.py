@@ -44,6 +44,7 @@ from ..support.fsutil import (
     links_out,
     output_folder,
     output_lock,
+    regular_file,
     remove_stale_temps,
     temp_name,
 )
@@ -106,7 +107,7 @@ def _formats(scene: Scene, override: tuple[str, ...] | None) -> tuple[str, ...]:
 def _report_current(folder: Path, identity: Identity, formats, scene: Scene) -> bool:
     """Whether every wanted report was rendered from this very archive content."""
     try:
-        stamp = json.loads(report_stamp(folder).read_text(encoding="utf-8"))
+        stamp = json.loads(regular_file(report_stamp(folder)).read_text(encoding="utf-8"))
     except (OSError, ValueError, RecursionError):
         return False
     if not (isinstance(stamp, dict) and isinstance(stamp.get("formats", ()), list)):
@@ -939,8 +940,8 @@ def _gallery_entries(root: Path) -> dict[Path, dict]:
     reportgen version and gallery format)."""
     cache = root / GALLERY_CACHE
     try:
-        stored = json.loads(cache.read_text(encoding="utf-8"))
-    except (OSError, ValueError):
+        stored = json.loads(regular_file(cache).read_text(encoding="utf-8"))
+    except (OSError, ValueError, RecursionError):
         stored = {}
     fresh, entries = {}, {}
     # the kinds' report code writes the headlines: an edit to it reads every entry again

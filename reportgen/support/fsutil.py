@@ -93,6 +93,25 @@ def inside(path: Path | str, root: Path | str) -> bool:
 SCENE_SUBFOLDERS = ("figures", ".pdf-figures")
 
 
+class NotRegularFile(OSError):
+    """A path to read back that is no regular file: a FIFO (reading it waits for a writer
+    that never comes), a device (/dev/zero reads without end), a folder or a socket."""
+
+
+def regular_file(path: Path) -> Path:
+    """``path``, if it is a regular file (through links, as a path given on the command
+    line may be); NotRegularFile says what else it is, FileNotFoundError that it is
+    missing.  ``os.stat`` never blocks, where opening a FIFO does."""
+    import stat
+
+    mode = os.stat(path).st_mode
+    if stat.S_ISREG(mode):
+        return Path(path)
+    what = ("a FIFO" if stat.S_ISFIFO(mode) else "a folder" if stat.S_ISDIR(mode)
+            else "a device" if stat.S_ISCHR(mode) or stat.S_ISBLK(mode) else "a socket")
+    raise NotRegularFile(errno.EINVAL, f"{what}, not a regular file", str(path))
+
+
 def links_out(folder: Path, root: Path) -> list[Path]:
     """The symbolic links through which writing into the scene folder ``folder`` would
     leave ``root`` (``--out``): the folder itself, or a folder in it that reportgen writes

@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import ConfigError, ReportError, UsageError
+from .fsutil import regular_file
 
 #: the report formats
 FORMATS = ("html", "pdf")
@@ -133,7 +134,7 @@ def figure_manifest(out_dir: Path) -> dict[str, Any] | None:
     figures = Path(out_dir) / "figures"
     index = figures / SECTIONS_FILE
     try:
-        if index.is_symlink() or index.stat().st_size > MAX_MANIFEST_BYTES:
+        if index.is_symlink() or regular_file(index).stat().st_size > MAX_MANIFEST_BYTES:
             return None
         stored = json.loads(index.read_text(encoding="utf-8"))
     except (OSError, ValueError, RecursionError):
