@@ -798,3 +798,40 @@ def test_report_does_not_write_through_a_linked_figures_folder(base, tmp_path):
     _clean(code, err, {2})
     assert "symbolic link" in err and str(archive) in err
     assert list(elsewhere.iterdir()) == []
+
+
+# ----------------------------------------------------------------- G. one line, exit 2
+@pytest.mark.parametrize("edit, key", [
+    ({"params": "g = 5e-324\nl = 1e308"}, "params.g / params.l"),   # g/l underflows to 0
+    ({"run": 'method = "rk4"\nh = 1e-309'}, "run.h"),                # 1e309 fixed steps
+    ({"run": 'method = "verlet"\nh = 1e-12\nt_end = 1e6'}, "run.h"),
+])
+def test_extreme_numbers_are_config_errors_of_one_line(tmp_path, edit, key):
+    """Issue 48 G: a ZeroDivisionError at validation and an overflowing fixed step that
+    failed the run after its start are config errors, exit 2, naming the key."""
+    text = TINY.replace('method = "scipy_dop853"\n', "")
+    if "params" in edit:
+        text = text.replace("g = 9.81\nl = 1.0", edit["params"])
+    else:
+        text = text.replace("study = false\n", "study = false\n" + edit["run"] + "\n")
+        if "t_end = 1e6" in edit["run"]:
+            text = text.replace("t_end = 2.0\n", "")
+    cfg = tmp_path / "extreme.toml"
+    cfg.write_text(text)
+    code, _, err = _run_cli("run", cfg, "--out", tmp_path / "out", "--jobs", "1")
+    _clean(code, err, {2})
+    assert f"key '{key}'" in err and err.count("\n") == 1, err
+    assert not (tmp_path / "out" / "extreme").exists()
+
+
+def test_an_equation_too_deep_for_mathtext_is_shown_not_a_crash():
+    """Issue 48 G: 55 nested sin (within the formula limits) made mathtext's parser recurse
+    past Python's limit and failed the report; now the equation is shown as its source."""
+    from reportgen.rendering.report import display_equation
+
+    tex = "x"
+    for _ in range(55):
+        tex = rf"\sin{{\left({tex} \right)}}"
+    shown = str(display_equation(tex))
+    assert shown.startswith("<code>") and r"\sin" in shown
+    assert "<svg" in str(display_equation(r"\sin{\left(x \right)}"))

@@ -94,6 +94,9 @@ def _draw(tex: str, points: float) -> str:
                 math, dpi=72 * _SUPERSAMPLE, prop=prop)
         except ValueError as exc:
             raise ValueError(f"equation {tex!r}: {exc}") from None
+        except RecursionError:  # mathtext's parser recurses per level (~15 nested calls)
+            raise ValueError(f"equation {tex[:60]!r}…: nested too deeply for mathtext") \
+                from None
         width, height, depth = (v / _SUPERSAMPLE for v in (width, height, depth))
         pad = 0.5  # points around the ink, so antialiased edges are not clipped
         fig = Figure(figsize=((width + 2 * pad) / 72, (height + 2 * pad) / 72))

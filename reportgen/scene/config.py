@@ -58,6 +58,10 @@ NonNegative = Annotated[float, Field(ge=0), AfterValidator(_finite)]
 Real = Annotated[float, AfterValidator(_finite)]
 
 
+#: the integrators' step budget per run (reportgen.core.integrators.driver's max_steps)
+FIXED_STEP_BUDGET = 10_000_000
+
+
 class RunConfig(Strict):
     """``[run]``: how the scene is integrated."""
 
@@ -75,6 +79,16 @@ class RunConfig(Strict):
     study_budget: Annotated[float, Field(gt=0, allow_inf_nan=True)] = Field(
         1.0, description="wall-clock time the study's timed runs may take together [s] (inf: "
                          "no budget; scipy DOP853's baseline at rtol 1e-10 is always measured)")
+
+    @model_validator(mode="after")
+    def _steps_within_budget(self):
+        """A fixed step that would take more steps than the integrators' budget to reach
+        ``t_end`` is a config error, said before anything runs (not a failed run)."""
+        if self.h is not None and not self.t_end / self.h <= FIXED_STEP_BUDGET:
+            raise ValueError(f"run.h: h = {self.h:.3g} needs {self.t_end / self.h:.3g} steps "
+                             f"to reach run.t_end = {self.t_end:g}; at most "
+                             f"{FIXED_STEP_BUDGET:.0e} fixed steps are taken (raise h)")
+        return self
 
 
 class OwnUnitsRunConfig(RunConfig):

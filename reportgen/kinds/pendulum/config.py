@@ -68,6 +68,10 @@ class PendulumConfig(SceneConfig):
                              f"{scale:.3g} J is above {MAX_ENERGY_SCALE:.0e} J (float64 "
                              "overflows in its squares)")
         omega0 = math.sqrt(p.g / p.l)
+        if not 0 < omega0 < math.inf:  # g/l under- or overflows: no time scale to run on
+            raise ValueError(f"params.g / params.l: g/l = {p.g:.3g}/{p.l:.3g} is "
+                             f"{p.g / p.l:.3g} in floating point; ω0 = √(g/l) must be a "
+                             "positive finite rate (give g and l nearer each other)")
         periods = t_end * omega0 / (2 * math.pi)
         if not periods <= MAX_PERIODS:
             raise ValueError(f"params.g / params.l: ω0 = √(g/l) = {omega0:.3g} rad/s makes "
