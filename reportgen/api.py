@@ -39,7 +39,7 @@ import html
 import json
 import re
 import unicodedata
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -60,7 +60,8 @@ def _slug(text: str) -> str:
     return re.sub(r"[^a-z0-9]+", "_", plain.lower()).strip("_")
 
 
-def _write_source(config: Mapping, out: Path, name: str | None) -> Path:
+def _write_source(config: Mapping, out: Path, name: str | None,
+                  before_writing: Callable[[], None] = lambda: None) -> Path:
     """The dict ``config`` as ``out/<name>/<name>.toml`` (inside ``out``, never outside),
     validated first: a rejected dict writes nothing.
 
@@ -88,6 +89,7 @@ def _write_source(config: Mapping, out: Path, name: str | None) -> Path:
     except (TypeError, ValueError) as exc:
         raise ConfigError([f"config dict {stem!r}: {exc}"]) from None
     scene = load_scene(parse_config_text(text, path))  # ConfigError: nothing written
+    before_writing()  # the output folder's lock, from here to the end of the run
     escaping = links_out(folder, out)
     if escaping:
         raise ConfigError([f"{printable(str(escaping[0]))} is a symbolic link leading outside "
@@ -170,24 +172,35 @@ def run(source: str | Path | Mapping, out: str | Path = "output", *, force: bool
         if isinstance(formats, str | bytes) or not all(f in ("html", "pdf") for f in formats):
             raise ConfigError([f"formats must be a list of 'html' and 'pdf', e.g. ['html'] "
                                f"(got {formats!r})"])
-    out = Path(out)
-    if isinstance(source, Mapping):
-        paths = [_write_source(source, out, name)]
-    else:
-        from .errors import UsageError
+    from .errors import UsageError
+    from .support.fsutil import output_folder, output_lock
 
-        try:
-            paths = collect_configs([source])
-        except UsageError as exc:
-            raise ConfigError([str(exc)]) from None
-    validate_all(paths)
+    out = Path(out)
     outcomes = []
-    with _callers_matplotlib():
-        for path in paths:
-            outcome = run_scene(str(path), str(out), force, tuple(formats) if formats else None)
-            if outcome.config_error:
-                raise ConfigError([outcome.message])
-            outcomes.append(outcome)
+    with contextlib.ExitStack() as held:
+        def lock() -> None:
+            """The output folder's lock, as `reportgen run` takes it, held to the end."""
+            try:
+                held.enter_context(output_lock(output_folder(out)))
+            except UsageError as exc:
+                raise ConfigError([str(exc)]) from None
+
+        if isinstance(source, Mapping):
+            paths = [_write_source(source, out, name, before_writing=lock)]
+        else:
+            try:
+                paths = collect_configs([source])
+            except UsageError as exc:
+                raise ConfigError([str(exc)]) from None
+            validate_all(paths)
+            lock()
+        with _callers_matplotlib():
+            for path in paths:
+                outcome = run_scene(str(path), str(out), force,
+                                    tuple(formats) if formats else None)
+                if outcome.config_error:
+                    raise ConfigError([outcome.message])
+                outcomes.append(outcome)
     single = isinstance(source, Mapping) or Path(source).is_file()
     return outcomes[0] if single else outcomes
 

@@ -155,3 +155,31 @@ def test_formats_must_be_a_list_of_formats(tmp_path):
         with pytest.raises(ConfigError, match="formats must be a list"):
             reportgen.run(_pendulum(0.5), tmp_path / "out", formats=bad)
     assert not (tmp_path / "out").exists()
+
+
+def test_the_api_takes_the_output_folder_lock_as_the_cli_does(tmp_path, capsys):
+    """Issue 48 H: the API ran into a folder a `reportgen run` was writing (a sweep run by
+    both failed); it now waits for the folder's lock as a second `reportgen run` does."""
+    import threading
+    import time
+
+    import reportgen
+    from reportgen.support.fsutil import output_folder, output_lock
+
+    out = tmp_path / "out"
+    held = threading.Event()
+
+    def other_run():
+        with output_lock(output_folder(out)):
+            held.set()
+            time.sleep(1.5)
+
+    thread = threading.Thread(target=other_run)
+    thread.start()
+    held.wait(10)
+    start = time.monotonic()
+    outcome = reportgen.run(_pendulum(0.5), out)
+    waited = time.monotonic() - start
+    thread.join()
+    assert outcome.status == "ok" and waited >= 1.0, waited
+    assert "waiting for another reportgen run" in capsys.readouterr().err
