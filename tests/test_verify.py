@@ -134,3 +134,26 @@ def test_difference_rtol_is_the_next_power_of_ten():
     assert Difference("x", 1.0, 3e-9).passing_rtol == pytest.approx(1e-8)
     assert Difference("x", 1.0, 1e-9).passing_rtol == pytest.approx(1e-9)
     assert Difference("x", np.inf, np.inf).passing_rtol == np.inf
+
+
+def test_the_study_is_compared_on_the_rows_both_runs_timed(out, tmp_path):
+    """The study times as many tolerances as its time budget allows, so a re-run on a busy
+    machine may time fewer rows: rows are matched by method and tolerance, a row one run
+    lacks is no difference, a changed error in a shared row is."""
+    folder = tmp_path / "studied"
+    shutil.copytree(out / "studied", folder)
+    with h5py.File(folder / "run.h5", "r+") as f:
+        table = f["study/error_vs_runtime"][()]
+        attrs = dict(f["study/error_vs_runtime"].attrs)
+        del f["study/error_vs_runtime"]
+        f["study"].create_dataset("error_vs_runtime", data=table[:-1])  # one row fewer
+        for k, v in attrs.items():
+            if k not in ("DIMENSION_LIST",):
+                f["study/error_vs_runtime"].attrs[k] = v
+    assert reportgen.verify(folder / "run.h5").identical
+    with h5py.File(folder / "run.h5", "r+") as f:
+        table = f["study/error_vs_runtime"][()]
+        table["error_final"][0] *= 2
+        f["study/error_vs_runtime"][...] = table
+    result = reportgen.verify(folder / "run.h5")
+    assert [d.path for d in result.differences] == ["study/error_vs_runtime:error_final"]

@@ -41,6 +41,12 @@ BOOKKEEPING = frozenset({"DIMENSION_LIST", "REFERENCE_LIST", "CLASS", "NAME",
                          "_Netcdf4Dimid", "_Netcdf4Coordinates", "_NCProperties"})
 #: not compared, said when different: the library versions of the run
 PROVENANCE = "provenance"
+#: the columns that name a row of a table whose rows a time budget chooses (the study's
+#: error-against-run-time table: how many tolerances are timed depends on the machine);
+#: such tables are compared row by row where both runs measured a row
+ROW_KEY = ("method", "label", "kind", "tolerance", "h")
+#: a table's row coordinate (netCDF's dimension of it), compared with the table itself
+ROW_COORDINATE = "row"
 #: the root attribute that identifies config, version and simulation code together
 PHYSICS_KEY = "physics_key"
 #: root attributes naming the release and format that wrote the archive: said, not compared
@@ -179,9 +185,16 @@ def compare_archives(stored: Path, again: Path
                      for k, v in a[PROVENANCE].attrs.items()
                      if PROVENANCE in b and _text(v) != _text(b[PROVENANCE].attrs.get(k, ""))}
     differences = []
+    keyed = {path.rsplit("/", 1)[0] for path, value in old.items()
+             if isinstance(value, np.ndarray) and set(ROW_KEY) <= set(value.dtype.names or ())}
     for path in sorted(old):
         if path not in new:
             differences.append(Difference(path, math.inf, math.inf, "not in the re-run"))
+        elif path.rsplit("/", 1)[0] in keyed and path.rsplit("/", 1)[-1] == ROW_COORDINATE:
+            continue  # the rows of a keyed table: matched by their key instead
+        elif isinstance(old[path], np.ndarray) and set(ROW_KEY) <= set(old[path].dtype.names
+                                                                        or ()):
+            differences += _compare_rows(path, old[path], new[path])
         else:
             differences += _compare(path, old[path], new[path])
     order = {"": 0, "not in the re-run": 2}
@@ -244,6 +257,26 @@ def _compare(path: str, old: Any, new: Any) -> list[Difference]:
     if _text(a.tolist()) == _text(b.tolist()):
         return []
     return [Difference(path, math.inf, math.inf, "text differs")]
+
+
+def _compare_rows(path: str, old: np.ndarray, new: Any) -> list[Difference]:
+    """A table whose rows a time budget chooses, compared on the rows both runs measured
+    (matched by :data:`ROW_KEY`): a row only one run measured is no difference."""
+    new = np.asarray(new)
+    if old.dtype.names != new.dtype.names:
+        return [Difference(path, math.inf, math.inf, "another table layout")]
+
+    def key(row) -> tuple:
+        values = (_text(row[k].tolist() if hasattr(row[k], "tolist") else row[k])
+                  for k in ROW_KEY)
+        return tuple(None if isinstance(v, float) and math.isnan(v) else v for v in values)
+
+    theirs = {key(row): i for i, row in enumerate(new)}
+    pairs = [(i, theirs[key(row)]) for i, row in enumerate(old) if key(row) in theirs]
+    if not pairs:
+        return [Difference(path, math.inf, math.inf, "no row measured by both runs")]
+    mine, other = (np.array(idx) for idx in zip(*pairs, strict=True))
+    return _compare(path, old[mine], new[other])
 
 
 def _numbers(path: str, a: np.ndarray, b: np.ndarray) -> list[Difference]:
