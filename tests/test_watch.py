@@ -95,3 +95,23 @@ def test_watch_reruns_what_an_edit_touches(write_config, tmp_path):
             raise
     lines.wait_for("watch stopped", timeout=10)
     assert code == 0
+
+
+def test_watch_stopped_by_sigterm_exits_143(write_config, tmp_path):
+    """Issue 48 I: Ctrl-C is how a watch ends (status 0, above); SIGTERM stops it as it
+    stops any command, with 128 + 15 (it exited 0)."""
+    write_config("pend", pendulum_text(t_end=1.0, samples=101, title="first")
+                 + '\n[report]\nformats = ["html"]\n')
+    proc = subprocess.Popen([sys.executable, "-m", "reportgen", "watch", str(tmp_path),
+                             "--out", str(tmp_path / "out"), "--interval", "0.1"],
+                            stderr=subprocess.PIPE, stdout=subprocess.DEVNULL, text=True)
+    lines = _Lines(proc)
+    try:
+        lines.wait_for("--- done")
+        proc.send_signal(signal.SIGTERM)
+        code = proc.wait(timeout=90)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+    lines.wait_for("watch stopped", timeout=10)
+    assert code == 128 + signal.SIGTERM

@@ -19,6 +19,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from ..errors import ConfigError, UsageError
+from ..support.forked import raise_if_stopped, stop_handled
 from ..support.layout import collect_configs, printable
 
 
@@ -60,6 +61,7 @@ def _watch(paths, out_root, jobs, formats, interval, stream, stop) -> int:
     preloaded = False
     try:
         while stop is None or not stop():
+            raise_if_stopped()  # a SIGTERM swallowed in a fork hook still ends the watch
             now = _snapshot(paths)
             if now == seen:
                 time.sleep(interval)
@@ -104,8 +106,13 @@ def _watch(paths, out_root, jobs, formats, interval, stream, stop) -> int:
                 # while the lecturer reads: what the next edit would otherwise import
                 _preload([], formats)
                 preloaded = True
-    except KeyboardInterrupt:
+    except KeyboardInterrupt as exc:  # Ctrl-C is how a watch ends: status 0; SIGTERM or
+        from ..support.forked import Terminated  # SIGHUP stop it as any command: 128 + n
+
         print("watch stopped", file=stream)
+        stop_handled()
+        if isinstance(exc, Terminated):
+            return 128 + exc.signum
     finally:
         if worker is not None:
             worker.close()

@@ -106,6 +106,29 @@ def kill_children() -> None:
             pass
 
 
+#: the stop signals received under :func:`children_stop_with_me`, in order
+_requested: list[int] = []
+
+
+def _stop_exception(signum: int) -> KeyboardInterrupt:
+    return KeyboardInterrupt() if signum == signal.SIGINT else Terminated(signum)
+
+
+def raise_if_stopped() -> None:
+    """Raise the stop of a signal received earlier whose exception never arrived: a
+    handler that runs inside a fork hook or a destructor ("Exception ignored in …", as
+    logging's after-fork hook does) has its exception swallowed, and the command would go
+    on (a ``watch`` would never end).  Loops that run for long call this between steps."""
+    if _requested:
+        raise _stop_exception(_requested[-1])
+
+
+def stop_handled() -> None:
+    """Say that the stop's exception arrived and was handled (a ``watch`` ended by Ctrl-C
+    returns 0): :func:`raise_if_stopped` then has nothing to raise."""
+    _requested.clear()
+
+
 @contextmanager
 def children_stop_with_me() -> Iterator[None]:
     """While in the body, SIGINT (Ctrl-C), SIGTERM and SIGHUP kill this process's children
@@ -117,14 +140,14 @@ def children_stop_with_me() -> Iterator[None]:
         yield
         return
     me = os.getpid()
+    _requested.clear()
 
     def stop(signum, frame):
         if os.getpid() != me:  # a forked child that has not reset its handlers yet
             os._exit(128 + signum)
+        _requested.append(signum)
         kill_children()
-        if signum == signal.SIGINT:
-            raise KeyboardInterrupt
-        raise Terminated(signum)
+        raise _stop_exception(signum)
 
     previous = {}
     for signum in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
@@ -134,6 +157,7 @@ def children_stop_with_me() -> Iterator[None]:
             pass
     try:
         yield
+        raise_if_stopped()  # a stop whose exception something swallowed: taken now
     finally:
         for signum, handler in previous.items():
             try:
