@@ -216,7 +216,7 @@ class Scene:
         for name in sections if isinstance(sections, list) else []:
             if name not in known:
                 problems.append(
-                    f"key 'report.sections': '{name}' is not a section of kind "
+                    f"key 'report.sections': {name!r} is not a section of kind "
                     f"'{cls.kind}' (known: {', '.join(known)})"
                 )
         return problems + cls._check_run_keys(data)
