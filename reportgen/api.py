@@ -456,19 +456,13 @@ class Run:
         in that order: the gallery card's thumbnail first), else the report's first figure;
         from the figures' validated manifest, so [] when none was drawn."""
         from .kinds import KINDS
-        from .support.layout import figure_manifest
+        from .scene.gallery import signature_figures
+        from .support.layout import drawn_svg_figures
 
         folder = self.h5.parent
-        stored = figure_manifest(folder)
-        drawn = [fig for section in (stored["sections"] if stored is not None else ())
-                 for fig in section["figures"] if "svg" in fig["files"]]
-        ids = [str(fig.get("id", "")) for fig in drawn]
-        picked: list[int] = []
-        for want in getattr(KINDS.get(self.kind), "gallery_figures", ()):
-            picked += [i for i, fid in enumerate(ids)
-                       if (fid == want or fid.partition("-")[2] == want) and i not in picked]
-        if not picked and drawn:
-            picked = [0]
+        drawn = drawn_svg_figures(folder)
+        picked = signature_figures([str(fig.get("id", "")) for fig in drawn],
+                                   tuple(getattr(KINDS.get(self.kind), "gallery_figures", ())))
         return [folder / drawn[i]["files"]["svg"] for i in picked]
 
     def _repr_html_(self) -> str:

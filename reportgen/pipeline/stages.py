@@ -37,7 +37,7 @@ from ..scene.base import Scene
 from ..scene.config import ConfigError, read_config
 from ..scene.gallery import check_headline, chosen_figure
 from ..scene.results import STATUSES, worst_status
-from ..support.forked import JobProcess, interrupt_behind, kill_children, run_child, serve
+from ..support.forked import JobProcess, kill_children, reraise_interrupt, run_child, serve
 from ..support.fsutil import (
     atomic_write,
     install,
@@ -48,7 +48,13 @@ from ..support.fsutil import (
     remove_stale_temps,
     temp_name,
 )
-from ..support.layout import collect_configs, figure_manifest, printable, report_stamp, scene_name
+from ..support.layout import (
+    collect_configs,
+    drawn_svg_figures,
+    printable,
+    report_stamp,
+    scene_name,
+)
 
 
 @dataclass
@@ -204,10 +210,7 @@ def run_scene(config_path: str, out_root: str, force: bool = False,
         outcome.status, outcome.message = "failed", str(exc)
         outcome.config_error = True
     except Exception as exc:  # noqa: BLE001 - one scene's crash must not stop the batch
-        stop = interrupt_behind(exc)
-        if stop is not None:  # a signal inside an extension's import: it stops the batch
-            kill_children()
-            raise stop from None
+        reraise_interrupt(exc)  # a signal inside an extension's import stops the batch
         outcome.status = "failed"
         log = folder / "error.log"
         where = ""
@@ -479,10 +482,7 @@ def _preload(scenes, formats) -> None:
         try:
             importlib.import_module(name)
         except ImportError as exc:  # a missing optional library fails in the scene, with its
-            stop = interrupt_behind(exc)  # message; a signal inside the import stops here
-            if stop is not None:
-                kill_children()
-                raise stop from None
+            reraise_interrupt(exc)  # message; a signal inside the import stops here
     for helper in helpers:
         helper.join()
     for group in groups:
@@ -982,9 +982,7 @@ def _gallery_figure(folder: Path, kind: str) -> dict:
     relative to the output folder, its caption as the image's alt text, and whether it
     is wide; from the figures' manifest, validated
     (:func:`reportgen.support.layout.figure_manifest`)."""
-    stored = figure_manifest(folder)
-    figures = [fig for section in (stored["sections"] if stored is not None else ())
-               for fig in section["figures"] if "svg" in fig["files"]]
+    figures = drawn_svg_figures(folder)
     cls = KINDS.get(kind)
     i = chosen_figure([str(fig.get("id", "")) for fig in figures],
                       tuple(getattr(cls, "gallery_figures", ())))

@@ -19,7 +19,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from ..errors import ConfigError, UsageError
-from ..support.forked import raise_if_stopped, stop_handled
+from ..support.forked import Terminated, raise_if_stopped, stop_handled
 from ..support.layout import collect_configs, printable
 
 
@@ -107,9 +107,7 @@ def _watch(paths, out_root, jobs, formats, interval, stream, stop) -> int:
                 _preload([], formats)
                 preloaded = True
     except KeyboardInterrupt as exc:  # Ctrl-C is how a watch ends: status 0; SIGTERM or
-        from ..support.forked import Terminated  # SIGHUP stop it as any command: 128 + n
-
-        print("watch stopped", file=stream)
+        print("watch stopped", file=stream)  # SIGHUP stop it as any command: 128 + n
         stop_handled()
         if isinstance(exc, Terminated):
             return 128 + exc.signum

@@ -121,13 +121,20 @@ def worst_check(data: ArchiveData, *words: str):
     return max(found, key=lambda c: c.rel_error) if found else None
 
 
-def chosen_figure(figure_ids: list[str], preferred: tuple[str, ...]) -> int | None:
-    """Index in ``figure_ids`` (the manifest's ``<section>-<name>`` ids, in report
-    order) of the first of ``preferred`` that is drawn (a preference is a figure's
-    name, as given to ``Report.figure``, or a full id); else 0, the report's first
-    figure; None when nothing is drawn."""
+def signature_figures(figure_ids: list[str], preferred: tuple[str, ...]) -> list[int]:
+    """Indices in ``figure_ids`` (the manifest's ``<section>-<name>`` ids, in report
+    order) of every drawn figure among ``preferred``, in the order of ``preferred`` (a
+    preference is a figure's name, as given to ``Report.figure``, or a full id); else
+    [0], the report's first figure; [] when nothing is drawn."""
+    picked: list[int] = []
     for want in preferred:
-        for i, fid in enumerate(figure_ids):
-            if fid == want or fid.partition("-")[2] == want:
-                return i
-    return 0 if figure_ids else None
+        picked += [i for i, fid in enumerate(figure_ids)
+                   if (fid == want or fid.partition("-")[2] == want) and i not in picked]
+    return picked or ([0] if figure_ids else [])
+
+
+def chosen_figure(figure_ids: list[str], preferred: tuple[str, ...]) -> int | None:
+    """Index of the gallery card's figure: the first of :func:`signature_figures`; None
+    when nothing is drawn."""
+    found = signature_figures(figure_ids, preferred)
+    return found[0] if found else None

@@ -112,6 +112,22 @@ class Quantity:
                         self.kind, self.optional)
 
 
+def key_owner(model, path: str) -> tuple[type, str] | None:
+    """(the pydantic model whose field the dotted config key ``path`` names, that field's
+    name): ``path``'s tables walked down from ``model`` (a table declared ``X | None``
+    included); None when one of them is not a declared table (a table of free keys)."""
+    *tables, name = path.split(".")
+    for part in tables:
+        field = (getattr(model, "model_fields", None) or {}).get(part)
+        if field is None:
+            return None
+        model = field.annotation
+        for arg in getattr(model, "__args__", ()) or ():  # X | None
+            if hasattr(arg, "model_fields"):
+                model = arg
+    return (model, name) if hasattr(model, "model_fields") else None
+
+
 def config_quantity(model, path: str, symbol: str = "") -> Quantity:
     """The config key ``path`` ("initial.theta") of the pydantic ``model`` as a quantity,
     for a figure's label: its field's description cut to the quantity, the unit in its
@@ -123,17 +139,8 @@ def config_quantity(model, path: str, symbol: str = "") -> Quantity:
     units ("[config units of length]") is stored as a pure number, unit "1", as the kinds
     that work in them declare their results; one whose unit another key chooses ("[per
     `units`: kg or m₀]") has none here (the kind knows it from the config)."""
-    field = None
-    for part in path.split("."):
-        fields = getattr(model, "model_fields", None)
-        if not fields or part not in fields:
-            field = None
-            break
-        field = fields[part]
-        model = field.annotation
-        for arg in getattr(model, "__args__", ()) or ():  # X | None
-            if hasattr(arg, "model_fields"):
-                model = arg
+    owner = key_owner(model, path)
+    field = owner[0].model_fields.get(owner[1]) if owner is not None else None
     text = (field.description or "") if field is not None else ""
     description, unit, found = quantity_of_description(text)
     if unit.startswith(OWN_UNITS):

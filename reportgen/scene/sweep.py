@@ -46,7 +46,6 @@ import itertools
 import json
 import math
 import os
-import re
 import shutil
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
@@ -57,6 +56,7 @@ import numpy as np
 
 from ..support.fsutil import atomic_write, temp_name
 from .config import ConfigError, _short
+from .units import is_quantity_text
 
 __all__ = ["SweepSpec", "SweepData", "PointSet", "parse_sweep", "run_sweep", "member_data",
            "block_arrays", "text_codes", "text_array"]
@@ -172,10 +172,6 @@ def _flatten(table: dict, prefix: str = "") -> list[tuple[str, Any]]:
     return out
 
 
-#: text that reads as a number with a unit ("5 deg")
-_UNIT_TEXT = re.compile(r"\s*[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?\s*\S.*")
-
-
 def _number(x: Any) -> bool:
     return isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x)
 
@@ -206,7 +202,7 @@ def parse_sweep(table: Any, label: str,
         if _number(value):
             return float(value)
         rule = "must be a finite number"
-        if isinstance(value, str) and _UNIT_TEXT.fullmatch(value):
+        if is_quantity_text(value):
             rule += " (this key declares no unit, so text with a unit is not converted)"
         bad(key, rule, value)
         return None

@@ -38,7 +38,7 @@ import types
 import typing
 from typing import Annotated, Any, Literal
 
-from .schema import CHOSEN_BY, OWN_UNITS, quantity_of_description
+from .schema import CHOSEN_BY, OWN_UNITS, key_owner, quantity_of_description
 
 #: a number, then the rest of the text (the unit): "40 deg", "-1.5e3 kg m^2", ".5"
 _NUMBER = re.compile(r"\s*([+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?)\s*(.*?)\s*")
@@ -176,23 +176,19 @@ def convert_paths(data: Any, units: dict[tuple[str, ...], str]) -> Any:
     return out
 
 
+def is_quantity_text(value: Any) -> bool:
+    """Whether ``value`` is text of a number followed by a unit ("5 deg")."""
+    found = _NUMBER.fullmatch(value) if isinstance(value, str) else None
+    return found is not None and bool(found.group(2))
+
+
 def convert_at(model: type, path: str, value: Any) -> Any:
     """``value`` given for the dotted config key ``path`` ("initial.theta") of ``model``
     (a swept value, say) as the number in that key's declared unit, as
     :func:`convert_field` converts the key itself; unchanged where the key declares no
     unit (a table of free keys).  ValueError names the rule."""
-    *tables, name = path.split(".")
-    for part in tables:
-        field = (getattr(model, "model_fields", None) or {}).get(part)
-        if field is None:
-            return value
-        model = field.annotation
-        for arg in typing.get_args(model):  # X | None
-            if hasattr(arg, "model_fields"):
-                model = arg
-    if not hasattr(model, "model_fields"):
-        return value
-    return convert_field(model, name, value)
+    owner = key_owner(model, path)
+    return value if owner is None else convert_field(*owner, value)
 
 
 def _error(name: str | tuple, value: Any, message: str):

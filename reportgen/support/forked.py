@@ -54,6 +54,16 @@ def interrupt_behind(exc: BaseException | None) -> KeyboardInterrupt | None:
     return None
 
 
+def reraise_interrupt(exc: BaseException) -> None:
+    """If a stop signal is behind ``exc`` (:func:`interrupt_behind`): kill this process's
+    children and raise that signal's exception, as the signal itself would have; else
+    return, for the caller to handle ``exc``."""
+    stop = interrupt_behind(exc)
+    if stop is not None:
+        kill_children()
+        raise stop from None
+
+
 def die_with_parent(parent: int) -> None:
     """In a process just forked from ``parent``: be killed when ``parent`` ends.
 

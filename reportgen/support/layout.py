@@ -152,6 +152,14 @@ def figure_manifest(out_dir: Path) -> dict[str, Any] | None:
     return stored
 
 
+def drawn_svg_figures(out_dir: Path) -> list[dict[str, Any]]:
+    """The figures of ``out_dir``'s validated manifest (:func:`figure_manifest`) that have
+    an SVG file, in report order; [] when there is no valid manifest."""
+    stored = figure_manifest(out_dir)
+    return [fig for section in (stored["sections"] if stored is not None else ())
+            for fig in section["figures"] if "svg" in fig["files"]]
+
+
 def _texts(value, size: int | None = None) -> bool:
     return (isinstance(value, list) and (size is None or len(value) == size)
             and all(isinstance(v, str) for v in value))
