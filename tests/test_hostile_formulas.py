@@ -213,3 +213,49 @@ def test_kepler_at_the_origin_ends_with_a_named_status(tmp_path, cli):
     with h5py.File(folder / "run.h5", "r") as f:
         assert f["runs/main"].attrs["solver_status"] == "nonfinite"
         assert "non-finite" in f.attrs["message"]
+
+
+def _nested_exp(depth: int) -> str:
+    text = "x"
+    for _ in range(depth):
+        text = f"exp({text})"
+    return text
+
+
+@pytest.mark.parametrize("potential, x0", [("log(x)", "0.0"), (_nested_exp(20), "1.0")],
+                         ids=["log-at-0", "exp-20-deep"])
+def test_an_infinite_force_at_the_start_ends_nonfinite(tmp_path, cli, potential, x0):
+    """H = p²/2m + V with V'(x0) infinite (log at 0: −1/x; exp nested 20 deep overflows):
+    f(t0, y0) is not finite, so no first step can be chosen.  The adaptive drivers divided
+    by the zero step HNW's guess gives when ‖f0‖ = ∞ (ZeroDivisionError, exit 1 with a
+    traceback in error.log); they now end at once as non-finite, like any run whose state
+    stops being finite."""
+    import h5py
+
+    config = tmp_path / "start.toml"
+    config.write_text(_hamiltonian('coordinates = ["x"]\nH = "p_x**2/2 + ' + potential + '"',
+                                   f"x = {x0}\np_x = 1.0"), encoding="utf-8")
+    code, _, err = cli("run", config, "--out", tmp_path / "out", "--format", "html",
+                       "--jobs", "1")
+    assert code == 1 and "Traceback" not in err and "ZeroDivisionError" not in err
+    folder = tmp_path / "out" / "start"
+    assert not (folder / "error.log").exists()
+    with h5py.File(folder / "run.h5", "r") as f:
+        assert f["runs/main"].attrs["solver_status"] == "nonfinite"
+
+
+def test_the_first_step_survives_a_slope_whose_norm_overflows():
+    """Every f0[i] finite (1e200) but ‖f0‖² overflowing: HNW's guess 0.01 ‖y0‖/‖f0‖ is 0,
+    and the second-derivative estimate divided by it.  The guess is now the fallback
+    10⁻⁶ (capped by the span), and an empty span gives a zero step, not a division."""
+    import numpy as np
+
+    from reportgen.core.integrators import compiled
+
+    y0, f0 = np.array([1.0, 2.0]), np.array([1e200, -1e200])
+    scale, y1 = np.empty(2), np.empty(2)
+    h0, d1 = compiled.initial_guess(y0, f0, 1e-9, 1e-12, 10.0, scale, y1)
+    assert d1 == np.inf and h0 == 1e-6
+    h = compiled.initial_choice(f0, f0.copy(), h0, d1, scale, 8, 10.0)
+    assert 0.0 <= h <= 1e-4
+    assert compiled.initial_choice(f0, f0.copy(), 0.0, d1, scale, 8, 0.0) == 0.0

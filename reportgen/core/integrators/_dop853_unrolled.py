@@ -49,6 +49,8 @@ def dop853_adaptive(rhs, t_eval, i0, i1, Y, y, y_old, K, F, state, counters, par
         for i in range(d):
             K[12, i] = f_new[i]
         counters[0] += 1
+        if not all_finite(f_new):  # f(t0, y0) is not finite: no step can be chosen
+            return NONFINITE
         h = initial_step(rhs, t, y, f_new, params, np.int64(8), rtol, atol, span)
         counters[0] += 1
         t_old = t

@@ -198,6 +198,8 @@ def dop853_adaptive({rhs_arg}t_eval, i0, i1, Y, y, y_old, K, F, state, counters,
         for i in range(d):
             K[{NST}, i] = f_new[i]
         counters[0] += 1
+        if not all_finite(f_new):  # f(t0, y0) is not finite: no step can be chosen
+            return NONFINITE
 {first_step}        counters[0] += 1
         t_old = t
     j = i0
@@ -350,9 +352,9 @@ import math
 import numba
 import numpy as np
 
-from reportgen.core.integrators.compiled import (EPS, MAXSTEPS, OK, accept_step, all_finite,
-                                                 initial_choice, initial_guess, overflow_or_inf,
-                                                 step_factor, stop_status)
+from reportgen.core.integrators.compiled import (EPS, MAXSTEPS, NONFINITE, OK, accept_step,
+                                                 all_finite, initial_choice, initial_guess,
+                                                 overflow_or_inf, step_factor, stop_status)
 from {module} import {name} as rhs
 
 

@@ -164,6 +164,8 @@ def initial_guess(y0, f0, rtol, atol, span, scale, y1):
         h0 = 1e-6
     else:
         h0 = 0.01 * d0 / d1
+    if not h0 > 0.0:  # ‖f0‖ overflowed to inf (every f0[i] finite): 0.01 d0/d1 is 0
+        h0 = 1e-6
     h0 = min(h0, span)
     for i in range(d):
         y1[i] = y0[i] + h0 * f0[i]
@@ -176,6 +178,8 @@ def initial_choice(f0, f1, h0, d1, scale, order, span):
     f1 = f(y0 + h0 f0) (overwritten)."""
     for i in range(f0.size):
         f1[i] -= f0[i]
+    if not h0 > 0.0:  # an empty span
+        return h0
     d2 = rms_scaled(f1, scale) / h0
     if d1 <= 1e-15 and d2 <= 1e-15:
         h1 = max(1e-6, h0 * 1e-3)
@@ -460,6 +464,8 @@ def erk_adaptive(rhs, A, b, c, E, E3, P, nst, kind, err_exp, order,
         rhs(t, y, params, f_new)
         store_row(K, nst, f_new)
         counters[0] += 1
+        if not all_finite(f_new):  # f(t0, y0) is not finite: no step can be chosen
+            return NONFINITE
         h = initial_step(rhs, t, y, f_new, params, order, rtol, atol, span)
         counters[0] += 1
         t_old = t
