@@ -157,3 +157,34 @@ def test_the_study_is_compared_on_the_rows_both_runs_timed(out, tmp_path):
         f["study/error_vs_runtime"][...] = table
     result = reportgen.verify(folder / "run.h5")
     assert [d.path for d in result.differences] == ["study/error_vs_runtime:error_final"]
+
+
+def test_provenance_names_the_processor_the_source_and_the_simulation_code(out, tmp_path, cli):
+    """Issue 43: the archive says which processor ran it, which revision of reportgen's
+    source (a git commit from a checkout, "release" from a wheel) and which simulation
+    code (the hash the physics key holds); verify says when these differ from the re-run's,
+    item by item, and the report's colophon names only the software."""
+    from reportgen.archive.h5io import LIBRARIES
+    from reportgen.kinds import get_kind
+
+    with h5py.File(out / "studied" / "run.h5") as f:
+        stored = {k: (v.decode() if isinstance(v, bytes) else str(v))
+                  for k, v in f["provenance"].attrs.items()}
+    assert stored["cpu"] and stored["cpu"] != "unknown"
+    assert stored["source"] == "release" or stored["source"].startswith("git ")
+    assert stored["simulation code"] == get_kind("pendulum").simulation_code()
+    page = (out / "studied" / "report.html").read_text(encoding="utf-8")
+    colophon = page[page.index("<b>Software</b>"):]
+    colophon = colophon[:colophon.index("</p>")]
+    assert all(f" {k} <code>" in colophon for k in LIBRARIES if k in stored)
+    assert "cpu" not in colophon and "simulation code" not in colophon
+
+    folder = tmp_path / "studied"
+    shutil.copytree(out / "studied", folder)
+    with h5py.File(folder / "run.h5", "r+") as f:
+        f["provenance"].attrs["simulation code"] = "0123456789abcdef"
+        f["provenance"].attrs["source"] = "git " + "0" * 40
+    code, stdout, _ = cli("verify", folder / "run.h5")
+    assert code == 0, stdout  # the numbers are the same: said, not a difference
+    assert "simulation code: 0123456789abcdef then, " in stdout
+    assert f"source: git {'0' * 40} then, " in stdout

@@ -7,8 +7,10 @@ become compound tables; nested dicts become groups.
 
 from __future__ import annotations
 
+import functools
 import json
 import platform
+import re
 import sys
 from collections.abc import Callable
 from typing import Any
@@ -29,10 +31,18 @@ class ArchiveError(Exception):
     """An archive that cannot be read: names the file and what is wrong."""
 
 
-def provenance() -> dict[str, str]:
-    """The versions an archive was written with.  Read from the installed distributions'
-    metadata: importing matplotlib only for its version cost a fifth of a second of
-    every simulate stage."""
+#: provenance keys that name the software, printed in a report's colophon; the others
+#: (the machine's processor, the source revision, the code hashes) are for ``inspect`` and
+#: ``verify``
+LIBRARIES = ("python", "numpy", "scipy", "h5py", "hdf5", "matplotlib", "numba", "platform")
+
+
+def provenance(code: dict[str, str] | None = None) -> dict[str, str]:
+    """What an archive was written with: the library versions (read from the installed
+    distributions' metadata: importing matplotlib only for its version cost a fifth of a
+    second of every simulate stage), the processor (``cpu``), the revision of reportgen's
+    source (``source``) and ``code``, the identity of the code of each stage (name ->
+    hash)."""
     from importlib.metadata import PackageNotFoundError, version
 
     def installed(name: str) -> str:
@@ -50,7 +60,52 @@ def provenance() -> dict[str, str]:
         "matplotlib": installed("matplotlib"),
         "numba": installed("numba"),
         "platform": platform.platform(),
+        "cpu": _cpu_model(),
+        "source": _source_revision(),
+        **{f"{stage} code": value for stage, value in (code or {}).items()},
     }
+
+
+@functools.cache
+def _cpu_model() -> str:
+    """The processor's model name (/proc/cpuinfo on Linux), else what the platform says."""
+    try:
+        with open("/proc/cpuinfo", encoding="utf-8", errors="replace") as f:
+            for line in f:
+                key, _, value = line.partition(":")
+                if key.strip() in ("model name", "Model", "Hardware") and value.strip():
+                    return " ".join(value.split())[:200]
+    except OSError:
+        pass
+    return platform.processor() or platform.machine() or "unknown"
+
+
+@functools.cache
+def _source_revision() -> str:
+    """The git commit of reportgen's source tree when it runs from a checkout ("git
+    <hash>", "+ changes" when its package files differ from that commit), else "release"
+    (an installed wheel: its version is the identity).  git is asked with a time limit
+    and never from the user's folders."""
+    import subprocess
+    from pathlib import Path
+
+    package = Path(__file__).resolve().parent.parent
+    root = package.parent
+    if not (root / ".git").exists():
+        return "release"
+    try:
+        head = subprocess.run(["git", "-C", str(root), "rev-parse", "HEAD"],
+                              capture_output=True, text=True, timeout=5)
+        changed = subprocess.run(["git", "-C", str(root), "status", "--porcelain",
+                                  "--untracked-files=no", "--", package.name],
+                                 capture_output=True, text=True, timeout=5)
+    except (OSError, subprocess.SubprocessError):
+        return "unknown"
+    commit = head.stdout.strip()
+    if head.returncode != 0 or not re.fullmatch(r"[0-9a-f]{40}", commit):
+        return "unknown"
+    return f"git {commit}" + (" + changes" if changed.returncode != 0 or changed.stdout.strip()
+                              else "")
 
 
 def dataset(group: h5py.Group, name: str, data) -> h5py.Dataset:

@@ -8,7 +8,10 @@ Layout (``format_version`` 2, see SPEC.md "Archive")::
     /config                   scalar string: the TOML text exactly as given
     /config_resolved          scalar string: the validated config, presets and defaults
                               filled in, as JSON (what the report step reads)
-    /provenance               attrs: python, numpy, scipy, h5py, matplotlib, numba, platform
+    /provenance               attrs: python, numpy, scipy, h5py, hdf5, matplotlib, numba,
+                              platform (the software), cpu (the processor's model),
+                              source ("git <commit>" [+ changes], or "release") and
+                              "simulation code" (hash of the code the kind's simulation runs)
     /runs/<name>/t            (N,) float64, dimension scale ``t``
     /runs/<name>/component    (d,) strings, dimension scale: the state components' names
     /runs/<name>/y            (N, d) float64, dims (t, component), attr columns
@@ -154,9 +157,12 @@ class ResultsError(Exception):
 
 def write_archive(path: Path, *, kind: str, title: str, scene: str, config_text: str,
                   config_sha256: str, results: Results, resolved_config: dict | None = None,
-                  physics_key: str = "", schema: ResultsSchema | None = None) -> None:
+                  physics_key: str = "", schema: ResultsSchema | None = None,
+                  code: dict[str, str] | None = None) -> None:
     """Write ``results`` atomically to ``path`` (see the module docstring).
 
+    ``code``: the identity of the code of each stage that made the results (stage ->
+    hash), stored in ``/provenance``.
     ``schema``: the kind's declared results; every dataset then carries its ``units``,
     ``long_name`` and ``symbol``, and results that depart from the declaration raise
     :class:`ResultsError` before anything is written."""
@@ -175,7 +181,7 @@ def write_archive(path: Path, *, kind: str, title: str, scene: str, config_text:
             _write_contents(f, kind=kind, title=title, scene=scene, config_text=config_text,
                             config_sha256=config_sha256, results=results,
                             resolved_config=resolved_config or {}, physics_key=physics_key,
-                            schema=schema or UNDECLARED)
+                            schema=schema or UNDECLARED, code=code)
             f.flush()
         install(tmp, path)
     finally:
@@ -189,7 +195,7 @@ def _config_json(resolved_config: dict) -> str:
 
 def _write_contents(f: h5py.File, *, kind, title, scene, config_text, config_sha256,
                     results: Results, resolved_config: dict, physics_key: str,
-                    schema: ResultsSchema) -> None:
+                    schema: ResultsSchema, code: dict[str, str] | None = None) -> None:
     f.attrs.update({
         "format": FORMAT,
         "format_version": FORMAT_VERSION,
@@ -205,7 +211,7 @@ def _write_contents(f: h5py.File, *, kind, title, scene, config_text, config_sha
         "wall_time_s": float(results.wall_time_s),
     })
     _write_config(f, config_text, resolved_config)
-    f.create_group("provenance").attrs.update(provenance())
+    f.create_group("provenance").attrs.update(provenance(code))
     runs = f.create_group("runs")
     first_name: dict[int, str] = {}
     for name, run in results.runs.items():

@@ -251,7 +251,8 @@ def simulate_scene(scene: Scene, folder: Path, progress: Callable[[float], None]
     write_archive(archive, kind=scene.kind, title=scene.title, scene=scene.source.name,
                   config_text=scene.source.text, config_sha256=scene.source.sha256,
                   results=results, resolved_config=scene.resolved_config(),
-                  physics_key=key, schema=scene.results_schema())
+                  physics_key=key, schema=scene.results_schema(),
+                  code={"simulation": scene.simulation_code()})
     del results  # the report reads the archive; a 10⁷-member family is ~570 MiB
     if scene.sweep is not None:  # its finished blocks are in the archive now
         from ..scene.sweep import discard_partial

@@ -90,7 +90,8 @@ class Verification:
     #: the stored and re-computed physics keys (config, reportgen version, simulation code)
     stored_key: str = ""
     key: str = ""
-    #: library: (stored version, installed version), where they differ
+    #: provenance item (a library, the processor, the source revision, the simulation
+    #: code): (stored, now), where they differ
     libraries: dict[str, tuple[str, str]] = field(default_factory=dict)
     #: (reportgen version, format version) that wrote the archive, and of the re-run
     release: tuple[str, str] = ("", "")

@@ -26,6 +26,7 @@ from markupsafe import Markup
 
 from .. import __version__
 from ..archive.audit import read_audit
+from ..archive.h5io import LIBRARIES
 from ..archive.store import ArchiveData, read_archive
 from ..errors import ReportError
 from ..kinds import get_kind
@@ -573,7 +574,8 @@ def build_context(data: ArchiveData, out_dir: Path | None,
         "study_calls": _library_calls(data),
         "cached_machines": _cached_machines(data),
         "attrs": data.attrs,
-        "provenance": data.provenance,
+        # the colophon names the software; the processor and code hashes are for inspect
+        "provenance": {k: data.provenance[k] for k in LIBRARIES if k in data.provenance},
         "version": __version__,
     }
 
