@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import functools
 import json
+import os
 import platform
 import re
 import sys
@@ -93,12 +94,14 @@ def _source_revision() -> str:
     root = package.parent
     if not (root / ".git").exists():
         return "release"
+    # GIT_OPTIONAL_LOCKS=0: git status would otherwise refresh (write) the checkout's index
+    env = {**os.environ, "GIT_OPTIONAL_LOCKS": "0"}
     try:
         head = subprocess.run(["git", "-C", str(root), "rev-parse", "HEAD"],
-                              capture_output=True, text=True, timeout=5)
+                              capture_output=True, text=True, timeout=5, env=env)
         changed = subprocess.run(["git", "-C", str(root), "status", "--porcelain",
                                   "--untracked-files=no", "--", package.name],
-                                 capture_output=True, text=True, timeout=5)
+                                 capture_output=True, text=True, timeout=5, env=env)
     except (OSError, subprocess.SubprocessError):
         return "unknown"
     commit = head.stdout.strip()
