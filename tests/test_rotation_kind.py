@@ -118,7 +118,8 @@ def test_report_lists_each_check(shipped):
     for title in ("exercise 4.5", "exercises 4.7, 4.8", "exercise 4.11", "line of nodes",
                   "Möbius map of U vs R(U)", "max error"):
         assert title in html, title
-    assert len(list((shipped / "figures").glob("*.svg"))) == 3
+    # ex. 4.5, the two Euler constructions, the notes' Figure 2 and the Möbius map
+    assert len(list((shipped / "figures").glob("*.svg"))) == 4
 
 
 def test_only_the_asked_exercise_is_computed_and_shown(tmp_path, write_config, cli):

@@ -8,12 +8,16 @@ Inverses enter without division: A⁻¹ = adj A / det A, so (AB)⁻¹ = B⁻¹A�
 identity adj(AB) = adj(B) adj(A) beside det(AB) = det A det B, and a similarity C = ABA⁻¹
 is det(A) C = A B adj A.  Determinant and eigenvalues of a similar matrix (ex. 4.3(b), (c))
 follow from the product rule det(XY) = det X det Y, proved here, applied to A(λ − B)A⁻¹.
+Ex. 4.2(a)–(c), a basis that is not orthonormal, are stated in :mod:`.basis` and proved
+here the same way; their numerical check is on a random basis of that kind.
 """
 
 from __future__ import annotations
 
 import numpy as np
 import sympy
+
+from .basis import non_orthonormal, relations
 
 
 def _matrix(name: str, n: int, complex_entries: bool = False, kind: str = "") -> sympy.Matrix:
@@ -64,6 +68,8 @@ def symbolic(n: int) -> dict[str, tuple[bool, int]]:
     record("inverse", (A * B).adjugate(), B.adjugate() * A.adjugate())
     Ac, Bc = _matrix("a", n, complex_entries=True), _matrix("b", n, complex_entries=True)
     record("hermitian", (Ac * Bc).H, Bc.H * Ac.H)
+    for key, (left, right) in relations(n).items():  # ex. 4.2(a)–(c)
+        record(key, left, right)
     V = sympy.Matrix(n, 1, lambda i, _: sympy.Symbol(f"v{i}", real=True))
     # V′ = AV, W = BV: W′ = AW = ABV; and A B adj(A) V′ = det(A) A B V, i.e. W′ = ABA⁻¹V′
     record("basis_change", A * B * A.adjugate() * (A * V), A.det(method="berkowitz") * A * B * V)
@@ -118,14 +124,17 @@ def numeric(n: int, seed: int) -> dict[str, float]:
         d_inverse = inv(A0 + (t + 1j * h) * A1 + (t + 1j * h) ** 2 * A2).imag / h
         worst = max(worst, rel(rate @ inv(At), -At @ d_inverse))
     out["derivative_of_inverse"] = worst
+    out.update(non_orthonormal(n, seed)["errors"])  # ex. 4.2(a)–(c)
     return out
 
 
 def prove(sizes, seed: int) -> dict:
     """The ``/analysis/proofs`` group: per size n, each identity proved (bool) and the terms
-    of its expanded left side; the numerical checks' largest relative error as ``errors``."""
+    of its expanded left side; the numerical checks' largest relative error as ``errors``;
+    the random basis that is not orthonormal of ex. 4.2(a)–(c) as ``basis`` (its arrays
+    and numbers with the suffix ``_n``)."""
     group: dict = {"sizes": np.asarray(sorted(set(sizes)), dtype=np.int64), "seed": seed,
-                   "proved": {}, "terms": {}}
+                   "proved": {}, "terms": {}, "basis": {}}
     errors: dict[str, float] = {}
     for n in sorted(set(sizes)):
         for key, (proved, terms) in symbolic(n).items():
@@ -133,5 +142,8 @@ def prove(sizes, seed: int) -> dict:
             group["terms"][f"{key}_{n}"] = int(terms)
         for key, error in numeric(n, seed).items():
             errors[f"{key}_{n}"] = error
+        for key, value in non_orthonormal(n, seed).items():
+            if key != "errors":
+                group["basis"][f"{key}_{n}"] = value
     group["errors"] = errors
     return group

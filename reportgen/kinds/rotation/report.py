@@ -15,6 +15,7 @@ from .report_proofs import ProofsSection, time_ordered_notes, time_ordered_table
 from .results import IDENTITY_MATRICES, ORDER_RANGE, ORDER_SLACK, SCHEMA, SECTION_DATA, TOLERANCE
 
 plots = lazy_module("reportgen.kinds.rotation.plots")
+euler_figure = lazy_module("reportgen.kinds.rotation.euler_figure")
 
 
 def verdict(errors, what: str) -> str:
@@ -307,7 +308,7 @@ class RotationReport(ProofsSection, Report):
                               "(converted), whole path",
                               fmt_err(e["matrix_conventions"])]])
         return SectionContent(
-            figures=[cls.figure("line_of_nodes", fig,
+            figures=[*euler_figure.figures(a), cls.figure("line_of_nodes", fig,
                                 "One rotation, two constructions: the body axes x′, y′, z′ "
                                 "are the same; the line of nodes (the intermediate x axis for "
                                 "z-x-z, y axis for z-y-z) and φ, ψ differ by π/2.")],

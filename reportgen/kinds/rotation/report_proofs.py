@@ -6,7 +6,7 @@ from ``/analysis/euler/time_ordered`` (the angular-velocity section's tables).""
 from __future__ import annotations
 
 from ...scene.content import SectionContent, Table, fmt, fmt_err
-from .results import PROOF_STATEMENTS
+from .results import CONTRAST, PROOF_STATEMENTS, TOLERANCE
 
 
 def _cell(group, key: str, n: int) -> str:
@@ -53,7 +53,53 @@ class ProofsSection:
                          "det(ABA⁻¹) = det A det B det A⁻¹ = det B, and the eigenvalues, as "
                          "det(λ − ABA⁻¹) = det(A(λ − B)A⁻¹) = det(λ − B): similar matrices have "
                          "the same characteristic polynomial.")
-        return SectionContent(facts=facts, tables=[table], notes=notes)
+        return SectionContent(facts=facts, tables=[table, *basis_tables(g, sizes)], notes=notes)
+
+
+#: textbook ex. 4.2(a)–(c) on the random basis: (key of ``errors``, the row's words)
+BASIS_ROWS = (
+    ("basis_vectors", "textbook ex. 4.2(a): the basis e′ solved from êᵢ = Σⱼ Aⱼᵢ e′ⱼ, and "
+                      "êᵢ · e′ⱼ = (A⁻¹)ᵢⱼ"),
+    ("components", "textbook ex. 4.2(b): the components V′ from the Gram equations "
+                   "G V′ = (e′ᵢ · V) against AV, and Σᵢ V′ᵢ e′ᵢ against V"),
+    ("components_back", "textbook ex. 4.2(c): the components Vᵢ = êᵢ · V against A⁻¹V′"),
+)
+
+
+def basis_tables(g, sizes) -> list[Table]:
+    """Textbook ex. 4.2(a)–(c) on a random basis that is not orthonormal, one column per
+    size (``/analysis/proofs/basis``; none for an archive without it)."""
+    b = g.get("basis")
+    shown = [n for n in sizes if b is not None and f"gram_distance_{n}" in b]
+    if not shown:
+        return []
+    gram = [float(b[f"gram_distance_{n}"]) for n in shown]
+    gap = [float(b[f"projection_gap_{n}"]) for n in shown]
+    errors = [float(g["errors"][f"{key}_{n}"]) for key, _ in BASIS_ROWS for n in shown]
+    failed = sum(1 for e in errors if not e <= TOLERANCE)
+    held = (f"all {len(errors)} checks of textbook ex. 4.2(a)–(c) on the basis e′ hold"
+            if not failed else
+            f"{failed} of {len(errors)} checks of textbook ex. 4.2(a)–(c) on the basis e′ fail")
+    orthonormal = ("e′ is not orthonormal, its Gram matrix not 1" if min(gram) > CONTRAST else
+                   "e′ is orthonormal here to 10⁻⁹" if max(gram) <= CONTRAST else
+                   "e′ is orthonormal here to 10⁻⁹ for some size")
+    projections = ("the projections e′ᵢ · V are not the components V′ᵢ" if min(gap) > CONTRAST
+                   else "the projections e′ᵢ · V are the components V′ᵢ here" if max(gap) <= CONTRAST
+                   else "the projections e′ᵢ · V are the components V′ᵢ here for some size")
+    rows = [["max |G − 1|, G = (e′ᵢ · e′ⱼ) the Gram matrix of the basis e′ (0 when "
+             "orthonormal)", *(fmt(x, 3) for x in gram)],
+            ["condition number of A", *(fmt(float(b[f"condition_{n}"]), 3) for n in shown)],
+            *([words, *(fmt_err(float(g["errors"][f"{key}_{n}"])) for n in shown)]
+              for key, words in BASIS_ROWS),
+            ["the projections e′ᵢ · V against the components V′ᵢ (not a check)",
+             *(fmt(x, 3) for x in gap)]]
+    return [Table(
+        caption=f"A random basis e′ for each size (seed {int(g['seed'])}): êᵢ a random "
+                "orthonormal basis, A a random matrix with condition number below 20 and "
+                f"e′ solved from êᵢ = Σⱼ Aⱼᵢ e′ⱼ; {orthonormal}, "
+                f"{projections}. Largest relative errors against the bound "
+                f"{fmt(TOLERANCE)}: {held}.",
+        header=["", *(f"{n} × {n}" for n in shown)], rows=rows)]
 
 
 def time_ordered_tables(a) -> list[Table]:

@@ -149,6 +149,14 @@ EULER = _group(
     Q("omega_body_derivative", r"\omega'", "rad/s",
       "omega in body axes from dR/dt by the complex step", ("path", "xyz")),
     Q("omega_scale", r"\max|\omega|", "rad/s", "largest |omega| over the path"),
+    # the notes' Figure 2 (kinds/rotation/euler_sketch.py): drawn with construction/<convention>
+    Q("sketch/convention", "", "", "convention of the sketch of the notes' Figure 2: that of "
+      "notes (9.17), z-x-z", kind="str"),
+    Q("sketch/angles", r"(\phi, \theta, \psi)", "rad", "the sketch's Euler angles: the "
+      "rotation at t = 0 in that convention", ("angle",)),
+    Q("sketch/plane", "", "1", "unit circle in the fixed xy plane", ("sketch_circle", "xyz")),
+    Q("sketch/body_plane", "", "1", "unit circle in the body x'y' plane, which meets the xy "
+      "plane in the line of nodes", ("sketch_circle", "xyz")),
 ) + _construction("zxz") + _construction("zyz")
 
 EULER_ERRORS = _errors(
@@ -368,6 +376,11 @@ PROOF_STATEMENTS = (
                                       "det(AB) = det A det B"),
     ("inverse", "4.1(c)", "inverse of a product: (AB)⁻¹ = B⁻¹A⁻¹, as adj(AB) = adj(B) adj(A)"),
     ("hermitian", "4.1(d)", "hermitian conjugate, complex entries: (AB)† = B†A†"),
+    ("basis_vectors", "4.2(a)", "a basis e′ that need not be orthonormal, êᵢ = Σⱼ Aⱼᵢ e′ⱼ: "
+                                "e′ⱼ = Σᵢ (A⁻¹)ᵢⱼ êᵢ"),
+    ("components", "4.2(b)", "components of V in that basis: V′ᵢ = Σⱼ Aᵢⱼ Vⱼ, V′ = AV"),
+    ("components_back", "4.2(c)", "components back in the basis êᵢ: Vᵢ = Σⱼ (A⁻¹)ᵢⱼ V′ⱼ, "
+                                  "V = A⁻¹V′"),
     ("basis_change", "4.2(d)", "change of basis: W = BV and V′ = AV give W′ = ABA⁻¹V′"),
     ("trace", "4.3(a)", "trace: tr(ABA⁻¹) = tr B"),
     ("symmetric", "4.3(d)", "symmetric B = Bᵀ stays symmetric: (ABAᵀ)ᵀ = ABAᵀ (Aᵀ = A⁻¹ for "
@@ -387,6 +400,29 @@ PROOFS = _group(
           f"{n} x {n}", (), "int"),
         Q(f"errors/{key}_{n}", "", "1", f"max error: '{key}' on random {n} x {n} matrices, "
           "relative to the largest entry"))),
+    # ex. 4.2(a)-(c) on a random basis that is not orthonormal (kinds/rotation/basis.py)
+    *(q for n in (2, 3) for q in (
+        Q(f"basis/hat_{n}", r"\hat{e}_i", "1", f"a random orthonormal basis e^_i, {n} x {n} "
+          "(columns)", (f"basis_{n}", f"basis_{n}")),
+        Q(f"basis/matrix_{n}", "A", "1", "A of e^_i = sum_j A_ji e'_j, random, condition "
+          "number below 20", (f"basis_{n}", f"basis_{n}")),
+        Q(f"basis/prime_{n}", "e'_j", "1", "the basis e'_j (columns), solved from the "
+          "definition: not orthonormal", (f"basis_{n}", f"basis_{n}")),
+        Q(f"basis/gram_{n}", "G", "1", "Gram matrix G_ij = e'_i . e'_j",
+          (f"basis_{n}", f"basis_{n}")),
+        Q(f"basis/gram_distance_{n}", r"\max|G - 1|", "1", "distance of the Gram matrix "
+          "from the identity (0 for an orthonormal basis)"),
+        Q(f"basis/condition_{n}", r"\kappa(A)", "1", "condition number of A (2-norm)"),
+        Q(f"basis/vector_{n}", "V", "1", "a random vector (Cartesian components)",
+          (f"basis_{n}",)),
+        Q(f"basis/components_{n}", "V_i", "1", "its components in the basis e^_i: e^_i . V",
+          (f"basis_{n}",)),
+        Q(f"basis/components_prime_{n}", "V'_i", "1", "its components in the basis e'_i, "
+          "from the Gram equations G V' = (e'_i . V)", (f"basis_{n}",)),
+        Q(f"basis/projections_{n}", r"e'_i \cdot V", "1", "its projections e'_i . V (not "
+          "its components, e' not being orthonormal)", (f"basis_{n}",)),
+        Q(f"basis/projection_gap_{n}", "", "1", "(not a check) largest distance of the "
+          "projections from the components V', relative to the largest entry"))),
 )
 
 SCHEMA = ResultsSchema(analysis=AXIS_ANGLE + AXIS_ANGLE_ERRORS + EULER + EULER_ERRORS

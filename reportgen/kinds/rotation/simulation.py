@@ -12,6 +12,7 @@ from ...lazy import lazy_module
 from ...scene.results import Check, Results
 from ...scene.simulation import Simulation
 from .config import SECTION_TABLES, RotationConfig
+from .euler_sketch import euler_sketch
 from .notes_su2 import notes_su2
 from .results import CONTRAST, NOT_CHECKS, ORDER_RANGE, ORDER_SLACK, SCHEMA, TOLERANCE
 from .time_ordered import rebuild
@@ -108,6 +109,8 @@ class RotationSimulation(Simulation):
             self._axis_angle(results)
         if self.computes("euler_angles") or self.computes("angular_velocity"):
             self._euler(results)
+        if self.computes("euler_angles"):  # the notes' Figure 2
+            results.analysis["euler"]["sketch"] = euler_sketch(results.analysis["euler"])
         if self.computes("matrix_identities"):
             self._identities(results)
         if self.computes("su2_euler"):
