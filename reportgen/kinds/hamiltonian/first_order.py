@@ -183,6 +183,7 @@ class FirstOrderSimulation:
         for column, value in zip(system.columns, y0, strict=True):
             a[f"initial_{column}"] = float(value)
         self._first_order_checks(results, system, main, t_independent=h_conserved)
+        self._no_legendre_transform(a, system, y0)
         if h_conserved:
             results.checks.append(Check("V(t_end), the energy function a·q̇ − L",
                                         float(main.invariants["H"][-1]), h0, "",
@@ -235,6 +236,42 @@ class FirstOrderSimulation:
                    sympy.diff(system.H, space.t))
         a["first_order_energy_rate_zero"] = bool(sympy.simplify(rate) == 0)
         self._closed_form(results, system, main)
+
+    #: velocities drawn at random to evaluate p = ∂L/∂q̇ at the initial point ...
+    VELOCITY_SAMPLES = 16
+    #: ... from [−v, v] with this v (in the config's units)
+    VELOCITY_RANGE = 10.0
+
+    def _no_legendre_transform(self, a: dict, system, q0) -> None:
+        """Why there is no Legendre transform, as for the linear function of notes
+        (4.13)–(4.14): ∂²L/∂q̇ᵢ∂q̇ⱼ (SymPy), its rank and its value at the initial point;
+        whether some p = ∂L/∂q̇ contains a velocity; and p at the initial point for
+        :attr:`VELOCITY_SAMPLES` velocities drawn at random, whose spread is 0 when p does
+        not depend on q̇ (then q̇ cannot be solved for p)."""
+        import sympy
+
+        space = system.space
+        momenta = [sympy.simplify(sympy.diff(system.L, v)) for v in space.qdot]
+        hessian = sympy.Matrix([[sympy.simplify(sympy.diff(m, v)) for v in space.qdot]
+                                for m in momenta])
+        draws = np.random.default_rng(4).uniform(
+            -self.VELOCITY_RANGE, self.VELOCITY_RANGE,
+            size=(self.VELOCITY_SAMPLES, system.n))
+        values = {**dict(zip(space.q, np.asarray(q0, dtype=float), strict=True)),
+                  **dict(zip(space.qdot, draws.T, strict=True)), space.t: 0.0,
+                  **{system.param_symbols[k]: v for k, v in system.params.items()}}
+        p = np.stack(numeric.evaluate_many(momenta, values, shape=(self.VELOCITY_SAMPLES,)))
+        at_start = {s: (v[0] if np.ndim(v) else v) for s, v in values.items()}
+        a["first_order_velocity_hessian"] = np.array(
+            [[float(numeric.evaluate(e, at_start)) for e in hessian.row(i)]
+             for i in range(system.n)])
+        a["first_order_velocity_hessian_rank"] = int(hessian.rank(simplify=True))
+        a["first_order_momenta_contain_velocities"] = any(
+            bool(m.free_symbols & set(space.qdot)) for m in momenta)
+        a["first_order_momentum_spread"] = float(np.max(np.ptp(p, axis=1)))
+        a["first_order_momentum_scale"] = float(np.max(np.abs(p)))
+        a["first_order_velocity_samples"] = self.VELOCITY_SAMPLES
+        a["first_order_velocity_range"] = self.VELOCITY_RANGE
 
     def _closed_form(self, results: Results, system, main) -> None:
         """For q̇ = A q with A constant: q(t) = exp(tA) q(0), compared with the run."""

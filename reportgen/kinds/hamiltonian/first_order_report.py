@@ -154,11 +154,12 @@ class FirstOrderReport:
             ("dV/dt = ∇V·q̇ + ∂V/∂t simplifies to 0",
              "yes: V is conserved (ω antisymmetric)" if a["first_order_energy_rate_zero"]
              else "no: V changes along the run")]
+        facts[:0] = cls.no_transform_facts(a)  # first: why L is reduced, not transformed
         run = data.runs["main"]
         if "drift_H" in run.attrs:
             facts.append(("largest drift of V along the run, relative to its scale",
                           fmt_err(run.attrs["drift_H"])))
-        figures, notes = [], []
+        figures, notes = [], cls.no_transform_words(a)
         if a["first_order_linear"]:
             A = np.asarray(a["first_order_A"], dtype=float)
             facts.append(("linear reduced equations q̇ = A q: closed form q(t) = exp(tA) q(0); "
@@ -185,6 +186,41 @@ class FirstOrderReport:
             notes.append("The reduced equations are not linear with constant coefficients: "
                          "no closed form is compared.")
         return SectionContent(equations=eqs, facts=facts, figures=figures, notes=notes)
+
+    @staticmethod
+    def no_transform_facts(a) -> list[tuple[str, str]]:
+        """∂²L/∂q̇ᵢ∂q̇ⱼ (its rank, its largest entry at the initial point) and the momenta
+        at the initial point over the sampled velocities."""
+        if "first_order_velocity_hessian_rank" not in a:
+            return []
+        hessian = np.asarray(a["first_order_velocity_hessian"], dtype=float)
+        return [
+            ("rank of ∂²L/∂q̇ᵢ∂q̇ⱼ (SymPy); its largest |entry| at the initial point",
+             f"{int(a['first_order_velocity_hessian_rank'])}; "
+             f"{fmt(float(np.max(np.abs(hessian))))}"),
+            (f"p = ∂L/∂q̇ at the initial point for {int(a['first_order_velocity_samples'])} "
+             "velocities drawn at random from [−v, v], v = "
+             f"{fmt(float(a['first_order_velocity_range']))}: largest spread of a momentum",
+             f"{fmt_err(a['first_order_momentum_spread'])} (|p| ≤ "
+             f"{fmt(a['first_order_momentum_scale'], 4)})")]
+
+    @staticmethod
+    def no_transform_words(a) -> list[str]:
+        """Why the Legendre transform fails, as for the linear function of notes
+        (4.13)–(4.14): said only when the stored facts show it (rank 0, no velocity in the
+        momenta; their spread over the sampled velocities is quoted)."""
+        if "first_order_velocity_hessian_rank" not in a:
+            return []
+        spread = float(a["first_order_momentum_spread"])
+        if (int(a["first_order_velocity_hessian_rank"]) != 0
+                or bool(a["first_order_momenta_contain_velocities"])):
+            return []
+        return [f"∂²L/∂q̇ᵢ∂q̇ⱼ has rank 0 and p = ∂L/∂q̇ = a(q, t) contains no velocity: at "
+                f"the initial point the {int(a['first_order_velocity_samples'])} sampled "
+                f"velocities all give the same momenta (spread {fmt_err(spread)}). This is the "
+                "linear function of notes (4.13)–(4.14), whose derivatives y = ∂f/∂x = C are "
+                "constants: q̇ cannot be solved for p, so the Legendre transform fails, and "
+                "the reduction above takes its place."]
 
     @classmethod
     def section_invariants(cls, data):

@@ -13,6 +13,7 @@ from ...rendering.plots.style import (
     HIGHLIGHT,
     PALETTE,
     dots,
+    legend_below,
     new_figure,
     new_figure_grid,
     place_legend,
@@ -165,4 +166,45 @@ def new_orbit(first, second, names: tuple[str, str], integrated=None):
     ax.set_xlabel(f"{_math(names[0])} [{UNITS}]")
     ax.set_ylabel(f"{_math(names[1])} [{UNITS}]")
     place_legend(ax)
+    return fig
+
+
+def tangent_planes(curve, points, dual, labels: dict[str, str]):
+    """The Legendre transform as geometry, notes (4.19)–(4.25), on the unit sphere's cut
+    y = 0: left, the curve ``curve`` = (x, z) with the tangent lines z = ω − ξx at
+    ``points`` = (x₀, z₀, ξ, ω) (each point and its intercept ω on the z axis in the
+    line's colour); right, the dual curve ``dual`` = (ξ, ω) with the same planes as
+    points (ξ, ω); one legend under both.  ``labels``: the axes' labels by "x", "z", "xi",
+    "omega"."""
+    fig, axes = new_figure_grid(1, 2, figsize=(8.4, 4.6))
+    left, right = axes[0]
+    (x, z), (x0, z0, xi, omega) = curve, (np.asarray(v, dtype=float) for v in points)
+    reach = 1.3
+    left.axvline(0.0, color=CONTEXT, linewidth=0.6)
+    left.plot(x, z, color="black", linewidth=2.0, label="surface, cut y = 0")
+    right.plot(*dual, color="black", linewidth=1.6, linestyle=(0, (5, 3)),
+               label=r"dual curve, closed form $\omega = \sqrt{1 + \xi^2}$")
+    ends = np.array([-reach, reach])
+    colours = [c for c in PALETTE if c != PALETTE[-1]]
+    for k, (a, b, s, w) in enumerate(zip(x0, z0, xi, omega, strict=True)):
+        colour = colours[k % len(colours)]
+        left.plot(ends, w - s * ends, color=colour, linewidth=1.0)
+        left.plot([a], [b], "o", color=colour, markersize=5)
+        left.plot([0.0], [w], "s", color=colour, markersize=5, markerfacecolor="white")
+        right.plot([s], [w], "D", color=colour, markersize=6)
+    left.plot([], [], color=CONTEXT, linewidth=1.0,
+              label=r"tangent lines $z = \omega - \xi x$, one colour per point")
+    left.plot([], [], "o", color=CONTEXT, label="tangent point")
+    left.plot([], [], "s", color=CONTEXT, markerfacecolor="white", label=r"intercept $\omega$")
+    right.plot([], [], "D", color=CONTEXT, label=r"$(\xi, \omega)$ of each tangent plane")
+    top = 1.15 * float(max(np.max(omega), 1.0))
+    left.set_xlim(-reach, reach)
+    left.set_ylim(0.0, top)
+    left.set_aspect("equal", adjustable="box")
+    right.set_ylim(0.0, max(top, 1.05 * float(np.max(dual[1]))))
+    left.set_xlabel(labels["x"])
+    left.set_ylabel(labels["z"])
+    right.set_xlabel(labels["xi"])
+    right.set_ylabel(labels["omega"])
+    legend_below(fig, fontsize=9, max_columns=3)
     return fig

@@ -20,6 +20,7 @@ from .config import (
     family_energy,
 )
 from .report_canonical import CanonicalSections
+from .report_legendre import LegendreGeometrySections
 from .report_tables import SymbolTables
 from .results import SCHEMA
 from .symbols import dot_tex, split_sum, symbol_parts, symbol_tex, symbol_text, symbol_words
@@ -29,7 +30,7 @@ plots = lazy_module("reportgen.kinds.hamiltonian.plots")
 section_plots = lazy_module("reportgen.rendering.plots.sections")
 
 
-class HamiltonianReport(CanonicalSections, SymbolTables, Report):
+class HamiltonianReport(CanonicalSections, LegendreGeometrySections, SymbolTables, Report):
     """The sections of a formula system, drawn from the archive alone."""
 
     schema = SCHEMA
@@ -58,6 +59,7 @@ class HamiltonianReport(CanonicalSections, SymbolTables, Report):
                             "compare nothing.")
     sections = (
         Section("equations", "The system and its equations of motion"),
+        Section("legendre_geometry", "The Legendre transform as geometry: tangent planes"),
         Section("trajectory", "Trajectory", integrates=True),
         Section("phase_portrait", "Phase portrait", integrates=True),
         Section("poincare", "Surface of section", integrates=True),
@@ -83,7 +85,8 @@ class HamiltonianReport(CanonicalSections, SymbolTables, Report):
                             "initial_state_*",  # shown by name: initial_<column>
                             # the relative error at the crossings is the family's fact
                             "poincare_H_error", "poincare_H_farthest", "noether_*",
-                            "transform_*", "total_derivative_*")
+                            "transform_*", "total_derivative_*",
+                            "first_order_velocity_*", "first_order_momentum_*")
 
     #: members of a sweep told apart by a legend; more get a colour bar
     LEGEND_MEMBERS = 7
@@ -183,6 +186,8 @@ class HamiltonianReport(CanonicalSections, SymbolTables, Report):
             names.remove("phase_portrait")
         if "transform" not in a:
             names.remove("transform")
+        if "legendre_sphere" not in a:  # L of two velocities, ∂²L/∂q̇∂q̇ positive definite
+            names.remove("legendre_geometry")
         if "noether_symmetry" not in a:
             names.remove("noether")
         if "total_derivative_same_equations" not in a:

@@ -112,6 +112,104 @@ _TOTAL_DERIVATIVE = (
       "largest |H - dF/dt| along the run"),
 )
 
+def _sphere(name: str, symbol: str, description: str):
+    return Q(f"legendre_sphere/{name}", symbol, "1", f"unit sphere, at each tangent point: "
+             f"{description}", ("tangent_point",))
+
+
+def _surface_of_l(name: str, symbol: str, description: str, dims=("velocity_point",)):
+    return Q(f"legendre_lagrangian/{name}", symbol, "1", f"surface z = L(qdot_1, qdot_2) at "
+             f"the initial coordinates, at each sampled velocity: {description}", dims)
+
+
+#: the Legendre transform as geometry (notes (4.15)–(4.28)): the velocity Hessian of a regular
+#: L (every L run), and, for two velocities and a positive-definite Hessian, the notes' unit
+#: sphere and the surface z = L(q̇₁, q̇₂) with their tangent planes
+_LEGENDRE_GEOMETRY = (
+    Q("legendre_velocity_hessian", r"\partial^2 L/\partial\dot{q}_i\partial\dot{q}_j", "1",
+      "velocity Hessian of L at the initial point (t = 0)", ("coordinate", "coordinate_j")),
+    Q("legendre_velocity_hessian_eigenvalues", r"\lambda", "1",
+      "eigenvalues of the velocity Hessian of L at the initial point", ("coordinate",)),
+    _flag("legendre_convex", "whether the velocity Hessian is positive definite (every "
+          "eigenvalue above legendre_convex_threshold of the largest)"),
+    Q("legendre_convex_threshold", "", "1", "fraction of the largest eigenvalue every "
+      "eigenvalue must exceed for a positive-definite velocity Hessian"),
+    _sphere("x0", "x_0", "x of the point"),
+    _sphere("y0", "y_0", "y of the point"),
+    _sphere("z0", "z_0", "height z = sqrt(1 - x^2 - y^2) of the point (notes (4.19))"),
+    _sphere("xi", r"\xi", "plane coordinate xi = -dz/dx by differences (notes (4.23))"),
+    _sphere("eta", r"\eta", "plane coordinate eta = -dz/dy by differences (notes (4.23))"),
+    _sphere("omega", r"\omega", "intercept omega = z0 + x0 xi + y0 eta (notes (4.24))"),
+    _sphere("omega_closed", r"\sqrt{1 + \xi^2 + \eta^2}", "closed form of omega(xi, eta)"),
+    _sphere("domega_dxi", r"\partial\omega/\partial\xi", "d omega/d xi by differences of "
+            "omega(xi, eta), each from its own tangent point (notes (4.26))"),
+    _sphere("domega_deta", r"\partial\omega/\partial\eta", "d omega/d eta by differences "
+            "(notes (4.27))"),
+    Q("legendre_sphere_slope_error", r"\max|\xi - x_0/z_0|", "1", "largest difference of "
+      "the slopes by differences from the tangent plane (4.20), xi = x0/z0, eta = y0/z0"),
+    Q("legendre_sphere_omega_error", r"\max|\omega - \sqrt{1 + \xi^2 + \eta^2}|", "1",
+      "largest difference of omega (4.24) from its closed form"),
+    Q("legendre_sphere_intercept_error", r"\max|\omega z_0 - 1|", "1", "largest departure "
+      "of the intercept from 1/z0, where the plane x.x0 = 1 (4.21) meets the z axis"),
+    Q("legendre_sphere_derivative_error", r"\max|\partial\omega/\partial\xi - x_0|", "1",
+      "largest difference of d omega/d xi, d omega/d eta from x0, y0 (notes (4.26)-(4.27))"),
+    Q("legendre_sphere_sign_minus", r"\max|\omega - z - x\xi - y\eta|", "1",
+      "largest residual of omega - z = x xi + y eta, omega(xi, eta) in closed form"),
+    Q("legendre_sphere_sign_plus", r"\max|\omega + z - x\xi - y\eta|", "1",
+      "largest residual of omega + z = x xi + y eta, as notes (4.28) prints it"),
+    Q("legendre_sphere_sign_scale", r"\max(|\omega| + |z| + |x\xi| + |y\eta|)", "1",
+      "largest size of the terms of the two relations"),
+    _text("legendre_sphere_relation", "which relation holds to legendre_relation_threshold "
+          "of the size of its terms: minus (omega - z = x xi + y eta), plus (omega + z = "
+          "x xi + y eta), both or neither"),
+    Q("legendre_relation_threshold", "", "1", "fraction of the size of its terms below "
+      "which a relation's residual is rounding"),
+    Q("legendre_slope_step", "h", "1", "step of the slopes' central differences, relative "
+      "to the coordinates' scale"),
+    Q("legendre_plane_step", r"\delta", "1", "step of omega's central differences in xi "
+      "and eta (unit sphere)"),
+    Q("legendre_sphere_curve/x", "x", "1", "the cut y = 0 of the unit sphere: x",
+      ("curve_point",)),
+    Q("legendre_sphere_curve/z", "z", "1", "the cut y = 0 of the unit sphere: z = "
+      "sqrt(1 - x^2)", ("curve_point",)),
+    Q("legendre_sphere_dual/xi", r"\xi", "1", "the dual curve at eta = 0: xi",
+      ("dual_point",)),
+    Q("legendre_sphere_dual/omega", r"\omega", "1", "the dual curve at eta = 0: omega = "
+      "sqrt(1 + xi^2) (closed form)", ("dual_point",)),
+    _surface_of_l("x", r"\dot{q}_1", "the first velocity"),
+    _surface_of_l("y", r"\dot{q}_2", "the second velocity"),
+    _surface_of_l("z", "L", "the Lagrangian"),
+    _surface_of_l("xi", r"\xi", "xi = -dL/dqdot_1 by differences"),
+    _surface_of_l("eta", r"\eta", "eta = -dL/dqdot_2 by differences"),
+    _surface_of_l("omega", r"\omega", "intercept omega = L + x xi + y eta (notes (4.24))"),
+    _surface_of_l("p", "p", "momenta dL/dqdot (SymPy)", ("velocity_point", "coordinate")),
+    _surface_of_l("H", "H", "the scene's Hamiltonian at those momenta"),
+    _surface_of_l("domega_dxi", r"\partial\omega/\partial\xi", "d omega/d xi by "
+                  "differences of omega(xi, eta)"),
+    _surface_of_l("domega_deta", r"\partial\omega/\partial\eta", "d omega/d eta by "
+                  "differences of omega(xi, eta)"),
+    Q("legendre_lagrangian_slope_error", r"\max|\xi + p|", "1", "largest |xi + p_1|, "
+      "|eta + p_2| over the sampled velocities"),
+    Q("legendre_lagrangian_momentum_scale", r"\max|p|", "1", "largest |p| over the "
+      "sampled velocities"),
+    Q("legendre_lagrangian_omega_error", r"\max|\omega + H|", "1", "largest |omega + H| "
+      "over the sampled velocities (omega = -H, notes (4.31))"),
+    Q("legendre_lagrangian_energy_scale", r"\max|H|", "1", "largest |H| over the sampled "
+      "velocities"),
+    Q("legendre_lagrangian_derivative_error", r"\max|\partial\omega/\partial\xi - \dot{q}|",
+      "1", "largest difference of d omega/d xi, d omega/d eta from the velocities"),
+    Q("legendre_lagrangian_velocity_scale", r"\max|\dot{q}|", "1", "largest |qdot| over "
+      "the sampled velocities"),
+    Q("legendre_lagrangian_sign_minus", r"\max|\omega - z - x\xi - y\eta|", "1",
+      "largest residual of omega - L = qdot.xi, omega(xi, eta) = -H(q, -xi, -eta)"),
+    Q("legendre_lagrangian_sign_plus", r"\max|\omega + z - x\xi - y\eta|", "1",
+      "largest residual of omega + L = qdot.xi, as notes (4.28) prints it"),
+    Q("legendre_lagrangian_sign_scale", r"\max(|\omega| + |z| + |x\xi| + |y\eta|)", "1",
+      "largest size of the terms of the two relations"),
+    _text("legendre_lagrangian_relation", "which relation holds for z = L (as "
+          "legendre_sphere_relation)"),
+)
+
 #: a first-order Lagrangian L = a(q, t)·q̇ − V(q, t) reduced (notes (3.36–3.38)): the state is
 #: q alone, the energy function (the invariant H) is V
 _FIRST_ORDER = (
@@ -148,6 +246,22 @@ _FIRST_ORDER = (
       "the integration and the closed form (linear reduced equations)", optional=True),
     Q("first_order_closed_form_scale", r"\max|q|", "1", "largest |q| along the run",
       optional=True),
+    # why there is no Legendre transform: the linear function of notes (4.13)-(4.14)
+    Q("first_order_velocity_hessian", r"\partial^2 L/\partial\dot{q}_i\partial\dot{q}_j",
+      "1", "velocity Hessian of L at the initial point (t = 0)",
+      ("coordinate", "coordinate_j")),
+    Q("first_order_velocity_hessian_rank", "", "1", "rank of the velocity Hessian of L, "
+      "simplified by SymPy", kind="int"),
+    _flag("first_order_momenta_contain_velocities", "whether some p_i = dL/dqdot_i, "
+          "simplified, contains a velocity"),
+    Q("first_order_momentum_spread", r"\max(p) - \min(p)", "1", "largest spread of a "
+      "momentum dL/dqdot_i at the initial point over the sampled velocities"),
+    Q("first_order_momentum_scale", r"\max|p|", "1", "largest |p_i| at the initial point "
+      "over the sampled velocities"),
+    Q("first_order_velocity_samples", "", "1", "velocities drawn at random to evaluate "
+      "the momenta at the initial point", kind="int"),
+    Q("first_order_velocity_range", "", "1", "the velocities are drawn from [-v, v] with "
+      "this v"),
 )
 
 SCHEMA = ResultsSchema(
@@ -260,6 +374,7 @@ SCHEMA = ResultsSchema(
         _text("poincare_edge_momentum", "the momentum that vanishes on the edge",
               optional=True),
         *(replace(q, optional=True) for q in _TRANSFORM),
+        *(replace(q, optional=True) for q in _LEGENDRE_GEOMETRY),
         *(replace(q, optional=True) for q in _FIRST_ORDER),
         *(replace(q, optional=True) for q in _NOETHER),
         *(replace(q, optional=True) for q in _TOTAL_DERIVATIVE),

@@ -15,6 +15,7 @@ from ...scene.schema import ResultsSchema
 from ...scene.sweep import PointSet
 from .analysis import HamiltonianAnalysis
 from .config import STUDY_STEPS, HamiltonianConfig, family_energy
+from .legendre_geometry import legendre_geometry
 from .results import SCHEMA, schema_for
 from .structure import HamiltonianStructure
 
@@ -296,6 +297,10 @@ class HamiltonianSimulation(HamiltonianStructure, HamiltonianAnalysis, Integrati
                 "terms", scale=a["jacobi_scale"]))
         if system.L is not None:
             self._legendre_checks(a, system, main)
+            # the transform as geometry (notes (4.15)–(4.28)) where L's surface is convex
+            qdot0 = [float(np.ravel(v)[0]) for v in numeric.evaluate_many(
+                system.legendre.velocities, vals0, shape=(1,))]
+            legendre_geometry(a, system, y0[:system.n], qdot0)
         if system.n == 1:
             self._phase_grid(a, system, main)
         elif surface is not None:
