@@ -198,8 +198,32 @@ def _scene(L: str, coordinates: list[str], initial: dict) -> dict:
         t_end = 2.0
         samples = 201
         study = false
+        [report]
+        sections = ["equations", "legendre_geometry"]
         """)
     return load_scene(parse_config_text(text)).simulate().analysis
+
+
+def test_the_section_is_computed_only_where_the_scene_asks_for_it():
+    """Promise 3: the unit sphere is a lecture of its own; a scene that does not name the
+    section keeps the Hessian's facts but gets no tangent planes, and no section."""
+    text = textwrap.dedent("""
+        kind = "hamiltonian"
+        [system]
+        coordinates = ["x", "y"]
+        L = "(x_dot**2 + y_dot**2)/2 - (x**2 + y**2)/2"
+        [initial]
+        x = 1.0
+        y = 0.0
+        x_dot = 0.0
+        y_dot = 0.5
+        [run]
+        t_end = 2.0
+        samples = 201
+        study = false
+        """)
+    a = load_scene(parse_config_text(text)).simulate().analysis
+    assert bool(a["legendre_convex"]) and "legendre_sphere" not in a
 
 
 @pytest.mark.parametrize("L, coordinates, initial, convex, shown", [

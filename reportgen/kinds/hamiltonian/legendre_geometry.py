@@ -175,11 +175,12 @@ def lagrangian_surface(a: dict, system, q0, qdot0) -> None:
                     planes.eta)
 
 
-def legendre_geometry(a: dict, system, q0, qdot0) -> None:
+def legendre_geometry(a: dict, system, q0, qdot0, planes: bool = True) -> None:
     """The Hessian facts for every regular L; the unit sphere and L's own tangent planes
-    when :func:`applies` (two velocities, ∂²L/∂q̇∂q̇ positive definite)."""
+    when ``planes`` (the scene asks for the section) and :func:`applies` (two velocities,
+    ∂²L/∂q̇∂q̇ positive definite)."""
     velocity_hessian(a, system, q0, qdot0)
-    if not applies(a):
+    if not (planes and applies(a)):
         return
     unit_sphere(a)
     lagrangian_surface(a, system, np.asarray(q0, dtype=float), np.asarray(qdot0, dtype=float))

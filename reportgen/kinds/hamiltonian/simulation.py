@@ -64,6 +64,15 @@ class HamiltonianSimulation(HamiltonianStructure, HamiltonianAnalysis, Integrati
 
     schema = SCHEMA
     config: HamiltonianConfig
+    #: the transform as geometry (notes (4.15)–(4.28): the unit sphere, then L's surface) is
+    #: a lecture on its own: computed only for a scene whose [report] sections name it
+    computed_on_request = ("error_vs_runtime", "legendre_geometry")
+
+    def computes(self, name: str) -> bool:
+        if name == "legendre_geometry":
+            asked = self.config.report.sections
+            return asked is not None and name in asked
+        return super().computes(name)
 
     #: grid points per axis of H on the surface of section (its allowed region's edge)
     SECTION_GRID = 301
@@ -300,7 +309,8 @@ class HamiltonianSimulation(HamiltonianStructure, HamiltonianAnalysis, Integrati
             # the transform as geometry (notes (4.15)–(4.28)) where L's surface is convex
             qdot0 = [float(np.ravel(v)[0]) for v in numeric.evaluate_many(
                 system.legendre.velocities, vals0, shape=(1,))]
-            legendre_geometry(a, system, y0[:system.n], qdot0)
+            legendre_geometry(a, system, y0[:system.n], qdot0,
+                              planes=self.computes("legendre_geometry"))
         if system.n == 1:
             self._phase_grid(a, system, main)
         elif surface is not None:
