@@ -30,7 +30,7 @@ from ...lazy import lazy_module
 rotations = lazy_module("reportgen.core.rotations")
 
 
-def _rotation_matrices(quat) -> np.ndarray:
+def rotation_matrices(quat) -> np.ndarray:
     """(N, 3, 3) body -> space matrices of unit quaternions [w, x, y, z]."""
     q = np.asarray(quat, dtype=float)
     q = q / np.linalg.norm(q, axis=1, keepdims=True)
@@ -76,7 +76,7 @@ def impulse_motion(t, omega, quat, moments, *, P, point, omega_before, mass=None
     I = np.asarray(moments, dtype=float)
     P = np.asarray(P, dtype=float)
     p = np.asarray(point, dtype=float)
-    R = _rotation_matrices(quat)
+    R = rotation_matrices(quat)
     R0 = R[0]
     angular = np.cross(p, P)
     out = {"P": P, "P_space": R0 @ P, "point": p, "angular_impulse": angular,

@@ -12,6 +12,7 @@ from ...lazy import lazy_module
 from ...scene.base import Section
 from ...scene.content import SectionContent, Table, fmt, fmt_err
 from ...scene.report import Report
+from ...scene.schema import unit_text
 from ..inertia.report import stability_table_section
 from .results import SCHEMA
 
@@ -22,6 +23,10 @@ plots = lazy_module("reportgen.rendering.plots.rigid_body")
 INVARIANT_NAMES = {"twice_energy": "2T", "L_squared": "L² (body frame)",
                    "L_x": "Lx (space)", "L_y": "Ly (space)", "L_z": "Lz (space)",
                    "quaternion_norm": "|q|"}
+
+
+#: relative differences below this are rounding (float64 sums over a few hundred terms)
+ROUNDING = 1e-12
 
 
 def method_name(data, run) -> str:
@@ -200,6 +205,17 @@ class RigidBodyReport(Report):
             case.update(impulse_mass="cm_velocity" in imp,
                         apex=data.config.get("impulse", {}).get("at") == "apex",
                         on_figure_axis=bool(imp.get("point_on_figure_axis", False)))
+        e = a.get("energy_split")
+        case["energy_split"] = e is not None
+        if e is not None:  # the point-mass check of notes (8.38)–(8.42)
+            case.update(split_nodes=int(e["nodes"]),
+                        split_samples=len(np.atleast_1d(e["times"])),
+                        split_error=fmt_err(float(e["max_relative_error"])),
+                        split_cross=fmt_err(float(e["max_cross_term_share"])),
+                        split_offsets=fmt_err(float(np.max(e["first_moment"]))
+                                              / float(e["first_moment_scale"])),
+                        split_rounding=max(float(e["max_relative_error"]),
+                                           float(e["max_cross_term_share"])) <= ROUNDING)
         return case
 
     @classmethod
@@ -249,7 +265,35 @@ class RigidBodyReport(Report):
                 "the angular momentum L"
                 + (", with the closed form of the symmetric body dashed" if
                    "point_path_exact" in a else "") + "."))
-        return SectionContent(figures=figures, facts=facts)
+        tables = [cls.energy_split_table(data)] if "energy_split" in data.analysis else []
+        return SectionContent(figures=figures, facts=facts, tables=tables)
+
+    @classmethod
+    def header(cls, name: str) -> str:
+        """A table header from the declared result ``name``: its symbol as page text and
+        its unit ("M Ṙ²/2 [J]")."""
+        q = cls.schema.result(name)
+        unit = unit_text(q.unit)
+        return f"{q.text} [{unit}]" if unit and q.unit != "1" else q.text
+
+    @classmethod
+    def energy_split_table(cls, data) -> Table:
+        """The kinetic energy summed over the body's point masses against the split at
+        the centre of mass, notes (8.38)–(8.42), at the stored samples."""
+        e = data.analysis["energy_split"]
+        names = ("times", "kinetic_points", "kinetic_split", "cross_term", "first_moment")
+        rows = [[fmt(float(t)), fmt(float(k), 12), fmt(float(s), 12), fmt_err(float(c)),
+                 fmt_err(float(x)), fmt_err(float(r))]
+                for t, k, s, c, x, r in zip(*(np.atleast_1d(e[n]) for n in names),
+                                            np.atleast_1d(e["relative_error"]), strict=True)]
+        return Table(
+            caption=f"The kinetic energy of the {int(e['nodes'])} point masses, summed point "
+                    "by point, against the translational plus rotational kinetic energy of "
+                    "the stored state, and the cross term and the mass-weighted offsets from "
+                    "the centre of mass, notes (8.40)–(8.41), at a few stored times "
+                    f"(M Ṙ²/2 = {fmt(float(e['translational']))} J throughout).",
+            header=[*(cls.header(f"energy_split/{n}") for n in names), "relative difference"],
+            rows=rows)
 
     @classmethod
     def section_omega(cls, data):

@@ -14,7 +14,8 @@ from ...scene.integration import IntegratingSimulation
 from ...scene.results import AuditCase, Check, Results, RunRecord
 from ..inertia.config import EQUAL_MOMENTS_RTOL, body_symmetry
 from .config import RigidBodyConfig, body_moments
-from .impulse import impulse_motion
+from .energy_split import kinetic_energy_split
+from .impulse import impulse_motion, rotation_matrices
 from .results import SCHEMA
 
 inertia_core = lazy_module("reportgen.core.inertia")
@@ -303,6 +304,8 @@ class RigidBodySimulation(IntegratingSimulation):
             a["point_on_figure_axis"] = bool(off <= 1e-9 * max(float(np.linalg.norm(point)),
                                                                  1e-300))
         analysis["impulse"] = a
+        if elements is not None:  # T = ½ M Ṙ² + K from the point masses, notes (8.38)–(8.42)
+            self._energy_split(analysis, results, main, mass, a["cm_velocity"], elements)
         where = "apex" if imp.at == "apex" else "struck point"
         if "cm_velocity_run_max_error" in a:
             k = a["cm_velocity_run_worst_component"]
@@ -320,6 +323,19 @@ class RigidBodySimulation(IntegratingSimulation):
                 f"{where} position {'xyz'[k]} (worst sample)", float(a["point_path"][n, k]),
                 float(exact[n, k]), "m", "V t plus uniform precession about L at |L|/I⊥ "
                 "(Landau & Lifshitz §33)", scale=float(np.linalg.norm(point))))
+
+    def _energy_split(self, analysis, results, main, mass, cm_velocity, elements) -> None:
+        """Σ ½ m_A |ṙ_A|² over the body's point masses against ½ M Ṙ² + ½ ω·I ω at a few
+        samples (:mod:`.energy_split`), with the worst sample as a check."""
+        e = kinetic_energy_split(main.t, main.y[:, :3], rotation_matrices(main.y[:, 3:7]),
+                                 self.moments, mass=mass, cm_velocity=cm_velocity,
+                                 masses=elements[0], positions=elements[1])
+        analysis["energy_split"] = e
+        n = int(np.argmax(e["relative_error"]))
+        results.checks.append(Check(
+            "kinetic energy summed over the point masses (worst sample)",
+            float(e["kinetic_points"][n]), float(e["kinetic_split"][n]), "J",
+            "translational plus rotational kinetic energy ½ M Ṙ² + ½ ω·I ω, notes (8.42)"))
 
     def _poinsot_geometry(self, analysis, results, main) -> None:
         """Polhodes on the inertia ellipsoid and Poinsot's construction, each only if its
