@@ -259,3 +259,30 @@ def test_the_first_step_survives_a_slope_whose_norm_overflows():
     h = compiled.initial_choice(f0, f0.copy(), h0, d1, scale, 8, 10.0)
     assert 0.0 <= h <= 1e-4
     assert compiled.initial_choice(f0, f0.copy(), 0.0, d1, scale, 8, 0.0) == 0.0
+
+
+_DEGREE_32 = 'L = "(x_dot**2 + y_dot**2)*(1 + x**2 + y**2)**15/2 - x**2"'
+
+
+@pytest.mark.parametrize("command", ["validate", "run"])
+def test_validation_ends_within_the_time_limit(tmp_path, command):
+    """Issue 48 C: a Lagrangian of degree 32, within every formula bound, took 485 s to
+    validate (its symbolic work doubles with each +2 of the exponent), and `run
+    --time-limit 30` was still validating at 150 s.  Validation now runs under the same
+    limit as the run: `validate` exits 2 naming the file and the limit, `run` fails the
+    scene as one stopped by its limit (exit 1) and writes nothing of it."""
+    import time
+
+    config = tmp_path / "degree32.toml"
+    config.write_text(_hamiltonian('coordinates = ["x", "y"]\n' + _DEGREE_32,
+                                   "x = 0.1\ny = 0.0\nx_dot = 0.0\ny_dot = 0.1"),
+                      encoding="utf-8")
+    extra = ["--out", tmp_path / "out"] if command == "run" else []
+    start = time.monotonic()
+    code, err = _cli(command, config, *extra, "--time-limit", "2")
+    assert time.monotonic() - start < 60 and "Traceback" not in err
+    assert "time limit of 2 s exceeded while validating it" in err, err
+    if command == "validate":  # a config that cannot be validated in time: exit 2
+        assert code == 2 and "degree32.toml: time limit" in err
+    else:  # a scene stopped by its limit, as when it runs too long: failed, nothing written
+        assert code == 1 and not (tmp_path / "out" / "degree32").exists()

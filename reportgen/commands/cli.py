@@ -122,6 +122,9 @@ def build_parser() -> argparse.ArgumentParser:
     wat.add_argument("--interval", type=_seconds("--interval"), default=0.25,
                      metavar="SECONDS",
                      help="how often the configs are looked at (default: 0.25)")
+    wat.add_argument("--time-limit", type=_time_limit, default=None, metavar="SECONDS",
+                     help="stop validating or running a scene that takes longer than this, "
+                          "and watch on (default: 600; 0: no limit)")
 
     rep = sub.add_parser("report", help="rebuild reports from archives alone")
     rep.add_argument("archives", nargs="+", metavar="ARCHIVE.h5")
@@ -180,6 +183,10 @@ def build_parser() -> argparse.ArgumentParser:
     val.add_argument("--resolved", action="store_true",
                      help="print each config as run sees it (preset, the config's keys and "
                           "the defaults) as TOML")
+    val.add_argument("--time-limit", type=_time_limit, default=None, metavar="SECONDS",
+                     help="stop validating a config after this many seconds of CPU time "
+                          f"(its formulas' symbolic work; default: {DEFAULT_TIME_LIMIT:g}; 0: "
+                          "no limit)")
 
     audit = sub.add_parser("audit", help="stability audit on stiff and extreme cases")
     audit.add_argument("paths", nargs="*", metavar="PATH")
@@ -356,7 +363,9 @@ def cmd_watch(args) -> int:
     except UsageError as exc:
         return _usage(str(exc))
     return watch(args.paths, out_root=args.out, jobs=args.jobs, formats=args.format,
-                 interval=args.interval)
+                 interval=args.interval,
+                 time_limit=(DEFAULT_TIME_LIMIT if args.time_limit is None
+                             else args.time_limit or None))
 
 
 def cmd_report(args) -> int:
@@ -582,7 +591,9 @@ def cmd_validate(args) -> int:
     from ..pipeline.stages import UsageError, collect_configs, validate_all
 
     try:
-        scenes = validate_all(collect_configs(args.paths))
+        scenes = validate_all(collect_configs(args.paths),
+                              time_limit=(DEFAULT_TIME_LIMIT if args.time_limit is None
+                                          else args.time_limit or None))
     except UsageError as exc:
         return _usage(str(exc))
     if args.resolved:

@@ -82,18 +82,37 @@ class Outcome:
         return self.status == "ok"
 
 
-def validate_all(paths: list[Path]) -> list[Scene]:
+def validate_all(paths: list[Path], time_limit: float | None = None,
+                 stopped: list[Outcome] | None = None) -> list[Scene]:
     """Validate every config and build its models (so a method that cannot integrate the
     system is caught before anything runs); one ConfigError listing every problem of
-    every file."""
+    every file.
+
+    ``time_limit``: seconds of CPU time each config's validation may take (a formula's
+    symbolic work grows fast with its degree: a Lagrangian of degree 32 took minutes;
+    enforced by an alarm, in the main thread only).  A config over it is a failed :class:`Outcome`
+    appended to ``stopped`` (a run's scene stopped by its limit), or, without
+    ``stopped``, a problem."""
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        time_limit = None
     scenes, problems = [], []
     for path in paths:
         try:
-            scene = load_scene(read_config(path))
-            scene.build_models()
+            with _alarm(time_limit, cpu=True):
+                scene = load_scene(read_config(path))
+                scene.build_models()
             scenes.append(scene)
         except ConfigError as exc:
             problems.extend(exc.problems)
+        except _TimeLimit:
+            message = _time_limit_message(time_limit, "while validating it (building its "
+                                          "model: its formulas' symbolic work, compiling)")
+            if stopped is None:
+                problems.append(f"{printable(str(path))}: {message}")
+            else:
+                stopped.append(Outcome(name=Path(path).stem, status="failed", message=message))
     names: dict[str, Path] = {}
     for scene in scenes:
         name = scene.source.name
@@ -317,10 +336,13 @@ def run_batch(paths: list[str], out_root: str = "output", jobs: int | None = Non
     none); with ``in_process_limit`` (``reportgen run``'s default limit) a single scene to
     do still runs in this process, stopped by an alarm.
     """
-    scenes = validate_all(collect_configs(paths))
-    progress = Progress(len(scenes), stream)
+    stopped: list[Outcome] = []  # over the time limit while validating
+    scenes = validate_all(collect_configs(paths), time_limit, stopped)
+    progress = Progress(len(scenes) + len(stopped), stream)
     root = output_folder(out_root)
     with output_lock(root, stream=progress.stream):  # one run at a time on a folder
+        for outcome in stopped:
+            progress.scene_done(outcome)
         if scheduler:
             outcomes = _run_on_dask(scenes, out_root, force, formats, scheduler, progress,
                                     time_limit)
@@ -329,6 +351,7 @@ def run_batch(paths: list[str], out_root: str = "output", jobs: int | None = Non
                                     time_limit, pdf_worker, in_process_limit)
         order = {s.source.name: i for i, s in enumerate(scenes)}
         outcomes.sort(key=lambda o: order[o.name])
+        outcomes = stopped + outcomes
         try:
             write_index(out_root, outcomes)
         except OSError as exc:
@@ -402,37 +425,55 @@ class _TimeLimit(BaseException):
     """A scene run in this process went over its time limit (raised by SIGALRM)."""
 
 
-def _time_limit_message(time_limit: float) -> str:
-    return (f"time limit of {time_limit:g} s exceeded: the scene was stopped (--time-limit; "
-            "0 for none) and any earlier archive kept")
+def _time_limit_message(time_limit: float, when: str = "") -> str:
+    return (f"time limit of {time_limit:g} s exceeded{' ' + when if when else ''}: the scene "
+            "was stopped (--time-limit; 0 for none) and any earlier archive kept")
 
 
 class _alarm:
-    """Raise :class:`_TimeLimit` in the main thread after ``seconds`` (None: never).  The
-    scene's archive and reports are renamed into place only when complete, so stopping it
-    anywhere keeps the earlier ones; compiled code is stopped when it returns to Python."""
+    """Raise :class:`_TimeLimit` in the main thread after ``seconds`` (None: never) of wall
+    time, or of this process's CPU time with ``cpu`` (validation: its symbolic work is
+    CPU-bound, and a busy machine must not make a quick config fail).  The scene's
+    archive and reports are renamed into place only when complete, so stopping it
+    anywhere keeps the earlier ones; compiled code is stopped when it returns to Python;
+    an import in progress is let finish (a half-done one would stay broken)."""
 
-    def __init__(self, seconds: float | None):
+    def __init__(self, seconds: float | None, cpu: bool = False):
+        import signal
+
         self.seconds = seconds
+        self.timer, self.signal = ((signal.ITIMER_PROF, signal.SIGPROF) if cpu
+                                   else (signal.ITIMER_REAL, signal.SIGALRM))
 
     def __enter__(self):
         import signal
 
         if self.seconds is not None:
             def expired(signum, frame):
+                if _importing():
+                    signal.setitimer(self.timer, 0.05)
+                    return
                 raise _TimeLimit
 
-            self.previous = signal.signal(signal.SIGALRM, expired)
-            signal.setitimer(signal.ITIMER_REAL, self.seconds)
+            self.previous = signal.signal(self.signal, expired)
+            signal.setitimer(self.timer, self.seconds)
         return self
 
     def __exit__(self, *exc):
         import signal
 
         if self.seconds is not None:
-            signal.setitimer(signal.ITIMER_REAL, 0)
-            signal.signal(signal.SIGALRM, self.previous)
+            signal.setitimer(self.timer, 0)
+            signal.signal(self.signal, self.previous)
         return False
+
+
+def _importing() -> bool:
+    """Whether a module is being imported in this process (its spec says so while its code
+    runs): an exception raised there would leave it half-initialised in ``sys.modules``
+    for every later scene of a long-lived process (``watch``, the API)."""
+    return any(getattr(getattr(module, "__spec__", None), "_initializing", False)
+               for module in list(sys.modules.values()))
 
 
 def _interleave_kinds(scenes: list[Scene]) -> list[Scene]:

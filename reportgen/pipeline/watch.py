@@ -40,18 +40,22 @@ def _snapshot(paths: list[str]) -> dict[Path, int]:
 
 def watch(paths: list[str], out_root: str = "output", jobs: int | None = None,
           formats: tuple[str, ...] | None = None, interval: float = 0.25,
-          stream=None, stop: Callable[[], bool] | None = None) -> int:
+          stream=None, stop: Callable[[], bool] | None = None,
+          time_limit: float | None = None) -> int:
     """Run the batch, then again whenever a config under ``paths`` changes, appears or
     goes, until interrupted (Ctrl-C, SIGTERM, SIGHUP: child processes are stopped at
     once) or ``stop()`` is true.  Each batch holds the output folder's lock while it runs
-    (:func:`reportgen.support.fsutil.output_lock`).  Returns the exit status."""
+    (:func:`reportgen.support.fsutil.output_lock`).  ``time_limit``: seconds a scene's
+    validation or run may take (None: none); a scene over it is stopped and the watch goes
+    on to the next edit.  Returns the exit status."""
     from ..support.forked import children_stop_with_me
 
     with children_stop_with_me():
-        return _watch(paths, out_root, jobs, formats, interval, stream or sys.stderr, stop)
+        return _watch(paths, out_root, jobs, formats, interval, stream or sys.stderr, stop,
+                      time_limit)
 
 
-def _watch(paths, out_root, jobs, formats, interval, stream, stop) -> int:
+def _watch(paths, out_root, jobs, formats, interval, stream, stop, time_limit) -> int:
     from ..rendering.pdf import PdfWorker
     from .stages import _preload, run_batch
 
@@ -87,7 +91,8 @@ def _watch(paths, out_root, jobs, formats, interval, stream, stop) -> int:
                   f"--- watching {len(now)} configs: first run", file=stream, flush=True)
             try:
                 outcomes = run_batch(list(now), out_root=out_root, jobs=jobs, formats=formats,
-                                     stream=stream, pdf_worker=worker)
+                                     stream=stream, pdf_worker=worker, time_limit=time_limit,
+                                     in_process_limit=True)
             except ConfigError as exc:
                 for line in exc.problems:
                     print(printable(line), file=stream)
