@@ -136,16 +136,22 @@ def double_pendulum(draw) -> dict:
 
 
 def oscillator_from_l(draw) -> dict:
-    """L given with H split; L_z written with velocities, conserved only when isotropic."""
+    """L given with H split; L_z written with velocities, conserved only when isotropic;
+    maybe a point transformation to sheared coordinates (notes (3.39)–(3.47))."""
     wx = _num(draw, 0.8, 1.5)
     wy = wx if draw(st.booleans()) else _num(draw, 0.8, 1.5)
-    return {"kind": "hamiltonian", "params": {"wx": wx, "wy": wy},
-            "system": {"coordinates": ["x", "y"],
-                       "L": "(x_dot**2 + y_dot**2)/2 - (wx**2*x**2 + wy**2*y**2)/2"},
-            "observables": {"Lz": "x*y_dot - y*x_dot"},
-            "initial": {"x": _num(draw, -1.0, 1.0), "y": _num(draw, -1.0, 1.0),
-                        "x_dot": _num(draw, -1.0, 1.0), "y_dot": _num(draw, -1.0, 1.0)},
-            "run": _run(20.0, 801)}
+    config = {"kind": "hamiltonian", "params": {"wx": wx, "wy": wy},
+              "system": {"coordinates": ["x", "y"],
+                         "L": "(x_dot**2 + y_dot**2)/2 - (wx**2*x**2 + wy**2*y**2)/2"},
+              "observables": {"Lz": "x*y_dot - y*x_dot"},
+              "initial": {"x": _num(draw, -1.0, 1.0), "y": _num(draw, -1.0, 1.0),
+                          "x_dot": _num(draw, -1.0, 1.0), "y_dot": _num(draw, -1.0, 1.0)},
+              "run": _run(20.0, 801)}
+    if draw(st.booleans()):
+        shear = _num(draw, -2.0, 2.0)
+        config["point_transform"] = {"coordinates": ["u", "v"], "x": f"u + ({shear})*v",
+                                     "y": "v", "initial": {"u": 0.0, "v": 0.0}}
+    return config
 
 
 def magnetic(draw) -> dict:

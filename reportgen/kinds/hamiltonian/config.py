@@ -11,7 +11,7 @@ from __future__ import annotations
 from typing import ClassVar, Literal
 
 import numpy as np
-from pydantic import Field, model_validator
+from pydantic import ConfigDict, Field, model_validator
 
 from ...lazy import lazy_module
 from ...scene.base import SceneConfig
@@ -158,6 +158,29 @@ class TotalDerivative(Strict):
     F: str = Field(description="F(q, t), a formula in the coordinates, t and the constants")
 
 
+class PointTransform(Strict):
+    """``[point_transform]``: new coordinates q′ with the old written as formulas of them,
+    q = q(q′), e.g. ``coordinates = ["r", "phi"]``, ``x = "r*cos(phi)"``, ``y =
+    "r*sin(phi)"``: L′(q′, q̇′) = L(q(q′), J q̇′) gives the same motion (notes
+    (3.39)–(3.47)).  One key per old coordinate holds its formula."""
+
+    # the old coordinates' formulas are keys named by the config's coordinates
+    model_config = ConfigDict(extra="allow", strict=True, frozen=True, allow_inf_nan=False)
+
+    coordinates: list[str] = Field(min_length=1, max_length=6,
+                                   description="names of the new coordinates q′; each old "
+                                               "coordinate is then a key holding its formula "
+                                               "in the new coordinates and the constants")
+    initial: dict[str, Real] = Field(description="the new coordinates at t = 0: a starting "
+                                                 "point, refined by Newton's method so that "
+                                                 "q(q′) is the initial q (it picks the branch, "
+                                                 "r > 0 or φ near 0) [config units]")
+
+    def formulas(self) -> dict[str, object]:
+        """The old coordinates' formulas as given (the table's other keys)."""
+        return dict(self.model_extra or {})
+
+
 class HamiltonJacobi(Strict):
     """``[hamilton_jacobi]``: compare with the separated quadrature solution (notes §7)."""
 
@@ -197,6 +220,7 @@ class HamiltonianConfig(SceneConfig):
     transform: Transform | None = None
     noether: Noether | None = None
     total_derivative: TotalDerivative | None = None
+    point_transform: PointTransform | None = None
     hamilton_jacobi: HamiltonJacobi | None = None
 
     @model_validator(mode="after")
@@ -329,6 +353,9 @@ class HamiltonianConfig(SceneConfig):
                 raise _problem("total_derivative", "adding dF/dt to L needs the Lagrangian: "
                                "give system.L")
             check("total_derivative.F", self.total_derivative.F, coords + ["t"] + constants)
+        if self.point_transform is not None:
+            _check_point_transform(self.point_transform, sys_, state | set(self.params),
+                                   constants, check)
         hj = self.hamilton_jacobi
         if hj is not None:
             names, constants_needed = SEPARATIONS[hj.separation]
@@ -343,6 +370,54 @@ class HamiltonianConfig(SceneConfig):
                 raise _problem(f"params.{name}", "a constant no formula uses (a misspelt "
                                "name?)", value)
         return self
+
+
+def _check_point_transform(pt: PointTransform, sys_: System, taken: set[str],
+                           constants: list[str], check) -> None:
+    """``[point_transform]``: the Lagrangian is given; the new names are usable, one per
+    old coordinate, and neither an old name nor a constant (nor are their momenta and
+    velocities); every old coordinate, and nothing else, has a formula in the new
+    coordinates and the constants; ``initial`` gives each new coordinate."""
+    coords, new = list(sys_.coordinates), list(pt.coordinates)
+    if sys_.L is None:
+        raise _problem("point_transform", "a point transformation carries the Lagrangian "
+                       "to new coordinates: give system.L")
+    if len(new) != len(coords):
+        raise _problem("point_transform.coordinates", f"needs {len(coords)} new coordinate "
+                       "names, one per coordinate", new)
+    for name in new:
+        if not _usable(name):
+            raise _problem("point_transform.coordinates", _name_rule(name))
+        moved = {name, f"p_{name}", f"{name}_dot"}
+        if moved & taken or new.count(name) > 1:
+            raise _problem("point_transform.coordinates", "new names must be distinct and "
+                           "not an old coordinate, momentum, velocity or constant (nor may "
+                           "their p_<q> and <q>_dot be)", name)
+    alias = expressions.alias_problem(new)
+    if alias is not None:
+        raise _problem("point_transform.coordinates", f"aliased names: {alias}")
+    formulas = pt.formulas()
+    for key, text in formulas.items():
+        if key not in coords:
+            raise _problem(f"point_transform.{key}", "not a key of the table: the old "
+                           f"coordinates ({', '.join(coords)}) each take a formula, besides "
+                           "coordinates and initial", text)
+        if not isinstance(text, str):
+            raise _problem(f"point_transform.{key}", "expected a formula (a string) in the "
+                           f"new coordinates {', '.join(new)} and the constants", text)
+        # no t, no velocity: q = q(q′) (notes (3.39)); anything else is an unknown name
+        check(f"point_transform.{key}", text, new + constants)
+    missing = [c for c in coords if c not in formulas]
+    if missing:
+        raise _problem(f"point_transform.{missing[0]}", "required key is missing (each old "
+                       "coordinate as a formula of the new ones)")
+    for key, value in pt.initial.items():
+        if key not in new:
+            raise _problem(f"point_transform.initial.{key}", "not a new coordinate "
+                           f"(expected {', '.join(new)})", value)
+    missing = [c for c in new if c not in pt.initial]
+    if missing:
+        raise _problem(f"point_transform.initial.{missing[0]}", "required key is missing")
 
 
 #: the two separable presets (explicit keys override)

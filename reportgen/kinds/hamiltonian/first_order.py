@@ -32,6 +32,8 @@ REFUSED = {"section": "a surface of section",
            "transform": "a canonical transformation of (q, p)",
            "noether": "a declared symmetry",
            "total_derivative": "adding dF/dt to L",
+           "point_transform": "a point transformation (integrated through L′'s Legendre "
+                              "transform)",
            "hamilton_jacobi": "a Hamilton–Jacobi separation"}
 
 

@@ -21,6 +21,7 @@ from .config import (
 )
 from .report_canonical import CanonicalSections
 from .report_legendre import LegendreGeometrySections
+from .report_point import PointTransformSections
 from .report_tables import SymbolTables
 from .results import SCHEMA
 from .symbols import dot_tex, split_sum, symbol_parts, symbol_tex, symbol_text, symbol_words
@@ -30,7 +31,8 @@ plots = lazy_module("reportgen.kinds.hamiltonian.plots")
 section_plots = lazy_module("reportgen.rendering.plots.sections")
 
 
-class HamiltonianReport(CanonicalSections, LegendreGeometrySections, SymbolTables, Report):
+class HamiltonianReport(CanonicalSections, LegendreGeometrySections, PointTransformSections,
+                        SymbolTables, Report):
     """The sections of a formula system, drawn from the archive alone."""
 
     schema = SCHEMA
@@ -68,6 +70,8 @@ class HamiltonianReport(CanonicalSections, LegendreGeometrySections, SymbolTable
         Section("noether", "Noether's theorem: the charge of a declared symmetry",
                 integrates=True),
         Section("total_derivative", "Adding a total derivative to L", integrates=True),
+        Section("point_transform", "A point transformation: the same equations in new "
+                "coordinates", integrates=True),
         Section("transform", "Canonical transformation", integrates=True),
         Section("hamilton_jacobi", "Hamilton–Jacobi: the separated quadrature solution",
                 integrates=True),
@@ -85,7 +89,7 @@ class HamiltonianReport(CanonicalSections, LegendreGeometrySections, SymbolTable
                             "initial_state_*",  # shown by name: initial_<column>
                             # the relative error at the crossings is the family's fact
                             "poincare_H_error", "poincare_H_farthest", "noether_*",
-                            "transform_*", "total_derivative_*",
+                            "transform_*", "total_derivative_*", "point_transform_*",
                             "first_order_velocity_*", "first_order_momentum_*")
 
     #: members of a sweep told apart by a legend; more get a colour bar
@@ -192,6 +196,8 @@ class HamiltonianReport(CanonicalSections, LegendreGeometrySections, SymbolTable
             names.remove("noether")
         if "total_derivative_same_equations" not in a:
             names.remove("total_derivative")
+        if "point_transform_covariant" not in a:
+            names.remove("point_transform")
         if "hamilton_jacobi" not in a:
             names.remove("hamilton_jacobi")
         # a surface of section says something only with enough crossings (a closed orbit

@@ -112,6 +112,48 @@ _TOTAL_DERIVATIVE = (
       "largest |H - dF/dt| along the run"),
 )
 
+#: a point transformation q = q(q′) of L (notes (3.39)–(3.47)), its run carried back
+_POINT_TRANSFORM = (
+    _text("point_transform_coordinates", "names of the new coordinates q'", ("new_coordinate",)),
+    _text("point_transform_coordinates_latex", "the new coordinates (TeX)", ("new_coordinate",)),
+    _text("point_transform_old_latex", "each old coordinate as a function of the new (TeX)",
+          ("coordinate",)),
+    _text("point_transform_det_latex", "det J, J = dq/dq' (TeX)"),
+    _text("point_transform_L_latex", "L'(q', q_dot') = L(q(q'), J q_dot') (TeX)"),
+    _text("point_transform_H_latex", "the Hamiltonian of L' (TeX)"),
+    _flag("point_transform_velocity_identity", "whether d q_dot/d q_dot' - dq/dq' simplifies "
+          "to zero (notes (3.42))"),
+    _flag("point_transform_second_identity", "whether d q_dot/dq' - sum_k d2q/dq'_k dq' "
+          "q_dot'_k simplifies to zero (notes (3.43))"),
+    _flag("point_transform_covariant", "whether E_q'(L') - J^T E_q(L) simplifies to zero for "
+          "every new coordinate (notes (3.47))"),
+    _text("point_transform_residual_latex", "E_q'(L') - J^T E_q(L) simplified (TeX)",
+          ("new_coordinate",)),
+    Q("point_transform_initial", r"(q'_0, p'_0)", "1", "initial state of L': q'(0) by "
+      "Newton's method, p' = dL'/dq_dot' at q_dot'(0) = J^-1 q_dot(0)", ("new_column",)),
+    Q("point_transform_det0", r"|\det J|/\prod\|J_k\|", "1", "|det J| at t = 0 relative "
+      "to the product of the lengths of J's columns (1: orthogonal, 0: singular)"),
+    Q("point_transform_det_min", r"\min|\det J|/\prod\|J_k\|", "1", "smallest relative "
+      "|det J| along the run of L'"),
+    Q("point_transform_singular_threshold", "", "1", "relative |det J| below which J is "
+      "called singular"),
+    Q("point_transform_q_difference", r"\max|q(q') - q|/\max|q|", "1", "largest difference "
+      "of the run of L' carried back by q(q') from the main run, relative to max|q|"),
+    Q("point_transform_q_scale", r"\max|q|", "1", "largest |q| of the main run"),
+    Q("point_transform_p_difference", r"\max|p' - J^T p|/\max|p'|", "1", "largest "
+      "difference of the momenta of L' from J^T p of the main run, relative to max|p'|"),
+    Q("point_transform_p_scale", r"\max|p'|", "1", "largest |p'| of the run of L'"),
+    Q("point_transform_samples", "", "1", "samples of the run of L' compared", kind="int"),
+    _text("point_transform_run_status", "the numerical status of the run of L'"),
+    Q("point_transform_nfev", "", "1", "right-hand-side evaluations of the run of L'",
+      kind="int"),
+    Q("point_transform_tolerance", "", "1", "the runs agree below this relative difference: "
+      "1e4 times the larger of the run's rtol and its energy drift"),
+    _flag("point_transform_agree", "whether both relative differences are below "
+          "point_transform_tolerance over the whole run"),
+)
+
+
 def _sphere(name: str, symbol: str, description: str):
     return Q(f"legendre_sphere/{name}", symbol, "1", f"unit sphere, at each tangent point: "
              f"{description}", ("tangent_point",))
@@ -378,6 +420,7 @@ SCHEMA = ResultsSchema(
         *(replace(q, optional=True) for q in _FIRST_ORDER),
         *(replace(q, optional=True) for q in _NOETHER),
         *(replace(q, optional=True) for q in _TOTAL_DERIVATIVE),
+        *(replace(q, optional=True) for q in _POINT_TRANSFORM),
         _text("hj_separation", "the separation of the quadrature solution", optional=True),
         Q("hj_max_difference", r"\max|y_{HJ} - y|", "1",
           "largest difference of the quadrature solution and the integration",

@@ -16,6 +16,7 @@ from ...scene.sweep import PointSet
 from .analysis import HamiltonianAnalysis
 from .config import STUDY_STEPS, HamiltonianConfig, family_energy
 from .legendre_geometry import legendre_geometry
+from .point_transform import PointTransformSimulation
 from .results import SCHEMA, schema_for
 from .structure import HamiltonianStructure
 
@@ -59,7 +60,8 @@ def invariant_scales(system, quantities: dict, cyclic, vals) -> dict[str, float]
     return out
 
 
-class HamiltonianSimulation(HamiltonianStructure, HamiltonianAnalysis, IntegratingSimulation):
+class HamiltonianSimulation(HamiltonianStructure, PointTransformSimulation, HamiltonianAnalysis,
+                            IntegratingSimulation):
     """A system given as H(q, p, t) or L(q, q̇, t): derived, compiled, integrated, checked."""
 
     schema = SCHEMA
@@ -118,6 +120,8 @@ class HamiltonianSimulation(HamiltonianStructure, HamiltonianAnalysis, Integrati
         super().build_models()
         if self.config.system.L is not None:
             self.system()
+        if self.config.point_transform is not None:  # a singular Jacobian is refused here
+            self._point_start()
         if "energy" in self.config.initial:
             ini = dict(self.config.initial)
             energy = ini.pop("energy")
@@ -335,6 +339,8 @@ class HamiltonianSimulation(HamiltonianStructure, HamiltonianAnalysis, Integrati
                     system, {"noether_charge": symmetry[1]}, [], vals)["noether_charge"])
         if self.config.total_derivative is not None:
             self._total_derivative(a, system, main)
+        if self.config.point_transform is not None:
+            self._point_transform(a, system, main)
         if self.config.hamilton_jacobi is not None:
             self._hamilton_jacobi(a, system, main)
         # the study over at most STUDY_STEPS of the main run's steps: long (and chaotic) runs
