@@ -5,7 +5,9 @@ and bonds (CO₂-like, also all three atoms alike), linear X–Y–Z (OCS-like),
 triatomics symmetric (H₂O-like) and not (HOD-like, unequal bonds), linear four-atom
 X–Y–Y–X (C₂H₂-like) and its unsymmetric kin, pyramidal four-atom (NH₃-like), diatomics;
 atoms by element or by mass alone -- then chains (fixed and free ends), coupled pendula
-(two: in and out of phase; more: nodes) and matrices, some with a time evolution.
+(two: in and out of phase; more: nodes), matrices, and potentials written as formulas
+(the double pendulum from L; wells in one to three coordinates with T or M, stable or with
+a flat direction, neutral), some with a time evolution.
 """
 
 from __future__ import annotations
@@ -188,14 +190,48 @@ def matrices(draw):
     return {"M": [[m[i] if i == j else 0.0 for j in range(n)] for i in range(n)], "A": A}
 
 
+_DOUBLE_L = ("(m1 + m2)/2*l1**2*a_dot**2 + m2/2*l2**2*b_dot**2"
+             " + m2*l1*l2*a_dot*b_dot*cos(a - b) + (m1 + m2)*g*l1*cos(a) + m2*g*l2*cos(b)")
+
+
+@st.composite
+def potential(draw):
+    """A system written as formulas: the double pendulum from L (in and out of phase), or a
+    well in one to three coordinates -- stable, or flat along the last coordinate (neutral)
+    -- with a kinetic energy T or a mass matrix M(q); the guess beside the minimum."""
+    if draw(st.booleans()):
+        params = {k: draw(st.floats(0.3, 3.0)) for k in ("m1", "m2", "l1", "l2")}
+        params["g"] = 9.81
+        system = {"coordinates": ["a", "b"], "L": _DOUBLE_L,
+                  "guess": {"a": draw(st.floats(-0.4, 0.4)), "b": draw(st.floats(-0.4, 0.4))}}
+        return {"params": params, "system": system}
+    n = draw(st.integers(1, 3))
+    names = ["x", "y", "z"][:n]
+    flat = n > 1 and draw(st.booleans())  # the last coordinate missing from U: neutral
+    params = {f"k{i}": draw(st.floats(0.5, 4.0)) for i in range(n - flat)}
+    terms = [f"k{i}/2*({c} - 0.5)**2 + {c}**4/4" for i, c in enumerate(names[:n - flat])]
+    if n - flat > 1:
+        params["c"] = draw(st.floats(0.1, 0.4))
+        terms.append(f"c*({names[0]} - {names[1]})**2")
+    system = {"coordinates": names, "U": " + ".join(terms),
+              "guess": {c: draw(st.floats(0.2, 0.8)) for c in names}}
+    if draw(st.booleans()):
+        system["T"] = " + ".join(f"{1 + i}*{c}_dot**2/2" for i, c in enumerate(names))
+    else:
+        system["M"] = [[(f"1 + {c}**2" if i == j else 0.0) for j in range(n)]
+                       for i, c in enumerate(names)]
+    return {"params": params, "system": system}
+
+
 @st.composite
 def configs(draw):
     scene = draw(st.one_of(molecule(), molecule(), molecule(), chain(), pendula(),
-                           matrices()))
+                           matrices(), potential()))
     config = {"kind": "normal_modes", **scene}
     if "evolve" not in config and "atoms" not in config and draw(st.booleans()):
         n = (config["chain"]["n"] if "chain" in config else
-             config["pendula"]["n"] if "pendula" in config else len(config["M"]))
+             config["pendula"]["n"] if "pendula" in config else
+             len(config["system"]["coordinates"]) if "system" in config else len(config["M"]))
         config["evolve"] = {"displacement": [0.05 * (s + 1) for s in range(n)],
                             "t_end": draw(st.floats(2.0, 10.0))}
     if "evolve" in config:

@@ -1,5 +1,5 @@
-"""``normal_modes`` config: the system (a molecule, M and A, a chain or coupled pendula),
-the optional time evolution, presets.
+"""``normal_modes`` config: the system (a molecule, M and A, a chain, coupled pendula, or a
+potential written as formulas), the optional time evolution, presets.
 
 Atom indices in ``[[bonds]]`` and ``[[angles]]`` are zero-based.
 """
@@ -7,6 +7,7 @@ Atom indices in ``[[bonds]]`` and ``[[angles]]`` are zero-based.
 from __future__ import annotations
 
 import math
+import re
 from typing import Any, Literal
 
 import numpy as np
@@ -20,6 +21,7 @@ from .results import MOLECULAR_OMEGA
 
 core = lazy_module("reportgen.core.normal_modes")
 geometry = lazy_module("reportgen.core.molecule_geometry")  # no scipy: validation uses it
+expressions = lazy_module("reportgen.core.expressions")  # no SymPy: validation uses it
 
 #: ω_max / ω_min (non-zero) at or above which direct integration is treated as stiff
 STIFF_RATIO = 1e3
@@ -70,16 +72,42 @@ class Pendula(Strict):
     k: Positive = Field(description="coupling spring between neighbouring bobs [N/m]")
 
 
+class Potential(Strict):
+    """``[system]``: small oscillations from formulas in named coordinates (textbook §5.1).
+
+    A Lagrangian L(q, q̇), or a potential U(q) with a kinetic energy T(q, q̇) or a mass
+    matrix M(q), in the coordinates and the constants of ``[params]``.  The equilibrium is
+    sought from ``guess``; A = ∂²U/∂q∂q and M are taken there."""
+
+    coordinates: list[str] = Field(min_length=1, max_length=12,
+                                   description="names of the generalized coordinates q")
+    L: str | None = Field(None, description="Lagrangian L(q, q̇) in q, <q>_dot and the "
+                                            "constants: U = −L(q, 0), M = ∂²L/∂q̇∂q̇")
+    U: str | None = Field(None, description="potential energy U(q) in q and the constants")
+    T: str | None = Field(None, description="kinetic energy T(q, q̇), a quadratic form in "
+                                            "<q>_dot (with U)")
+    M: list[list[str | Real]] | None = Field(
+        None, description="mass matrix M(q) row by row (with U): each entry a number or a "
+                          "formula in q and the constants [config units]")
+    guess: dict[str, Real] = Field(
+        default_factory=dict, description="where the search for the equilibrium starts: a "
+                                          "value per coordinate (default 0) [per "
+                                          "`system.coordinate_unit`: rad or m]")
+    coordinate_unit: Literal["rad", "m"] | None = Field(
+        None, description='with units = "SI": the coordinates are angles (rad) or lengths (m)')
+
+
 class Evolve(Strict):
     """``[evolve]``: a time evolution from an initial displacement and velocity."""
 
     displacement: list[Real] | list[list[Real]] = Field(
         description="initial displacement from equilibrium: one number per coordinate, or "
                     "[dx, dy, dz] per atom [per `units`: Å or m or dimensionless; rad for "
-                    "pendula]")
+                    "pendula; the coordinate_unit of formulas]")
     velocity: list[Real] | list[list[Real]] | None = Field(
         None, description="initial velocity (same shape; default at rest) "
-                          "[per `units`: Å/τ or m/s or dimensionless; rad/s for pendula]")
+                          "[per `units`: Å/τ or m/s or dimensionless; rad/s for pendula; the "
+                          "coordinate_unit of formulas per s]")
     t_end: Positive = Field(description="end time of the evolution "
                                         "[per `units`: τ = 4.075 fs or s or dimensionless]")
 
@@ -119,8 +147,28 @@ TABLE_UNITS = {
            ("evolve", "displacement"): "m", ("evolve", "velocity"): "m/s"},
     "molecular": {("evolve", "displacement"): "Å", ("evolve", "velocity"): f"{1 / _TAU!r} Å/s"},
 }
+#: a potential's coordinates in SI: its evolution's numbers in their unit
+_SYSTEM_EVOLVE = {unit: {("evolve", "displacement"): unit, ("evolve", "velocity"): f"{unit}/s"}
+                  for unit in ("rad", "m")}
 #: pendula move by angles
 _PENDULA_EVOLVE = {("evolve", "displacement"): "rad", ("evolve", "velocity"): "rad/s"}
+
+
+_GREEK = {"alpha": "α", "beta": "β", "gamma": "γ", "delta": "δ", "epsilon": "ε", "zeta": "ζ",
+          "eta": "η", "theta": "θ", "iota": "ι", "kappa": "κ", "lambda": "λ", "mu": "μ",
+          "nu": "ν", "xi": "ξ", "rho": "ρ", "sigma": "σ", "tau": "τ", "phi": "φ",
+          "chi": "χ", "psi": "ψ", "omega": "ω"}
+_INDEX = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+
+
+def name_as_symbol(name: str) -> str:
+    """A coordinate's name as the symbol a title shows: ``theta1`` -> θ₁, ``x`` -> x (a
+    Greek letter spelt out, trailing digits as subscripts; other names as written)."""
+    found = re.fullmatch(r"([A-Za-z]+?)_?(\d*)", name)
+    if found is None:
+        return name
+    head, index = found.groups()
+    return _GREEK.get(head, head) + index.translate(_INDEX)
 
 
 def unit_system(config) -> str:
@@ -133,9 +181,10 @@ def unit_system(config) -> str:
 
 def system_of(config) -> str:
     """Which way ``config`` (the validated config, or an archive's resolved one) gives the
-    system: molecule, chain, pendula or matrices."""
+    system: molecule, chain, pendula, potential (formulas in ``[system]``) or matrices."""
     return ("molecule" if config.atoms else "chain" if config.chain is not None
-            else "pendula" if config.pendula is not None else "matrices")
+            else "pendula" if config.pendula is not None
+            else "potential" if getattr(config, "system", None) is not None else "matrices")
 
 
 class NormalModesConfig(SceneConfig):
@@ -149,6 +198,10 @@ class NormalModesConfig(SceneConfig):
                                                          "[per `units`: N/m or k₀]")
     chain: Chain | None = None
     pendula: Pendula | None = None
+    system: Potential | None = None
+    params: dict[str, Real] = Field(default_factory=dict,
+                                    description="named constants of the system's formulas "
+                                                "[config units]")
     evolve: Evolve | None = None
     run: NormalModesRun | None = None
     units: Literal["SI", "molecular", "dimensionless"] | None = Field(
@@ -175,6 +228,9 @@ class NormalModesConfig(SceneConfig):
         paths = dict(TABLE_UNITS[system])
         if data.get("pendula") is not None and not data.get("atoms"):
             paths.update(_PENDULA_EVOLVE)
+        formulas = data.get("system")
+        if isinstance(formulas, dict) and formulas.get("coordinate_unit") in _SYSTEM_EVOLVE:
+            paths.update(_SYSTEM_EVOLVE[formulas["coordinate_unit"]])
         for table in ("evolve", "run"):
             paths[(table, "t_end")] = _RUN_TIME[system]
         paths[("run", "h")] = _RUN_TIME[system]
@@ -197,10 +253,15 @@ class NormalModesConfig(SceneConfig):
     def _physics(self):
         sources = [name for name, present in (
             ("atoms", bool(self.atoms)), ("M/A", self.M is not None or self.A is not None),
-            ("chain", self.chain is not None), ("pendula", self.pendula is not None)) if present]
+            ("chain", self.chain is not None), ("pendula", self.pendula is not None),
+            ("system", self.system is not None)) if present]
         if len(sources) != 1:
-            raise ValueError("atoms / M and A / chain / pendula: give exactly one system "
-                             f"(got {', '.join(sources) or 'none'})")
+            raise ValueError("atoms / M and A / chain / pendula / system: give exactly one "
+                             f"system (got {', '.join(sources) or 'none'})")
+        if self.params and self.system is None:
+            name, value = next(iter(self.params.items()))
+            raise ValueError(f"params.{name}: named constants are for the formulas of "
+                             f"[system], which this config does not give (got {value!r})")
         if (self.bonds or self.angles) and not self.atoms:
             raise ValueError("bonds / angles: need [[atoms]]")
         if self.run is not None and self.evolve is None:
@@ -224,6 +285,8 @@ class NormalModesConfig(SceneConfig):
             self._check_molecule()
         elif sources == ["M/A"]:
             self._check_matrices()
+        elif self.system is not None:
+            self._check_potential()
         if self.evolve is not None:
             n = self.n_coordinates
             for key in ("displacement", "velocity"):
@@ -251,6 +314,8 @@ class NormalModesConfig(SceneConfig):
             return self.chain.n
         if self.pendula is not None:
             return self.pendula.n
+        if self.system is not None:
+            return len(self.system.coordinates)
         return len(self.M)
 
     def _check_molecule(self):
@@ -302,6 +367,81 @@ class NormalModesConfig(SceneConfig):
                                  "zero-based)")
         if len(set(idx)) != count:
             raise ValueError(f"{key}: repeated atom index in {idx}")
+
+    def _check_potential(self):
+        """Names and formulas of ``[system]`` against the allow-list (no SymPy: the
+        equilibrium itself is sought when the models are built, so ``validate`` refuses what
+        ``run`` would)."""
+        sys_ = self.system
+        coords = list(sys_.coordinates)
+        for c in coords:
+            problem = expressions.name_problem(c)
+            if problem is not None:
+                raise ValueError(f"system.coordinates: not a usable name: {problem}")
+        if len(set(coords)) != len(coords):
+            raise ValueError(f"system.coordinates: names must not repeat (got {coords})")
+        alias = expressions.alias_problem(coords)
+        if alias is not None:
+            raise ValueError(f"system.coordinates: aliased names: {alias}")
+        velocities = [f"{c}_dot" for c in coords]
+        if len(self.params) > expressions.MAX_CONSTANTS:
+            raise ValueError(f"params: at most {expressions.MAX_CONSTANTS} named constants "
+                             f"(got {len(self.params)})")
+        for name, value in self.params.items():
+            problem = expressions.name_problem(name)
+            if problem is not None:
+                raise ValueError(f"params.{name}: not a usable name: {problem}")
+            if name in coords or name in velocities:
+                raise ValueError(f"params.{name}: a constant may not take the name of a "
+                                 f"coordinate or velocity (got {value!r})")
+        if sys_.L is not None and (sys_.U, sys_.T, sys_.M) != (None, None, None):
+            raise ValueError("system: give L alone, or U with one of T and M (got L and "
+                             + ", ".join(k for k in ("U", "T", "M")
+                                         if getattr(sys_, k) is not None) + ")")
+        if sys_.L is None and (sys_.U is None or (sys_.T is None) == (sys_.M is None)):
+            given = [k for k in ("U", "T", "M") if getattr(sys_, k) is not None]
+            raise ValueError("system: give L alone, or U with one of T and M (got "
+                             f"{', '.join(given) or 'none'})")
+        constants = list(self.params)
+        used: set[str] = set()
+
+        def check(key: str, text: str, names: list[str]) -> None:
+            try:
+                used.update(expressions.check_expression(text, names + constants))
+            except expressions.ExpressionError as exc:
+                hint = ("; small oscillations are about a time-independent equilibrium"
+                        if "'t'" in str(exc) else "")
+                raise ValueError(f"{key}: {exc}{hint}") from None
+
+        for key in ("L", "T"):
+            if getattr(sys_, key) is not None:
+                check(f"system.{key}", getattr(sys_, key), coords + velocities)
+        if sys_.U is not None:
+            check("system.U", sys_.U, coords)
+        if sys_.M is not None:
+            n = len(coords)
+            if len(sys_.M) != n or any(len(row) != n for row in sys_.M):
+                raise ValueError(f"system.M: must be {n} × {n}, one row of {n} entries per "
+                                 f"coordinate (got {[len(row) for row in sys_.M]} entries "
+                                 "per row)")
+            for i, row in enumerate(sys_.M):
+                for j, entry in enumerate(row):
+                    if isinstance(entry, str):
+                        check(f"system.M.{i}.{j}", entry, coords)
+        for name, value in self.params.items():
+            if name not in used:
+                raise ValueError(f"params.{name}: a constant no formula uses (a misspelt "
+                                 f"name?) (got {value!r})")
+        for name, value in sys_.guess.items():
+            if name not in coords:
+                raise ValueError(f"system.guess.{name}: not a coordinate of the system "
+                                 f"(expected {', '.join(coords)}; got {value!r})")
+        if self.units == "SI" and sys_.coordinate_unit is None:
+            raise ValueError('system.coordinate_unit: units = "SI" needs the coordinates\' '
+                             'unit: "rad" (angles) or "m" (lengths)')
+        if self.units != "SI" and sys_.coordinate_unit is not None:
+            raise ValueError(f"system.coordinate_unit: only with units = \"SI\" (got "
+                             f"{sys_.coordinate_unit!r} with {unit_system(self)!r} units)")
 
     def _check_matrices(self):
         if self.M is None or self.A is None:

@@ -12,14 +12,15 @@ from ...scene.base import Section
 from ...scene.content import SectionContent, Table, fmt, fmt_err
 from ...scene.report import Report
 from ...scene.schema import ResultsSchema, unit_text
-from .config import SHAPES_SHOWN, STIFF_RATIO, system_of
+from .config import SHAPES_SHOWN, STIFF_RATIO, system_of, unit_system
+from .report_potential import PotentialReport
 from .results import MOLECULAR_OMEGA, SCHEMA, schema_for, units
 
 plots = lazy_module("reportgen.kinds.normal_modes.plots")
 common_plots = lazy_module("reportgen.rendering.plots.common")
 
 
-class NormalModesReport(Report):
+class NormalModesReport(PotentialReport, Report):
     """The normal modes' sections; units follow the system's (:func:`schema_for`)."""
 
     schema = SCHEMA
@@ -55,6 +56,9 @@ class NormalModesReport(Report):
                             "the closed form where the system has one."),
     )
     sections = (
+        Section("equilibrium", "Equilibrium and the expansion of U",
+                description="a written potential's stationary point found from the guess, "
+                            "its stability, and M and A = ∂²U/∂q∂q there"),
         Section("spectrum", "Frequency spectrum",
                 description="eigenfrequencies ω of A η = ω² M η, ascending, with their types"),
         Section("mode_shapes", "Mode shapes",
@@ -97,6 +101,8 @@ class NormalModesReport(Report):
         names = [s.name for s in cls.sections]
         if data.analysis["source"] != "molecule":
             names.remove("counting")
+        if data.analysis["source"] != "potential":
+            names.remove("equilibrium")
         if "main" not in data.runs:
             names = [n for n in names if n not in ("evolution", "error_vs_runtime")]
         return names
@@ -105,7 +111,21 @@ class NormalModesReport(Report):
     def _schema(data) -> ResultsSchema:
         """The declared results in the units of this archive's system."""
         analysis = getattr(data, "analysis", None) or {}
-        return schema_for(system_of(data.config), system=analysis.get("unit_system"))
+        system, coordinates = analysis.get("unit_system"), analysis.get("coordinate_unit")
+        if getattr(data, "sweep", None) is not None:  # a family keeps no strings: its config's
+            system = unit_system(data.config)
+            if system_of(data.config) == "potential":
+                coordinates = data.config.system.get("coordinate_unit")
+        return schema_for(system_of(data.config), system=system, coordinate_unit=coordinates)
+
+    @classmethod
+    def result_quantity(cls, data, name):
+        """A declared result in this archive's units (a family's too), else the shared
+        reading."""
+        try:
+            return cls._schema(data).quantity(name)
+        except KeyError:
+            return super().result_quantity(data, name)
 
     @staticmethod
     def _in_tau(data) -> bool:
@@ -143,7 +163,8 @@ class NormalModesReport(Report):
     def _units(data) -> dict[str, str]:
         """This archive's units as printed ("dimensionless" for a pure number)."""
         a = data.analysis
-        return {k: unit_text(v) for k, v in units(a["source"], a.get("unit_system")).items()}
+        return {k: unit_text(v) for k, v in units(a["source"], a.get("unit_system"),
+                                                  a.get("coordinate_unit")).items()}
 
     @staticmethod
     def _with_unit(text: str, unit: str) -> str:
@@ -161,7 +182,10 @@ class NormalModesReport(Report):
         """Whether the system is a molecule (its valence force field explained) or pendula,
         a chain or given matrices."""
         a = data.analysis
-        return {"molecule": a.get("source") == "molecule", "linear": bool(a.get("linear"))}
+        return {"molecule": a.get("source") == "molecule", "linear": bool(a.get("linear")),
+                "potential": a.get("source") == "potential",
+                "lagrangian": a.get("given") == "L",
+                "neutral": a.get("equilibrium_stability") == "neutral"}
 
     @classmethod
     def describe(cls, data):
@@ -185,6 +209,8 @@ class NormalModesReport(Report):
         if a["source"] == "pendula":
             return (f"Small oscillations of {n} pendula coupled by springs" if n != 1
                     else "Small oscillations of a pendulum")
+        if a["source"] == "potential":
+            return cls.potential_describe(data)
         return f"Small oscillations of a system given by its matrices M and A ({n} coordinates)"
 
     @classmethod
@@ -194,6 +220,8 @@ class NormalModesReport(Report):
         out = [("system", cls._describe(a)),
                ("vibrations", f"{int(a['n_vibrational'])} of {int(a['n_dof'])} coordinates "
                               f"({z} zero modes)")]
+        if a["source"] == "potential":
+            out += cls.potential_headline(data)
         if a.get("linear") and "n_longitudinal" in a:
             out.append(("along and across the axis",
                         f"{int(a['n_longitudinal'])} longitudinal (n − 1), "
@@ -208,7 +236,8 @@ class NormalModesReport(Report):
             out.append(("wavenumbers ν̃ = ω/2πc", ", ".join(fmt(x, 4) for x in nu[:8])
                         + (" …" if nu.size > 8 else "") + " cm⁻¹"))
         if "unit_system" in a:
-            out.append(("units", UNIT_WORDS[str(a["unit_system"])]))
+            out.append(("units", UNIT_WORDS["SI, rad"] if a.get("coordinate_unit") == "rad"
+                        else UNIT_WORDS[str(a["unit_system"])]))
         if "closed_form_max_rel_error" in a:
             out.append(("max relative error against the closed form",
                         fmt_err(a["closed_form_max_rel_error"])))
@@ -233,6 +262,10 @@ class NormalModesReport(Report):
             return f"chain of {int(a['n_dof'])} masses"
         if src == "pendula":
             return f"{int(a['n_dof'])} coupled pendula"
+        if src == "potential":
+            return {"L": "a Lagrangian", "T": "a potential and a kinetic energy",
+                    "M": "a potential and a mass matrix"}[str(a["given"])] + (
+                f" in {int(a['n_dof'])} coordinates")
         return f"M and A given ({int(a['n_dof'])} coordinates)"
 
     @classmethod
@@ -399,7 +432,9 @@ class NormalModesReport(Report):
             figs.append(cls.figure("modes", fig, cap))
         else:
             shown = min(modes.shape[1], SHAPES_SHOWN)
-            fig = plots.matrix_modes(modes[:, :shown], titles[:shown], list(a["coordinate_names"]))
+            names = (cls.coordinate_texts(data) if "coordinate_symbols" in a
+                     else list(a["coordinate_names"]))
+            fig = plots.matrix_modes(modes[:, :shown], titles[:shown], names)
             figs.append(cls.figure("modes", fig, "Components of each mode η (normalized to the "
                                    "largest)."))
         return SectionContent(figures=figs)
@@ -486,7 +521,9 @@ class NormalModesReport(Report):
         show.sort()
         schema = cls._schema(data)
         unit = cls._units(data)["q"]
-        names = [cls._with_unit(run.columns[i].replace("phi", "φ"), unit) for i in show]
+        words = (cls.coordinate_texts(data) if "coordinate_symbols" in a
+                 else [c.replace("phi", "φ") for c in run.columns[:n]])
+        names = [cls._with_unit(words[i], unit) for i in show]
         t, t_unit = run.t, unit_text(schema.time.unit)
         if cls._in_tau(data):  # the time axis in femtoseconds, not in units of 4.075 fs
             t, t_unit = run.t * FS_PER_TAU, "fs"
@@ -514,6 +551,8 @@ PARITY_WORDS = {"g": "even (g)", "u": "odd (u)"}
 #: each unit system in words, as the report states it
 UNIT_WORDS = {
     "SI": "SI: kg, m, N/m and s (ω in rad/s)",
+    "SI, rad": "SI: kg, m, J and s, the coordinates angles in rad (M in kg m², A in J, ω in "
+               "rad/s)",
     "molecular": "molecular: masses in u, lengths in Å, force constants in mdyn/Å; ω in rad/s "
                  f"(one unit of the eigenproblem is √((mdyn/Å)/u) = {fmt(MOLECULAR_OMEGA, 4)} rad/s); "
                  f"times in τ = √(u/(mdyn/Å)) = {fmt(FS_PER_TAU, 4)} fs",

@@ -40,31 +40,35 @@ _TAU_FS = f"{1e15 / MOLECULAR_OMEGA:.4g} fs"  # the molecular time unit τ, 4.07
 
 _SI = {"time": "s", "omega": "rad/s", "omega2": "1/s^2", "omega4": "1/s^4", "q": "rad",
        "p": "kg m^2/s", "energy": "J", "mass": "kg m^2", "stiffness": "J",
-       "mode": "kg^-0.5/m"}
+       "mode": "kg^-0.5/m", "gradient": "J"}
 _SI_LENGTHS = {"time": "s", "omega": "rad/s", "omega2": "1/s^2", "omega4": "1/s^4",
                "q": "m", "p": "kg m/s", "energy": "J", "mass": "kg", "stiffness": "N/m",
-               "mode": "kg^-0.5"}
+               "mode": "kg^-0.5", "gradient": "N"}
 _MOLECULAR = {"time": _TAU_FS, "omega": "rad/s", "omega2": "1/s^2", "omega4": "1/s^4",
               "q": "Å", "p": f"u Å/({_TAU_FS})", "energy": "aJ", "mass": "u",
-              "stiffness": "mdyn/Å", "mode": "u^-0.5"}
+              "stiffness": "mdyn/Å", "mode": "u^-0.5", "gradient": "mdyn"}
 _DIMENSIONLESS = dict.fromkeys(_SI_LENGTHS, "1")
 #: an archive without a unit system: the config's own units, unnamed
 _OWN = {"time": "time unit", "omega": "1/time unit", "omega2": "1/time unit^2",
         "omega4": "1/time unit^4", "q": "length unit", "p": "momentum unit",
         "energy": "energy unit", "mass": "mass unit",
-        "stiffness": "energy unit/length unit^2", "mode": "mass unit^-0.5"}
+        "stiffness": "energy unit/length unit^2", "mode": "mass unit^-0.5",
+        "gradient": "energy unit/length unit"}
 
 
-def units(source: str, system: str | None = None) -> dict[str, str]:
+def units(source: str, system: str | None = None,
+          coordinate_unit: str | None = None) -> dict[str, str]:
     """The units of a system given as ``source`` ("molecule", "chain", "pendula",
-    "matrices") in the unit ``system`` (one of :data:`UNIT_SYSTEMS`; None: an archive
-    written before them): time, omega, omega2, omega4, q, p, energy, mass, stiffness,
-    mode; a molecule's atoms also atom_mass and length."""
+    "potential", "matrices") in the unit ``system`` (one of :data:`UNIT_SYSTEMS`; None: an
+    archive written before them): time, omega, omega2, omega4, q, p, energy, mass,
+    stiffness, mode, gradient (∂U/∂q); a molecule's atoms also atom_mass and length.
+    ``coordinate_unit``: a potential's coordinates in SI, "rad" (angles, as pendula's) or
+    "m"."""
     if system is None:
         u = _SI if source in SI_SOURCES else _OWN
         return {**u, "atom_mass": "mass unit", "length": "length unit"}
     if system == "SI":
-        u = _SI if source == "pendula" else _SI_LENGTHS
+        u = _SI if source == "pendula" or coordinate_unit == "rad" else _SI_LENGTHS
         return {**u, "atom_mass": "kg", "length": "m"}
     if system == "molecular":
         return {**_MOLECULAR, "atom_mass": "u", "length": "Å"}
@@ -77,21 +81,24 @@ def omega_scale(system: str | None) -> float:
 
 
 def schema_for(source: str, coordinates: tuple[str, ...] = (),
-               system: str | None = None) -> ResultsSchema:
+               system: str | None = None, coordinate_unit: str | None = None,
+               symbols: tuple[str, ...] = ()) -> ResultsSchema:
     """The results of a system given as ``source`` in the unit ``system`` with the run
     columns ``coordinates`` (the coordinates, then ``p_<coordinate>``, of an ``[evolve]``
-    run)."""
-    u = units(source, system)
+    run), ``symbols`` their TeX (default: the names); ``coordinate_unit`` a potential's
+    coordinates' unit in SI."""
+    u = units(source, system, coordinate_unit)
     t = ("t",)
+    tex = dict(zip(coordinates, symbols or coordinates, strict=True))
     return ResultsSchema(
         time=Q("t", "t", u["time"], "time", t),
-        columns=(*(Q(c, c, u["q"], f"coordinate {c}", t) for c in coordinates),
-                 *(Q(f"p_{c}", f"p_{{{c}}}", u["p"], f"momentum conjugate to {c}", t)
+        columns=(*(Q(c, tex[c], u["q"], f"coordinate {c}", t) for c in coordinates),
+                 *(Q(f"p_{c}", f"p_{{{tex[c]}}}", u["p"], f"momentum conjugate to {c}", t)
                    for c in coordinates)),
         invariants=(Q("energy", "E", u["energy"], "energy of the small oscillations", t),),
         analysis=(
-            Q("source", "", "", "how the system is given: molecule, chain, pendula or "
-              "matrices", kind="str"),
+            Q("source", "", "", "how the system is given: molecule, chain, pendula, "
+              "potential or matrices", kind="str"),
             Q("unit_system", "", "", "the config's units: SI, molecular or dimensionless",
               kind="str", optional=True),
             Q("wavenumbers", r"\tilde\nu", "1/cm", "wavenumbers omega/(2 pi c) of a molecule "
@@ -189,6 +196,8 @@ def schema_for(source: str, coordinates: tuple[str, ...] = (),
             Q("standing_waves/amplitude", "", "1", "closed-form standing wave of each of the "
               "lowest modes, largest value at the masses 1", ("wave_point", "shown_mode"),
               optional=True),
+            # a potential written as formulas ([system]): its equilibrium
+            *potential_results(u),
             # [evolve]
             Q("evolution_max_error", r"\max|q - q_\mathrm{modal}|", u["q"],
               "largest difference of direct integration against modal superposition",
@@ -201,6 +210,51 @@ def schema_for(source: str, coordinates: tuple[str, ...] = (),
             Q("study_t_end", r"t_{study}", u["time"], "end of the error-against-run-time "
               "study's integration", optional=True),
         ),
+    )
+
+
+def potential_results(u: dict[str, str]) -> tuple[Q, ...]:
+    """The results of a potential written as formulas (``[system]``), in the units ``u``."""
+    return (
+        Q("given", "", "", "how the system is written: L (a Lagrangian), T (U with a kinetic "
+          "energy) or M (U with a mass matrix)", kind="str", optional=True),
+        Q("coordinate_unit", "", "", "the coordinates' unit in SI: rad or m", kind="str",
+          optional=True),
+        Q("coordinate_symbols", "", "", "each coordinate's symbol (TeX)", ("coordinate",),
+          kind="str", optional=True),
+        Q("lagrangian_latex", "", "", "the Lagrangian as written, simplified (TeX)",
+          kind="str", optional=True),
+        Q("potential_latex", "", "", "the potential energy U(q) (TeX)", kind="str",
+          optional=True),
+        Q("kinetic_latex", "", "", "the kinetic energy T(q, q_dot) as written (TeX)",
+          kind="str", optional=True),
+        Q("equilibrium_guess", r"q_\mathrm{guess}", u["q"], "where the search for the "
+          "equilibrium started", ("coordinate",), optional=True),
+        Q("equilibrium", "q_0", u["q"], "the equilibrium: the stationary point of U found "
+          "from the guess", ("coordinate",), optional=True),
+        Q("equilibrium_potential", "U(q_0)", u["energy"], "the potential energy at the "
+          "equilibrium", optional=True),
+        Q("equilibrium_gradient", r"\partial U/\partial q", u["gradient"], "the gradient of U "
+          "at the equilibrium", ("coordinate",), optional=True),
+        Q("equilibrium_gradient_norm", r"|\nabla U|", u["gradient"], "the norm of the gradient "
+          "of U at the equilibrium", optional=True),
+        Q("equilibrium_residual", r"\max|\partial U/\partial q_i|/s_i", "1",
+          "largest |dU/dq_i| at the equilibrium relative to the size of its parts plus the "
+          "curvature times the distance searched", optional=True),
+        Q("equilibrium_residual_tol", "", "1", "the relative gradient below which a point is "
+          "stationary", optional=True),
+        Q("equilibrium_evaluations", "", "1", "evaluations of the gradient in the search",
+          kind="int", optional=True),
+        Q("hessian_positive_definite", "", "", "whether A is positive definite at the "
+          "equilibrium (every omega^2 > 0: a minimum of U)", kind="bool", optional=True),
+        Q("equilibrium_stability", "", "", "stable (A positive definite) or neutral (A "
+          "positive semidefinite with zero eigenvalues, within 1e-10 of the largest)",
+          kind="str", optional=True),
+        Q("hessian_finite_difference", r"\max|A_\mathrm{fd} - A|/\max|A|", "1",
+          "largest difference of a central second difference of U from the symbolic A",
+          optional=True),
+        Q("finite_difference_step", "h", u["q"], "the step of that central difference",
+          optional=True),
     )
 
 

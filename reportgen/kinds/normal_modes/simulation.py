@@ -1,5 +1,6 @@
 """``normal_modes`` simulation: the generalized eigenproblem A η = ω² M η of a molecule,
-matrices, a chain or coupled pendula; zero modes projected out, vibrations counted and
+matrices, a chain, coupled pendula or a written potential (its equilibrium found first,
+:mod:`.simulation_potential`); zero modes projected out, vibrations counted and
 classified, closed forms checked; with ``[evolve]``, the time evolution by modal
 superposition (exact) and by direct integration of M q̈ + A q = 0."""
 
@@ -24,12 +25,13 @@ from .config import (
     unit_system,
 )
 from .results import LIGHT_CM_PER_S, SCHEMA, omega_scale, schema_for, units
+from .simulation_potential import PotentialSimulation
 
 core = lazy_module("reportgen.core.normal_modes")
 linear_chain = lazy_module("reportgen.core.models.linear_chain")
 
 
-class NormalModesSimulation(IntegratingSimulation):
+class NormalModesSimulation(PotentialSimulation, IntegratingSimulation):
     """Small oscillations about a stable equilibrium (textbook ch. 5, §5.1)."""
 
     schema = SCHEMA
@@ -52,8 +54,11 @@ class NormalModesSimulation(IntegratingSimulation):
     def results_schema(self) -> ResultsSchema:
         """The results in this system's units, with its coordinates as the evolution's
         columns."""
-        return schema_for(self.system(), tuple(self.coordinate_names()),
-                          unit_system(self.config))
+        c = self.config
+        if c.system is not None:  # a written potential: its coordinates' own symbols
+            return schema_for("potential", tuple(self.coordinate_names()), unit_system(c),
+                              c.system.coordinate_unit, tuple(self.coordinate_symbols()))
+        return schema_for(self.system(), tuple(self.coordinate_names()), unit_system(c))
 
     # ------------------------------------------------------------------ system
     def molecule(self) -> core.Molecule:
@@ -81,6 +86,8 @@ class NormalModesSimulation(IntegratingSimulation):
             return [f"q{s + 1}" for s in range(c.chain.n)]
         if c.pendula is not None:
             return [f"phi{s + 1}" for s in range(c.pendula.n)]
+        if c.system is not None:
+            return list(c.system.coordinates)
         return [f"q{s + 1}" for s in range(len(c.M))]
 
     def matrices(self) -> tuple[np.ndarray, np.ndarray]:
@@ -94,6 +101,9 @@ class NormalModesSimulation(IntegratingSimulation):
         if c.pendula is not None:
             p = c.pendula
             return core.pendula_matrices(p.n, p.m, p.l, p.g, p.k)
+        if c.system is not None:  # M and A at the equilibrium found (textbook §5.1)
+            found = self.equilibrium()
+            return found.M, found.A
         return np.array(c.M, dtype=float), np.array(c.A, dtype=float)
 
     def exact_frequencies(self) -> tuple[np.ndarray, str] | None:
@@ -108,6 +118,8 @@ class NormalModesSimulation(IntegratingSimulation):
             p = c.pendula
             return (core.pendula_exact_frequencies(p.n, p.m, p.l, p.g, p.k),
                     "ωⱼ² = g/l + (4k/m) sin²(jπ/(2N)) (Goldstein §6.3 for N = 2)")
+        if c.system is not None:
+            return self.exact_potential_frequencies()
         return None
 
     # -------------------------------------------------------------- simulation
@@ -132,6 +144,13 @@ class NormalModesSimulation(IntegratingSimulation):
         stiff = bool(ratio >= STIFF_RATIO)
         return linear_chain.model(M, A, self.coordinate_names(), stiff_hint=stiff,
                                   omega_max=float(modes.omega.max())), stiff
+
+    def build_models(self) -> None:
+        """As every kind's, and a written potential's equilibrium sought, so that ``validate``
+        refuses a potential with no stable equilibrium near its guess, as ``run`` would."""
+        super().build_models()
+        if self.config.system is not None:
+            self.equilibrium()
 
     def models(self) -> list:
         """The linear model of the [evolve] run; none without [evolve]."""
@@ -172,8 +191,11 @@ class NormalModesSimulation(IntegratingSimulation):
             if inversion is not None:  # a centre of symmetry: each mode even (g) or odd (u)
                 a["mode_parity"] = parity
             named = naming.mode_names(modes, mol, self.elements(), parity)
-        a["mode_type"] = core.classify_modes(modes, M, system, mol, rigid_labels,
-                                             named[0] if named else None)
+        a["mode_type"] = (self.potential_mode_types(modes) if system == "potential" else
+                          core.classify_modes(modes, M, system, mol, rigid_labels,
+                                              named[0] if named else None))
+        if system == "potential":
+            self.potential_analysis(results)
         a["stiffness_ratio"] = self._stiffness_ratio(modes)
         if mol is not None:
             if unit_system(c) != "dimensionless":
@@ -395,7 +417,8 @@ class NormalModesSimulation(IntegratingSimulation):
             "6, A-stable and symplectic)"
             if stiff else f"ωₘₐₓ/ωₘᵢₙ = {fmt(ratio, 3)} < {fmt(STIFF_RATIO)}: not stiff")
         c_idx = int(np.argmax(np.max(np.abs(ref[:, :n]), axis=0)))
-        name = self.coordinate_names()[c_idx].replace("phi", "φ")
+        name = (self.coordinate_words() if self.config.system is not None else
+                [n.replace("phi", "φ") for n in self.coordinate_names()])[c_idx]
         results.checks.append(Check(f"{name}(t_end), direct integration",
                                     float(main.y[-1, c_idx]), float(ref[-1, c_idx]), "",
                                     "modal superposition q = Σ ηₖ aₖ cos ωₖt (textbook §5.1)"))
