@@ -37,7 +37,7 @@ run: setup
 	$(BIN)/reportgen run configs/ --out output
 
 lint: setup-test
-	$(BIN)/ruff check reportgen tests benchmarks
+	$(BIN)/ruff check reportgen tests benchmarks docs
 
 test: setup-test lint
 	$(BIN)/python -m pytest -q --durations=25

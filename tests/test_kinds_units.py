@@ -1,8 +1,8 @@
 """Units at the edges and `reportgen kinds` (issue 32): every numeric key that `reportgen
 kinds` lists declares its unit; the brackets newly given accept unit text where they
 should and refuse it where the kind works in the config's own units; a number that reads
-as degrees gets the hint; every preset is described, in `kinds` and in the README; the
-tables' descriptions cite their documents by name."""
+as degrees gets the hint; every preset is described, in `kinds` (and on the documentation
+site: tests/test_docs.py); the tables' descriptions cite their documents by name."""
 
 from __future__ import annotations
 
@@ -241,14 +241,6 @@ def test_no_degrees_hint_where_degrees_would_not_help(text, key):
 
 
 # ------------------------------------------------------------------- presets
-def preset_lines() -> list[str]:
-    """The README's table of presets as the code describes them."""
-    from reportgen.scene.catalogue import _preset_title
-
-    return [f"| `{cls.kind}` | `{name}` | {_preset_title(cls, name)} |"
-            for cls in KINDS.values() for name in cls.presets]
-
-
 def test_kinds_describes_every_preset_of_every_kind(cli):
     for cls in KINDS.values():
         code, out, _ = cli("kinds", cls.kind)
@@ -267,16 +259,6 @@ def test_heavy_top_presets_say_which_case_of_fig43_they_show(cli):
     for preset, case in [("fig4.3a", "looping"), ("fig4.3b", "wavy"), ("fig4.3c", "cusped")]:
         assert case in lines[preset], lines[preset]
         assert KINDS["heavy_top"].presets[preset]["expect_case"] in ("loops", "waves", "cusps")
-
-
-def test_the_readme_lists_every_preset_of_every_kind():
-    readme = (REPO / "README.md").read_text(encoding="utf-8").splitlines()
-    expected = preset_lines()
-    missing = [line for line in expected if line not in readme]
-    assert not missing, ("README.md's table of presets differs from the code; the rows "
-                         "should read:\n" + "\n".join(expected))
-    listed = [line for line in readme if re.match(r"\| `\w+` \| `[\w.]+` \| ", line)]
-    assert sorted(listed) == sorted(expected)  # and no preset the code does not have
 
 
 # ----------------------------------------------------------------- citations

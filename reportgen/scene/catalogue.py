@@ -239,15 +239,28 @@ def _format(rows: list[Row]) -> list[str]:
 
 
 # ---------------------------------------------------------------------- listing
-def _kind_lines(cls) -> list[str]:
-    """One kind: its keys, tables and arrays of tables, then its sections."""
+def key_rows(cls) -> list[Row]:
+    """One kind's keys, tables and arrays of tables (each a :data:`Row`), in the order
+    ``reportgen kinds KIND`` lists them; the documentation's kind pages are made from the
+    same rows."""
     fields = cls.Config.model_fields
     overrides = {key: {"meaning": fields[key].description or text}
                  for key, text in _SHARED_KEYS.items() if key in fields}
     overrides["kind"]["type"] = f'"{cls.kind}"'
     overrides["preset"]["meaning"] += f" ({', '.join(cls.presets) or 'this kind has none'})"
+    return _field_rows("", fields, 4, overrides)
+
+
+def shared_rows() -> dict[str, list[Row]]:
+    """``[run]`` and ``[report]``, which every kind shares: table name -> its rows."""
+    return {name: _table_rows(name, [model], False, 0, "", _doc_line(model))
+            for model, name in _SHARED_TABLES.items()}
+
+
+def _kind_lines(cls) -> list[str]:
+    """One kind: its keys, tables and arrays of tables, then its sections."""
     lines = [f"{cls.kind} — {cls.summary}"]
-    lines += _format(_field_rows("", fields, 4, overrides))
+    lines += _format(key_rows(cls))
     defaults = cls.default_section_names or tuple(s.name for s in cls.sections)
     lines.append("    sections: " + ", ".join(
         s.name + ("" if s.name in defaults else " (on request)") for s in cls.sections))
@@ -256,10 +269,7 @@ def _kind_lines(cls) -> list[str]:
 
 def _shared_lines() -> list[str]:
     """``[run]`` and ``[report]``, which every kind shares."""
-    out = []
-    for model, name in _SHARED_TABLES.items():
-        out += _format(_table_rows(name, [model], False, 0, "", _doc_line(model)))
-    return out
+    return [line for rows in shared_rows().values() for line in _format(rows)]
 
 
 def kind_class(name: str):
@@ -278,12 +288,13 @@ def describe_kind(name: str) -> str:
     out = _kind_lines(cls)
     out.append("    presets: " + ("none" if not cls.presets else
                                   "(`reportgen kinds " + cls.kind + " --presets` shows their keys)"))
-    out += [f"      {preset:<18} {_preset_title(cls, preset)}" for preset in cls.presets]
+    out += [f"      {preset:<18} {preset_title(cls, preset)}" for preset in cls.presets]
     return "\n".join([*out, "", *_shared_lines()])
 
 
-def _preset_title(cls, preset: str) -> str:
-    """A preset in words: the title the kind gives a config that is the preset alone."""
+def preset_title(cls, preset: str) -> str:
+    """A preset in words: the title the kind gives a config that is the preset alone (as
+    ``reportgen kinds KIND`` prints it, and the documentation's kind pages)."""
     from .config import ConfigError, SourceConfig
 
     try:
@@ -291,6 +302,12 @@ def _preset_title(cls, preset: str) -> str:
     except ConfigError:  # a preset that needs more keys than it holds
         return "(needs more keys than the preset gives)"
     return scene.title
+
+
+def preset_settings(cls, preset: str) -> list[tuple[str, str]]:
+    """(dotted key, TOML value) for every key the preset sets, as ``reportgen kinds KIND
+    --presets`` prints them."""
+    return _flat(cls.presets[preset])
 
 
 def _flat(data: dict, prefix: str = "") -> list[tuple[str, str]]:
@@ -320,7 +337,7 @@ def describe_presets(name: str | None = None) -> str:
         out.append(f"{cls.kind} — preset = \"name\" starts from these keys; keys given "
                    "in the config override them")
         for preset, data in cls.presets.items():
-            out.append(f"  {preset} — {_preset_title(cls, preset)}")
+            out.append(f"  {preset} — {preset_title(cls, preset)}")
             out += [f"      {key} = {value}" for key, value in _flat(data)]
         out.append("")
     return "\n".join(out).rstrip("\n")
