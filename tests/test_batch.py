@@ -54,6 +54,49 @@ def test_unreachable_scheduler_is_usage_error(three_configs, tmp_path, cli):
     assert code == 2 and "cannot connect" in err
 
 
+@pytest.mark.parametrize("peer, said", [
+    (b"", "no answer from a Dask scheduler within 2 s"),  # accepts, never answers
+    (b"\xff" * 64, "not a Dask scheduler"),  # a length field of 2⁶⁴ − 1
+])
+def test_a_listener_that_is_not_a_scheduler_is_usage_error(three_configs, tmp_path, cli,
+                                                          monkeypatch, peer, said):
+    """Issue 48 F: a loopback listener that accepts and never answers hung `run` past
+    300 s; one that answers with bytes of its own gave exit 1 (MemoryError, "unexpected
+    error").  The scheduler's handshake and identity request are bounded: exit 2."""
+    import socket
+    import threading
+    import time
+
+    from reportgen.pipeline import stages
+
+    monkeypatch.setattr(stages, "HANDSHAKE_S", 2.0)
+    monkeypatch.setattr(stages._handshake, "__defaults__", (2.0,))
+    server = socket.create_server(("127.0.0.1", 0))
+    held = []
+
+    def serve():
+        while True:
+            try:
+                conn, _ = server.accept()
+            except OSError:
+                return
+            held.append(conn)
+            if peer:
+                conn.sendall(peer)
+
+    threading.Thread(target=serve, daemon=True).start()
+    try:
+        start = time.monotonic()
+        code, _, err = cli("run", three_configs, "--out", tmp_path / "o", "--scheduler",
+                           f"tcp://127.0.0.1:{server.getsockname()[1]}")
+        assert code == 2 and said in err and time.monotonic() - start < 60, err
+        assert "unexpected error" not in err
+    finally:
+        server.close()
+        for conn in held:
+            conn.close()
+
+
 def test_local_pool_of_two(three_configs, tmp_path):
     outcomes = run_batch([str(three_configs)], out_root=str(tmp_path / "pool"), jobs=2,
                          formats=("html",))

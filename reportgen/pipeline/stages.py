@@ -708,6 +708,41 @@ def _refused(scheduler: str) -> None:
         return  # unreachable or slow: the client retries and says so
 
 
+#: seconds a scheduler has to answer the handshake and an identity request
+HANDSHAKE_S = 10.0
+
+
+def _handshake(scheduler: str, seconds: float = HANDSHAKE_S) -> None:
+    """A UsageError unless a Dask scheduler answers at ``scheduler`` within ``seconds``:
+    distributed's own comm (its handshake), then the scheduler's "identity" request.  A
+    listener that accepts and never answers hung ``run`` past 300 s; one that answers
+    with something else gave exit 1 (a MemoryError from a length field, an unknown
+    scheme, TLS without a context)."""
+    import asyncio
+
+    from distributed.comm import connect
+
+    async def identity():
+        comm = await connect(scheduler, timeout=seconds)
+        try:
+            await comm.write({"op": "identity", "reply": True})
+            return await comm.read()
+        finally:
+            comm.abort()
+
+    try:
+        reply = asyncio.run(asyncio.wait_for(identity(), seconds))
+    except TimeoutError:
+        raise UsageError(f"--scheduler {scheduler}: no answer from a Dask scheduler within "
+                         f"{seconds:g} s") from None
+    except Exception as exc:  # noqa: BLE001 - whatever the peer is, it is not a scheduler
+        raise UsageError(f"--scheduler {scheduler}: not a Dask scheduler "
+                         f"({type(exc).__name__}: {printable(str(exc))[:200]})") from None
+    if not (isinstance(reply, dict) and reply.get("type") == "Scheduler"):
+        raise UsageError(f"--scheduler {scheduler}: not a Dask scheduler (it answered "
+                         f"{printable(repr(reply))[:120]})")
+
+
 def _run_on_dask(scenes, out_root, force, formats, scheduler, progress,
                  time_limit: float | None = None) -> list[Outcome]:
     try:
@@ -720,6 +755,7 @@ def _run_on_dask(scenes, out_root, force, formats, scheduler, progress,
     if not todo:
         return outcomes
     _refused(scheduler)
+    _handshake(scheduler)
     try:
         client = Client(scheduler, timeout="10s")
     except OSError as exc:
