@@ -153,7 +153,8 @@ def _callers_matplotlib():
 
 
 def run(source: str | Path | Mapping, out: str | Path = "output", *, force: bool = False,
-        formats: tuple[str, ...] | None = None, name: str | None = None):
+        formats: tuple[str, ...] | None = None, name: str | None = None,
+        time_limit: float | None = 600.0):
     """Run scenes as ``reportgen run`` does, each stage only when its inputs changed.
 
     ``source``: a TOML config, a folder (every ``*.toml`` below it) or a dict with the
@@ -163,10 +164,29 @@ def run(source: str | Path | Mapping, out: str | Path = "output", *, force: bool
     :class:`~reportgen.pipeline.stages.Outcome` (a list of them for a folder); a bad
     config raises :class:`~reportgen.errors.ConfigError` before anything runs, a failed
     simulation comes back as the outcome's ``status`` and ``message``.  ``formats``
-    (("html",), say) overrides the config's ``[report] formats``.
+    (("html",), say) overrides the config's ``[report] formats``.  ``time_limit``: seconds
+    each scene may take, its validation included, as ``reportgen run --time-limit`` (None:
+    none; enforced from the main thread): a scene over it comes back failed, its earlier
+    archive kept.
     """
-    from .pipeline.stages import run_scene, validate_all
+    import threading
+
+    from .pipeline.stages import (
+        Outcome,
+        _alarm,
+        _time_limit_message,
+        _TimeLimit,
+        run_scene,
+        validate_all,
+    )
     from .support.layout import collect_configs
+
+    if time_limit is not None and not (isinstance(time_limit, int | float)
+                                       and 0 < time_limit < float("inf")):
+        raise ConfigError([f"time_limit must be a positive number of seconds or None "
+                           f"(got {time_limit!r})"])
+    if threading.current_thread() is not threading.main_thread():
+        time_limit = None  # the alarm that stops a scene is the main thread's
 
     if formats is not None:
         if isinstance(formats, str | bytes) or not all(f in ("html", "pdf") for f in formats):
@@ -192,12 +212,17 @@ def run(source: str | Path | Mapping, out: str | Path = "output", *, force: bool
                 paths = collect_configs([source])
             except UsageError as exc:
                 raise ConfigError([str(exc)]) from None
-            validate_all(paths)
+            validate_all(paths, time_limit)
             lock()
         with _callers_matplotlib():
             for path in paths:
-                outcome = run_scene(str(path), str(out), force,
-                                    tuple(formats) if formats else None)
+                try:
+                    with _alarm(time_limit):
+                        outcome = run_scene(str(path), str(out), force,
+                                            tuple(formats) if formats else None)
+                except _TimeLimit:
+                    outcome = Outcome(name=Path(path).stem, status="failed",
+                                      message=_time_limit_message(time_limit))
                 if outcome.config_error:
                     raise ConfigError([outcome.message])
                 outcomes.append(outcome)

@@ -183,3 +183,27 @@ def test_the_api_takes_the_output_folder_lock_as_the_cli_does(tmp_path, capsys):
     thread.join()
     assert outcome.status == "ok" and waited >= 1.0, waited
     assert "waiting for another reportgen run" in capsys.readouterr().err
+
+
+def test_the_api_stops_a_scene_at_its_time_limit(tmp_path):
+    """Issue 48 C, in the API as in run: a Lagrangian of degree 32 (its symbolic work takes
+    minutes) given as a dict comes back failed at the time limit, not after minutes, and a
+    time limit that is not a positive number is a ConfigError."""
+    import time
+
+    import pytest
+
+    import reportgen
+    from reportgen.errors import ConfigError
+
+    config = {"kind": "hamiltonian", "title": "degree 32",
+              "system": {"coordinates": ["x", "y"],
+                         "L": "(x_dot**2 + y_dot**2)*(1 + x**2 + y**2)**15/2 - x**2"},
+              "initial": {"x": 0.1, "y": 0.0, "x_dot": 0.0, "y_dot": 0.1},
+              "run": {"t_end": 1.0, "samples": 11, "study": False}}
+    start = time.monotonic()
+    outcome = reportgen.run(config, tmp_path / "out", formats=["html"], time_limit=2)
+    assert time.monotonic() - start < 60
+    assert outcome.status == "failed" and "time limit of 2 s exceeded" in outcome.message
+    with pytest.raises(ConfigError, match="time_limit must be"):
+        reportgen.run(config, tmp_path / "out", time_limit=-1)
