@@ -11,6 +11,7 @@ animations) could not take at face value:
   levels and :data:`MAX_OBJECTS` objects;
 * **sizes, before reading**: each dataset at most :data:`MAX_DATASET_ELEMENTS` elements
   (:data:`MAX_STRINGS` for variable-length text), all together at most :data:`MAX_TOTAL_ELEMENTS`;
+  each at most :data:`MAX_DATASET_BYTES` as read (fixed-width text counts its width);
   chunks at most :data:`MAX_CHUNK_BYTES`; a large dataset that stores nothing (declared
   only) is refused; attributes at most :data:`MAX_ATTR_ELEMENTS` elements; the config
   texts at most :data:`MAX_TEXT_BYTES`;
@@ -45,6 +46,11 @@ MAX_TOTAL_ELEMENTS = 100_000_000
 MAX_STRINGS = 5_000_000
 #: bytes of one chunk (HDF5 decompresses whole chunks)
 MAX_CHUNK_BYTES = 64 << 20
+#: bytes of one dataset as read (elements × item size: a fixed-width text of 40,000 bytes
+#: per element made 90,000 elements, a few hundred bytes in the file, cost 3.6 GB to read)
+MAX_DATASET_BYTES = 1 << 30
+#: bytes of one attribute as read
+MAX_ATTR_BYTES = 16 << 20
 #: elements of one attribute
 MAX_ATTR_ELEMENTS = 1_000_000
 #: attributes of one object
@@ -178,6 +184,10 @@ class _Walk:
         if size > limit:
             raise _Problem(f"{name}: {_shape(ds.shape)} = {size} elements, more than the "
                            f"{limit} an archive may hold in one dataset")
+        if size * ds.dtype.itemsize > MAX_DATASET_BYTES:
+            raise _Problem(f"{name}: {_shape(ds.shape)} elements of {ds.dtype.itemsize} bytes, "
+                           f"more than the {MAX_DATASET_BYTES >> 20} MiB an archive may hold "
+                           "in one dataset")
         if ds.chunks is not None and _count(ds.chunks) * ds.dtype.itemsize > MAX_CHUNK_BYTES:
             raise _Problem(f"{name}: chunks of {_shape(ds.chunks)} elements, larger than "
                            f"{MAX_CHUNK_BYTES >> 20} MiB")
@@ -201,6 +211,10 @@ class _Walk:
             if shape is not None and _count(shape) > MAX_ATTR_ELEMENTS:
                 raise _Problem(f"{name}: attribute {_short(key)} of {_shape(shape)} elements, "
                                f"more than {MAX_ATTR_ELEMENTS}")
+            if shape is not None and _count(shape) * aid.dtype.itemsize > MAX_ATTR_BYTES:
+                raise _Problem(f"{name}: attribute {_short(key)} of {_shape(shape)} elements "
+                               f"of {aid.dtype.itemsize} bytes, more than "
+                               f"{MAX_ATTR_BYTES >> 20} MiB")
             if key not in _SCALE_ATTRS and _dtype_kind(aid.dtype) is None:
                 raise _Problem(f"{name}: attribute {_short(key)} of type {_short(aid.dtype)}, "
                                "not numbers or text")

@@ -634,6 +634,10 @@ def stored_identity(path: Path) -> Identity | None:
                    wall_time_s=float(identity.wall_time_s))
 
 
+#: bytes of the checks table the gallery reads for a card (a scene's is a few KiB)
+GALLERY_TABLE_BYTES = 4 << 20
+
+
 def gallery_entry(path: Path, headline: Callable[[ArchiveData], str] | None = None
                   ) -> dict[str, Any] | None:
     """What the output folder's gallery shows of one archive: kind, title, status,
@@ -645,13 +649,17 @@ def gallery_entry(path: Path, headline: Callable[[ArchiveData], str] | None = No
         with h5py.File(regular_file(path), "r") as f:
             if f.attrs.get("format") != FORMAT:
                 return None
+            # every archive the gallery reads is checked as every other reader checks it: a
+            # neighbour's 3.6 GB of fixed-width text cost every later run into its folder
+            check_archive(f, path)
             a = {k: decode(v) for k, v in f.attrs.items()}
             ds = f.get("checks")
             # a small table only (read back from an output folder: not a declared giant)
             checks = (read_table(ds) if isinstance(ds, h5py.Dataset) and ds.ndim == 1
-                      and ds.dtype.names and ds.shape[0] <= 10_000 else None)
+                      and ds.dtype.names and ds.shape[0] <= 10_000
+                      and ds.shape[0] * ds.dtype.itemsize <= GALLERY_TABLE_BYTES else None)
             light = _read_light(f, path, a, checks) if headline is not None else None
-    except (OSError, KeyError, TypeError, ValueError, RuntimeError):
+    except (OSError, KeyError, TypeError, ValueError, RuntimeError, ArchiveError):
         return None
     line = ""
     if light is not None:
