@@ -30,6 +30,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.linalg
 
+from .differences import central_difference_hessian
 from .molecule_geometry import ELEMENT_MASSES, bond_angle  # noqa: F401 - part of this module's interface
 
 #: eigenvalues ω² with |ω²| ≤ ZERO_TOL · max|ω²| count as zero (round-off of eigh is ~1e-15)
@@ -447,20 +448,7 @@ class Molecule:
 
 def finite_difference_hessian(f, x0: np.ndarray, h: float = 1e-4) -> np.ndarray:
     """Central second differences of a scalar f at x0 (error O(h²)).  Shape (n, n)."""
-    x0 = np.asarray(x0, dtype=float)
-    n = x0.size
-    H = np.empty((n, n))
-    def at(i, j, si, sj):
-        x = x0.copy()
-        x[i] += si * h
-        x[j] += sj * h
-        return f(x)
-
-    for i in range(n):
-        for j in range(i, n):
-            H[i, j] = H[j, i] = (at(i, j, 1, 1) - at(i, j, 1, -1) - at(i, j, -1, 1)
-                                 + at(i, j, -1, -1)) / (4 * h * h)
-    return H
+    return central_difference_hessian(f, x0, h)
 
 
 # ----------------------------------------------------------------- classification

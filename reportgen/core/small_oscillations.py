@@ -38,6 +38,7 @@ import numpy as np
 import sympy
 
 from . import mechanics, numeric
+from .differences import central_difference_hessian
 from .expressions import (
     MAX_CONSTANTS,
     ExpressionError,
@@ -45,6 +46,7 @@ from .expressions import (
     name_problem,
     parse_expression,
 )
+from .formula import FormulaError
 
 #: a point is stationary when every |∂U/∂qᵢ| is below this fraction of the sizes of its
 #: parts (each term's |value|, :func:`mechanics.roundoff_scale`) plus the curvature times
@@ -64,14 +66,9 @@ ZERO_TOL = 1e-10
 MAX_COORDINATES = 12
 
 
-class PotentialError(ValueError):
+class PotentialError(FormulaError):
     """A written potential that cannot give small oscillations; ``key`` is the config key
     at fault (``system.U``, ``system.guess``, ...)."""
-
-    def __init__(self, key: str, message: str):
-        super().__init__(f"{key}: {message}")
-        self.key = key
-        self.detail = message
 
 
 @dataclass(frozen=True)
@@ -341,25 +338,6 @@ def generalized_omega2(M: np.ndarray, A: np.ndarray) -> np.ndarray:
     Li = np.linalg.inv(L)
     B = Li @ A @ Li.T
     return np.linalg.eigvalsh(0.5 * (B + B.T))
-
-
-def central_difference_hessian(f, x0: np.ndarray, h: float) -> np.ndarray:
-    """Central second differences of a scalar ``f`` at ``x0`` with step ``h`` (error O(h²)
-    from truncation, O(ε|f|/h²) from rounding); shape (n, n)."""
-    n = x0.size
-    H = np.empty((n, n))
-
-    def at(i, j, si, sj):
-        x = x0.copy()
-        x[i] += si * h
-        x[j] += sj * h
-        return f(x)
-
-    for i in range(n):
-        for j in range(i, n):
-            H[i, j] = H[j, i] = (at(i, j, 1, 1) - at(i, j, 1, -1) - at(i, j, -1, 1)
-                                 + at(i, j, -1, -1)) / (4 * h * h)
-    return H
 
 
 def find_equilibrium(system: PotentialSystem, guess: Sequence[float]) -> Equilibrium:

@@ -10,38 +10,14 @@ import numpy as np
 
 from ...scene.content import SectionContent, Table, fmt, fmt_err, fmt_matrix
 from ...scene.schema import TEX_GREEK, Quantity, symbol_text, unit_text
+from ..hamiltonian.symbols import split_sum
 from .config import unit_system
 from .results import units
 
-#: an equation longer than this (TeX characters) is broken between the terms of its sum
-EQUATION_LINE = 200
 #: how the system was written, in words (``/analysis/given``)
 GIVEN_WORDS = {"L": "a Lagrangian L(q, q̇)",
                "T": "a potential energy U(q) and a kinetic energy T(q, q̇)",
                "M": "a potential energy U(q) and a mass matrix M(q)"}
-
-
-def split_sum(lhs: str, tex: str, width: int = EQUATION_LINE) -> list[str]:
-    """``lhs = tex`` as typeset lines, a long sum broken between its terms (at + and −
-    outside every brace and \\left…\\right), each following line indented with its sign."""
-    terms, depth, start = [], 0, 0
-    for i, ch in enumerate(tex):
-        if tex.startswith(r"\left", i) or ch == "{":
-            depth += 1
-        elif tex.startswith(r"\right", i) or ch == "}":
-            depth -= 1
-        elif depth == 0 and i > start + 1 and tex[i - 1:i + 2] in (" + ", " - "):
-            terms.append(tex[start:i - 1])
-            start = i
-    terms.append(tex[start:])
-    lines, line = [], f"{lhs} = {terms[0]}"
-    for term in terms[1:]:
-        if len(line) + len(term) > width:
-            lines.append(line)
-            line = r"\qquad " + term
-        else:
-            line += " " + term
-    return lines + [line]
 
 
 def name_tex(name: str) -> str:
