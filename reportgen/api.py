@@ -167,7 +167,8 @@ def run(source: str | Path | Mapping, out: str | Path = "output", *, force: bool
     (("html",), say) overrides the config's ``[report] formats``.  ``time_limit``: seconds
     each scene may take, its validation included, as ``reportgen run --time-limit`` (None:
     none; enforced from the main thread): a scene over it comes back failed, its earlier
-    archive kept.
+    archive kept.  While it runs, numpy's BLAS uses one thread (the caller's count is given
+    back after): see :mod:`reportgen.support.threads`.
     """
     import threading
 
@@ -180,6 +181,7 @@ def run(source: str | Path | Mapping, out: str | Path = "output", *, force: bool
         validate_all,
     )
     from .support.layout import collect_configs
+    from .support.threads import one_blas_thread
 
     if time_limit is not None and not (isinstance(time_limit, int | float)
                                        and 0 < time_limit < float("inf")):
@@ -214,6 +216,7 @@ def run(source: str | Path | Mapping, out: str | Path = "output", *, force: bool
                 raise ConfigError([str(exc)]) from None
             validate_all(paths, time_limit)
             lock()
+        held.enter_context(one_blas_thread())  # as the command has (support/threads.py)
         with _callers_matplotlib():
             for path in paths:
                 try:

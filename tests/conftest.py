@@ -9,9 +9,15 @@ import tempfile
 import textwrap
 from pathlib import Path
 
-import pytest
+# one BLAS thread in the test processes and every process they start, as the `reportgen`
+# command has (reportgen.support.threads): set before anything loads numpy
+from reportgen.support.threads import one_blas_thread_by_default  # noqa: I001 - loads no numpy
 
-from reportgen.commands.cli import main
+one_blas_thread_by_default()
+
+import pytest  # noqa: E402
+
+from reportgen.commands.cli import main  # noqa: E402
 
 REPO = Path(__file__).resolve().parent.parent
 

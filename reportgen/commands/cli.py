@@ -15,6 +15,7 @@ from .. import __version__
 from ..errors import ConfigError, UsageError
 from ..support.cache import NO_CACHE_ENV, PeerCache
 from ..support.layout import FORMATS, collect_configs, printable
+from ..support.threads import one_blas_thread_by_default
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
 
@@ -217,6 +218,7 @@ def console_main() -> None:
     object would add 0.1-0.2 s to each edit-loop run for nothing.  So the standard
     streams are flushed and the process ends with ``os._exit`` -- unless a child process
     is somehow still running, which the normal exit then handles."""
+    one_blas_thread_by_default()
     code = main()
     for stream in (sys.stdout, sys.stderr):
         try:
