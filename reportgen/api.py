@@ -5,7 +5,8 @@ Three functions, exported lazily by :mod:`reportgen` (``import reportgen`` stays
 * :func:`run` - run a scene from a TOML file, a folder of them, or a dict with the keys of
   a config; returns the :class:`~reportgen.pipeline.stages.Outcome` (a list for a folder).
 * :func:`open` - an archive (``run.h5`` or its scene folder) as a :class:`Run`, read
-  through the validating reader, with :meth:`Run.to_xarray`.
+  through the validating reader, with :meth:`Run.to_xarray`, :meth:`Run.to_datatree` and
+  :attr:`Run.results` (each result with its unit).
 * :func:`kinds` - the scene kinds with their presets and keys, as ``reportgen kinds``
   lists them.
 
@@ -26,6 +27,11 @@ Three functions, exported lazily by :mod:`reportgen` (``import reportgen`` stays
 ('rad', 'angle from the downward vertical')
 >>> float(ds.theta.sel(t=0.0))
 0.2
+>>> r.results["period"].unit, r.results["period"].symbol
+('s', 'T')
+>>> tree = r.to_datatree()
+>>> tree["runs/main"]["y"].dims, str(tree["checks"]["quantity"].dtype)[:2]
+(('t', 'component'), '<U')
 >>> reportgen.run({"kind": "pendulum"}, out=str(tmp), name="bad")
 Traceback (most recent call last):
     ...
@@ -256,27 +262,17 @@ MAX_INLINE_SVG_BYTES = 8 * 2**20
 
 
 def _inlinable_svg(path: Path) -> str | None:
-    """The SVG drawing of the figure file ``path`` (an output folder is untrusted: a
-    regular file, not a link or a FIFO, of at most :data:`MAX_INLINE_SVG_BYTES`, that
-    passes :func:`~reportgen.support.layout.svg_safe`), from its ``<svg``; else None."""
-    import os
-    import stat
-
-    from .support.layout import svg_safe
+    """The SVG drawing of the figure file ``path`` as the sanitizer writes it
+    (:func:`~reportgen.support.svgsafe.clean_svg`: an output folder is untrusted), read
+    only if a regular file, not a link or a FIFO, of at most :data:`MAX_INLINE_SVG_BYTES`
+    (:func:`~reportgen.support.fsutil.read_back`); else None."""
+    from .support.fsutil import read_back
+    from .support.svgsafe import SvgRefused, clean_svg
 
     try:
-        fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK)
-    except OSError:
+        return clean_svg(read_back(path, MAX_INLINE_SVG_BYTES)).svg
+    except (OSError, SvgRefused):
         return None
-    with os.fdopen(fd, "rb") as f:
-        info = os.fstat(f.fileno())
-        if not stat.S_ISREG(info.st_mode) or info.st_size > MAX_INLINE_SVG_BYTES:
-            return None
-        text = f.read(MAX_INLINE_SVG_BYTES + 1).decode("utf-8", errors="replace")
-    start = text.find("<svg")
-    if start < 0 or len(text) > MAX_INLINE_SVG_BYTES or not svg_safe(text):
-        return None
-    return text[start:]
 
 
 def _ident(name: str, taken: set[str]) -> str:
@@ -318,8 +314,53 @@ def _group_attrs(path: Path, group: str) -> dict[str, dict[str, Any]]:
         return {}
 
 
+def _tables_as_groups(tree, h5: Path):
+    """``tree`` (an archive of format ≤ 2 opened whole) with its compound tables (``/checks``,
+    ``/study/error_vs_runtime``) as groups of named, typed columns, as format 3 stores them."""
+    import h5py
+    import numpy as np
+    import xarray as xr
+
+    from .archive.h5io import read_table
+
+    rows = {"checks": "check", "study/error_vs_runtime": "row"}  # format 3's dimensions
+    with h5py.File(h5, "r") as f:
+        tables = {path: read_table(f[path]) for path in rows
+                  if isinstance(f.get(path), h5py.Dataset) and f[path].dtype.names}
+    nodes = {node.path: node.to_dataset(inherit=False) for node in tree.subtree}
+    for path, records in tables.items():
+        parent, _, name = f"/{path}".rpartition("/")
+        holder = nodes[parent or "/"]
+        attrs = {}
+        if name in holder.variables:
+            old_dim, attrs = holder[name].dims[0], dict(holder[name].attrs)
+            holder = holder.drop_vars(name)
+            if not any(old_dim in v.dims for v in holder.data_vars.values()):
+                holder = holder.drop_vars([old_dim], errors="ignore")
+        nodes[parent or "/"] = holder
+        dim = rows[path]
+        columns = {c: (dim, records[c].astype(str) if records[c].dtype == object
+                       else records[c]) for c in records.dtype.names}
+        nodes[f"/{path}"] = xr.Dataset(columns, coords={dim: np.arange(len(records))},
+                                       attrs={k: v for k, v in attrs.items()
+                                              if k not in ("units", "symbol")})
+    return xr.DataTree.from_dict(nodes)
+
+
 def _cf(attrs: dict[str, Any]) -> dict[str, Any]:
-    return {k: attrs[k] for k in ("units", "long_name", "symbol") if k in attrs}
+    return {k: attrs[k] for k in ("units", "long_name", "symbol", "config_units")
+            if k in attrs}
+
+
+def _decoded(values, attrs: dict[str, Any]):
+    """(``values`` in their ``units``, their CF attributes): a value stored as a multiple
+    of its unit (CF ``scale_factor``: a time in τ = 4.0746 fs, units "fs") scaled, as
+    xarray decodes it."""
+    import numpy as np
+
+    factor = attrs.get("scale_factor")
+    values = np.asarray(values)
+    return (values * float(factor) if factor is not None else values), _cf(attrs)
 
 
 class Run:
@@ -328,8 +369,9 @@ class Run:
 
     ``config`` (the resolved config, a dict), ``kind``, ``title``, ``status``,
     ``message``, ``behaviour`` (the ``/analysis`` verdict, or None), ``results`` (the
-    scalar analysis results), ``checks`` (dicts: quantity, value, reference, abs_error,
-    rel_error, unit, source) and ``h5`` (the archive's path).
+    scalar analysis results with their units, :attr:`results`), ``checks`` (dicts:
+    quantity, value, reference, abs_error, rel_error, unit, source) and ``h5`` (the
+    archive's path).
     """
 
     def __init__(self, path: str | Path):
@@ -343,9 +385,6 @@ class Run:
         self.kind, self.title, self.status, self.message = d.kind, d.title, d.status, d.message
         behaviour = d.analysis.get("behaviour") if d.sweep is None else None
         self.behaviour: str | None = str(behaviour) if behaviour else None
-        self.results: dict[str, Any] = {
-            k: _plain(v) for k, v in d.analysis.items()
-            if isinstance(_plain(v), (bool, int, float, str))}
         self.checks: list[dict[str, Any]] = [
             {"quantity": c.quantity, "value": c.value, "reference": c.reference,
              "abs_error": c.abs_error, "rel_error": c.rel_error, "unit": c.unit,
@@ -354,7 +393,46 @@ class Run:
     def __repr__(self) -> str:
         return f"<reportgen.Run {self.kind} {self.title!r} {self.status} ({self.h5})>"
 
+    # ------------------------------------------------------------- results
+    @property
+    def results(self):
+        """The scalar results of ``/analysis`` (and its subgroups, as "group/name"), each a
+        :class:`~reportgen.quantities.Result` with ``value``, ``unit`` (pint reads it),
+        ``description``, ``symbol`` and ``config_units`` from the kind's declaration:
+        ``float(run.results["period"])``, ``run.results["period"].value`` or
+        ``run.results.period.quantity`` (a pint Quantity); ``values_only()`` gives the
+        bare numbers."""
+        cached = self.__dict__.get("_results")
+        if cached is None:
+            from .quantities import archive_results
+
+            cached = self.__dict__["_results"] = archive_results(self.data)
+        return cached
+
     # ------------------------------------------------------------- xarray
+    def to_datatree(self):
+        """The whole archive as one :class:`xarray.DataTree`, every group a node, loaded
+        into memory (the file is closed again): what
+        ``xr.open_datatree(run.h5, engine="h5netcdf")`` gives for an archive of format 3,
+        where every variable has named dimensions, each number a ``units`` pint reads
+        (``ds.pint.quantify()``) and the checks and study tables are groups of typed columns.
+        An archive of an earlier format opens the same way: its tables (compound datasets)
+        become such groups and its unnamed dimensions are named as h5netcdf names them."""
+        import warnings
+
+        import xarray as xr
+
+        old = self.data.format_version < 3
+        with warnings.catch_warnings():
+            if old:  # format ≤ 2: h5netcdf names its unnamed dimensions, and says so
+                warnings.simplefilter("ignore")
+            with xr.open_datatree(self.h5, engine="h5netcdf",
+                                  **({"phony_dims": "access"} if old else {})) as tree:
+                tree = tree.load().copy()
+        if old:
+            tree = _tables_as_groups(tree, self.h5)
+        return tree
+
     def to_xarray(self, group: str | None = None):
         """The archive, or one group of it, as an :class:`xarray.Dataset` with
         ``units`` and ``long_name`` on every variable.
@@ -388,24 +466,28 @@ class Run:
         n = len(run.t)
         per_column = {key: list(y.get(f"column_{key}") or [""] * len(run.columns))
                       for key in ("units", "long_names", "symbols")}
+        factors = list(y.get("column_scale_factors", [1.0] * len(run.columns)))
         taken = {"t"}
         variables = {}
         table = np.asarray(run.y).reshape(n, -1)
         for i, column in enumerate(run.columns):
-            variables[_ident(column, taken)] = ("t", table[:, i], {
-                "units": str(per_column["units"][i]),
-                "long_name": str(per_column["long_names"][i]) or column,
-                "symbol": str(per_column["symbols"][i])})
+            cf = {"units": str(per_column["units"][i]),
+                  "long_name": str(per_column["long_names"][i]) or column,
+                  "symbol": str(per_column["symbols"][i])}
+            if "config_units" in y and cf["units"] == "1":  # one attr for all of y's "1"
+                cf["config_units"] = y["config_units"]
+            variables[_ident(column, taken)] = ("t", table[:, i] * float(factors[i]), cf)
         for q, values in run.invariants.items():
             if np.ndim(values) == 1 and len(values) == n:
                 linked = q if q in attrs else f"invariant_{q}"
-                variables[_ident(q, taken)] = ("t", values, _cf(attrs.get(linked, {})))
+                variables[_ident(q, taken)] = ("t", *_decoded(values, attrs.get(linked, {})))
         for c, values in run.reference.items():
             if np.ndim(values) == 1 and len(values) == n:
                 variables[_ident(f"reference_{c}", taken)] = (
-                    "t", values, _cf(attrs.get(f"reference_{c}", {})))
-        t_attrs = _cf(attrs.get("t", {})) or {"units": "s", "long_name": "time"}
-        return xr.Dataset(variables, coords={"t": ("t", np.asarray(run.t), t_attrs)},
+                    "t", *_decoded(values, attrs.get(f"reference_{c}", {})))
+        times, t_attrs = _decoded(np.asarray(run.t), attrs.get("t", {}))
+        t_attrs = t_attrs or {"units": "s", "long_name": "time"}
+        return xr.Dataset(variables, coords={"t": ("t", times, t_attrs)},
                           attrs=self._dataset_attrs())
 
     def _group_xarray(self, group: str, stamp: bool = True):
@@ -494,7 +576,11 @@ class Run:
         return [folder / drawn[i]["files"]["svg"] for i in picked]
 
     def _repr_html_(self) -> str:
-        e = html.escape
+        from .support.layout import visible_controls
+
+        def e(text) -> str:  # what the archive says, escaped, its controls shown
+            return html.escape(visible_controls(str(text)))
+
         parts = [f"<h3>{e(self.title or self.kind)}</h3>",
                  f"<p><b>{e(self.kind)}</b> &middot; status <b>{e(self.status)}</b>"
                  + (f" &middot; {e(self.message)}" if self.message else "")

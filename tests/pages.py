@@ -12,8 +12,10 @@ and PDF on, ``--jobs 2``), then per scene
 - as an outside reader measures the PDF (``pdftotext``): no word within half an inch of
   the paper's right edge, no fallback title "kind (slug)", no hyphen as a minus sign,
   E-notation or snake_case outside the appended configuration;
-- every archive opens in xarray with named dimensions and ``units`` on every variable,
-  in every group, and every dataset has CF ``units`` and ``long_name``;
+- every archive opens in xarray with named dimensions, in every group and as one tree, and
+  ``pint-xarray`` quantifies every group: every number has a ``units`` pint reads (or
+  says where its units are: a state of mixed units by ``column_units``, a checks column
+  by ``units_column``), text has none; every dataset has a CF ``long_name``;
 - every citation names its document, and the Sources list holds exactly those cited;
   each citation of the notes or the textbook resolves to a place of their index and the
   words around it are about that place;
@@ -91,20 +93,70 @@ def run_batch(scenes: list[Path], source: Path, out: Path, study_off=()) -> Path
     return out
 
 
+#: where a number whose rows or columns have several units says where they are
+UNITS_ELSEWHERE = ("column_units", "units_column", "units_note")
+
+
 def datasets_without_cf_attrs(archive: Path) -> list[str]:
-    """Every dataset of the archive lacking ``units`` or ``long_name`` (CF style), and
-    every one whose ``long_name`` is empty."""
+    """Every dataset of the archive lacking ``long_name`` (CF style) or with an empty one,
+    and every numeric one without ``units`` that does not say where its units are
+    (:data:`UNITS_ELSEWHERE`)."""
     bad = []
 
     def visit(name, obj):
         if isinstance(obj, h5py.Dataset):
             attrs = obj.attrs
-            if "units" not in attrs or "long_name" not in attrs or not str(attrs["long_name"]):
+            numeric = obj.dtype.kind in "iufc" and attrs.get("dtype") != "bool"  # no flag
+            unitless = numeric and "units" not in attrs and not any(
+                k in attrs for k in UNITS_ELSEWHERE)
+            if unitless or "long_name" not in attrs or not str(attrs["long_name"]):
                 bad.append(name)
 
     with h5py.File(archive, "r") as f:
         f.visititems(visit)
     return bad
+
+
+def unit_problems(ds) -> list[str]:
+    """The variables of the xarray dataset ``ds`` whose units are not as the archive
+    promises: a number without ``units`` (or :data:`UNITS_ELSEWHERE`), a ``units`` pint
+    cannot read, text with ``units``."""
+    import pint_xarray  # noqa: F401 - the accessor
+
+    registry = pint_xarray.unit_registry
+    bad = []
+    for name, var in ds.variables.items():
+        units = var.attrs.get("units")
+        if var.dtype.kind in "OUSb":
+            if units is not None:
+                bad.append(f"{name}: text or a flag with units {units!r}")
+        elif units is None:
+            if not any(k in var.attrs for k in UNITS_ELSEWHERE):
+                bad.append(f"{name}: a number without units")
+        else:
+            try:
+                registry.parse_units(units)
+            except Exception as exc:  # noqa: BLE001 - pint raises several kinds
+                bad.append(f"{name}: units {units!r} ({type(exc).__name__})")
+    return bad
+
+
+def assert_tree_quantifies(archive: Path) -> None:
+    """``xr.open_datatree`` opens the archive without a warning, and pint-xarray quantifies
+    every group of it."""
+    import warnings
+
+    import pint_xarray  # noqa: F401 - the accessor
+    import xarray as xr
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        tree = xr.open_datatree(archive, engine="h5netcdf")
+    with tree:
+        for node in tree.subtree:
+            ds = node.to_dataset()
+            assert not unit_problems(ds), (node.path, unit_problems(ds))
+            ds.pint.quantify()
 
 
 def assert_xarray_reads(archive: Path) -> None:
@@ -208,10 +260,11 @@ def page_tests(scenes: list[Path], study_off=()) -> dict:
                 ds = xr.open_dataset(path, group=group, engine="h5netcdf")
             with ds:
                 assert not [d for d in ds.dims if str(d).startswith("phony")], (group, ds.dims)
-                bare = [n for n, v in ds.variables.items() if "units" not in v.attrs]
-                assert not bare, f"{config.stem}:{group}: no units on {bare}"
+                bare = unit_problems(ds)
+                assert not bare, f"{config.stem}:{group}: {bare}"
         assert datasets_without_cf_attrs(path) == []
         assert_xarray_reads(path)
+        assert_tree_quantifies(path)
 
 
     # ------------------------------------------------------------------- citations

@@ -102,12 +102,12 @@ def test_open_reads_attributes(out):
     assert r.behaviour.startswith("libration")
     assert r.config["params"]["g"] == 9.81 and r.config["initial"]["theta"] == 0.3
     assert isinstance(r.config, dict) and type(r.config["params"]) is dict
-    assert all(isinstance(v, (bool, int, float, str)) for v in r.results.values())
+    assert all(isinstance(v.value, (bool, int, float, str)) for v in r.results.values())
     # the exact period 4K(k)·sqrt(l/g), k = sin(θ0/2)
     from scipy.special import ellipk
 
     exact = 4 * ellipk(math.sin(0.15) ** 2) * math.sqrt(1.0 / 9.81)
-    assert r.results["period"] == pytest.approx(exact, rel=1e-12)
+    assert float(r.results["period"]) == pytest.approx(exact, rel=1e-12)
     assert r.checks and {"quantity", "value", "reference", "abs_error", "rel_error", "unit",
                          "source"} <= set(r.checks[0])
 
@@ -230,15 +230,16 @@ def _open_group_quietly(path: Path, group: str):
 
 
 def _assert_named_dims_and_units(path: Path, group: str):
+    from pages import unit_problems
+
     with _open_group_quietly(path, group) as ds:
         assert not [d for d in ds.dims if str(d).startswith("phony")], ds.dims
-        for name, var in ds.variables.items():
-            assert "units" in var.attrs, f"{path}:{group}/{name} has no units"
+        assert not unit_problems(ds), (path, group, unit_problems(ds))
 
 
 def test_xarray_opens_fresh_archives_without_phony_dims(out):
     _, single, family = out
-    for group in ("runs/main", "study"):
+    for group in ("runs/main", "study/error_vs_runtime", "checks"):
         _assert_named_dims_and_units(Path(single.folder) / "run.h5", group)
     for group in ("sweep", "sweep/values", "sweep/analysis"):
         _assert_named_dims_and_units(Path(family.folder) / "run.h5", group)
@@ -286,15 +287,109 @@ def test_a_kind_without_a_run_opens_as_its_analysis(tmp_path):
     assert ds.identical(r.to_xarray("analysis").assign_attrs(ds.attrs))
     assert "frequencies" in ds and ds.frequencies.dims == ("mode",)
     assert ds.frequencies.attrs["units"] == "rad/s" and "mode" in ds.coords
-    for name, var in ds.variables.items():
-        assert "units" in var.attrs, name
+    from pages import unit_problems
+
+    assert not unit_problems(ds), unit_problems(ds)
     assert not [d for d in ds.dims if str(d).startswith("phony")]
     with pytest.raises(ValueError, match="no group 'nowhere'.*analysis"):
         r.to_xarray("nowhere")
+    # one numbering for modes: the report's mode k is the archive's mode k (issue 43)
+    n = ds.sizes["mode"]
+    np.testing.assert_array_equal(ds.mode, np.arange(1, n + 1))
+    zero = int(ds.attrs.get("n_zero_modes", r.results["n_zero_modes"].value))
+    first = zero + 1  # the first vibration: the report's table starts there
+    page = (Path(done.folder) / "report.html").read_text(encoding="utf-8")
+    rows = re.findall(r'<tr><td[^>]*><span class="nw">(\d+)</span></td><td[^>]*>'
+                      r'<span class="nw">([\d.]+)[^<\d]*10<sup>(\d+)</sup>', page)
+    assert [int(k) for k, _, _ in rows] == list(range(first, n + 1)), rows
+    for k, mantissa, exponent in rows:  # the spectrum table's ω of mode k, to 6 digits
+        shown = float(mantissa) * 10.0 ** int(exponent)
+        assert ds.frequencies.sel(mode=int(k)).item() == pytest.approx(shown, rel=1e-5), k
+    # the bend (mode 6, twice) is the lowest of CO₂'s vibrations, the stretches above it
+    omega = ds.frequencies.sel(mode=first).item()
+    assert omega == ds.frequencies.where(ds.frequencies > 0).min().item()
+
+
+FORMULA = {"kind": "hamiltonian", "title": "Formula oscillator — API units",
+           "system": {"coordinates": ["x"], "H": "p_x**2/2 + x**2/2"},
+           "observables": {"x2": "x**2"}, "initial": {"x": 1.0, "p_x": 0.0},
+           "run": {"t_end": 3.0, "samples": 301, "study": False},
+           "report": {"formats": ["html"]}}
+
+
+def test_results_carry_units_descriptions_and_symbols(out):
+    """``run.results``: each scalar result with the unit, words and symbol its kind declares
+    (the pendulum's exact period in s), a number as before (``float``, ``.value``) and as a
+    pint Quantity."""
+    _, single, _ = out
+    r = reportgen.open(single.folder)
+    period = r.results["period"]
+    assert (period.unit, period.symbol) == ("s", "T") and "period" in period.description
+    assert float(period) == period.value == r.results.period.value
+    assert period.quantity.to("ms").magnitude == pytest.approx(1e3 * period.value, rel=1e-15)
+    assert str(period) == f"{period.value} s" and f"{period:.3f}" == f"{period.value:.3f}"
+    assert r.results.values_only()["period"] == period.value
+    behaviour = r.results["behaviour"]
+    assert isinstance(behaviour.value, str) and behaviour.unit == ""
+    with pytest.raises(TypeError):
+        behaviour.quantity  # noqa: B018
+
+
+def test_a_config_units_quantity_says_so_beside_a_unit_pint_reads(tmp_path):
+    """A formula system works in its author's units: its time is "1" (pint reads it) with
+    ``config_units`` saying what it is, in the archive, in ``to_xarray`` and in
+    ``run.results``; pint-xarray quantifies every group of the tree."""
+    pytest.importorskip("pint_xarray")
+    from pages import assert_tree_quantifies
+
+    done = reportgen.run(FORMULA, out=tmp_path)
+    assert done.ok, done.message
+    r = reportgen.open(done.folder)
+    t = r.to_xarray().t
+    assert t.attrs["units"] == "1" and t.attrs["config_units"] == "config units of time"
+    assert r.to_xarray().x.attrs["config_units"].startswith("config units")
+    with h5py.File(r.h5) as f:
+        assert f["runs/main/t"].attrs["config_units"] == "config units of time"
+    assert r.results["H0"].unit == "1" and r.results["H0"].config_units.startswith("config")
+    assert r.results["H0"].value == pytest.approx(0.5, rel=1e-15)  # H = x²/2 at x = 1
+    assert_tree_quantifies(r.h5)
+    # the observables' group opened alone has t with its values and units (x² = cos² t)
+    with _open_group_quietly(r.h5, "analysis/observables") as ds:
+        np.testing.assert_array_equal(ds.t, r.to_xarray().t)
+        assert ds.t.attrs["config_units"] == "config units of time"
+        np.testing.assert_allclose(ds.x2, np.cos(ds.t) ** 2, atol=1e-8)
+
+
+def test_to_datatree_is_every_group_and_reads_earlier_formats(out):
+    """The tree holds every group of the archive; the checks are named, typed columns (text
+    as str) equal to ``run.checks``; archives of formats 1 and 2 open as trees too, their
+    compound tables as groups of columns, without a warning."""
+    _, single, _ = out
+    r = reportgen.open(single.folder)
+    tree = r.to_datatree()
+    with h5py.File(r.h5) as f:
+        groups = {"/"}
+        f.visititems(lambda n, o: groups.add("/" + n) if isinstance(o, h5py.Group) else None)
+    assert set(tree.groups) == groups
+    checks = tree["checks"].to_dataset()
+    assert checks.quantity.dtype.kind == "U" and checks.rel_error.dtype == np.float64
+    assert list(checks.quantity.values) == [c["quantity"] for c in r.checks]
+    np.testing.assert_array_equal(checks.value, [c["value"] for c in r.checks])
+    study = tree["study/error_vs_runtime"].to_dataset()
+    assert study.cached.dtype == bool and study.method.dtype.kind == "U"
+    assert study.wall_time_s.attrs["units"] == "s" and study.tolerance.attrs["units"] == "1"
+    for old in sorted((ROOT / "tests" / "data").glob("archive_*.h5")):
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            old_tree = reportgen.open(old).to_datatree()
+        table = old_tree["checks"].to_dataset()
+        assert table.quantity.dtype.kind == "U" and table.sizes["check"] >= 1, old
+        assert "checks" not in old_tree.to_dataset(), old
 
 
 def test_analysis_arrays_on_t_carry_the_runs_times(out):
-    """An ``/analysis`` array declared on ``t`` shares the main run's time coordinate."""
+    """An ``/analysis`` array declared on ``t`` has the main run's times as its coordinate,
+    with their units, in its own group (a group opened alone, not only in the tree)."""
     _, single, _ = out
     path = Path(single.folder) / "run.h5"
     with h5py.File(path, "r") as f:
@@ -303,11 +398,15 @@ def test_analysis_arrays_on_t_carry_the_runs_times(out):
                                  and o.dims[0].keys() == ["t"] else None)
         times = f["runs/main/t"][()]
     assert on_t, "the pendulum stores arrays on t (its phase portrait, energy error)"
-    ds = reportgen.open(path).to_xarray("analysis")
-    np.testing.assert_array_equal(ds.t, times)
-    assert ds.t.attrs["units"] == "s"
+    for name in on_t:
+        group = "analysis/" + name.rpartition("/")[0] if "/" in name else "analysis"
+        with _open_group_quietly(path, group) as ds:
+            np.testing.assert_array_equal(ds.t, times)
+            assert ds.t.attrs["units"] == "s"
     # and the readers do not take the index datasets for results
-    assert "t" not in reportgen.open(path).data.analysis
+    data = reportgen.open(path).data
+    assert "t" not in data.analysis
+    assert all("t" not in v for v in data.analysis.values() if isinstance(v, dict))
 
 
 def test_a_sweeps_point_sets_join_its_dataset(tmp_path):

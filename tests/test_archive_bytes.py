@@ -16,7 +16,7 @@ import pytest
 
 from conftest import pendulum_text
 from reportgen.archive.check import MAX_DATASET_BYTES
-from reportgen.archive.h5io import ArchiveError
+from reportgen.archive.h5io import TABLE_ATTR, ArchiveError, read_table
 from reportgen.archive.store import gallery_entry, read_archive
 from reportgen.commands.cli import main
 
@@ -68,20 +68,28 @@ def test_the_gallery_skips_it_without_reading_it(swollen):
     assert int(out.stdout) < 500_000, f"peak {int(out.stdout) / 1024:.0f} MiB"  # KiB
 
 
-def test_the_gallery_reads_no_wide_checks_table(swollen, tmp_path):
+@pytest.mark.parametrize("layout", ["compound", "columns"])
+def test_the_gallery_reads_no_wide_checks_table(swollen, tmp_path, layout):
     """A checks table of 10,000 rows (the gallery's row limit) whose quantity is 60,000
     bytes wide: 600 MB, read for one card before; now the card has no headline
-    from it, and the read stays small."""
+    from it, and the read stays small.  Stored as a compound dataset (format 2) or as a
+    group of columns (format 3)."""
     good, _ = swollen
     wide = tmp_path / "wide.h5"
     shutil.copy(good, wide)
     with h5py.File(wide, "r+") as f:
-        rows = f["checks"][()]
+        rows = read_table(f["checks"])
         table = np.zeros(10_000, dtype=[
             (n, "S60000" if n == "quantity" else "S16" if rows.dtype[n].kind in "OSU"
              else rows.dtype[n]) for n in rows.dtype.names])
         del f["checks"]
-        f.create_dataset("checks", data=table, chunks=(1,), compression="gzip")
+        if layout == "compound":
+            f.create_dataset("checks", data=table, chunks=(1,), compression="gzip")
+        else:
+            g = f.create_group("checks")
+            g.attrs[TABLE_ATTR] = np.array(table.dtype.names, dtype=h5py.string_dtype())
+            for n in table.dtype.names:
+                g.create_dataset(n, data=table[n], chunks=(1,), compression="gzip")
     probe = ("import sys; from pathlib import Path; "
              "from reportgen.archive.store import gallery_entry; "
              "entry = gallery_entry(Path(sys.argv[1])); " + PEAK)

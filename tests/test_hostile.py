@@ -350,6 +350,11 @@ BAD_ARCHIVES = {
     "/runs is a dataset": lambda f: _replace(f, "runs", data=np.arange(3)),
     "checks without fields": lambda f: _replace(f, "checks", data=np.zeros(2, dtype=[
         ("quantity", "f8")])),
+    # format 3's tables: groups of columns of one length, listed in table_columns
+    "checks column of another length": lambda f: _replace(f, "checks/value",
+                                                          data=np.zeros(57)),
+    "checks group not a table": lambda f: f["checks"].attrs.__delitem__("table_columns"),
+    "checks column missing": lambda f: f["checks"].__delitem__("rel_error"),
     "link cycle": lambda f: f["analysis/phase_portrait"].__setitem__("loop", f["analysis"]),
     "y is 1-D": lambda f: _replace(f, "runs/main/y", data=np.zeros(41)),
     "y has the wrong rows": lambda f: _replace(f, "runs/main/y", data=np.zeros((40, 2))),

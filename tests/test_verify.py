@@ -14,6 +14,7 @@ import pytest
 
 import reportgen
 from conftest import pendulum_text
+from reportgen.archive.h5io import TABLE_ATTR, column_table, read_table, table
 from reportgen.commands.cli import main
 from reportgen.pipeline.verify import TIMINGS, Difference
 
@@ -52,7 +53,7 @@ def test_a_fresh_run_verifies_identical_with_its_run_times_left_out(out, cli):
     assert "same reportgen version and simulation code" in stdout
     # the study's table holds run times that differ between runs: they were left out
     with h5py.File(out / "studied" / "run.h5") as f:
-        names = set(f["study/error_vs_runtime"].dtype.names)
+        names = set(read_table(f["study/error_vs_runtime"]).dtype.names)
     assert {"wall_time_s", "compile_time_s"} <= names and {"error_final", "nfev"} <= names
 
 
@@ -63,6 +64,7 @@ def test_every_timing_the_archives_hold_is_declared(out):
 
     def visit(name, obj):
         found.update(obj.attrs)
+        found.add(name.rsplit("/", 1)[-1])  # a table's column (format 3) is a dataset
         if isinstance(obj, h5py.Dataset) and obj.dtype.names:
             found.update(obj.dtype.names)
 
@@ -143,20 +145,45 @@ def test_the_study_is_compared_on_the_rows_both_runs_timed(out, tmp_path):
     folder = tmp_path / "studied"
     shutil.copytree(out / "studied", folder)
     with h5py.File(folder / "run.h5", "r+") as f:
-        table = f["study/error_vs_runtime"][()]
-        attrs = dict(f["study/error_vs_runtime"].attrs)
+        g = f["study/error_vs_runtime"]
+        table = read_table(g)
+        attrs = dict(g.attrs)
+        columns = {n: dict(g[n].attrs) for n in table.dtype.names}
         del f["study/error_vs_runtime"]
-        f["study"].create_dataset("error_vs_runtime", data=table[:-1])  # one row fewer
-        for k, v in attrs.items():
-            if k not in ("DIMENSION_LIST",):
-                f["study/error_vs_runtime"].attrs[k] = v
+        column_table(f["study"], "error_vs_runtime", table[:-1], "row", "row",  # one row fewer
+                     describe=lambda n: {k: v for k, v in columns[n].items()
+                                         if k not in ("DIMENSION_LIST", "REFERENCE_LIST")})
+        f["study/error_vs_runtime"].attrs.update(attrs)
     assert reportgen.verify(folder / "run.h5").identical
     with h5py.File(folder / "run.h5", "r+") as f:
-        table = f["study/error_vs_runtime"][()]
-        table["error_final"][0] *= 2
-        f["study/error_vs_runtime"][...] = table
+        error = f["study/error_vs_runtime/error_final"]
+        values = error[()]
+        values[0] *= 2
+        error[...] = values
     result = reportgen.verify(folder / "run.h5")
     assert [d.path for d in result.differences] == ["study/error_vs_runtime:error_final"]
+
+
+def test_an_archive_of_format_2_compares_with_its_re_run_of_format_3(out, tmp_path):
+    """The tables written as compound datasets, the row numbers beside them (format 2)
+    compare with today's groups of columns: the same run verifies identical."""
+    folder = tmp_path / "studied"
+    shutil.copytree(out / "studied", folder)
+    with h5py.File(folder / "run.h5", "r+") as f:
+        for path, row in (("checks", "check"), ("study/error_vs_runtime", "row")):
+            g = f[path]
+            records, attrs = read_table(g), dict(g.attrs)
+            attrs.pop(TABLE_ATTR)
+            parent = g.parent
+            del f[path]
+            stored = table(parent, path.rsplit("/", 1)[-1], records)
+            stored.attrs.update(attrs)
+            scale = parent.create_dataset(row, data=np.arange(len(records)))
+            scale.make_scale(row)
+            stored.dims[0].attach_scale(scale)
+        f.attrs["format_version"] = 2
+    result = reportgen.verify(folder / "run.h5")
+    assert result.identical, result.differences[:5]
 
 
 def test_provenance_names_the_processor_the_source_and_the_simulation_code(out, tmp_path, cli):

@@ -15,6 +15,7 @@ REPO = Path(__file__).resolve().parents[2]
 #: (heading, module file) quoted on the archive layout page, in this order
 ARCHIVE_SOURCES = (
     ("The layout", "reportgen/archive/store.py"),
+    ("Units and coordinates", "reportgen/archive/cf.py"),
     ("A family of runs: `/sweep`", "reportgen/scene/sweep.py"),
     ("What every reader checks first", "reportgen/archive/check.py"),
 )

@@ -36,19 +36,15 @@ from typing import Any
 import h5py
 import numpy as np
 
-from .h5io import FORMAT, FORMAT_VERSION, OLDEST_READABLE, ArchiveError
+from .h5io import FORMAT, FORMAT_VERSION, OLDEST_READABLE, TABLE_ATTR, ArchiveError
 
-#: elements of one dataset (4e7: a run of the largest ``samples`` (2e6) with 20 columns)
-MAX_DATASET_ELEMENTS = 40_000_000
-#: elements of all datasets together
-MAX_TOTAL_ELEMENTS = 100_000_000
+# elements of one dataset, of all together, bytes of one: shared with the writers
+from .limits import MAX_DATASET_BYTES, MAX_DATASET_ELEMENTS, MAX_TOTAL_ELEMENTS
+
 #: elements of one variable-length text dataset (each becomes a Python string)
 MAX_STRINGS = 5_000_000
 #: bytes of one chunk (HDF5 decompresses whole chunks)
 MAX_CHUNK_BYTES = 64 << 20
-#: bytes of one dataset as read (elements × item size: a fixed-width text of 40,000 bytes
-#: per element made 90,000 elements, a few hundred bytes in the file, cost 3.6 GB to read)
-MAX_DATASET_BYTES = 1 << 30
 #: bytes of one attribute as read
 MAX_ATTR_BYTES = 16 << 20
 #: elements of one attribute
@@ -112,7 +108,7 @@ def check_archive(f: h5py.File, path: Path | str) -> None:
                 _check_run(runs, name)
         _group(f, "analysis")
         if "checks" in f:
-            _check_table(f, "checks", _CHECK_FIELDS)
+            _check_table(f, "checks", _CHECK_FIELDS)  # a dataset (format 2) or a group (3)
         study = _group(f, "study")
         if study is not None and "error_vs_runtime" in study:
             _check_table(study, "error_vs_runtime", {"method": "text"}, where="study/")
@@ -413,12 +409,43 @@ def _check_run(runs: h5py.Group, name: str) -> None:
 
 def _check_table(parent: h5py.Group, name: str, fields: dict[str, str],
                  where: str = "") -> None:
+    """A table: a 1-D compound dataset (format ≤ 2) or a group of 1-D columns of one
+    length listed in its attr ``table_columns`` (format 3), with ``fields`` of their kinds."""
+    if isinstance(parent.get(name), h5py.Group):
+        _check_column_table(parent[name], f"/{where}{name}", fields)
+        return
     ds = _dataset(parent, name, f"/{where}", kind="table", ndim=1)
     for field, kind in fields.items():
         if field not in ds.dtype.names:
             raise _Problem(f"/{where}{name} has no field {field}")
         if _dtype_kind(ds.dtype.fields[field][0]) != kind:
             raise _Problem(f"/{where}{name}: field {field} must hold "
+                           f"{'numbers' if kind == 'number' else kind}")
+
+
+def _check_column_table(g: h5py.Group, where: str, fields: dict[str, str]) -> None:
+    if TABLE_ATTR not in g.attrs:
+        raise _Problem(f"{where} is a group without the attribute {TABLE_ATTR}: not a table")
+    names = g.attrs[TABLE_ATTR]
+    if isinstance(names, (str, bytes)):
+        names = np.array([names], dtype=object)
+    if not (isinstance(names, np.ndarray) and names.ndim == 1
+            and all(_as_text(n) is not None for n in names)):
+        raise _Problem(f"{where}: attribute {TABLE_ATTR} must be a list of column names")
+    columns = [_as_text(n) for n in names]
+    rows = None
+    for column in columns:
+        ds = _dataset(g, column, f"{where}/", ndim=1)
+        if _dtype_kind(ds.dtype) not in ("number", "text"):
+            raise _Problem(f"{where}/{column} must hold numbers or text")
+        if rows is not None and ds.shape[0] != rows:
+            raise _Problem(f"{where}/{column} has {ds.shape[0]} rows, the table {rows}")
+        rows = ds.shape[0]
+    for field, kind in fields.items():
+        if field not in columns:
+            raise _Problem(f"{where} has no field {field}")
+        if _dtype_kind(g[field].dtype) != kind:
+            raise _Problem(f"{where}: field {field} must hold "
                            f"{'numbers' if kind == 'number' else kind}")
 
 

@@ -23,8 +23,10 @@ STR = h5py.string_dtype("utf-8")
 
 #: the archive format (see :mod:`reportgen.archive.store`)
 FORMAT = "reportgen"
-FORMAT_VERSION = 2
-#: oldest format this reader opens (1: no dimension scales, no resolved config)
+FORMAT_VERSION = 3
+#: oldest format this reader opens (1: no dimension scales, no resolved config; 2: the
+#: checks and study tables as compound datasets, ``/analysis``'s dimension scales in
+#: ``/analysis`` only, modes indexed from 0, text with an empty ``units``)
 OLDEST_READABLE = 1
 
 
@@ -219,11 +221,85 @@ def read_mapping(group: h5py.Group) -> dict[str, Any]:
     return out
 
 
-def read_table(ds: h5py.Dataset) -> np.ndarray:
+#: the attr of a table stored as a group of columns: its column names, in order
+TABLE_ATTR = "table_columns"
+
+
+def column_table(parent: h5py.Group, name: str, records: np.ndarray, dim: str,
+                 row_long_name: str,
+                 describe: Callable[[str], dict[str, Any]] | None = None) -> h5py.Group:
+    """The structured array ``records`` as the group ``name`` of one dataset per field on
+    the dimension scale ``dim`` (format 3; netCDF's table, which xarray opens as named,
+    typed columns): text as UTF-8 strings, flags as int8 with xarray's ``dtype = "bool"``,
+    numbers as they are.  ``describe(field)`` gives a column's CF attributes; the group's
+    attr :data:`TABLE_ATTR` lists the columns in order (:func:`read_table` reads it back)."""
+    g = parent.create_group(name, track_order=True)  # xarray lists the columns in order
+    rows = dataset(g, dim, np.arange(len(records), dtype=np.int64))
+    rows.attrs.update({"long_name": row_long_name, "units": "1",
+                       DIMENSION_ATTR: np.bool_(True)})
+    rows.make_scale(dim)
+    for field in records.dtype.names:
+        column = records[field]
+        if column.dtype.kind in "OUS":
+            text = [v.decode("utf-8") if isinstance(v, bytes) else str(v) for v in column]
+            ds = g.create_dataset(field, shape=(len(text),), dtype=STR)
+            if text:
+                ds[...] = np.array(text, dtype=object)
+        elif column.dtype.kind == "b":
+            ds = dataset(g, field, column.astype(np.int8))
+            ds.attrs["dtype"] = "bool"  # xarray's mark of a flag stored as int8
+        else:
+            ds = dataset(g, field, column)
+        if describe is not None:
+            ds.attrs.update(describe(field))
+        ds.dims[0].attach_scale(rows)
+    g.attrs[TABLE_ATTR] = np.array(records.dtype.names, dtype=STR)
+    return g
+
+
+def is_table(obj) -> bool:
+    """Whether ``obj`` is a table: a compound dataset (format ≤ 2) or a group of columns
+    (:func:`column_table`, format 3)."""
+    if isinstance(obj, h5py.Group):
+        return TABLE_ATTR in obj.attrs
+    return isinstance(obj, h5py.Dataset) and obj.dtype.names is not None
+
+
+def table_columns(g: h5py.Group) -> list[str]:
+    """The column names of a group of columns, in order."""
+    names = decode(g.attrs[TABLE_ATTR])
+    return [names] if isinstance(names, str) else [str(n) for n in names]
+
+
+def read_table(ds: h5py.Dataset | h5py.Group) -> np.ndarray:
+    """A table as a structured array, text as str objects: a compound dataset (format ≤ 2)
+    or a group of columns (format 3), read alike."""
+    if isinstance(ds, h5py.Group):
+        return _read_column_table(ds)
     raw = ds[()]
     fields = [(n, object if raw.dtype[n].kind in "OS" else raw.dtype[n]) for n in raw.dtype.names]
     out = np.empty(raw.shape, dtype=fields)
     for n in raw.dtype.names:
         col = raw[n]
         out[n] = [decode(v) for v in col] if raw.dtype[n].kind in "OS" else col
+    return out
+
+
+def _read_column_table(g: h5py.Group) -> np.ndarray:
+    names = table_columns(g)
+    columns = {n: g[n] for n in names}
+    lengths = {c.shape for c in columns.values()}
+    if len(lengths) > 1 or any(len(shape) != 1 for shape in lengths):
+        raise ValueError(f"the columns of table {g.name} differ in length or are not 1-D")
+    n = next(iter(lengths))[0] if lengths else 0
+
+    def field(ds: h5py.Dataset):
+        if h5py.check_string_dtype(ds.dtype) is not None:
+            return object
+        return np.bool_ if ds.attrs.get("dtype") == "bool" else ds.dtype
+
+    out = np.empty(n, dtype=[(name, field(ds)) for name, ds in columns.items()])
+    for name, ds in columns.items():
+        values = ds[()]
+        out[name] = [decode(v) for v in values] if field(ds) is object else values
     return out

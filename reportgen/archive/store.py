@@ -1,6 +1,6 @@
 """The HDF5 archive: the only module that touches h5py.
 
-Layout (``format_version`` 2, see SPEC.md "Archive")::
+Layout (``format_version`` 3, see SPEC.md "Archive")::
 
     /                         attrs: format, format_version, kind, title, config_sha256,
                                      physics_key, created, reportgen_version, scene,
@@ -14,17 +14,23 @@ Layout (``format_version`` 2, see SPEC.md "Archive")::
                               "simulation code" (hash of the code the kind's simulation runs)
     /runs/<name>/t            (N,) float64, dimension scale ``t``
     /runs/<name>/component    (d,) strings, dimension scale: the state components' names
-    /runs/<name>/y            (N, d) float64, dims (t, component), attr columns
+    /runs/<name>/y            (N, d) float64, dims (t, component), attrs columns,
+                              column_units, column_long_names, column_symbols
     /runs/<name>/invariants/<q>  (N,) float64, also linked as /runs/<name>/<q> (dim t)
     /runs/<name>/reference/<c>   (N,) float64: exact or reference solution of column c,
                               also linked as /runs/<name>/reference_<c>
                               (a run the results give under two names is one group with
                               two hard links, e.g. /runs/main = /runs/loops)
-    /analysis                 attrs (scalars, strings) and datasets (arrays); sub-dicts are groups
-    /checks                   table: quantity, value, reference, abs_error, rel_error, unit, source
-                              on the dimension scale /check (its row numbers)
-    /study/error_vs_runtime   table (one row per method x tolerance), attrs reference_kind,
-                              on the dimension scale /study/row
+    /analysis                 attrs (scalars, strings; their CF attributes in the attr
+                              __quantities__, JSON) and datasets (arrays); sub-dicts are
+                              groups, each holding the coordinates of the dimensions its
+                              arrays use: t (the main run's times), a numbered dimension
+                              1 … n (mode), else an index 0 … n − 1
+    /checks                   table (a group of columns on its dimension scale check):
+                              quantity, value, reference, scale, abs_error, rel_error, unit,
+                              source
+    /study/error_vs_runtime   table (a group of columns on its dimension scale row), one
+                              row per method x tolerance; attrs reference_kind, accuracy_*
     /sweep                    a family of runs ([sweep], see reportgen.scene.sweep), on the
                               dimension scale /sweep/member: status, message (M,) strings
                               (fixed-width UTF-8, attr _Encoding; older archives: variable),
@@ -34,6 +40,25 @@ Layout (``format_version`` 2, see SPEC.md "Archive")::
                               ``point`` (P,), member (P,) int64, one (P,) float64 per
                               column (a (P, d) column also on the scale ``component``),
                               attrs what the points are and ``max_points``
+
+A table is a group of one dataset per column, all on the group's own dimension scale,
+listed in order by the group's attr ``table_columns``: text as UTF-8 strings, flags as int8
+with ``dtype = "bool"`` (xarray reads them back as bool), so that
+``xarray.open_datatree(path, engine="h5netcdf")`` shows named, typed columns.
+
+Attributes (CF): every dataset has ``long_name`` and ``symbol`` (TeX); every number a
+``units`` that pint and UDUNITS read ("rad/s", "kg m^2", "1"), except a number of several
+units, which says where they are instead: a state ``y`` whose columns differ by
+``column_units``, a checks column by ``units_column`` (the column holding each row's
+unit), a study error over such a state by ``units_note``.  A number in the config's own
+units (a formula system's time) is "1" with ``config_units`` saying what it measures
+("config units of time"); a number stored as a multiple of its unit (times in τ = 4.0746
+fs) has ``units`` "fs" and CF's ``scale_factor``.  Text has no ``units``.
+
+Earlier formats stay readable by every reader: format 2 stored the tables as compound
+datasets (row numbers at /check and /study/row), ``/analysis``'s dimension scales in
+``/analysis`` alone with modes indexed from 0, text with ``units`` "" and a mixed ``y``
+with ``units`` "various"; format 1 had no dimension scales and no resolved config.
 
 Every array is stored with the fletcher32 checksum, so a corrupted chunk raises
 on read instead of returning wrong numbers.  Writes go to a temporary file in
@@ -57,9 +82,10 @@ import numpy as np
 
 from .. import __version__
 from ..scene.results import Check, Results, RunRecord
-from ..scene.schema import Quantity, ResultsSchema
+from ..scene.schema import ResultsSchema
 from ..support.fsutil import NotRegularFile, install, regular_file, temp_name
 from ..support.layout import printable
+from .cf import CHECK_COLUMNS, analysis_dimensions, declared, described, study_columns
 from .check import STATUSES as _CHECKED_STATUSES
 from .check import check_archive, is_int, is_number
 from .h5io import (  # noqa: F401 - FORMAT* are part of this module's interface
@@ -68,15 +94,18 @@ from .h5io import (  # noqa: F401 - FORMAT* are part of this module's interface
     FORMAT_VERSION,
     OLDEST_READABLE,
     STR,
+    TABLE_ATTR,
     ArchiveError,
     attr_value,
+    column_table,
     dataset,
     decode,
     is_dimension,
+    is_table,
     provenance,
     read_mapping,
     read_table,
-    table,
+    table_columns,
     write_mapping,
 )
 
@@ -222,16 +251,18 @@ def _write_contents(f: h5py.File, *, kind, title, scene, config_text, config_sha
         _write_run(runs.create_group(name), run, schema)
     analysis = f.create_group("analysis")
     write_mapping(analysis, results.analysis,
-                  describe=lambda name: _quantity(schema.result, name).cf_attrs)
-    _analysis_dimensions(analysis, schema, runs.get("main"))
-    checks = described(table(f, "checks", _checks_records(results.checks)),
-                       "headline numbers against their exact or independent references")
-    _row_scale(f, checks, "check", "row of the checks table")
+                  describe=lambda name: schema.cf_attrs(declared(schema.result, name)))
+    analysis_dimensions(analysis, schema, runs.get("main"))
+    checks = column_table(f, "checks", _checks_records(results.checks), "check",
+                          "row of the checks table", describe=CHECK_COLUMNS.get)
+    checks.attrs["long_name"] = "headline numbers against their exact or independent references"
     if results.study is not None:
         study = f.create_group("study")
-        study_table = described(table(study, "error_vs_runtime", results.study),
-                                "error against run time: one row per method and tolerance")
-        _row_scale(study, study_table, "row", "method and tolerance of the study")
+        study_table = column_table(study, "error_vs_runtime", results.study, "row",
+                                   "method and tolerance of the study",
+                                   describe=study_columns(schema, results.runs.get("main")))
+        study_table.attrs["long_name"] = ("error against run time: one row per method and "
+                                          "tolerance")
         for key, value in results.study_attrs.items():
             study_table.attrs[key] = attr_value(value)
     if results.sweep is not None:
@@ -240,70 +271,6 @@ def _write_contents(f: h5py.File, *, kind, title, scene, config_text, config_sha
 
 #: the schema of a kind that declares none: every dataset still gets CF attributes
 UNDECLARED = ResultsSchema()
-
-
-def _row_scale(g: h5py.Group, tab: h5py.Dataset, name: str, long_name: str) -> None:
-    """A table's rows on the dimension scale ``name`` beside it, so that no dataset of the
-    archive has an unnamed dimension (xarray's h5netcdf engine then needs no phony ones)."""
-    scale = described(dataset(g, name, np.arange(len(tab), dtype=np.int64)), long_name, "1")
-    scale.make_scale(name)
-    tab.dims[0].attach_scale(scale)
-
-
-def _analysis_dimensions(g: h5py.Group, schema: ResultsSchema, main: h5py.Group | None) -> None:
-    """Every array below ``/analysis`` on named dimensions: the declared ``dims`` of its
-    quantity (``t`` carries the main run's times), ``<result>_<axis>`` for an array the
-    schema leaves unnamed.  The scales sit in ``/analysis`` itself, where every subgroup
-    sees them (netCDF's rule), so xarray needs no phony dimensions anywhere."""
-    arrays: list[tuple[h5py.Dataset, tuple[str, ...]]] = []
-
-    def visit(name: str, obj) -> None:
-        if isinstance(obj, h5py.Dataset) and obj.ndim > 0:
-            q = _quantity(schema.result, name)
-            dims = q.dims if len(q.dims) == obj.ndim else ()
-            if not dims:
-                stem = name.replace("/", "_")
-                dims = tuple(f"{stem}_{i}" if obj.ndim > 1 else f"{stem}_index"
-                             for i in range(obj.ndim))
-            # a matrix on (xyz, xyz): xarray wants distinct names, (xyz, xyz_2)
-            arrays.append((obj, tuple(d if d not in dims[:i] else f"{d}_{dims[:i].count(d) + 1}"
-                                      for i, d in enumerate(dims))))
-
-    g.visititems(visit)
-    scales: dict[tuple[str, int], h5py.Dataset] = {}
-    for ds, dims in arrays:
-        for axis, (dim, n) in enumerate(zip(dims, ds.shape, strict=True)):
-            scale = scales.get((dim, n))
-            if scale is None:
-                name = dim if dim not in g and all(d != dim for d, _ in scales) else \
-                    f"{dim}_{n}"
-                times = main is not None and dim == "t" and len(main["t"]) == n
-                scale = dataset(g, name, main["t"][()] if times
-                                else np.arange(n, dtype=np.int64))
-                if times:
-                    scale.attrs.update({k: main["t"].attrs[k]
-                                        for k in ("units", "long_name", "symbol")
-                                        if k in main["t"].attrs})
-                else:
-                    described(scale, f"index along {dim}", "1")
-                scale.attrs[DIMENSION_ATTR] = np.bool_(True)
-                scale.make_scale(name)
-                scales[(dim, n)] = scale
-            ds.dims[axis].attach_scale(scale)
-
-
-def described(ds: h5py.Dataset, long_name: str, units: str = "", symbol: str = ""):
-    """Give ``ds`` its CF attributes (``units`` "" for text and tables)."""
-    ds.attrs.update({"units": units, "long_name": long_name, "symbol": symbol})
-    return ds
-
-
-def _quantity(lookup, name: str) -> Quantity:
-    """The declared quantity ``name`` by ``lookup``, or an undeclared stand-in."""
-    try:
-        return lookup(name)
-    except KeyError:
-        return Quantity(name, "", "", name.replace("_", " ").replace("/", ": "))
 
 
 def _write_config(f: h5py.File, config_text: str, resolved_config: dict) -> None:
@@ -339,7 +306,7 @@ def _write_sweep(g: h5py.Group, sweep, schema: ResultsSchema) -> None:
     labels = g.create_group("labels")
     for name, values in sweep.labels.items():
         ds = _member_text(labels, name, values)
-        described(ds, _quantity(schema.result, name).description)
+        described(ds, declared(schema.result, name).description)
         ds.dims[0].attach_scale(member)
     sub = g.create_group("values")
     for name, values in sweep.values.items():
@@ -349,7 +316,7 @@ def _write_sweep(g: h5py.Group, sweep, schema: ResultsSchema) -> None:
     sub = g.create_group("analysis")
     for name, values in sweep.analysis.items():
         ds = _member_numbers(sub, name, values)
-        ds.attrs.update(_quantity(schema.result, name).cf_attrs)
+        ds.attrs.update(schema.cf_attrs(declared(schema.result, name)))
         ds.dims[0].attach_scale(member)
     for key, value in sweep.attrs.items():
         g.attrs[key] = attr_value(value)
@@ -450,8 +417,8 @@ def _write_run(g: h5py.Group, run: RunRecord, schema: ResultsSchema) -> None:
     reference as a variable on ``t``.  ``y`` holds columns of several units: its
     ``column_units``, ``column_long_names`` and ``column_symbols`` attrs give them, and
     its ``units`` is theirs when they agree ("various" otherwise)."""
-    t = described(dataset(g, "t", np.asarray(run.t, dtype=np.float64)),
-                  schema.time.description, schema.time.unit, schema.time.symbol)
+    t = dataset(g, "t", np.asarray(run.t, dtype=np.float64))
+    t.attrs.update(schema.cf_attrs(schema.time))
     t.make_scale("t")
     component = described(g.create_dataset(
         "component", data=np.array(run.columns, dtype=object), dtype=STR),
@@ -459,11 +426,16 @@ def _write_run(g: h5py.Group, run: RunRecord, schema: ResultsSchema) -> None:
     component.make_scale("component")
     y = dataset(g, "y", np.asarray(run.y, dtype=np.float64).reshape(len(run.t), -1))
     y.attrs["columns"] = np.array(run.columns, dtype=STR)
-    columns = [_quantity(schema.column, c) for c in run.columns]
-    units = {q.unit for q in columns}
-    described(y, "state: " + ", ".join(q.description for q in columns),
-              units.pop() if len(units) == 1 else "various")
-    for key, attr in (("units", "unit"), ("long_names", "description"), ("symbols", "symbol")):
+    columns = [declared(schema.column, c) for c in run.columns]
+    cf = [schema.cf_attrs(q) for q in columns]
+    units = {(a.get("units", ""), a.get("scale_factor"), a.get("config_units")) for a in cf}
+    described(y, "state: " + ", ".join(q.description for q in columns))
+    if len(units) == 1:  # one unit for all: y's own (several: per column only, below)
+        y.attrs.update({k: v for k, v in cf[0].items() if k not in ("long_name", "symbol")})
+    y.attrs["column_units"] = np.array([a.get("units", "") for a in cf], dtype=STR)
+    if any("scale_factor" in a for a in cf):
+        y.attrs["column_scale_factors"] = np.array([a.get("scale_factor", 1.0) for a in cf])
+    for key, attr in (("long_names", "description"), ("symbols", "symbol")):
         y.attrs[f"column_{key}"] = np.array([getattr(q, attr) for q in columns], dtype=STR)
     y.dims[0].attach_scale(t)
     y.dims[1].attach_scale(component)
@@ -471,7 +443,7 @@ def _write_run(g: h5py.Group, run: RunRecord, schema: ResultsSchema) -> None:
     taken = {"t", "y", "component", "invariants", "reference"}
     for q, values in run.invariants.items():
         ds = dataset(inv, q, np.asarray(values, dtype=np.float64))
-        ds.attrs.update(_quantity(schema.invariant, q).cf_attrs)
+        ds.attrs.update(schema.cf_attrs(declared(schema.invariant, q)))
         if ds.ndim == 1 and len(ds) == len(run.t):
             ds.dims[0].attach_scale(t)
             g[q if q not in taken else f"invariant_{q}"] = ds  # hard link: a variable on t
@@ -479,8 +451,9 @@ def _write_run(g: h5py.Group, run: RunRecord, schema: ResultsSchema) -> None:
         ref = g.create_group("reference")
         for c, values in run.reference.items():
             ds = dataset(ref, c, np.asarray(values, dtype=np.float64))
-            q = _quantity(schema.column, c)
-            described(ds, f"reference solution: {q.description}", q.unit, q.symbol)
+            q = declared(schema.column, c)
+            ds.attrs.update({**schema.cf_attrs(q),
+                             "long_name": f"reference solution: {q.description}"})
             if ds.ndim == 1 and len(ds) == len(run.t):
                 ds.dims[0].attach_scale(t)
                 if f"reference_{c}" not in g:
@@ -549,7 +522,8 @@ def read_archive(path: Path) -> ArchiveData:
             if "study/error_vs_runtime" in f:
                 ds = f["study/error_vs_runtime"]
                 data.study = read_table(ds)
-                data.study_attrs = {k: decode(v) for k, v in ds.attrs.items()}
+                data.study_attrs = {k: decode(v) for k, v in ds.attrs.items()
+                                    if k != TABLE_ATTR}
             if "sweep" in f:
                 data.sweep = _read_sweep(f["sweep"])
     except ArchiveError:
@@ -653,11 +627,8 @@ def gallery_entry(path: Path, headline: Callable[[ArchiveData], str] | None = No
             # neighbour's 3.6 GB of fixed-width text cost every later run into its folder
             check_archive(f, path)
             a = {k: decode(v) for k, v in f.attrs.items()}
-            ds = f.get("checks")
             # a small table only (read back from an output folder: not a declared giant)
-            checks = (read_table(ds) if isinstance(ds, h5py.Dataset) and ds.ndim == 1
-                      and ds.dtype.names and ds.shape[0] <= 10_000
-                      and ds.shape[0] * ds.dtype.itemsize <= GALLERY_TABLE_BYTES else None)
+            checks = _small_table(f.get("checks"))
             light = _read_light(f, path, a, checks) if headline is not None else None
     except (OSError, KeyError, TypeError, ValueError, RuntimeError, ArchiveError):
         return None
@@ -679,6 +650,24 @@ def gallery_entry(path: Path, headline: Callable[[ArchiveData], str] | None = No
             "status": text("status", "ok"), "message": text("message"),
             "wall_time_s": float(wall) if is_number(wall) else math.nan,
             "headline": printable(line, newlines=False), "created": text("created")}
+
+
+def _small_table(obj) -> np.ndarray | None:
+    """The checks table ``obj`` (a compound dataset or a group of columns) if it is small
+    enough for a gallery card (:data:`GALLERY_TABLE_BYTES`, 10,000 rows), else None."""
+    if isinstance(obj, h5py.Dataset):
+        if not (obj.ndim == 1 and obj.dtype.names):
+            return None
+        rows, width = obj.shape[0], obj.dtype.itemsize
+    elif isinstance(obj, h5py.Group) and is_table(obj):
+        columns = [obj.get(n) for n in table_columns(obj)]
+        if not columns or not all(isinstance(c, h5py.Dataset) and c.ndim == 1
+                                  for c in columns):
+            return None
+        rows, width = columns[0].shape[0], sum(c.dtype.itemsize for c in columns)
+    else:
+        return None
+    return read_table(obj) if rows <= 10_000 and rows * width <= GALLERY_TABLE_BYTES else None
 
 
 def _worst_check_text(checks) -> str:

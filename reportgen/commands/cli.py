@@ -438,11 +438,15 @@ def _files_folder(archive: Path, root: Path | None, folder: str | None, name: st
 
 def cmd_figures(args) -> int:
     from ..archive.store import ArchiveError
-    from ..rendering.export import export_figures, parse_formats, parse_size
+    from ..rendering.export import export_figures, parse_formats, parse_size, pixel_problem
     from ..rendering.report import ReportError
 
     try:
         size, formats = parse_size(args.size), parse_formats(args.format)
+        if size.width is not None and size.height is not None and "png" in formats:
+            problem = pixel_problem(size.width, size.height, args.dpi, f"--size {size.label}")
+            if problem is not None:  # before the archive is read, or a scene run for it
+                raise UsageError(problem)
         archive, root = _where(args, "figures")
     except UsageError as exc:
         return _usage(str(exc))

@@ -15,6 +15,7 @@ import importlib
 import pkgutil
 
 from ..scene.base import REGISTRY, Scene
+from ..scene.budget import archive_problems
 from ..scene.config import ConfigError, SourceConfig, did_you_mean
 
 
@@ -33,7 +34,9 @@ def get_kind(kind: str) -> type[Scene]:
 
 
 def load_scene(source: SourceConfig) -> Scene:
-    """Validate a parsed config into its scene object; ConfigError names every problem."""
+    """Validate a parsed config into its scene object; ConfigError names every problem,
+    an archive larger than its reader takes included
+    (:func:`reportgen.scene.budget.archive_problems`)."""
     kind = source.data.get("kind")
     if kind is None:
         raise ConfigError([f"{source.label}: key 'kind': required key is missing "
@@ -41,7 +44,11 @@ def load_scene(source: SourceConfig) -> Scene:
     if not isinstance(kind, str) or kind not in REGISTRY:
         raise ConfigError([f"{source.label}: key 'kind': must be one of {', '.join(KINDS)}"
                            f"{did_you_mean(kind, KINDS)} (got {kind!r})"])
-    return REGISTRY[kind].from_source(source)
+    scene = REGISTRY[kind].from_source(source)
+    problems = archive_problems(scene)
+    if problems:
+        raise ConfigError(problems)
+    return scene
 
 
 class _KindsPackage(type(importlib)):

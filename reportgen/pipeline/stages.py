@@ -44,17 +44,20 @@ from ..support.fsutil import (
     links_out,
     output_folder,
     output_lock,
-    regular_file,
+    read_back,
     remove_stale_temps,
     temp_name,
 )
 from ..support.layout import (
+    MAX_FIGURE_BYTES,
+    MAX_MANIFEST_BYTES,
     collect_configs,
     drawn_svg_figures,
     printable,
     report_stamp,
     scene_name,
 )
+from ..support.svgsafe import svg_safe
 
 
 @dataclass
@@ -129,10 +132,14 @@ def _formats(scene: Scene, override: tuple[str, ...] | None) -> tuple[str, ...]:
     return tuple(override) if override else tuple(scene.config.report.formats)
 
 
+#: a report stamp is a line of JSON: a larger file is not one this reportgen wrote
+MAX_STAMP_BYTES = 1_000_000
+
+
 def _report_current(folder: Path, identity: Identity, formats, scene: Scene) -> bool:
     """Whether every wanted report was rendered from this very archive content."""
     try:
-        stamp = json.loads(regular_file(report_stamp(folder)).read_text(encoding="utf-8"))
+        stamp = json.loads(read_back(report_stamp(folder), MAX_STAMP_BYTES).decode("utf-8"))
     except (OSError, ValueError, RecursionError):
         return False
     if not (isinstance(stamp, dict) and isinstance(stamp.get("formats", ()), list)):
@@ -1018,7 +1025,7 @@ def _gallery_entries(root: Path) -> dict[Path, dict]:
     reportgen version and gallery format)."""
     cache = root / GALLERY_CACHE
     try:
-        stored = json.loads(regular_file(cache).read_text(encoding="utf-8"))
+        stored = json.loads(read_back(cache, MAX_MANIFEST_BYTES).decode("utf-8"))
     except (OSError, ValueError, RecursionError):
         stored = {}
     fresh, entries = {}, {}
@@ -1067,24 +1074,26 @@ def _gallery_figure(folder: Path, kind: str) -> dict:
     if i is None:
         return {"thumbnail": None, "thumbnail_alt": "", "wide": False}
     fig = figures[i]
+    try:  # a figure the sanitizer would change is not shown (the report draws it again)
+        svg = read_back(folder / fig["files"]["svg"], MAX_FIGURE_BYTES, follow_links=True)
+    except OSError:
+        svg = b""
+    if not svg_safe(svg):
+        return {"thumbnail": None, "thumbnail_alt": "", "wide": False}
     caption = fig.get("caption") if isinstance(fig.get("caption"), str) else ""
     return {"thumbnail": gallery_href(folder.name, fig["files"]["svg"]),
             "thumbnail_alt": caption[:300] or f"figure of {folder.name}",
-            "wide": _svg_aspect(folder / fig["files"]["svg"]) >= WIDE_ASPECT}
+            "wide": _svg_aspect(svg) >= WIDE_ASPECT}
 
 
 _SVG_SIZE = re.compile(rb'<svg\b[^>]*?\bwidth="([\d.]+)(?:pt|px)?"[^>]*?\bheight="([\d.]+)'
                        rb'(?:pt|px)?"')
 
 
-def _svg_aspect(path: Path) -> float:
-    """Width over height of an SVG figure, from its opening tag (the first 4 kB); 1 when
-    it cannot be told."""
-    try:
-        with open(path, "rb") as f:
-            head = f.read(4096)
-    except OSError:
-        return 1.0
+def _svg_aspect(svg: bytes) -> float:
+    """Width over height of an SVG figure, from its opening tag (in the first 4 kB); 1
+    when it cannot be told."""
+    head = svg[:4096]
     found = _SVG_SIZE.search(head)
     try:
         w, h = (float(v) for v in found.groups()) if found else (1.0, 1.0)

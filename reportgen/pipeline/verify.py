@@ -47,6 +47,9 @@ PROVENANCE = "provenance"
 ROW_KEY = ("method", "label", "kind", "tolerance", "h")
 #: a table's row coordinate (netCDF's dimension of it), compared with the table itself
 ROW_COORDINATE = "row"
+#: the row numbers of the tables of a format-2 archive (format 3 keeps them in the
+#: table, marked as an index like every other coordinate that only counts)
+INDEXES = frozenset({"check", "study/row"})
 #: the root attribute that identifies config, version and simulation code together
 PHYSICS_KEY = "physics_key"
 #: root attributes naming the release and format that wrote the archive: said, not compared
@@ -205,22 +208,37 @@ def compare_archives(stored: Path, again: Path
 
 def _items(f) -> dict[str, Any]:
     """Every compared value of an open archive: ``path`` -> dataset values, and
-    ``path@name`` -> attribute values (the root's as ``@name``)."""
+    ``path@name`` -> attribute values (the root's as ``@name``).  A table is one item
+    whichever way it is stored (a compound dataset, format 2, or a group of columns, format
+    3: read back as one structured array), so archives of either format compare; the
+    coordinates that only number rows or index an axis (:data:`INDEXES`) are not results."""
     import h5py
 
+    from ..archive.h5io import TABLE_ATTR, is_dimension, is_table, read_table
+
     items: dict[str, Any] = {}
+    tables: list[str] = []
 
     def attrs(prefix: str, obj) -> None:
         for name, value in obj.attrs.items():
             if name not in TIMINGS and name not in BOOKKEEPING and name != PHYSICS_KEY \
-                    and not (prefix == "" and name in RELEASE):
+                    and name != TABLE_ATTR and not (prefix == "" and name in RELEASE):
                 items[f"{prefix}@{name}"] = value
 
     def visit(name: str, obj) -> None:
         if name == PROVENANCE or name.startswith(PROVENANCE + "/"):
             return
+        if any(name.startswith(t + "/") for t in tables):  # a column: in its table
+            if not is_dimension(obj):
+                attrs(name, obj)
+            return
+        if is_dimension(obj) or (name in INDEXES and getattr(obj, "is_scale", False)):
+            return
         attrs(name, obj)
-        if isinstance(obj, h5py.Dataset) and obj.dtype != h5py.ref_dtype:
+        if isinstance(obj, h5py.Group) and is_table(obj):
+            tables.append(name)
+            items[name] = read_table(obj)
+        elif isinstance(obj, h5py.Dataset) and obj.dtype != h5py.ref_dtype:
             items[name] = obj[()]
 
     attrs("", f)

@@ -19,9 +19,13 @@ from ..errors import UsageError
 from ..kinds import KINDS, get_kind
 from ..scene.report import Report
 from ..support.fsutil import atomic_write
+from .export import MAX_FIGURE_PIXELS, pixel_problem
 
 MIN_FRAMES = 30
 ANIMATION_FORMATS = ("gif", "mp4")
+#: pixels of all a GIF's frames, which are held until it is written (a byte each): 4
+#: figures' worth (the default, 90 frames of 640 × 480, holds 28 million)
+MAX_GIF_PIXELS = 4 * MAX_FIGURE_PIXELS
 
 
 def ffmpeg_available() -> bool:
@@ -66,6 +70,22 @@ def parse_formats(text: str | None) -> tuple[str, ...]:
     return items
 
 
+def _check_pixels(fig, dpi: int, frames: int, formats: tuple[str, ...]) -> None:
+    """A frame over the figures' pixel budget, or a GIF whose frames together are over
+    :data:`MAX_GIF_PIXELS`, is a UsageError before anything is drawn."""
+    width, height = fig.get_size_inches()
+    problem = pixel_problem(width, height, dpi, "a frame")
+    if problem is None and "gif" in formats:
+        pixels = frames * round(width * dpi) * round(height * dpi)
+        if pixels > MAX_GIF_PIXELS:
+            problem = (f"a GIF of {frames} frames at --dpi {dpi} holds {pixels / 1e6:.0f} "
+                       f"megapixels until written, more than {MAX_GIF_PIXELS / 1e6:.0f}: fewer "
+                       "frames (--fps × --duration), a lower --dpi, or --format mp4")
+    if problem is not None:
+        fig.clear()
+        raise UsageError(problem)
+
+
 def animate(archive: Path, out_dir: Path, *, fps: float = 15.0, duration: float = 6.0,
             dpi: int = 100, formats: tuple[str, ...] = ("gif",),
             progress: Callable[[int, int], None] | None = None) -> list[Path]:
@@ -87,6 +107,7 @@ def animate(archive: Path, out_dir: Path, *, fps: float = 15.0, duration: float 
         raise UsageError(f"{archive}: a {data.kind} scene has no motion to animate "
                          f"(kinds with one: {', '.join(animated_kinds())})")
     fig = motion.figure
+    _check_pixels(fig, dpi, frames, formats)
     canvas = FigureCanvasAgg(fig)
     fig.set_dpi(dpi)
 

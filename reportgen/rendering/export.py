@@ -23,6 +23,7 @@ a word processor places them at their size; SVG and PDF keep text as text.
 from __future__ import annotations
 
 import fnmatch
+import math
 import re
 from collections.abc import Callable, Iterator
 from pathlib import Path
@@ -34,6 +35,9 @@ from .plots.layout import Size, drawing_for, laid_out_for
 
 EXPORT_FORMATS = ("png", "svg", "pdf")
 DEFAULT_DPI = 200
+#: pixels a figure may have as PNG (or an animation's frame): its RGBA canvas is 256 MiB
+#: (``--size 40x40 --dpi 1200`` asked for 48000 × 48000 pixels, 9.2 GB)
+MAX_FIGURE_PIXELS = 1 << 26
 
 #: the smallest text [pt] a figure laid out again for a slide uses: read from the back
 #: of a lecture hall
@@ -58,6 +62,19 @@ def parse_size(text: str) -> Size:
             return Size(f"{width:g}x{height:g}", width, height)
     raise UsageError(f"--size: expected slide, print, report or WxH in inches with W and H "
                      f"between 1 and 40, e.g. 8x4.5 (got {text!r})")
+
+
+def pixel_problem(width: float, height: float, dpi: int, what: str) -> str | None:
+    """Why ``what`` (a ``--size``, or a figure), ``width`` × ``height`` inches drawn at
+    ``dpi``, has too many pixels (:data:`MAX_FIGURE_PIXELS`), naming the largest ``--dpi``
+    that fits; None when it fits."""
+    w, h = round(width * dpi), round(height * dpi)
+    if w * h <= MAX_FIGURE_PIXELS:
+        return None
+    fits = int(math.sqrt(MAX_FIGURE_PIXELS / (width * height)))
+    return (f"{what} at --dpi {dpi} is {w} x {h} pixels ({w * h / 1e6:.0f} megapixels), more "
+            f"than the {MAX_FIGURE_PIXELS / 1e6:.0f} a figure may have: --dpi {fits} or less, "
+            "or a smaller size")
 
 
 def parse_formats(text: str) -> tuple[str, ...]:
@@ -140,6 +157,11 @@ def export_figures(archive: Path, out_dir: Path, *, size: Size = SIZES["report"]
         seen.append(fig_id)
         if fig is None:
             continue
+        if "png" in formats:  # the canvas is allocated when drawn: refused before
+            problem = pixel_problem(*fig.get_size_inches(), dpi, f"figure {fig_id}")
+            if problem is not None:
+                fig.clear()
+                raise UsageError(problem)
         out_dir.mkdir(parents=True, exist_ok=True)
         for fmt in formats:
             target = out_dir / f"{fig_id}.{fmt}"

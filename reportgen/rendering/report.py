@@ -37,8 +37,9 @@ from ..scene.schema import unit_text
 from ..scene.sources import with_sources
 from ..scene.typeset import plain_text, typeset_html, visible_text
 from ..support.forked import JobProcess, serve
-from ..support.fsutil import atomic_write
-from ..support.layout import template_dir
+from ..support.fsutil import atomic_write, read_back
+from ..support.layout import MAX_FIGURE_BYTES, template_dir, visible_controls
+from ..support.svgsafe import SvgRefused, clean_svg, svg_safe
 from .equations import equation_html
 from .gate import gate_findings, write_gate
 from .pdf import PdfWorker, write_pdf  # noqa: F401 - part of this module's interface
@@ -463,10 +464,10 @@ def cached_sections(out_dir: Path, key: str) -> list[dict[str, Any]] | None:
 
     The manifest is read back from the output folder, so it is validated first
     (:func:`reportgen.support.layout.figure_manifest`: its shape, and every file a figure of its
-    format inside ``figures/``) and so is every SVG the report would inline
-    (:func:`reportgen.support.layout.svg_safe`); anything else is not reused: the figures are drawn
-    again, over it."""
-    from ..support.layout import figure_manifest, svg_safe
+    format inside ``figures/``) and so is every SVG the report would inline: the sanitizer
+    (:func:`reportgen.support.svgsafe.svg_safe`) must find nothing to leave out; anything
+    else is not reused: the figures are drawn again, over it."""
+    from ..support.layout import figure_manifest
 
     stored = figure_manifest(out_dir)
     if stored is None or stored["key"] != key:
@@ -474,8 +475,9 @@ def cached_sections(out_dir: Path, key: str) -> list[dict[str, Any]] | None:
     for section in stored["sections"]:
         for fig in section["figures"]:
             try:
-                svg = (out_dir / fig["files"]["svg"]).read_text(encoding="utf-8")
-            except (OSError, UnicodeDecodeError):
+                svg = read_back(out_dir / fig["files"]["svg"], MAX_FIGURE_BYTES,
+                                follow_links=True)  # a link inside figures/: checked above
+            except OSError:
                 return None
             if not svg_safe(svg):
                 return None
@@ -507,8 +509,9 @@ def figures_stage(data: ArchiveData, out_dir: Path, formats: tuple[str, ...] | N
 
 
 def _with_inline_svg(sections: list[dict[str, Any]], out_dir: Path) -> list[dict[str, Any]]:
-    """The sections with each figure's SVG text, read from ``out_dir/figures`` only: a file
-    named outside it (through ``..``, an absolute path or a link) is a ReportError."""
+    """The sections with each figure's SVG drawing, read from ``out_dir/figures`` only (a
+    file named outside it, through ``..``, an absolute path or a link, is a ReportError)
+    and inlined as the sanitizer writes it (:func:`reportgen.support.svgsafe.clean_svg`)."""
     figures_dir = os.path.realpath(out_dir / "figures")
     out = []
     for section in sections:
@@ -518,8 +521,11 @@ def _with_inline_svg(sections: list[dict[str, Any]], out_dir: Path) -> list[dict
             if os.path.dirname(os.path.realpath(path)) != figures_dir:
                 raise ReportError(f"{path}: not a figure file inside {out_dir / 'figures'}; "
                                   "not read")
-            text = path.read_text(encoding="utf-8")
-            figures.append({**fig, "svg": Markup(_SVG_HEAD.sub("", text, count=1))})
+            try:
+                svg = clean_svg(read_back(path, MAX_FIGURE_BYTES, follow_links=True)).svg
+            except (OSError, SvgRefused) as exc:
+                raise ReportError(f"{path}: not a figure to inline ({exc})") from None
+            figures.append({**fig, "svg": Markup(svg)})
         out.append({**section, "figures": figures})
     return out
 
@@ -634,9 +640,10 @@ def method_labels(data: ArchiveData) -> dict[str, str]:
 
 def render_html(context: dict[str, Any]) -> str:
     """The scene's report page, ending with the documents its text cites, typeset
-    (:func:`reportgen.scene.typeset.typeset_html`)."""
-    return typeset_html(with_sources(
-        environment().get_template("scene.html.j2").render(**context)))
+    (:func:`reportgen.scene.typeset.typeset_html`), its control characters and
+    bidirectional overrides shown, not acted on (:func:`~reportgen.support.layout.visible_controls`)."""
+    return visible_controls(typeset_html(with_sources(
+        environment().get_template("scene.html.j2").render(**context))))
 
 
 def build_report(archive_path: Path, formats=("html", "pdf"), out_dir: Path | None = None,
@@ -695,9 +702,9 @@ def write_formats(html_text: str, out_dir: Path, formats,
 def build_index(out_dir: Path, groups: list[dict[str, Any]]) -> Path:
     """``index.html``: the gallery of every scene in ``out_dir`` (written atomically);
     ``groups``: the cards by kind (:func:`reportgen.pipeline.stages.gallery_groups`)."""
-    text = typeset_html(environment().get_template("index.html.j2").render(
+    text = visible_controls(typeset_html(environment().get_template("index.html.j2").render(
         groups=groups, count=sum(len(g["entries"]) for g in groups), version=__version__,
-        created=datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC")))
+        created=datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC"))))
     path = Path(out_dir) / "index.html"
     atomic_write(path, text.encode("utf-8"))
     return path
@@ -721,7 +728,7 @@ def build_audit_report(audit_path: Path, formats=("html", "pdf")) -> list[Path]:
                             f"audit-case{i}", out_dir / "figures")
         flagged.append({"case": case, "figure": saved})
     rows = [{name: row[name] for name in data["table"].dtype.names} for row in data["table"]]
-    html_text = typeset_html(environment().get_template("audit.html.j2").render(
+    html_text = visible_controls(typeset_html(environment().get_template("audit.html.j2").render(
         rows=rows, cases=data["cases"], overview=figures[0], flagged=flagged,
-        attrs=data["attrs"], provenance=data["provenance"], version=__version__))
+        attrs=data["attrs"], provenance=data["provenance"], version=__version__)))
     return write_formats(html_text, out_dir, formats)

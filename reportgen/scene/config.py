@@ -169,10 +169,20 @@ MAX_CONFIG_NESTING = 32
 
 
 def parse_config_text(text: str, path: Path | None = None) -> SourceConfig:
-    """Parse TOML text; invalid TOML and nesting deeper than :data:`MAX_CONFIG_NESTING`
-    (``x = [[[[...]]]]``, which would exhaust the recursion of the parser or of later
-    validation) are ConfigErrors."""
+    """Parse TOML text; text over :data:`MAX_CONFIG_BYTES`, invalid TOML and nesting deeper
+    than :data:`MAX_CONFIG_NESTING` are ConfigErrors.
+
+    Nesting is looked for twice: in the text before it is parsed (:func:`_deepest_in_text`:
+    a key of 30,000 dotted parts, 60 kB, cost the parser 3.4 GiB, quadratic in the parts;
+    ``x = [[[[...]]]]`` exhausts its recursion), and in the parsed tables and arrays."""
     label = printable(str(path)) if path is not None else "<archive config>"
+    if len(text) > MAX_CONFIG_BYTES or len(text.encode("utf-8")) > MAX_CONFIG_BYTES:
+        raise ConfigError([f"{label}: larger than {MAX_CONFIG_BYTES // 1000} kB: not a scene "
+                           "config"])
+    deep = _deepest_in_text(text)
+    if deep is not None:
+        raise ConfigError([f"{label}: line {deep.line}: config nesting too deep: "
+                           f"{deep.what}, more than {MAX_CONFIG_NESTING}"])
     too_deep = ConfigError([f"{label}: config nesting too deep (tables and arrays nested "
                             f"more than {MAX_CONFIG_NESTING} levels)"])
     try:
@@ -184,6 +194,72 @@ def parse_config_text(text: str, path: Path | None = None) -> SourceConfig:
     if _nesting(data) > MAX_CONFIG_NESTING:
         raise too_deep
     return SourceConfig(path=path, text=text, data=data)
+
+
+#: what can nest in TOML text: strings and comments (whose text never nests), brackets,
+#: dots and the words between them (white space, ``=`` and ``,`` are skipped by the search)
+_TOML_TOKENS = re.compile(r'''
+      (?P<text>"""(?:[^"\\]|\\[\s\S]|"(?!""))*"{3,5}   # multi-line basic string
+             | \'\'\'[\s\S]*?\'{3,5}                   # multi-line literal string
+             | "(?:[^"\\\n]|\\.)*"                      # basic string (a quoted key, too)
+             | '[^'\n]*')                               # literal string
+    | (?P<comment>\#[^\n]*)
+    | (?P<open>[\[{])
+    | (?P<close>[\]}])
+    | (?P<dot>\.)
+    | (?P<word>[A-Za-z0-9_+:-]+)
+''', re.VERBOSE)
+
+
+@dataclass(frozen=True)
+class _Deep:
+    line: int
+    what: str
+
+
+def _deepest_in_text(text: str) -> _Deep | None:
+    """The first place where ``text`` nests deeper than :data:`MAX_CONFIG_NESTING`, read
+    from the text alone (linear in its length, before the parser sees it): a dotted key
+    of more parts (in a key, a table header or an inline table: ``a.b."c"``, each part a
+    table), or more arrays and inline tables one inside the other.  Dots in numbers and
+    dates make at most two parts; strings and comments are skipped whole.  None when
+    nothing is that deep."""
+    if text.count(".") < MAX_CONFIG_NESTING and (
+            text.count("[") + text.count("{") <= MAX_CONFIG_NESTING):
+        return None  # too few dots and brackets to nest that deep: the common case
+    parts, after_dot, depth = 0, False, 0
+    longest = deepest = (0, 0)  # (parts or depth, where it started or reached)
+    start = 0
+    for match in _TOML_TOKENS.finditer(text):
+        kind = match.lastgroup
+        if kind in ("word", "text"):  # a part of a key (or a value: one part)
+            if after_dot:
+                parts += 1
+            else:
+                parts, start = 1, match.start()
+            after_dot = False
+            if parts > longest[0]:
+                longest = (parts, start)
+            continue
+        if kind == "dot" and parts and not after_dot:
+            after_dot = True
+            continue
+        parts, after_dot = 0, False
+        if kind == "open":
+            depth += 1
+            if depth > deepest[0]:
+                deepest = (depth, match.start())
+        elif kind == "close":
+            depth = max(depth - 1, 0)
+    found = []
+    if longest[0] > MAX_CONFIG_NESTING:
+        found.append((longest[1], f"a key of {longest[0]} dotted parts"))
+    if deepest[0] > MAX_CONFIG_NESTING:
+        found.append((deepest[1], f"arrays and inline tables nested {deepest[0]} deep"))
+    if not found:
+        return None
+    where, what = min(found)
+    return _Deep(text.count("\n", 0, where) + 1, what)
 
 
 def _nesting(value) -> int:
@@ -433,9 +509,17 @@ def format_validation_error(label: str, exc: ValidationError,
     return lines
 
 
-def to_toml(data: dict[str, Any]) -> str:
+def to_toml(data: dict[str, Any], limit: int = MAX_CONFIG_BYTES) -> str:
     """A config dict as TOML text (tables last), for configs made in code (presets, audit
-    cases, the API's dicts); numpy numbers and arrays are written as plain numbers."""
+    cases, the API's dicts); numpy numbers and arrays are written as plain numbers.
+
+    Text over ``limit`` bytes (a config file's largest) is a ValueError, before any text
+    is made when the dict's keys and values alone are more (a list of 5 million values
+    made 25 MB of TOML, then refused)."""
+    least = _least_toml_bytes(data, limit)
+    if least > limit:
+        raise ValueError(f"its TOML would be larger than {limit // 1000} kB (at least "
+                         f"{least} bytes for its keys and values): not a scene config")
 
     def value(v) -> str:
         if hasattr(v, "dtype") and hasattr(v, "tolist"):  # a numpy number or array (a
@@ -464,7 +548,36 @@ def to_toml(data: dict[str, Any]) -> str:
                     lines += ["", f"[[{prefix}{k}]]"] + table(f"{prefix}{k}.", item)
         return lines
 
-    return "\n".join(table("", data)).strip() + "\n"
+    text = "\n".join(table("", data)).strip() + "\n"
+    size = len(text.encode("utf-8"))
+    if size > limit:
+        raise ValueError(f"its TOML is {size} bytes, larger than {limit // 1000} kB: not a "
+                         "scene config")
+    return text
+
+
+def _least_toml_bytes(data: Any, limit: int) -> int:
+    """The fewest bytes ``data`` can take as TOML (each key and text as written, a byte a
+    number), counted without recursion and no further than past ``limit``."""
+    total, stack = 0, [data]
+    while stack and total <= limit:
+        item = stack.pop()
+        if isinstance(item, dict):
+            total += 4 * len(item)  # "k = " at the least, before the keys are looked at
+            if total <= limit:
+                total += sum(len(str(k)) - 1 for k in item)
+                stack.extend(item.values())
+        elif isinstance(item, (list, tuple)):
+            total += 2 + len(item)  # brackets, a separator each
+            if total <= limit:
+                stack.extend(item)
+        elif isinstance(item, str):
+            total += len(item) + 2
+        elif hasattr(item, "dtype") and hasattr(item, "size"):  # a numpy array: its numbers
+            total += 2 * int(item.size)
+        else:
+            total += 1
+    return total
 
 
 def _is_table_array(v) -> bool:

@@ -22,7 +22,7 @@ import difflib
 import functools
 import re
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -33,12 +33,42 @@ VALUE_TYPES = ("float", "int", "bool", "str")
 _SUPERSCRIPT = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
 
 
+#: a number inside a unit ("u Å/(4.074598 fs)": a multiple of a unit)
+_UNIT_FACTOR = re.compile(r"(?<![\w^.\-])(\d+\.\d+(?:[eE][+-]?\d+)?)(?=\s)")
+
+
 def unit_text(unit: str) -> str:
-    """A unit as printed on a page: ``kg m^2/s`` -> ``kg m²/s``; "1" -> "dimensionless"."""
+    """A unit as printed on a page: ``kg m^2/s`` -> ``kg m²/s``; "1" -> "dimensionless";
+    a multiple of a unit to 4 digits ("4.074598 fs" -> "4.075 fs")."""
     if unit in ("1", ""):
         return "dimensionless" if unit == "1" else ""
+    unit = _UNIT_FACTOR.sub(lambda m: f"{float(m.group(1)):.4g}", unit)
     return re.sub(r"\^(-?\d+)", lambda m: m.group(1).translate(_SUPERSCRIPT),
                   unit).replace("*", " ")
+
+
+def cf_units(unit: str) -> tuple[str, float | None]:
+    """A declared unit as the archive's CF ``units`` attribute, which pint and UDUNITS read:
+    (the unit, None), or for a multiple of a unit ("4.074598 fs", "u Å/(4.074598 fs)")
+    (the plain unit, the CF ``scale_factor`` that turns a stored number into it: a value
+    stored in τ = 4.0746 fs reads 4.0746 × value in "fs"; "u Å/fs" and 1/4.0746).  A
+    factor in a denominator is one after "/(" or "/"."""
+    factor = 1.0
+    found = False
+
+    def drop(m: re.Match) -> str:
+        nonlocal factor, found
+        found = True
+        value = float(m.group(1))
+        below = re.search(r"/\(?\s*$", unit[:m.start()]) is not None
+        factor = factor / value if below else factor * value
+        return ""
+
+    plain = _UNIT_FACTOR.sub(drop, unit)
+    if not found:
+        return unit, None
+    plain = " ".join(plain.replace("( ", "(").split())
+    return re.sub(r"\(([^()\s*/]+)\)", r"\1", plain), factor
 
 
 @dataclass(frozen=True)
@@ -63,6 +93,12 @@ class Quantity:
         "float", "int", "bool" or "str".
     optional : bool
         Stored only in some cases (a boundary-value problem when one is configured).
+    own_units : str
+        For a number in the config's own units (unit "1"): what it measures in them,
+        "config units of time"; the archive says so in the attribute ``config_units``
+        (``units`` stays a unit pint reads).  "" for a physical or a pure number; a
+        schema's :attr:`ResultsSchema.own_units` gives it for every "1" of a kind that
+        works in the config's units.
     """
 
     name: str
@@ -72,6 +108,7 @@ class Quantity:
     dims: tuple[str, ...] = ()
     kind: str = "float"
     optional: bool = False
+    own_units: str = ""
 
     def __post_init__(self):
         if self.kind not in VALUE_TYPES:
@@ -103,13 +140,24 @@ class Quantity:
         return f"{self.math} [{text}]" if text else self.math
 
     @property
-    def cf_attrs(self) -> dict[str, str]:
-        """The CF attributes written on its dataset."""
-        return {"units": self.unit, "long_name": self.description, "symbol": self.symbol}
+    def cf_attrs(self) -> dict[str, Any]:
+        """The CF attributes written on its dataset: ``long_name``, ``symbol`` and, for a
+        number, ``units`` as pint reads it (a multiple of a unit with its ``scale_factor``,
+        :func:`cf_units`), ``config_units`` for one in the config's own units; text has no
+        ``units`` (CF)."""
+        out: dict[str, Any] = {"long_name": self.description, "symbol": self.symbol}
+        if self.kind == "str":
+            return out
+        units, factor = cf_units(self.unit)
+        out["units"] = units
+        if factor is not None:
+            out["scale_factor"] = factor
+        if self.own_units:
+            out["config_units"] = self.own_units
+        return out
 
     def with_name(self, name: str) -> Quantity:
-        return Quantity(name, self.symbol, self.unit, self.description, self.dims,
-                        self.kind, self.optional)
+        return replace(self, name=name)
 
 
 def key_owner(model, path: str) -> tuple[type, str] | None:
@@ -291,6 +339,14 @@ class ResultsSchema:
     #: analysis groups whose members the kind does not declare one by one (a
     #: user-named observable, say): name -> the quantity each member is
     open_groups: Mapping[str, Quantity] = field(default_factory=dict)
+    #: a kind that works in the config's own units: what its numbers declared "1" are
+    #: ("config units (the formula's own)"), written as each one's ``config_units``
+    #: attribute unless the quantity says more (:attr:`Quantity.own_units`); "" for a kind
+    #: in physical units
+    own_units: str = ""
+    #: dimensions numbered as the report numbers them, 1 … n, rather than indexed from 0:
+    #: name -> what the number counts (the archive's coordinate of that dimension)
+    numbered: Mapping[str, str] = field(default_factory=dict)
 
     def __post_init__(self):
         seen: set[str] = set()
@@ -340,12 +396,21 @@ class ResultsSchema:
     def label(self, name: str) -> str:
         return self.quantity(name).label()
 
+    def cf_attrs(self, q: Quantity) -> dict[str, Any]:
+        """The CF attributes of ``q`` in an archive of this schema (:attr:`Quantity.cf_attrs`,
+        with :attr:`own_units` for a number declared "1")."""
+        if self.own_units and q.unit == "1" and q.kind != "str" and not q.own_units:
+            q = replace(q, own_units=self.own_units)
+        return q.cf_attrs
+
     def merged(self, other: ResultsSchema) -> ResultsSchema:
         """This schema with ``other``'s declarations added (a family's, say)."""
         return ResultsSchema(columns=_union(self.columns, other.columns),
                              invariants=_union(self.invariants, other.invariants),
                              analysis=_union(self.analysis, other.analysis), time=self.time,
-                             open_groups={**self.open_groups, **other.open_groups})
+                             open_groups={**self.open_groups, **other.open_groups},
+                             own_units=self.own_units or other.own_units,
+                             numbered={**other.numbered, **self.numbered})
 
     # --------------------------------------------------------------- checks
     def problems(self, results) -> list[str]:

@@ -25,6 +25,11 @@ A kind's ``simulation.py`` subclasses :class:`Simulation`.  The subclass contrac
    only: beyond it the error measures the chaos (the invariants' drift still judges them).
 7. Physical behaviour (a sleeping top that tilts away, an escape, chaos) is not a status:
    store its verdict in words as ``/analysis`` ``behaviour`` (declared by the kind).
+8. The archive's size before anything runs (:mod:`reportgen.scene.budget`), from the
+   config alone (no symbolic work: it is checked before a time limit starts):
+   ``budget_schema()`` (default the kind's ``schema``), ``stored_runs()`` (default one),
+   ``stored_columns()`` (default the declared columns) and ``dimension_size(name)`` of a
+   declared dimension other than ``t``, where a kind knows them.
 
 Numerics come from ``reportgen.core`` (and the kind's own numerical modules); nothing
 here draws or renders.
@@ -193,6 +198,30 @@ class Simulation(Scene):
                          f"{bad} of {spec.size} members without a result: " + ", ".join(
                              f"{n} {k}" for k, n in counts.items() if k != "ok"))
         return results
+
+    # ------------------------------------------------- the archive, before it runs
+    def stored_runs(self) -> int:
+        """How many runs (``/runs/<name>``) a run of this config stores (contract point
+        8): one, the main run, unless the kind keeps others beside it."""
+        return 1
+
+    def budget_schema(self) -> ResultsSchema | None:
+        """The declared results :mod:`reportgen.scene.budget` counts, from the config alone
+        (contract point 8): the kind's ``schema``; a kind whose results follow its config
+        (user-named coordinates) declares them without the symbolic work
+        :meth:`results_schema` may do (typesetting, a Lagrangian's analysis)."""
+        return self.schema
+
+    def stored_columns(self) -> int:
+        """State columns of each run this config stores: the budget's declared columns (an
+        upper bound) unless the kind counts them for the config (contract point 8)."""
+        schema = self.budget_schema()
+        return len(schema.columns) if schema is not None else 0
+
+    def dimension_size(self, name: str) -> int | None:
+        """The size of the declared dimension ``name`` (not ``t``) for this config, or
+        None when the kind does not say (counted as :meth:`stored_columns`)."""
+        return None
 
     def models(self) -> list[OdeModel]:
         """The models :meth:`simulate` integrates with the configured ``[run] method``

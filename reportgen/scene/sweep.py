@@ -47,6 +47,8 @@ import json
 import math
 import os
 import shutil
+import struct
+import zipfile
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -54,12 +56,13 @@ from typing import Any
 
 import numpy as np
 
-from ..support.fsutil import atomic_write, temp_name
+from ..archive.limits import MAX_DATASET_BYTES, MAX_DATASET_ELEMENTS, MAX_TOTAL_ELEMENTS
+from ..support.fsutil import atomic_write, open_back, temp_name
 from .config import ConfigError, _short
 from .units import is_quantity_text
 
 __all__ = ["SweepSpec", "SweepData", "PointSet", "parse_sweep", "run_sweep", "member_data",
-           "block_arrays", "text_codes", "text_array"]
+           "block_arrays", "block_fits", "text_codes", "text_array"]
 
 #: keys of a range value; the others of [sweep] that are not swept config paths
 RANGE_KEYS = frozenset({"start", "stop", "num", "spacing"})
@@ -76,6 +79,10 @@ MAX_LABEL = 40
 MAX_SPREAD = 12
 #: the status of a member whose run gave its results
 OK = "ok"
+#: arrays a saved block may hold (a kind's results, its texts, its point sets' columns:
+#: dozens), and components of one point set
+MAX_BLOCK_ARRAYS = 10_000
+MAX_POINT_COMPONENTS = 1_000
 
 
 @dataclass(frozen=True)
@@ -501,15 +508,94 @@ def _save_block(path: Path, block: SweepBlock | dict[str, np.ndarray]) -> None:
     os.replace(tmp, path)
 
 
-def _block_members(path: Path) -> int | None:
-    """The number of members a saved block holds, or None if it is unreadable."""
-    try:
-        with np.load(path, allow_pickle=False) as z:
-            if "status/codes" in z.files:
-                return int(z["status/codes"].shape[0])
-            return int(z["status"].shape[0])  # a block saved before the codes
-    except (OSError, ValueError, KeyError, EOFError):
+def _open_block(path: Path):
+    """A saved block open for reading (:func:`reportgen.support.fsutil.open_back`: a regular
+    file, not a link, no larger than the numbers an archive holds in all)."""
+    return open_back(path, 8 * MAX_TOTAL_ELEMENTS)
+
+
+def _zip_entries(fh) -> int | None:
+    """How many arrays the saved block ``fh`` says it holds, from its end record (read
+    before the directory, whose every entry costs memory): None if it has none there."""
+    fh.seek(0, os.SEEK_END)
+    if fh.tell() < 22:
         return None
+    fh.seek(-22, os.SEEK_END)  # numpy writes no archive comment: the record ends the file
+    end = fh.read(22)
+    fh.seek(0)
+    return struct.unpack("<H", end[10:12])[0] if end[:4] == b"PK\x05\x06" else None
+
+
+def _block_shapes(path: Path) -> dict[str, tuple[tuple[int, ...], np.dtype]] | None:
+    """Each array of a saved block by name, (shape, dtype) from its header alone, or None
+    if the file is not a block numpy wrote: too many arrays, an entry over the bytes of
+    one dataset, a header claiming more than its entry holds, objects."""
+    readers = {(1, 0): np.lib.format.read_array_header_1_0,
+               (2, 0): np.lib.format.read_array_header_2_0}
+    shapes = {}
+    try:
+        with _open_block(path) as fh:
+            entries = _zip_entries(fh)
+            if entries is None or entries > MAX_BLOCK_ARRAYS:
+                return None
+            with zipfile.ZipFile(fh) as zf:
+                for info in zf.infolist():
+                    if not info.filename.endswith(".npy") or info.file_size > MAX_DATASET_BYTES:
+                        return None
+                    with zf.open(info) as entry:
+                        reader = readers.get(np.lib.format.read_magic(entry))
+                        if reader is None:
+                            return None
+                        shape, _, dtype = reader(entry)
+                    if dtype.hasobject or math.prod(shape) * dtype.itemsize > info.file_size:
+                        return None
+                    shapes[info.filename[:-len(".npy")]] = (tuple(shape), dtype)
+    except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile, struct.error):
+        return None
+    return shapes
+
+
+def _family_share(shapes: dict, members: int, max_points: int) -> tuple[set[str], int] | None:
+    """What a saved block of ``members`` members gives the family: the names of its
+    results and texts (each a column of the family's size) and its point sets' numbers;
+    None if an array is not what such a block holds (one entry per member of each result
+    and text, at most a distinct text per member, at most ``max_points`` points a member)."""
+    columns: set[str] = set()
+    points = 0
+    for key, (shape, dtype) in shapes.items():
+        n = math.prod(shape)
+        parts = key.split("/")
+        if parts[0] == "points" and len(parts) >= 3:
+            if parts[2] == "attrs":
+                ok = shape == () and dtype.itemsize <= 1 << 16
+            elif parts[2] == "components":
+                ok = len(shape) == 1 and n <= MAX_POINT_COMPONENTS
+            else:  # member, columns/<name>: rows of points, a column may be (P, d)
+                ok = (parts[2] in ("member", "columns") and 1 <= len(shape) <= 2
+                      and shape[0] <= members * max_points and n <= MAX_DATASET_ELEMENTS)
+                points += n
+        elif parts[-1] == "names":  # the distinct texts of a text column
+            ok = len(shape) == 1 and shape[0] <= max(members, 1)
+        elif (parts[0] == "analysis" and len(parts) == 2) or parts[-1] == "codes" or (
+                key in ("status", "message") or (parts[0] == "labels" and len(parts) == 2)):
+            ok = shape == (members,)  # a result, or a text column (as codes, or before)
+            columns.add(key.removesuffix("/codes"))
+        else:
+            ok = False
+        if not ok:
+            return None
+    return columns, points
+
+
+def block_fits(path: Path, members: int, *, size: int, max_points: int) -> bool:
+    """Whether the saved block ``path`` is one a sweep may take as its ``members`` members
+    (of ``size`` in all, at most ``max_points`` points each), read from its arrays' headers
+    alone: what a killed run left, or a file put there.  A block that does not fit (a 3 MB
+    file inflating to 3 GB, arrays of another length, more results than an archive holds
+    for the family) is run again, never read."""
+    shapes = _block_shapes(path)
+    share = None if shapes is None else _family_share(shapes, members, max_points)
+    return share is not None and len(share[0]) * size + share[1] <= MAX_TOTAL_ELEMENTS
 
 
 def _block_texts(z) -> dict[str, tuple[np.ndarray, list[str]]]:
@@ -578,7 +664,8 @@ def run_sweep(spec: SweepSpec, run_block: Callable[[int, int, dict[str, np.ndarr
     done: set[int] = set()
     resumed = 0
     for b, path in enumerate(paths):
-        if path.exists() and _block_members(path) == ends[b] - starts[b]:
+        if path.exists() and block_fits(path, ends[b] - starts[b], size=size,
+                                        max_points=spec.max_points):
             done.add(b)
             resumed += ends[b] - starts[b]
 
@@ -609,6 +696,7 @@ def run_sweep(spec: SweepSpec, run_block: Callable[[int, int, dict[str, np.ndarr
                            f"(and {len(missing) - 1} more blocks) never came back; the "
                            f"{len(done)} finished blocks are kept in {partial} and a rerun "
                            "resumes them")
+    _check_family(paths, starts, ends, size, spec.max_points)
     data = _assemble(paths, starts, size, values)
     data.attrs = {"paths": json.dumps(spec.paths), "shape": json.dumps(spec.shape),
                   "zip": spec.zip, "block": block}
@@ -634,6 +722,29 @@ class _TextColumn:
         return text_array(self.codes, list(self.index))
 
 
+def _check_family(paths: list[Path], starts: list[int], ends: list[int], size: int,
+                  max_points: int) -> None:
+    """Before the saved blocks are read: each is still one of this sweep's, and the family
+    they make holds no more numbers than an archive takes (each result any block gives is
+    a column of ``size``); else a RuntimeError saying so."""
+    columns: set[str] = set()
+    points = 0
+    for path, lo, hi in zip(paths, starts, ends, strict=True):
+        shapes = _block_shapes(path)
+        share = None if shapes is None else _family_share(shapes, hi - lo, max_points)
+        if share is None:
+            raise RuntimeError(f"{path}: the sweep's saved block of members {lo}:{hi} changed "
+                               "while it ran, or is not a block of this sweep")
+        columns |= share[0]
+        points += share[1]
+    numbers = len(columns) * size + points
+    if numbers > MAX_TOTAL_ELEMENTS:
+        raise RuntimeError(f"the sweep's {size} members gave {len(columns)} results and texts "
+                           f"and {points} points: {numbers:.3g} numbers, more than the "
+                           f"{MAX_TOTAL_ELEMENTS:.0e} an archive holds (fewer members, or a "
+                           "smaller sweep.max_points)")
+
+
 def _assemble(paths: list[Path], starts: list[int], size: int,
               values: dict[str, np.ndarray]) -> SweepData:
     """The family from its saved blocks, read one at a time into compact arrays."""
@@ -642,7 +753,7 @@ def _assemble(paths: list[Path], starts: list[int], size: int,
                                      "message": _TextColumn(size)}
     having: dict[str, list[tuple[PointSet, int]]] = {}
     for path, lo in zip(paths, starts, strict=True):
-        with np.load(path, allow_pickle=False) as z:
+        with _open_block(path) as fh, np.load(fh, allow_pickle=False) as z:
             for key in z.files:
                 if key.startswith("analysis/"):
                     column = z[key]

@@ -6,11 +6,13 @@ from __future__ import annotations
 
 import errno
 import os
+import stat
 import sys
 import uuid
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
+from typing import BinaryIO
 
 from ..errors import UsageError
 
@@ -102,14 +104,53 @@ def regular_file(path: Path) -> Path:
     """``path``, if it is a regular file (through links, as a path given on the command
     line may be); NotRegularFile says what else it is, FileNotFoundError that it is
     missing.  ``os.stat`` never blocks, where opening a FIFO does."""
-    import stat
-
     mode = os.stat(path).st_mode
     if stat.S_ISREG(mode):
         return Path(path)
-    what = ("a FIFO" if stat.S_ISFIFO(mode) else "a folder" if stat.S_ISDIR(mode)
+    raise NotRegularFile(errno.EINVAL, f"{_what(mode)}, not a regular file", str(path))
+
+
+def _what(mode: int) -> str:
+    return ("a FIFO" if stat.S_ISFIFO(mode) else "a folder" if stat.S_ISDIR(mode)
             else "a device" if stat.S_ISCHR(mode) or stat.S_ISBLK(mode) else "a socket")
-    raise NotRegularFile(errno.EINVAL, f"{what}, not a regular file", str(path))
+
+
+class FileTooLarge(OSError):
+    """A file read back that is larger than its reader accepts."""
+
+
+def read_back(path: Path, limit: int, follow_links: bool = False) -> bytes:
+    """The bytes of ``path``, a file read back from an output folder (untrusted): a regular
+    file (NotRegularFile for a FIFO, a device...; not a symbolic link, an OSError, unless
+    ``follow_links``) of at most ``limit`` bytes (FileTooLarge, before reading).
+
+    The checks are made on the open file, so the file checked is the file read; opening
+    does not wait (``O_NONBLOCK``: a FIFO is refused, not waited on)."""
+    with open_back(path, limit, follow_links) as f:
+        data = f.read(limit + 1)
+    if len(data) > limit:  # grew since
+        raise FileTooLarge(errno.EFBIG, f"larger than {limit} bytes", str(path))
+    return data
+
+
+def open_back(path: Path, limit: int, follow_links: bool = False) -> BinaryIO:
+    """``path`` open for reading after :func:`read_back`'s checks (a regular file of at
+    most ``limit`` bytes), for a reader that takes a file, not its bytes (numpy reads a
+    sweep block's arrays one at a time)."""
+    flags = os.O_RDONLY | os.O_NONBLOCK | os.O_CLOEXEC | (0 if follow_links else os.O_NOFOLLOW)
+    fd = os.open(path, flags)
+    f = open(fd, "rb")
+    try:
+        info = os.fstat(fd)
+        if not stat.S_ISREG(info.st_mode):
+            raise NotRegularFile(errno.EINVAL, f"{_what(info.st_mode)}, not a regular file",
+                                 str(path))
+        if info.st_size > limit:
+            raise FileTooLarge(errno.EFBIG, f"larger than {limit} bytes", str(path))
+    except BaseException:
+        f.close()
+        raise
+    return f
 
 
 def links_out(folder: Path, root: Path) -> list[Path]:

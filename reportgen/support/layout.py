@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import ConfigError, ReportError, UsageError
-from .fsutil import regular_file
+from .fsutil import read_back
 
 #: the report formats
 FORMATS = ("html", "pdf")
@@ -98,6 +98,25 @@ def printable(text: str, newlines: bool = True) -> str:
     return "".join(out)
 
 
+#: what a page shows as an escape rather than acts on, as :func:`printable` does on a
+#: terminal: C0 and C1 controls but tab, line feed and a carriage return before a line
+#: feed (a config written on Windows: white space to HTML), bidirectional overrides and
+#: isolates, lone surrogates
+_INVISIBLE = re.compile("[\x00-\x08\x0b-\x0c\x0e-\x1f\x7f-\x9f\u200e\u200f\u202a-\u202e"
+                        "\u2066-\u2069\ud800-\udfff]|\r(?!\n)")
+
+
+def visible_controls(text: str) -> str:
+    """``text`` for a page: control characters and bidirectional overrides shown as
+    ``\\xNN``/``\\uNNNN`` (as :func:`printable` shows them on a terminal), so a title
+    cannot reverse or hide the text around it."""
+    def shown(m: re.Match) -> str:
+        code = ord(m.group(0))
+        return f"\\x{code:02x}" if code < 0x100 else f"\\u{code:04x}"
+
+    return _INVISIBLE.sub(shown, text)
+
+
 def report_stamp(folder: Path) -> Path:
     """The file naming the archive content a scene folder's reports were rendered from."""
     return Path(folder) / ".report-stamp.json"
@@ -120,8 +139,10 @@ def edited_count(configs: list[Path], out_root: str | Path) -> int:
 SECTIONS_FILE = "sections.json"
 #: the figure files a manifest may name, by format
 FIGURE_SUFFIXES = {"svg": ".svg", "pdf": ".pdf", "png": ".png"}
-#: larger manifests (or figure files) are not read back
+#: larger manifests are not read back
 MAX_MANIFEST_BYTES = 20_000_000
+#: larger figure files are not read back (matplotlib's largest of ours: ~1 MB)
+MAX_FIGURE_BYTES = 100_000_000
 
 
 def figure_manifest(out_dir: Path) -> dict[str, Any] | None:
@@ -134,9 +155,7 @@ def figure_manifest(out_dir: Path) -> dict[str, Any] | None:
     figures = Path(out_dir) / "figures"
     index = figures / SECTIONS_FILE
     try:
-        if index.is_symlink() or regular_file(index).stat().st_size > MAX_MANIFEST_BYTES:
-            return None
-        stored = json.loads(index.read_text(encoding="utf-8"))
+        stored = json.loads(read_back(index, MAX_MANIFEST_BYTES).decode("utf-8"))
     except (OSError, ValueError, RecursionError):
         return None
     if not (isinstance(stored, dict) and isinstance(stored.get("key"), str)
@@ -221,25 +240,9 @@ def figure_file_ok(out_dir: Path, root: str, fmt, rel) -> bool:
         real = os.path.realpath(path)
         if os.path.dirname(real) != root or not path.is_file():
             return False
-        return path.stat().st_size <= MAX_MANIFEST_BYTES * 5
+        return path.stat().st_size <= MAX_FIGURE_BYTES
     except (OSError, ValueError):
         return False
-
-
-#: what no figure of ours holds, and an inlined SVG must not: script, embedded HTML, event
-#: handlers (after a space, a slash or a quote: HTML takes ``<svg/onload=…>``), links to
-#: anything but its own elements or an embedded image, a style sheet's ``@import``
-_SVG_UNSAFE = re.compile(
-    r"<\s*script|<\s*foreignObject|javascript:|[\s/\"']on[a-z]+\s*=|<!ENTITY|@import"
-    r"|href\s*=\s*[\"'](?!#|data:image/(?:png|jpeg);base64,)|url\(\s*['\"]?(?!#)",
-    re.IGNORECASE)
-
-
-def svg_safe(text: str) -> bool:
-    """Whether the SVG ``text`` (a figure file read back from an output folder, which the
-    HTML report inlines) is a plain drawing: an ``<svg>`` document without script, event
-    handlers, embedded HTML or links leading out of it."""
-    return "<svg" in text[:4096] and _SVG_UNSAFE.search(text) is None
 
 
 def template_dir() -> Path:

@@ -52,6 +52,21 @@ class FputSimulation(IntegratingSimulation):
     def models(self) -> list:
         return [core.model(self.config.params.m, self.config.params.omega)]
 
+    def _largest_m(self) -> int:
+        """m, or the largest m of a sweep over ``params.m``."""
+        m = self.config.params.m
+        for axis in self.sweep.axes if self.sweep is not None else ():
+            if axis.path == "params.m":
+                m = max(m, int(max(axis.array())))
+        return m
+
+    def stored_columns(self) -> int:
+        """q and p of the 2m masses (the schema declares them for the largest m)."""
+        return 4 * self._largest_m()
+
+    def dimension_size(self, name: str) -> int | None:
+        return self._largest_m() if name == "stiff_spring" else None
+
     def exchange(self, q, p, t, e0: float) -> dict:
         """The oscillatory energies Iⱼ of the stiff springs along the run (GNI eq. I.5.3),
         where I starts (the spring holding most of I(0), and its share), when that spring

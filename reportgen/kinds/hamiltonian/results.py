@@ -15,7 +15,9 @@ from ...scene.schema import Quantity as Q
 from ...scene.schema import ResultsSchema
 
 #: the time of a formula system: in the author's (scaled) units
-TIME = Q("t", "t", "1", "time (scaled units)", ("t",))
+TIME = Q("t", "t", "1", "time (scaled units)", ("t",), own_units="config units of time")
+#: what every number of a formula system declared "1" is (the archive's ``config_units``)
+OWN_UNITS = "config units (the formula's own; a pure number stays one)"
 
 
 def _text(name: str, description: str, dims: tuple[str, ...] = (), optional: bool = False):
@@ -308,6 +310,7 @@ _FIRST_ORDER = (
 
 SCHEMA = ResultsSchema(
     time=TIME,
+    own_units=OWN_UNITS,
     invariants=(Q("H", "H", "1", "Hamiltonian", ("t",)),),
     analysis=(
         # physical behaviour (not the run's numerical status): chaotic or regular
@@ -502,4 +505,5 @@ def _first_order_schema(columns: list[Q], observables: list[str],
     invariants = [*SCHEMA.invariants,
                   *(Q(f, tex(f), "1", f"observable {f}", ("t",)) for f in observables)]
     return ResultsSchema(columns=tuple(columns), invariants=tuple(invariants),
-                         analysis=tuple(analysis), time=TIME, open_groups=SCHEMA.open_groups)
+                         analysis=tuple(analysis), time=TIME, open_groups=SCHEMA.open_groups,
+                         own_units=OWN_UNITS)

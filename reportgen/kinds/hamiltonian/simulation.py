@@ -94,6 +94,15 @@ class HamiltonianSimulation(HamiltonianStructure, PointTransformSimulation, Hami
                           tex=lambda name: sympy.latex(sympy.Symbol(name)),
                           noether=cfg.noether is not None)
 
+    def budget_schema(self) -> ResultsSchema:
+        """:meth:`results_schema` from the config alone: names for symbols, and Hamilton's
+        columns (a first-order L stores fewer), for the archive's budget."""
+        cfg = self.config
+        coords = list(cfg.system.coordinates)
+        new = [] if cfg.transform is None else (cfg.transform.new_coordinates(coords)
+                                                 + cfg.transform.new_momenta(coords))
+        return schema_for(coords, cfg.observables, new, noether=cfg.noether is not None)
+
     # ----------------------------------------------------------------- helpers
     def system(self):
         """The parsed and derived system (memoized; SymPy work)."""

@@ -94,6 +94,10 @@ class HeavyTopSimulation(SleepingTop, IntegratingSimulation):
         """Run name -> initial state (one run, or the three of ``[band] case = "all"``)."""
         return starts(self.config)
 
+    def stored_runs(self) -> int:
+        """One run of each start (``main`` names the first of a band's)."""
+        return len(self.starts)
+
     @property
     def threshold(self) -> float:
         p = self.config.params

@@ -36,7 +36,11 @@ MDYN_PER_ANGSTROM = 100.0
 MOLECULAR_OMEGA = math.sqrt(MDYN_PER_ANGSTROM / ATOMIC_MASS)
 #: the speed of light [cm/s]: wavenumber ν̃ = ω/(2πc)
 LIGHT_CM_PER_S = 2.99792458e10
-_TAU_FS = f"{1e15 / MOLECULAR_OMEGA:.4g} fs"  # the molecular time unit τ, 4.075 fs
+#: the molecular time unit τ, 4.075 fs (to full precision: the archive's CF ``scale_factor``
+#: turns a time in τ into fs; pages print it to 4 digits)
+_TAU_FS = f"{1e15 / MOLECULAR_OMEGA!r} fs"
+#: what the numbers of the "dimensionless" system are (the archive's ``config_units``)
+OWN_UNITS = "config units (masses of a reference m₀, springs of k₀, time in √(m₀/k₀))"
 
 _SI = {"time": "s", "omega": "rad/s", "omega2": "1/s^2", "omega4": "1/s^4", "q": "rad",
        "p": "kg m^2/s", "energy": "J", "mass": "kg m^2", "stiffness": "J",
@@ -210,6 +214,9 @@ def schema_for(source: str, coordinates: tuple[str, ...] = (),
             Q("study_t_end", r"t_{study}", u["time"], "end of the error-against-run-time "
               "study's integration", optional=True),
         ),
+        numbered={"mode": "mode number, 1 to n in ascending frequency (as the report "
+                          "numbers the modes)"},
+        own_units=OWN_UNITS if system == "dimensionless" else "",
     )
 
 

@@ -60,6 +60,13 @@ class NormalModesSimulation(PotentialSimulation, IntegratingSimulation):
                               c.system.coordinate_unit, tuple(self.coordinate_symbols()))
         return schema_for(self.system(), tuple(self.coordinate_names()), unit_system(c))
 
+    def budget_schema(self) -> ResultsSchema:
+        """:meth:`results_schema` from the config alone (a potential's coordinates' names
+        for their symbols, which its formula gives), for the archive's budget."""
+        c = self.config
+        return schema_for(self.system(), tuple(self.coordinate_names()), unit_system(c),
+                          c.system.coordinate_unit if c.system is not None else None)
+
     # ------------------------------------------------------------------ system
     def molecule(self) -> core.Molecule:
         c = self.config

@@ -64,6 +64,10 @@ class OscillatorSimulation(IntegratingSimulation):
         prm = self.config.params
         return [core.hamilton_model(prm.m, prm.omega), core.swapped_model(prm.m, prm.omega)]
 
+    def stored_runs(self) -> int:
+        """The main run and the swapped one."""
+        return 2
+
     def simulate(self, progress=None) -> Results:
         prm, ini, run = self.config.params, self.config.initial, self.config.run
         t = np.linspace(0.0, run.t_end, run.samples)

@@ -164,6 +164,10 @@ class RigidBodySimulation(IntegratingSimulation):
         """Whether the report will show the splitting integrator (only then is it run)."""
         return self.wants_section("geometric_integrator")
 
+    def stored_runs(self) -> int:
+        """The main run, and the splitting integrator's when the report shows it."""
+        return 1 + self.wants_splitting()
+
     def models(self) -> list:
         """The Euler–quaternion model (the splitting run is the scene's own method)."""
         return [core.model(*self.moments)]

@@ -29,7 +29,9 @@ def _columns() -> tuple[Q, ...]:
 
 
 SCHEMA = ResultsSchema(
-    time=Q("t", "t", "1", "time (scaled units)", ("t",)),
+    time=Q("t", "t", "1", "time (scaled units)", ("t",), own_units="config units of time"),
+    own_units="config units (G, lengths, masses and times as the config gives them; a pure "
+              "number stays one)",
     columns=_columns(),
     invariants=(
         Q("energy", "E", "1", "total energy", ("t",)),
@@ -170,7 +172,7 @@ SCHEMA = ResultsSchema(
 _LAGRANGE = ("lagrange_point",)
 
 RESTRICTED_SCHEMA = ResultsSchema(
-    time=SCHEMA.time,
+    time=Q("t", "t", "1", "time (scaled units)", ("t",)),  # the mean motion's: not the config's
     columns=(
         Q("x", "x", "1", "position x in the rotating frame", ("t",)),
         Q("y", "y", "1", "position y in the rotating frame", ("t",)),

@@ -38,6 +38,8 @@ class ThreeBodySimulation(RestrictedSimulation):
     def results_schema(self) -> ResultsSchema:
         return RESTRICTED_SCHEMA if self.config.restricted is not None else SCHEMA
 
+    budget_schema = results_schema  # a choice by the config: nothing to work out
+
     @classmethod
     def audit_cases(cls):
         return [AuditCase(

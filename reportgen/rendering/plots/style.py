@@ -4,9 +4,11 @@ from __future__ import annotations
 
 import matplotlib
 
-matplotlib.use("Agg")
-
-from matplotlib.figure import Figure  # noqa: E402 - pyplot is never imported (0.3 s)
+# No ``matplotlib.use``: figures are ``Figure`` objects that pyplot never sees, saved by
+# the canvas of their format (Agg for PNG), so no backend is chosen here; choosing one
+# switched a notebook's pyplot away from its inline backend, and switching back did not
+# bring back its PNG display (issue 43)
+from matplotlib.figure import Figure  # pyplot is never imported (0.3 s)
 
 RC = {
     "figure.figsize": (6.4, 4.0),
