@@ -202,3 +202,30 @@ def test_long_slug_wraps_inside_its_card(gallery, tmp_path):
     found = re.search(r'id="probe">cards=(\d+) bad=([^<]*)<', dom)
     assert found, dom[-500:]
     assert int(found.group(1)) == 5 and found.group(2) == ""
+
+
+def test_thumbnail_verdicts_are_kept_while_the_file_is_unchanged(gallery, tmp_path):
+    """Each write of index.html sanitized every thumbnail again (0.3 s for 58 scenes in
+    every edit-loop turn): the verdict is kept by the file's identity, so a figure changed
+    after it passed is checked again, and a forged cache entry for another file is not
+    taken."""
+    from reportgen.pipeline.stages import THUMB_CACHE
+
+    out = tmp_path / "out"
+    shutil.copytree(gallery / "swing_a", out / "swing_a")
+    write_index(str(out))
+    thumbs = json.loads((out / THUMB_CACHE).read_text(encoding="utf-8"))
+    assert thumbs["swing_a"]["safe"] is True
+    assert 'src="swing_a/figures/phase_portrait-phase.svg"' in (out / "index.html").read_text()
+
+    svg = out / "swing_a" / "figures" / "phase_portrait-phase.svg"
+    svg.write_text(svg.read_text().replace("<svg ", "<svg onload=\"alert(1)\" ", 1))
+    write_index(str(out))  # the file changed: checked again, refused
+    assert json.loads((out / THUMB_CACHE).read_text())["swing_a"]["safe"] is False
+    assert "no figure" in _card((out / "index.html").read_text(), "swing_a")
+
+    forged = json.loads((out / THUMB_CACHE).read_text())
+    forged["swing_a"]["safe"], forged["swing_a"]["key"][1] = True, 0  # another mtime
+    (out / THUMB_CACHE).write_text(json.dumps(forged))
+    write_index(str(out))
+    assert "no figure" in _card((out / "index.html").read_text(), "swing_a")

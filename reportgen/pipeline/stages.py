@@ -959,6 +959,8 @@ def write_index(out_root: str, outcomes: list[Outcome] = ()) -> Path:
 
     root = Path(out_root)
     entries = []
+    thumbs = _read_cache(root / THUMB_CACHE)
+    checked: dict[str, dict] = {}
     for archive, entry in _gallery_entries(root).items():
         folder = archive.parent
         name = folder.name
@@ -966,7 +968,12 @@ def write_index(out_root: str, outcomes: list[Outcome] = ()) -> Path:
                  if (folder / f"report.{fmt}").exists()]
         links.append(("HDF5", gallery_href(name, "run.h5")))
         entries.append({**entry, "name": name, "links": links,
-                        **_gallery_figure(folder, entry["kind"])})
+                        **_gallery_figure(folder, entry["kind"], thumbs, checked)})
+    if checked != thumbs:
+        try:
+            atomic_write(root / THUMB_CACHE, json.dumps(checked, sort_keys=True).encode("utf-8"))
+        except OSError:
+            pass  # a cache that cannot be written costs time, not correctness
     seen = {e["name"] for e in entries}
     for o in outcomes:
         if o.name not in seen and not o.ok:
@@ -1061,29 +1068,64 @@ def _gallery_entries(root: Path) -> dict[Path, dict]:
 WIDE_ASPECT = 2.2
 
 
-def _gallery_figure(folder: Path, kind: str) -> dict:
+#: the gallery's memory of which thumbnails passed the sanitizer, by file identity: each
+#: write of index.html sanitized every scene's thumbnail again (0.3 s for 58 scenes, in
+#: every edit-loop turn).  A forged entry can only show a figure as an ``<img>``, in which
+#: a browser runs no script and loads nothing
+THUMB_CACHE = ".gallery-thumbs.json"
+
+
+def _read_cache(path: Path) -> dict:
+    """A JSON cache of the output folder, read as untrusted: {} when absent or not one."""
+    try:
+        stored = json.loads(read_back(path, MAX_MANIFEST_BYTES).decode("utf-8"))
+    except (OSError, ValueError, RecursionError):
+        return {}
+    return stored if isinstance(stored, dict) else {}
+
+
+def _gallery_figure(folder: Path, kind: str, thumbs: dict | None = None,
+                    checked: dict | None = None) -> dict:
     """The card's thumbnail: the kind's signature figure (the first of its report's
     ``gallery_figures`` that this scene drew, else the report's first figure) as a link
     relative to the output folder, its caption as the image's alt text, and whether it
     is wide; from the figures' manifest, validated
-    (:func:`reportgen.support.layout.figure_manifest`)."""
+    (:func:`reportgen.support.layout.figure_manifest`).  A figure the sanitizer would
+    change is not shown; its verdict is taken from ``thumbs`` (the last write's) while the
+    file is unchanged, and put in ``checked``."""
+    none = {"thumbnail": None, "thumbnail_alt": "", "wide": False}
     figures = drawn_svg_figures(folder)
     cls = KINDS.get(kind)
     i = chosen_figure([str(fig.get("id", "")) for fig in figures],
                       tuple(getattr(cls, "gallery_figures", ())))
     if i is None:
-        return {"thumbnail": None, "thumbnail_alt": "", "wide": False}
+        return none
     fig = figures[i]
-    try:  # a figure the sanitizer would change is not shown (the report draws it again)
-        svg = read_back(folder / fig["files"]["svg"], MAX_FIGURE_BYTES, follow_links=True)
+    path = folder / fig["files"]["svg"]
+    try:
+        st = path.stat()
+        key = [fig["files"]["svg"], st.st_mtime_ns, st.st_size, st.st_ino, __version__]
     except OSError:
-        svg = b""
-    if not svg_safe(svg):
-        return {"thumbnail": None, "thumbnail_alt": "", "wide": False}
+        key = None
+    hit = (thumbs or {}).get(folder.name)
+    if (key is not None and isinstance(hit, dict) and hit.get("key") == key
+            and isinstance(hit.get("safe"), bool) and isinstance(hit.get("wide"), bool)):
+        safe, wide = hit["safe"], hit["wide"]
+    else:
+        try:  # the report draws a figure the sanitizer would change again
+            svg = read_back(path, MAX_FIGURE_BYTES, follow_links=True)
+        except OSError:
+            svg = b""
+        safe = svg_safe(svg)
+        wide = safe and _svg_aspect(svg) >= WIDE_ASPECT
+    if key is not None and checked is not None:
+        checked[folder.name] = {"key": key, "safe": safe, "wide": wide}
+    if not safe:
+        return none
     caption = fig.get("caption") if isinstance(fig.get("caption"), str) else ""
     return {"thumbnail": gallery_href(folder.name, fig["files"]["svg"]),
             "thumbnail_alt": caption[:300] or f"figure of {folder.name}",
-            "wide": _svg_aspect(svg) >= WIDE_ASPECT}
+            "wide": wide}
 
 
 _SVG_SIZE = re.compile(rb'<svg\b[^>]*?\bwidth="([\d.]+)(?:pt|px)?"[^>]*?\bheight="([\d.]+)'
