@@ -76,7 +76,7 @@ def _write_source(config: Mapping, out: Path, name: str | None,
     ``name=``) rather than replacing it.  A title names one scene: a titled dict with
     edited physics replaces its earlier run, as an edited config file does."""
     from .kinds import load_scene
-    from .scene.config import parse_config_text, to_toml
+    from .scene.config import MAX_CONFIG_NESTING, parse_config_text, to_toml
     from .support.fsutil import atomic_write, links_out
     from .support.layout import printable, scene_name_problem
 
@@ -90,6 +90,11 @@ def _write_source(config: Mapping, out: Path, name: str | None,
         raise ConfigError([f"scene name {printable(repr(stem))} {problem}"])
     folder = out / stem
     path = folder / f"{stem}.toml"
+    deep = _nesting(config, MAX_CONFIG_NESTING)
+    if deep is not None:  # before writing it as text (5,000 levels: a RecursionError)
+        raise ConfigError([f"config dict {stem!r}: key {printable(deep)!r} nested more than "
+                           f"{MAX_CONFIG_NESTING} tables or lists deep, as a config file may "
+                           f"not be"])
     try:
         text = to_toml(dict(config))
     except (TypeError, ValueError) as exc:
@@ -111,6 +116,22 @@ def _write_source(config: Mapping, out: Path, name: str | None,
         folder.mkdir(parents=True, exist_ok=True)
         atomic_write(path, text.encode("utf-8"))
     return path
+
+
+def _nesting(config: Mapping, limit: int) -> str | None:
+    """The dotted key of the first value of ``config`` nested more than ``limit`` tables
+    or lists deep, else None; without recursion."""
+    stack = [(config, "", 0)]
+    while stack:
+        value, key, depth = stack.pop()
+        if depth > limit:
+            return key[:80]
+        if isinstance(value, Mapping):
+            stack.extend((v, f"{key}.{k}" if key else str(k), depth + 1)
+                         for k, v in value.items())
+        elif isinstance(value, list | tuple):
+            stack.extend((v, f"{key}[]", depth + 1) for v in value)
+    return None
 
 
 def _other_physics(archive: Path, key: str) -> str | None:

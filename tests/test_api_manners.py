@@ -207,3 +207,22 @@ def test_the_api_stops_a_scene_at_its_time_limit(tmp_path):
     assert outcome.status == "failed" and "time limit of 2 s exceeded" in outcome.message
     with pytest.raises(ConfigError, match="time_limit must be"):
         reportgen.run(config, tmp_path / "out", time_limit=-1)
+
+
+def test_a_dict_nested_thousands_deep_is_a_config_error_and_writes_nothing(tmp_path):
+    """Issue 48 G: a dict 5,000 levels deep raised RecursionError from the API; it is a
+    ConfigError naming the key and the rule (a config file may nest 32 deep)."""
+    import pytest
+
+    import reportgen
+    from reportgen.errors import ConfigError
+
+    deep = leaf = {}
+    for _ in range(5000):
+        leaf["a"] = {}
+        leaf = leaf["a"]
+    config = {"kind": "pendulum", "title": "deep", "params": {"g": 9.81, "l": 1.0, "x": deep},
+              "initial": {"theta": 1.0}, "run": {"t_end": 1.0, "samples": 21, "study": False}}
+    with pytest.raises(ConfigError, match=r"params\.x\.a\.a.*more than 32"):
+        reportgen.run(config, out=tmp_path / "out", formats=["html"])
+    assert not (tmp_path / "out").exists() or not any((tmp_path / "out").rglob("*.toml"))

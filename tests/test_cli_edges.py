@@ -237,3 +237,27 @@ def test_a_misspelled_kind_or_preset_gets_did_you_mean(write_config, cli, text, 
     code, _, err = cli("validate", path)
     assert code == 2
     assert err.splitlines() == [f"{path}: " + line.format(kinds=", ".join(KINDS))]
+
+
+# ------------------------------------------------------ a terminal without Unicode
+def test_inspect_on_an_ascii_terminal_escapes_what_it_cannot_print(tmp_path, cli):
+    """Issue 48 G: `inspect` of an archive under a non-ASCII path, its output encoding
+    ASCII (PYTHONIOENCODING=ascii, LC_ALL=C), ended in exit 1 and a UnicodeEncodeError;
+    the characters are printed as escapes."""
+    import os
+    import subprocess
+    import sys
+
+    folder = tmp_path / "ünïcødé"
+    folder.mkdir()
+    config = folder / "θ.toml"
+    config.write_text(pendulum_text(t_end=1.0, samples=51, title="pendule à θ = 1")
+                      + '\n[report]\nformats = ["html"]\n', encoding="utf-8")
+    code, _, err = cli("run", config, "--out", folder / "öut", "--jobs", "1")
+    assert code == 0, err
+    proc = subprocess.run([sys.executable, "-m", "reportgen", "inspect",
+                           str(folder / "öut" / "θ" / "run.h5")], capture_output=True,
+                          env={**os.environ, "PYTHONIOENCODING": "ascii"}, timeout=120)
+    assert proc.returncode == 0, proc.stderr.decode("ascii", "replace")
+    out = proc.stdout.decode("ascii")  # nothing but ASCII came out
+    assert "\\xfcn\\xef" in out and "pendule \\xe0 \\u03b8 = 1" in out

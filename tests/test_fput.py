@@ -160,3 +160,22 @@ def test_cli_end_to_end(write_config, cli, tmp_path):
         assert f["analysis/oscillatory_energies"].shape == (201, 3)
         assert f["analysis/oscillatory_energy_total"].shape == (201,)
     assert columns == [f"q{i}" for i in range(1, 7)] + [f"p{i}" for i in range(1, 7)]
+
+
+def test_a_failed_taylor_run_at_rtol_1e_300_gets_its_report_and_one_line(tmp_path, cli):
+    """Issue 48 G: FPUT with taylor at rtol 1e-300 ends non-finite; its report crashed on
+    the NaN energies ("cannot convert float NaN to integer", exit 1 with a traceback in
+    error.log); now the report is written, says failed, and prints no nan."""
+    from reportgen.kinds.fput.report import FputReport
+
+    assert FputReport.percent(float("nan")) == "—" and FputReport.percent(2.5) == "250"
+    config = tmp_path / "fput_taylor.toml"
+    config.write_text('kind = "fput"\ntitle = "fput taylor"\npreset = "gni"\n'
+                      '[report]\nformats = ["html"]\n'
+                      '[run]\nmethod = "taylor"\nrtol = 1e-300\nstudy = false\n')
+    code, out, err = cli("run", config, "--out", tmp_path / "out", "--jobs", "1")
+    assert code == 1 and "non-finite" in out + err and "Traceback" not in out + err
+    page = (tmp_path / "out" / "fput_taylor" / "report.html").read_text(encoding="utf-8")
+    import re
+
+    assert "failed" in page and not re.search(r"\bnan\b", page, re.I)

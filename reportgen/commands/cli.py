@@ -219,6 +219,11 @@ def console_main() -> None:
     streams are flushed and the process ends with ``os._exit`` -- unless a child process
     is somehow still running, which the normal exit then handles."""
     one_blas_thread_by_default()
+    for stream in (sys.stdout, sys.stderr):  # a character the terminal's encoding lacks
+        try:  # (PYTHONIOENCODING=ascii, LC_ALL=C) is printed as an escape, not a crash
+            stream.reconfigure(errors="backslashreplace")
+        except (AttributeError, ValueError):  # not a text stream of io's
+            pass
     code = main()
     for stream in (sys.stdout, sys.stderr):
         try:

@@ -92,7 +92,7 @@ class FputReport(Report):
         """A share as a percentage to two figures, whole above 100 (I is not conserved: a
         spring may come to hold more than I(0))."""
         value = 100 * share
-        return fmt(value, 2) if value < 100 else str(round(value))
+        return fmt(value, 2) if not value >= 100 or math.isinf(value) else str(round(value))
 
     @classmethod
     def describe(cls, data):
