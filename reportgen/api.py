@@ -90,15 +90,15 @@ def _write_source(config: Mapping, out: Path, name: str | None,
         raise ConfigError([f"scene name {printable(repr(stem))} {problem}"])
     folder = out / stem
     path = folder / f"{stem}.toml"
-    deep = _nesting(config, MAX_CONFIG_NESTING)
-    if deep is not None:  # before writing it as text (5,000 levels: a RecursionError)
-        raise ConfigError([f"config dict {stem!r}: key {printable(deep)!r} nested more than "
-                           f"{MAX_CONFIG_NESTING} tables or lists deep, as a config file may "
-                           f"not be"])
     try:
         text = to_toml(dict(config))
     except (TypeError, ValueError) as exc:
         raise ConfigError([f"config dict {stem!r}: {exc}"]) from None
+    except RecursionError:  # nested thousands deep (a shallower one fails as text, below)
+        deep = _nesting(config, MAX_CONFIG_NESTING) or "?"
+        raise ConfigError([f"config dict {stem!r}: key {printable(deep)!r} nested more than "
+                           f"{MAX_CONFIG_NESTING} tables or lists deep, as a config file may "
+                           f"not be"]) from None
     scene = load_scene(parse_config_text(text, path))  # ConfigError: nothing written
     before_writing()  # the output folder's lock, from here to the end of the run
     escaping = links_out(folder, out)
@@ -130,7 +130,8 @@ def _nesting(config: Mapping, limit: int) -> str | None:
             stack.extend((v, f"{key}.{k}" if key else str(k), depth + 1)
                          for k, v in value.items())
         elif isinstance(value, list | tuple):
-            stack.extend((v, f"{key}[]", depth + 1) for v in value)
+            stack.extend((v, f"{key}[]", depth + 1) for v in value
+                         if isinstance(v, Mapping | list | tuple))
     return None
 
 
