@@ -45,6 +45,7 @@ from ..support.fsutil import (
     output_folder,
     output_lock,
     read_back,
+    read_json_back,
     remove_stale_temps,
     temp_name,
 )
@@ -138,10 +139,7 @@ MAX_STAMP_BYTES = 1_000_000
 
 def _report_current(folder: Path, identity: Identity, formats, scene: Scene) -> bool:
     """Whether every wanted report was rendered from this very archive content."""
-    try:
-        stamp = json.loads(read_back(report_stamp(folder), MAX_STAMP_BYTES).decode("utf-8"))
-    except (OSError, ValueError, RecursionError):
-        return False
+    stamp = read_json_back(report_stamp(folder), MAX_STAMP_BYTES)
     if not (isinstance(stamp, dict) and isinstance(stamp.get("formats", ()), list)):
         return False  # not a stamp this reportgen wrote: render again
     return (stamp.get("archive") == _archive_stamp(identity, scene)
@@ -1031,10 +1029,7 @@ def _gallery_entries(root: Path) -> dict[Path, dict]:
     from ``root/.gallery.json`` where an archive is unchanged since it was read (by this
     reportgen version and gallery format)."""
     cache = root / GALLERY_CACHE
-    try:
-        stored = json.loads(read_back(cache, MAX_MANIFEST_BYTES).decode("utf-8"))
-    except (OSError, ValueError, RecursionError):
-        stored = {}
+    stored = _read_cache(cache)
     fresh, entries = {}, {}
     # the kinds' report code writes the headlines: an edit to it reads every entry again
     # (~0.05 s once per process), as a new reportgen version does
@@ -1047,7 +1042,7 @@ def _gallery_entries(root: Path) -> dict[Path, dict]:
             continue
         stamp = [st.st_mtime_ns, st.st_size, st.st_ino, GALLERY_FORMAT, __version__, code]
         name = archive.parent.name
-        hit = stored.get(name) if isinstance(stored, dict) else None
+        hit = stored.get(name)
         entry = (hit["entry"] if isinstance(hit, dict) and hit.get("stamp") == stamp
                  and _valid_entry(hit.get("entry"))
                  else gallery_entry(archive, headline=_gallery_headline))
@@ -1077,10 +1072,7 @@ THUMB_CACHE = ".gallery-thumbs.json"
 
 def _read_cache(path: Path) -> dict:
     """A JSON cache of the output folder, read as untrusted: {} when absent or not one."""
-    try:
-        stored = json.loads(read_back(path, MAX_MANIFEST_BYTES).decode("utf-8"))
-    except (OSError, ValueError, RecursionError):
-        return {}
+    stored = read_json_back(path, MAX_MANIFEST_BYTES)
     return stored if isinstance(stored, dict) else {}
 
 

@@ -5,6 +5,7 @@ followed out), and the output folder's lock."""
 from __future__ import annotations
 
 import errno
+import json
 import os
 import stat
 import sys
@@ -12,7 +13,7 @@ import uuid
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
-from typing import BinaryIO
+from typing import Any, BinaryIO
 
 from ..errors import UsageError
 
@@ -131,6 +132,16 @@ def read_back(path: Path, limit: int, follow_links: bool = False) -> bytes:
     if len(data) > limit:  # grew since
         raise FileTooLarge(errno.EFBIG, f"larger than {limit} bytes", str(path))
     return data
+
+
+def read_json_back(path: Path, limit: int) -> Any:
+    """The JSON value of ``path``, read back as :func:`read_back` reads (no link, at most
+    ``limit`` bytes), or None when it is missing, not such a file, or not JSON (a cache
+    or stamp that cannot be read is one that was not written)."""
+    try:
+        return json.loads(read_back(path, limit).decode("utf-8"))
+    except (OSError, ValueError, RecursionError):
+        return None
 
 
 def open_back(path: Path, limit: int, follow_links: bool = False) -> BinaryIO:

@@ -4,7 +4,6 @@ look before it imports anything heavy."""
 
 from __future__ import annotations
 
-import json
 import os
 import re
 import unicodedata
@@ -13,7 +12,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import ConfigError, ReportError, UsageError
-from .fsutil import read_back
+from .fsutil import read_json_back
 
 #: the report formats
 FORMATS = ("html", "pdf")
@@ -154,10 +153,7 @@ def figure_manifest(out_dir: Path) -> dict[str, Any] | None:
     invalid manifest is simply not reused: the figures are drawn again."""
     figures = Path(out_dir) / "figures"
     index = figures / SECTIONS_FILE
-    try:
-        stored = json.loads(read_back(index, MAX_MANIFEST_BYTES).decode("utf-8"))
-    except (OSError, ValueError, RecursionError):
-        return None
+    stored = read_json_back(index, MAX_MANIFEST_BYTES)
     if not (isinstance(stored, dict) and isinstance(stored.get("key"), str)
             and isinstance(stored.get("sections"), list)):
         return None
