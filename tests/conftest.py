@@ -113,6 +113,13 @@ def shipped_archives(tmp_path_factory):
     return archive
 
 
+#: a line of Python that prints its process's peak resident memory in KiB since its exec,
+#: for a test to append to a child's code: VmHWM (getrusage's ru_maxrss keeps the forking
+#: parent's size across exec: a pytest worker's 900 MiB)
+PEAK = ("print(next(int(line.split()[1]) for line in open('/proc/self/status') "
+        "if line.startswith('VmHWM:')))")
+
+
 def cli_without_core(*args) -> subprocess.CompletedProcess:
     """`reportgen args` in a fresh process in which ``reportgen.core`` cannot be imported:
     whatever it does, it does from an archive alone."""

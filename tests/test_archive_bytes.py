@@ -9,21 +9,29 @@ from __future__ import annotations
 import shutil
 import subprocess
 import sys
+from pathlib import Path
 
 import h5py
 import numpy as np
 import pytest
 
-from conftest import pendulum_text
+from conftest import PEAK, pendulum_text
 from reportgen.archive.check import MAX_DATASET_BYTES
 from reportgen.archive.h5io import TABLE_ATTR, ArchiveError, read_table
 from reportgen.archive.store import gallery_entry, read_archive
 from reportgen.commands.cli import main
 
-#: the child's peak resident memory in KiB since its exec: VmHWM (getrusage's ru_maxrss
-#: keeps the forking parent's size across exec: a pytest worker's 900 MiB)
-PEAK = ("print(next(int(line.split()[1]) for line in open('/proc/self/status') "
-        "if line.startswith('VmHWM:')))")
+
+def _peak_of_gallery_entry(archive: Path, check: str = "") -> int:
+    """The peak resident memory [KiB] of a child that reads ``archive``'s gallery card
+    (and asserts ``check`` of its ``entry``)."""
+    probe = ("import sys; from pathlib import Path; "
+             "from reportgen.archive.store import gallery_entry; "
+             f"entry = gallery_entry(Path(sys.argv[1])); {check}" + PEAK)
+    out = subprocess.run([sys.executable, "-c", probe, str(archive)], capture_output=True,
+                         text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    return int(out.stdout)
 
 
 @pytest.fixture(scope="module")
@@ -59,13 +67,8 @@ def test_the_gallery_skips_it_without_reading_it(swollen):
     """Read in a child process, whose peak memory is measured: under 500 MB."""
     good, bad = swollen
     assert gallery_entry(good) is not None and gallery_entry(bad) is None
-    probe = ("import sys; from pathlib import Path; "
-             "from reportgen.archive.store import gallery_entry; "
-             "assert gallery_entry(Path(sys.argv[1])) is None; " + PEAK)
-    out = subprocess.run([sys.executable, "-c", probe, str(bad)], capture_output=True,
-                         text=True, timeout=120)
-    assert out.returncode == 0, out.stderr
-    assert int(out.stdout) < 500_000, f"peak {int(out.stdout) / 1024:.0f} MiB"  # KiB
+    peak = _peak_of_gallery_entry(bad, "assert entry is None; ")
+    assert peak < 500_000, f"peak {peak / 1024:.0f} MiB"  # KiB
 
 
 @pytest.mark.parametrize("layout", ["compound", "columns"])
@@ -90,13 +93,8 @@ def test_the_gallery_reads_no_wide_checks_table(swollen, tmp_path, layout):
             g.attrs[TABLE_ATTR] = np.array(table.dtype.names, dtype=h5py.string_dtype())
             for n in table.dtype.names:
                 g.create_dataset(n, data=table[n], chunks=(1,), compression="gzip")
-    probe = ("import sys; from pathlib import Path; "
-             "from reportgen.archive.store import gallery_entry; "
-             "entry = gallery_entry(Path(sys.argv[1])); " + PEAK)
-    out = subprocess.run([sys.executable, "-c", probe, str(wide)], capture_output=True,
-                         text=True, timeout=120)
-    assert out.returncode == 0, out.stderr
-    assert int(out.stdout) < 500_000, f"peak {int(out.stdout) / 1024:.0f} MiB"  # KiB
+    peak = _peak_of_gallery_entry(wide)
+    assert peak < 500_000, f"peak {peak / 1024:.0f} MiB"  # KiB
 
 
 def test_wide_text_is_still_taken_within_the_limit(swollen, tmp_path):

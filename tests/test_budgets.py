@@ -25,12 +25,9 @@ import h5py
 import numpy as np
 import pytest
 
-from conftest import pendulum_text
+from conftest import PEAK, pendulum_text
 from reportgen.commands.cli import main
 
-#: the child's peak resident memory in KiB, printed as its last line
-PEAK = ("\nprint(next(int(line.split()[1]) for line in open('/proc/self/status') "
-        "if line.startswith('VmHWM:')))")
 #: address space a child may take (a regression fails with MemoryError, never swaps)
 CHILD_ADDRESS_SPACE = 3 << 30
 #: what a child reading none of the large inputs peaks at, with room to spare [KiB]
@@ -44,7 +41,7 @@ def _child(code: str, *args, timeout: float = 120) -> tuple[subprocess.Completed
     def limit() -> None:
         resource.setrlimit(resource.RLIMIT_AS, (CHILD_ADDRESS_SPACE, CHILD_ADDRESS_SPACE))
 
-    proc = subprocess.run([sys.executable, "-c", code + PEAK, *map(str, args)],
+    proc = subprocess.run([sys.executable, "-c", code + "\n" + PEAK, *map(str, args)],
                           capture_output=True, text=True, timeout=timeout, preexec_fn=limit)
     lines = proc.stdout.strip().splitlines()
     peak = int(lines[-1]) if proc.returncode == 0 and lines and lines[-1].isdigit() else 0
